@@ -1,0 +1,190 @@
+// Ray marching through the brick atlas: brick-level DDA with empty-space skipping, optical depth
+// accumulated as a sum (tau += sigma * dt, T = exp(-tau)), brute-force shadow rays, compositing.
+#pragma once
+#include "vx_optics.h"
+
+// Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.
+struct VxDda {
+    ivec3 brick;
+    ivec3 step;
+    vec3 t_next;    // t at which the ray crosses the next brick plane on each axis
+    vec3 t_delta;   // t between brick planes on each axis
+    float t;        // t at which the ray entered the current brick
+    float t_end;
+};
+
+float vx_safe_inv(float x) {
+    return abs(x) > 1e-20f ? 1.0f / x : (x >= 0.0f ? 1e30f : -1e30f);
+}
+
+// Clips [t0, t1] against the box of occupied bricks. Returns false when nothing is left.
+bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
+    vec3 lo = vec3(P.bricks_min.x, P.bricks_min.y, P.bricks_min.z) * float(VX_BRICK);
+    vec3 hi = vec3(P.bricks_max.x + 1, P.bricks_max.y + 1, P.bricks_max.z + 1) * float(VX_BRICK);
+    vec3 inv = vec3(vx_safe_inv(d.x), vx_safe_inv(d.y), vx_safe_inv(d.z));
+    vec3 ta = (lo - o) * inv;
+    vec3 tb = (hi - o) * inv;
+    vec3 tmin = min(ta, tb);
+    vec3 tmax = max(ta, tb);
+    t0 = max(t0, max(tmin.x, max(tmin.y, tmin.z)));
+    t1 = min(t1, min(tmax.x, min(tmax.y, tmax.z)));
+    return t0 < t1;
+}
+
+VxDda vx_dda_begin(vec3 o, vec3 d, float t0, float t1) {
+    VxDda s;
+    s.t = t0;
+    s.t_end = t1;
+    vec3 inv = vec3(vx_safe_inv(d.x), vx_safe_inv(d.y), vx_safe_inv(d.z));
+    // Locate the first brick a hair inside the clipped segment so a start on a plane is stable.
+    vec3 p = o + d * (t0 + 1e-5f * (t1 - t0));
+    s.brick = ivec3(floor(p / float(VX_BRICK)));
+    s.step = ivec3(d.x >= 0.0f ? 1 : -1, d.y >= 0.0f ? 1 : -1, d.z >= 0.0f ? 1 : -1);
+    vec3 next_plane = vec3(s.brick + max(s.step, ivec3(0))) * float(VX_BRICK);
+    s.t_next = (next_plane - o) * inv;
+    s.t_delta = abs(inv) * float(VX_BRICK);
+    return s;
+}
+
+float vx_dda_exit(VxDda s) {
+    return min(s.t_end, min(s.t_next.x, min(s.t_next.y, s.t_next.z)));
+}
+
+void vx_dda_advance(VX_INOUT(VxDda) s) {
+    s.t = vx_dda_exit(s);
+    if (s.t_next.x <= s.t_next.y && s.t_next.x <= s.t_next.z) {
+        s.brick.x += s.step.x;
+        s.t_next.x += s.t_delta.x;
+    } else if (s.t_next.y <= s.t_next.z) {
+        s.brick.y += s.step.y;
+        s.t_next.y += s.t_delta.y;
+    } else {
+        s.brick.z += s.step.z;
+        s.t_next.z += s.t_delta.z;
+    }
+}
+
+// Index of the first sample t_k = (k + 0.5f) * dt with t_k >= t.
+int vx_first_sample(float t, float dt) {
+    return max(int(ceil(t / dt - 0.5f)), 0);
+}
+
+vec3 vx_to_index_point(vec3 x) { return vec3(P.world_to_index * vec4(x, 1.0f)); }
+vec3 vx_to_index_dir(vec3 v) { return vec3(P.world_to_index * vec4(v, 0.0f)); }
+
+// Transmittance from world point x towards a light at distance `dist` along unit direction wi.
+// Reference quality: fixed step P.march.y, stops only below the transmittance cutoff.
+float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
+    vec3 o = vx_to_index_point(x);
+    vec3 d = vx_to_index_dir(wi);
+    float t0 = 0.0f;
+    float t1 = dist;
+    if (!vx_clip_to_bricks(o, d, t0, t1)) return 1.0f;
+    float dt = P.march.y;
+    float tau = 0.0f;
+    float tau_cut = -log(P.march.z);
+    VxDda s = vx_dda_begin(o, d, t0, t1);
+    while (s.t < s.t_end) {
+        float t_exit = vx_dda_exit(s);
+        int slot = vx_page_lookup(s.brick);
+        if (slot != VX_PAGE_EMPTY) {
+            for (int k = vx_first_sample(s.t, dt);; ++k) {
+                float t = (float(k) + 0.5f) * dt;
+                if (t >= t_exit) break;
+                tau += vx_extinction(vx_corners(slot, s.brick, o + d * t)) * dt;
+            }
+            if (tau > tau_cut) return 0.0f;
+        }
+        vx_dda_advance(s);
+    }
+    return exp(-tau);
+}
+
+// Single-scattered light at world point x for a camera ray travelling along unit direction dir.
+vec3 vx_in_scattered(vec3 x, vec3 dir) {
+    vec3 sum = vec3(0.0f);
+    for (int i = 0; i < P.bricks_min.w; ++i) {
+        vec3 wi;
+        float dist;
+        vec3 e = vx_light_incident(vx_light(i), x, wi, dist);
+        if (e.x + e.y + e.z <= 0.0f) continue;
+        float shadow = 1.0f;
+        if (P.bricks_max.w == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
+        sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.march.w));
+    }
+    return sum;
+}
+
+// March one camera ray (world origin, unit world direction, camera forward for depth).
+VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
+    VxPixel px;
+    px.rgba = vec4(0.0f);
+    px.direct = vec3(0.0f);
+    px.emission = vec3(0.0f);
+    px.transmittance = 1.0f;
+    px.depth = 0.0f;
+
+    vec3 o = vx_to_index_point(origin);
+    vec3 d = vx_to_index_dir(dir);
+    float t0 = 0.0f;
+    float t1 = 1e30f;
+    if (!vx_clip_to_bricks(o, d, t0, t1)) return px;
+
+    float dt = P.march.x;
+    float tau = 0.0f;
+    float T = 1.0f;
+    float depth_weighted = 0.0f;
+    float cos_forward = dot(dir, forward);
+    VxDda s = vx_dda_begin(o, d, t0, t1);
+    while (s.t < s.t_end && T > P.march.z) {
+        float t_exit = vx_dda_exit(s);
+        int slot = vx_page_lookup(s.brick);
+        if (slot != VX_PAGE_EMPTY) {
+            for (int k = vx_first_sample(s.t, dt);; ++k) {
+                float t = (float(k) + 0.5f) * dt;
+                if (t >= t_exit || T <= P.march.z) break;
+                VxOptics m = vx_optics(vx_corners(slot, s.brick, o + d * t));
+                if (m.sigma_t <= 0.0f && m.emission.x + m.emission.y + m.emission.z <= 0.0f) continue;
+                // Exact integral of a constant segment: the light scattered in a segment of
+                // extinction sigma is albedo * L_in * (T_k - T_k+1); emission integrates to
+                // Le * (T_k - T_k+1) / sigma, which tends to Le * T_k * dt as sigma -> 0.
+                tau += m.sigma_t * dt;
+                float T_next = exp(-tau);
+                float absorbed = T - T_next;
+                vec3 x = origin + dir * t;
+                if (absorbed > 0.0f) {
+                    vec3 scattered = m.albedo * vx_in_scattered(x, dir) * absorbed;
+                    px.direct += scattered;
+                    depth_weighted += absorbed * t * cos_forward;
+                }
+                px.emission += m.emission * (m.sigma_t > 1e-6f ? absorbed / m.sigma_t : T * dt);
+                T = T_next;
+            }
+        }
+        vx_dda_advance(s);
+    }
+    float alpha = 1.0f - T;
+    px.rgba = vec4(px.direct + px.emission, alpha);
+    px.transmittance = T;
+    px.depth = alpha > 0.0f ? depth_weighted / alpha : 0.0f;
+    return px;
+}
+
+// The camera ray through the centre of pixel (x, y); y = 0 is the top row.
+void vx_camera_ray(int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+    float w = P.camera_frame.z;
+    float h = P.camera_frame.w;
+    float sx = (2.0f * (float(x) + 0.5f) / w - 1.0f) * P.camera_frame.x * P.camera_frame.y;
+    float sy = (1.0f - 2.0f * (float(y) + 0.5f) / h) * P.camera_frame.x;
+    origin = vec3(P.camera_to_world * vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    dir = normalize(vec3(P.camera_to_world * vec4(sx, sy, -1.0f, 0.0f)));
+    forward = normalize(vec3(P.camera_to_world * vec4(0.0f, 0.0f, -1.0f, 0.0f)));
+}
+
+VxPixel vx_render_pixel(int x, int y) {
+    vec3 origin;
+    vec3 dir;
+    vec3 forward;
+    vx_camera_ray(x, y, origin, dir, forward);
+    return vx_march_ray(origin, dir, forward);
+}

@@ -1,0 +1,35 @@
+// Shared-kernel prelude: lets the vx_*.h headers compile both as GLSL 4.50 and as C++17 with GLM.
+// On the GL side the headers are concatenated after "#define VX_GLSL" (see src/shader_source.cpp),
+// with their #include / #pragma once lines stripped. On the C++ side they are #included inside a
+// struct body (src/cpu_kernel.h), so backend data accessors are members and the math is one copy.
+//
+// Rules for code in vx_*.h:
+//  - out/inout parameters use VX_OUT(T) / VX_INOUT(T); no pointers, no references otherwise;
+//  - no `const` locals (GLSL wants constant expressions there), no swizzles beyond .x/.y/.z/.w;
+//  - structs are filled field by field (no constructors), constants are #defines;
+//  - data comes only from accessor functions that each backend defines:
+//      float  vx_atlas_density(int index);   vec3 vx_atlas_color(int index);
+//      float  vx_atlas_emission(int index);  ivec4 vx_page_entry(int index);
+//      VxLight vx_light(int index);          vec4  vx_tf_lut(int index);
+//    and read the parameters in VxParams through the global/member `P`.
+#ifdef VX_GLSL
+#define VX_OUT(T) out T
+#define VX_INOUT(T) inout T
+#else
+#define VX_OUT(T) T&
+#define VX_INOUT(T) T&
+#endif
+
+#define VX_PI 3.14159265f
+#define VX_BRICK 8                 // voxels per brick edge (one OpenVDB leaf)
+#define VX_BRICK_STRIDE 9          // stored edge: brick + 1-voxel apron on the + side for trilinear
+#define VX_BRICK_VOXELS 729        // VX_BRICK_STRIDE^3
+#define VX_PAGE_EMPTY -1
+#define VX_TF_LUT_SIZE 256
+
+#define VX_LIGHT_DIRECTIONAL 0
+#define VX_LIGHT_POINT 1
+#define VX_LIGHT_SPOT 2
+
+#define VX_SHADOWS_NONE 0
+#define VX_SHADOWS_RAYMARCH 1

@@ -1,0 +1,39 @@
+// Plain data shared by both backends. Every member is a vec4/ivec4/mat4 so that the std430
+// layout of the GL buffers and the C++ struct layout are the same bytes.
+#pragma once
+#include "vx_prelude.h"
+
+// One light. pos_type: xyz world position (point/spot), w = VX_LIGHT_*.
+// dir_cos: xyz unit world direction the light travels (directional/spot),
+//          w = cos(outer cone half-angle) for spots.
+// color: rgb = colour * intensity (scene-linear, unclamped), w = cos(inner half-angle) for spots.
+struct VxLight {
+    vec4 pos_type;
+    vec4 dir_cos;
+    vec4 color;
+};
+
+// Everything the march needs besides the data arrays.
+struct VxParams {
+    mat4 camera_to_world;   // camera looks down -Z, +Y up
+    mat4 world_to_index;    // affine inverse of the grid's index-to-world transform
+    vec4 camera_frame;      // x = tan(fov_y / 2), y = aspect (w / h), z = width, w = height
+    vec4 march;             // x = step (world units), y = shadow step (world units),
+                            // z = transmittance cutoff, w = HG anisotropy g
+    vec4 material;          // rgb = albedo, w = density (extinction) scale
+    vec4 emission;          // rgb = emission colour * scale, w = 1 if an emission grid is bound
+    vec4 tf_domain;         // x = value at LUT entry 0, y = 1 / (value range), z = 1 if the LUT is used,
+                            // w = 1 if a colour (Cd) grid is bound
+    ivec4 bricks_min;       // xyz = lowest occupied brick coordinate, w = light count
+    ivec4 bricks_max;       // xyz = highest occupied brick coordinate, w = shadow mode VX_SHADOWS_*
+    ivec4 page;             // x = page-table capacity (power of two), y = max probe length
+};
+
+// What one camera ray returns; the AOVs are kept separate so the EXR writer can lay them out.
+struct VxPixel {
+    vec4 rgba;              // premultiplied scene-linear radiance, alpha = 1 - transmittance
+    vec3 direct;            // single-scattered light from the scene lights
+    vec3 emission;          // self-emitted light
+    float transmittance;    // of the whole ray
+    float depth;            // camera-space distance, opacity-weighted mean (0 where nothing was hit)
+};

@@ -1,0 +1,198 @@
+#include "brick_atlas.h"
+
+#include <atomic>
+#include <cmath>
+
+#include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "brick_set.h"
+#include "vx_prelude.h"
+
+namespace voxlux {
+namespace {
+
+constexpr int kStride = VX_BRICK_STRIDE;
+constexpr int kVoxels = VX_BRICK_VOXELS;
+
+// The bricks to store: those holding active values, plus their neighbours on the - side, whose
+// + apron reaches into them (without those, the filter's ramp into a data brick from an empty
+// one would be skipped by the march).
+std::vector<glm::ivec3> bricksToStore(const LoadedVolume& v, std::vector<glm::ivec3>& active) {
+    collectBricks(v.density->tree(), active, v.file);
+    if (v.emission) collectBricks(v.emission->tree(), active, v.file);
+    if (v.color) collectBricks(v.color->tree(), active, v.file);
+    uniqueBricks(active);
+    std::vector<glm::ivec3> all;
+    all.reserve(active.size() * 2);
+    for (const auto& b : active)
+        for (int i = 0; i < 8; ++i) all.push_back(b - glm::ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1));
+    uniqueBricks(all);
+    if (all.size() > kMaxBricks)
+        throw InputError(v.file + ": " + std::to_string(all.size()) + " bricks exceed the limit of " +
+                         std::to_string(kMaxBricks));
+    return all;
+}
+
+// Fills one brick's 9^3 block of a scalar grid, replacing unusable values. Interior voxels of a
+// leaf are copied from its buffer; the apron and tile-covered voxels go through the accessor.
+template <typename Accessor>
+void fillScalar(Accessor& acc, const glm::ivec3& b, float* dst, SanitizeCounts& fixes) {
+    const openvdb::Coord origin(b.x * 8, b.y * 8, b.z * 8);
+    const auto* leaf = acc.probeConstLeaf(origin);
+    for (int z = 0; z < kStride; ++z)
+        for (int y = 0; y < kStride; ++y)
+            for (int x = 0; x < kStride; ++x) {
+                const openvdb::Coord c = origin.offsetBy(x, y, z);
+                const bool interior = x < 8 && y < 8 && z < 8;
+                float value;
+                bool active;
+                if (interior && leaf) {
+                    const auto i = leaf->coordToOffset(c);
+                    value = leaf->getValue(i);
+                    active = leaf->isValueOn(i);
+                } else {
+                    active = acc.probeValue(c, value);
+                }
+                if (!std::isfinite(value)) {
+                    value = 0.0f;
+                    fixes.non_finite += interior && active;
+                } else if (value < 0.0f) {
+                    value = 0.0f;
+                    fixes.negative += interior && active;
+                }
+                dst[(z * kStride + y) * kStride + x] = value;
+            }
+}
+
+template <typename Accessor>
+void fillColor(Accessor& acc, const glm::ivec3& b, float* dst, SanitizeCounts& fixes) {
+    const openvdb::Coord origin(b.x * 8, b.y * 8, b.z * 8);
+    for (int z = 0; z < kStride; ++z)
+        for (int y = 0; y < kStride; ++y)
+            for (int x = 0; x < kStride; ++x) {
+                openvdb::Vec3s v;
+                const bool counted = acc.probeValue(origin.offsetBy(x, y, z), v) && x < 8 && y < 8 && z < 8;
+                float* out = dst + 3 * ((z * kStride + y) * kStride + x);
+                for (int k = 0; k < 3; ++k) {
+                    float c = v[k];
+                    if (!std::isfinite(c)) { c = 0.0f; fixes.non_finite += counted; }
+                    else if (c < 0.0f) { c = 0.0f; fixes.negative += counted; }
+                    else if (c > 1.0f) { c = 1.0f; fixes.above_one += counted; }
+                    out[k] = c;
+                }
+            }
+}
+
+void addCounts(SanitizeCounts& into, const SanitizeCounts& c) {
+    into.non_finite += c.non_finite;
+    into.negative += c.negative;
+    into.above_one += c.above_one;
+}
+
+}  // namespace
+
+size_t BrickAtlas::bytes() const {
+    return coords.size() * sizeof(glm::ivec3) + (density.size() + emission.size() + color.size()) * sizeof(float) +
+           density_range.size() * sizeof(glm::vec2) + emission_max.size() * sizeof(float);
+}
+
+BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
+    BrickAtlas atlas;
+    atlas.index_to_world = v.index_to_world;
+    atlas.active_voxels = v.density->activeVoxelCount();
+    std::vector<glm::ivec3> active;
+    std::vector<glm::ivec3> candidates = bricksToStore(v, active);
+
+    const size_t n = candidates.size();
+    std::vector<float> density(n * kVoxels), emission(v.emission ? n * kVoxels : 0), color(v.color ? n * kVoxels * 3 : 0);
+    struct Fixes { SanitizeCounts density, emission, color; };
+    tbb::combinable<Fixes> fixes;
+    using FloatAcc = openvdb::FloatGrid::ConstAccessor;
+    tbb::enumerable_thread_specific<FloatAcc> densityAcc([&] { return v.density->getConstAccessor(); });
+    tbb::enumerable_thread_specific<std::unique_ptr<FloatAcc>> emissionAcc;
+    tbb::enumerable_thread_specific<std::unique_ptr<openvdb::Vec3SGrid::ConstAccessor>> colorAcc;
+
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16), [&](const tbb::blocked_range<size_t>& r) {
+        Fixes& f = fixes.local();
+        auto& dacc = densityAcc.local();
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            fillScalar(dacc, candidates[i], &density[i * kVoxels], f.density);
+            if (v.emission) {
+                auto& acc = emissionAcc.local();
+                if (!acc) acc = std::make_unique<FloatAcc>(v.emission->getConstAccessor());
+                fillScalar(*acc, candidates[i], &emission[i * kVoxels], f.emission);
+            }
+            if (v.color) {
+                auto& acc = colorAcc.local();
+                if (!acc) acc = std::make_unique<openvdb::Vec3SGrid::ConstAccessor>(v.color->getConstAccessor());
+                fillColor(*acc, candidates[i], &color[i * kVoxels * 3], f.color);
+            }
+        }
+    });
+    fixes.combine_each([&](const Fixes& f) {
+        addCounts(atlas.density_fixes, f.density);
+        addCounts(atlas.emission_fixes, f.emission);
+        addCounts(atlas.color_fixes, f.color);
+    });
+
+    // Keep every brick with active values; keep a - side neighbour only if its block is non-zero.
+    std::vector<glm::vec2> range(n);
+    std::vector<float> emissionMax(v.emission ? n : 0);
+    std::vector<char> keep(n);
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+        const float* d = &density[i * kVoxels];
+        glm::vec2 mm(d[0], d[0]);
+        for (int k = 1; k < kVoxels; ++k) mm = glm::vec2(std::min(mm.x, d[k]), std::max(mm.y, d[k]));
+        range[i] = mm;
+        float em = 0.0f;
+        if (v.emission)
+            for (int k = 0; k < kVoxels; ++k) em = std::max(em, emission[i * kVoxels + k]);
+        if (v.emission) emissionMax[i] = em;
+        keep[i] = std::binary_search(active.begin(), active.end(), candidates[i],
+                                     [](const glm::ivec3& a, const glm::ivec3& c) {
+                                         return a.z != c.z ? a.z < c.z : a.y != c.y ? a.y < c.y : a.x < c.x;
+                                     }) ||
+                  mm.y > 0.0f || em > 0.0f;
+    });
+
+    size_t kept = 0;
+    for (size_t i = 0; i < n; ++i) kept += keep[i];
+    atlas.coords.reserve(kept);
+    atlas.density.resize(kept * kVoxels);
+    if (v.emission) atlas.emission.resize(kept * kVoxels);
+    if (v.color) atlas.color.resize(kept * kVoxels * 3);
+    for (size_t i = 0, s = 0; i < n; ++i) {
+        if (!keep[i]) continue;
+        atlas.coords.push_back(candidates[i]);
+        atlas.density_range.push_back(range[i]);
+        std::copy_n(&density[i * kVoxels], kVoxels, &atlas.density[s * kVoxels]);
+        if (v.emission) {
+            atlas.emission_max.push_back(emissionMax[i]);
+            std::copy_n(&emission[i * kVoxels], kVoxels, &atlas.emission[s * kVoxels]);
+        }
+        if (v.color) std::copy_n(&color[i * kVoxels * 3], kVoxels * 3, &atlas.color[s * kVoxels * 3]);
+        ++s;
+    }
+    return atlas;
+}
+
+std::vector<std::string> sanitizeReport(const BrickAtlas& a, const LoadedVolume& v) {
+    std::vector<std::string> out;
+    auto report = [&](const SanitizeCounts& c, const openvdb::GridBase* g) {
+        if (!c.any() || !g) return;
+        std::string s = v.file + ": grid '" + g->getName() + "':";
+        if (c.non_finite) s += " " + std::to_string(c.non_finite) + " NaN/Inf voxels set to 0;";
+        if (c.negative) s += " " + std::to_string(c.negative) + " negative voxels set to 0;";
+        if (c.above_one) s += " " + std::to_string(c.above_one) + " colour components above 1 set to 1;";
+        s.pop_back();
+        out.push_back(s);
+    };
+    report(a.density_fixes, v.density.get());
+    report(a.emission_fixes, v.emission.get());
+    report(a.color_fixes, v.color.get());
+    return out;
+}
+
+}  // namespace voxlux

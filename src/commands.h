@@ -1,0 +1,34 @@
+// The voxlux subcommands. Each returns the process exit code; InputError escapes to main().
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace voxlux {
+
+// Options of `render` and `scene` that override scene keys one to one (docs/cli.md).
+struct SceneOverrides {
+    std::optional<std::string> grid, emission_grid, color_grid;
+    std::optional<int> grid_index;
+    std::optional<std::string> level_set;
+    std::optional<std::string> resolution;      // "WxH"
+    std::optional<float> step, shadow_step, density_scale;
+    std::vector<std::string> lights;            // "TYPE:key=value:..."
+    std::optional<std::string> shadows, backend, frames, pixel_type;
+    std::optional<std::vector<std::string>> aovs;
+    std::optional<std::string> output;
+};
+
+struct RenderCommand {
+    std::string input;                          // scene .json, or a .vdb for the quick form
+    SceneOverrides overrides;
+    bool explain = false;
+    std::optional<std::string> stats;
+};
+
+int runRender(const RenderCommand& cmd);
+int runScene(const std::string& vdb, const SceneOverrides& overrides);
+int runInfo(const std::string& vdb);
+int runMakeCloud(const std::string& output, int resolution, unsigned seed);
+
+}  // namespace voxlux

@@ -1,0 +1,42 @@
+// CPU backend: the shared kernel run over 16x16 pixel tiles with TBB.
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include "cpu_kernel.h"
+#include "march_backend.h"
+
+namespace voxlux {
+namespace {
+
+class CpuBackend final : public MarchBackend {
+public:
+    std::string name() const override { return "cpu"; }
+
+    RenderImage march(const KernelInputs& in) override {
+        kernel::CpuKernel k;
+        k.P = in.params;
+        k.density = in.atlas->density.data();
+        k.emission = in.atlas->emission.data();
+        k.color = in.atlas->color.data();
+        k.page = in.pages->entries.data();
+        k.lights = in.lights.data();
+        k.tf_lut = in.tf_lut.data();
+        RenderImage img;
+        img.width = int(in.params.camera_frame.z);
+        img.height = int(in.params.camera_frame.w);
+        img.pixels.resize(size_t(img.width) * img.height);
+        tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 16, 0, img.width, 16),
+                          [&](const tbb::blocked_range2d<int>& r) {
+                              for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+                                  for (int x = r.cols().begin(); x < r.cols().end(); ++x)
+                                      img.pixels[size_t(y) * img.width + x] = k.vx_render_pixel(x, y);
+                          });
+        return img;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<MarchBackend> makeCpuBackend() { return std::make_unique<CpuBackend>(); }
+
+}  // namespace voxlux

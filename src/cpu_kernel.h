@@ -1,0 +1,28 @@
+// The shared march kernel (shaders/vx_*.h) compiled as C++: the headers are included inside this
+// struct, so their functions become members and the backend data accessors below are in scope,
+// exactly as the GL backend provides them as buffer reads (shaders/march.comp).
+#pragma once
+#include "kernel_types.h"
+
+namespace voxlux::kernel {
+
+struct CpuKernel {
+    VxParams P{};
+    const float* density = nullptr;
+    const float* emission = nullptr;
+    const float* color = nullptr;          // 3 floats per voxel
+    const ivec4* page = nullptr;
+    const VxLight* lights = nullptr;
+    const vec4* tf_lut = nullptr;
+
+    float vx_atlas_density(int i) const { return density[i]; }
+    float vx_atlas_emission(int i) const { return emission[i]; }
+    vec3 vx_atlas_color(int i) const { return vec3(color[3 * i], color[3 * i + 1], color[3 * i + 2]); }
+    ivec4 vx_page_entry(int i) const { return page[i]; }
+    VxLight vx_light(int i) const { return lights[i]; }
+    vec4 vx_tf_lut(int i) const { return tf_lut[i]; }
+
+#include "vx_march.h"
+};
+
+}  // namespace voxlux::kernel

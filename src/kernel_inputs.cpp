@@ -1,0 +1,72 @@
+#include "kernel_inputs.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "camera.h"
+
+namespace voxlux {
+
+float voxelEdge(const glm::mat4& m) {
+    return std::min({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))});
+}
+
+namespace {
+
+kernel::VxLight packLight(const Light& l) {
+    kernel::VxLight k{};
+    int type = l.type == LightType::Point ? VX_LIGHT_POINT : l.type == LightType::Spot ? VX_LIGHT_SPOT : VX_LIGHT_DIRECTIONAL;
+    k.pos_type = glm::vec4(l.position, float(type));
+    k.dir_cos = glm::vec4(glm::normalize(l.direction), std::cos(glm::radians(l.cone_angle)));
+    k.color = glm::vec4(l.color * l.intensity, std::cos(glm::radians(std::max(0.0f, l.cone_angle - l.cone_softness))));
+    return k;
+}
+
+// Samples the piecewise-linear transfer function at VX_TF_LUT_SIZE evenly spaced values.
+std::vector<glm::vec4> bakeTransfer(const std::vector<TransferPoint>& tf) {
+    std::vector<glm::vec4> lut(VX_TF_LUT_SIZE, glm::vec4(1.0f));
+    if (tf.empty()) return lut;
+    const float lo = tf.front().value, hi = tf.back().value;
+    size_t seg = 0;
+    for (int i = 0; i < VX_TF_LUT_SIZE; ++i) {
+        float v = lo + (hi - lo) * float(i) / float(VX_TF_LUT_SIZE - 1);
+        while (seg + 2 < tf.size() && v > tf[seg + 1].value) ++seg;
+        const auto& a = tf[seg];
+        const auto& b = tf[seg + 1];
+        float f = std::clamp((v - a.value) / (b.value - a.value), 0.0f, 1.0f);
+        lut[i] = glm::vec4(glm::mix(a.albedo, b.albedo, f), a.extinction + (b.extinction - a.extinction) * f);
+    }
+    return lut;
+}
+
+}  // namespace
+
+KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const BrickAtlas& atlas,
+                              const PageTable& pages) {
+    KernelInputs in;
+    in.atlas = &atlas;
+    in.pages = &pages;
+    auto& P = in.params;
+    const auto& r = scene.render;
+    const auto& m = scene.material;
+    float edge = voxelEdge(atlas.index_to_world);
+    P.camera_to_world = cameraToWorld(camera);
+    P.world_to_index = glm::inverse(atlas.index_to_world);
+    P.camera_frame = glm::vec4(std::tan(glm::radians(camera.fov) * 0.5f), float(r.width) / float(r.height),
+                               float(r.width), float(r.height));
+    P.march = glm::vec4(r.step * edge, r.shadow_step * edge, r.transmittance_cutoff, m.anisotropy);
+    P.material = glm::vec4(m.albedo, m.density_scale);
+    P.emission = glm::vec4(m.emission_color * m.emission_scale, atlas.emission.empty() ? 0.0f : 1.0f);
+    float lo = m.transfer.empty() ? 0.0f : m.transfer.front().value;
+    float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
+    P.tf_domain = glm::vec4(lo, 1.0f / (hi - lo), m.transfer.empty() ? 0.0f : 1.0f, atlas.color.empty() ? 0.0f : 1.0f);
+    for (const auto& l : scene.lights) in.lights.push_back(packLight(l));
+    P.bricks_min = glm::ivec4(pages.bricks_min, int(in.lights.size()));
+    P.bricks_max = glm::ivec4(pages.bricks_max, scene.effects.shadows == ShadowMethod::Raymarch ? VX_SHADOWS_RAYMARCH
+                                                                                                : VX_SHADOWS_NONE);
+    P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, 0, 0);
+    in.tf_lut = bakeTransfer(m.transfer);
+    return in;
+}
+
+}  // namespace voxlux

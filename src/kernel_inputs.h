@@ -1,0 +1,28 @@
+// Everything the march kernel reads, gathered from the scene and the earlier stages. Both
+// backends take this one struct: the CPU backend points at its arrays, the GL backend uploads them.
+#pragma once
+#include <vector>
+
+#include "brick_atlas.h"
+#include "kernel_types.h"
+#include "page_table.h"
+#include "scene.h"
+
+namespace voxlux {
+
+struct KernelInputs {
+    kernel::VxParams params{};
+    std::vector<kernel::VxLight> lights;
+    std::vector<glm::vec4> tf_lut;          // VX_TF_LUT_SIZE entries; a constant row if unused
+    const BrickAtlas* atlas = nullptr;
+    const PageTable* pages = nullptr;
+};
+
+// `camera` must be resolved (the scene's, or the default framing).
+KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const BrickAtlas& atlas,
+                              const PageTable& pages);
+
+// Smallest world length of one voxel edge: the march step unit.
+float voxelEdge(const glm::mat4& index_to_world);
+
+}  // namespace voxlux

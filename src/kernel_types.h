@@ -1,0 +1,11 @@
+// The shared kernel's data types (shaders/vx_types.h) seen from C++.
+#pragma once
+#include <glm/glm.hpp>
+
+namespace voxlux::kernel {
+using namespace glm;
+using uint = unsigned int;
+#include "vx_types.h"
+static_assert(sizeof(VxParams) == 2 * 64 + 8 * 16, "VxParams must match the std430 layout");
+static_assert(sizeof(VxLight) == 48, "VxLight must match the std430 layout");
+}  // namespace voxlux::kernel

@@ -1,0 +1,83 @@
+// voxlux command line: render, scene, info, make-cloud. Errors are one line on stderr.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.h"
+#include "error.h"
+
+namespace {
+
+void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
+    cmd.add_option("--grid", o.grid, "density grid name (volume.density)");
+    cmd.add_option("--grid-index", o.grid_index, "which of several grids with that name (volume.density.index)");
+    cmd.add_option("--emission-grid", o.emission_grid, "emission grid, e.g. temperature (volume.emission)");
+    cmd.add_option("--color-grid", o.color_grid, "vec3 colour grid, e.g. Cd (volume.color)");
+    cmd.add_option("--level-set", o.level_set, "reject|fog: convert a level set to fog (volume.level_set)");
+    cmd.add_option("--res", o.resolution, "WIDTHxHEIGHT (render.resolution)");
+    cmd.add_option("--step", o.step, "march step in voxels (render.step)");
+    cmd.add_option("--shadow-step", o.shadow_step, "shadow-ray step in voxels (render.shadow_step)");
+    cmd.add_option("--density-scale", o.density_scale, "density to extinction (material.density_scale)");
+    cmd.add_option("--light", o.lights,
+                   "TYPE:key=value:... e.g. directional:dir=1,-1,0:intensity=3 (repeatable, replaces lights)");
+    cmd.add_option("--shadows", o.shadows, "none|raymarch (effects.shadows)");
+    cmd.add_option("--backend", o.backend, "auto|cpu|gl (render.backend)");
+    cmd.add_option("--frames", o.frames, "FIRST-LAST for a #### volume path (volume.frames)");
+    cmd.add_option("--pixel-type", o.pixel_type, "half|float (output.pixel_type)");
+    cmd.add_option("--aovs", o.aovs, "direct,emission,transmittance,depth (output.aovs)")->delimiter(',');
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"voxlux: volume shading for OpenVDB caches"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", VOXLUX_VERSION);
+
+    voxlux::RenderCommand render;
+    auto* renderCmd = app.add_subcommand("render", "render a scene .json, or a .vdb with default framing");
+    renderCmd->add_option("input", render.input, "scene .json or volume .vdb")->required();
+    renderCmd->add_option("-o,--output", render.overrides.output, "output .exr (output.path)");
+    renderCmd->add_flag("--explain", render.explain, "print the render plan and exit");
+    renderCmd->add_option("--stats", render.stats, "write per-stage times and peak memory as JSON");
+    addSceneOverrides(*renderCmd, render.overrides);
+
+    std::string sceneInput;
+    voxlux::SceneOverrides sceneOverrides;
+    auto* sceneCmd = app.add_subcommand("scene", "print the scene the quick form of render would use");
+    sceneCmd->add_option("volume", sceneInput, "volume .vdb")->required();
+    sceneCmd->add_option("-o,--output", sceneOverrides.output, "output.path to put in the scene");
+    addSceneOverrides(*sceneCmd, sceneOverrides);
+
+    std::string infoInput;
+    auto* infoCmd = app.add_subcommand("info", "list the grids of a .vdb file");
+    infoCmd->add_option("volume", infoInput, "volume .vdb")->required();
+
+    std::string cloudOutput;
+    int cloudResolution = 96;
+    unsigned cloudSeed = 1;
+    auto* cloudCmd = app.add_subcommand("make-cloud", "write a procedural cloud .vdb");
+    cloudCmd->add_option("-o,--output", cloudOutput, "output .vdb")->required();
+    cloudCmd->add_option("--res", cloudResolution, "voxels across")->check(CLI::Range(8, 1024));
+    cloudCmd->add_option("--seed", cloudSeed, "noise seed");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+
+    try {
+        if (*renderCmd) return voxlux::runRender(render);
+        if (*sceneCmd) return voxlux::runScene(sceneInput, sceneOverrides);
+        if (*infoCmd) return voxlux::runInfo(infoInput);
+        if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
+    } catch (const voxlux::InputError& e) {
+        std::cerr << "voxlux: error: " << e.what() << "\n";
+        return voxlux::kInputError;
+    } catch (const std::exception& e) {
+        std::cerr << "voxlux: internal error: " << e.what() << "\n";
+        return voxlux::kInternalError;
+    }
+    return 0;
+}

@@ -1,0 +1,66 @@
+#include "page_table.h"
+
+#include <algorithm>
+
+#include "cpu_kernel.h"
+
+namespace voxlux {
+
+namespace {
+// Largest transfer-function extinction over raw values in [lo, hi] (piecewise linear, clamped).
+float maxTransferExtinction(const std::vector<TransferPoint>& tf, float lo, float hi) {
+    auto at = [&](float v) {
+        if (v <= tf.front().value) return tf.front().extinction;
+        if (v >= tf.back().value) return tf.back().extinction;
+        auto it = std::upper_bound(tf.begin(), tf.end(), v, [](float x, const TransferPoint& p) { return x < p.value; });
+        const auto& a = *(it - 1);
+        const auto& b = *it;
+        return a.extinction + (b.extinction - a.extinction) * (v - a.value) / (b.value - a.value);
+    };
+    float m = std::max(at(lo), at(hi));
+    for (const auto& p : tf)
+        if (p.value > lo && p.value < hi) m = std::max(m, p.extinction);
+    return m;
+}
+}  // namespace
+
+std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material) {
+    std::vector<char> visible(atlas.slots());
+    for (size_t i = 0; i < atlas.slots(); ++i) {
+        const glm::vec2 r = atlas.density_range[i];
+        float extinction = material.transfer.empty() ? r.y : maxTransferExtinction(material.transfer, r.x, r.y);
+        bool emits = !atlas.emission_max.empty() && atlas.emission_max[i] > 0.0f && material.emission_scale > 0.0f;
+        visible[i] = (extinction * material.density_scale > 0.0f) || emits;
+    }
+    return visible;
+}
+
+PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible) {
+    PageTable t;
+    for (char v : visible) t.occupied += v != 0;
+    size_t capacity = 16;
+    while (capacity < 2 * t.occupied) capacity *= 2;
+    t.entries.assign(capacity, glm::ivec4(0, 0, 0, VX_PAGE_EMPTY));
+    if (t.occupied == 0) return t;
+    t.bricks_min = glm::ivec3(INT32_MAX);
+    t.bricks_max = glm::ivec3(INT32_MIN);
+    kernel::CpuKernel hasher;  // the hash is the kernel's own, so lookups agree by construction
+    const uint32_t mask = uint32_t(capacity - 1);
+    for (size_t slot = 0; slot < coords.size(); ++slot) {
+        if (!visible[slot]) continue;
+        const glm::ivec3 b = coords[slot];
+        t.bricks_min = glm::min(t.bricks_min, b);
+        t.bricks_max = glm::max(t.bricks_max, b);
+        uint32_t h = hasher.vx_brick_hash(b) & mask;
+        int probe = 0;
+        while (t.entries[h].w != VX_PAGE_EMPTY) {
+            h = (h + 1) & mask;
+            ++probe;
+        }
+        t.entries[h] = glm::ivec4(b, int(slot));
+        t.max_probe = std::max(t.max_probe, probe);
+    }
+    return t;
+}
+
+}  // namespace voxlux

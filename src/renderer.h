@@ -1,0 +1,50 @@
+// Runs the render plan for one frame: load -> brick -> classify -> march -> write, timing each
+// stage. The CLI, the benchmark and the tests all render through this.
+#pragma once
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "march_backend.h"
+#include "render_plan.h"
+#include "scene.h"
+
+namespace voxlux {
+
+struct FrameResult {
+    RenderImage image;
+    Camera camera;                                          // as used (the scene's or the framing)
+    std::vector<std::pair<std::string, double>> stage_seconds;
+    std::vector<std::string> warnings;                      // recoverable oddities, one line each
+    bool empty = false;                                     // nothing visible in this frame
+    size_t atlas_bytes = 0;
+    size_t bricks = 0;
+};
+
+// Camera framing the active voxels of the scene's density grid (what the quick form renders).
+Camera frameVolumeCamera(const std::string& file, const Scene& scene);
+
+class Renderer {
+public:
+    explicit Renderer(Scene scene);
+    const std::vector<PlannedStage>& plan() const { return plan_; }
+    std::string backendName() const { return backend_->name(); }
+
+    // Renders one frame (`frame` expands a #### volume path). An empty frame throws InputError
+    // unless `allow_empty`, in which case it renders transparent and says so in the warnings.
+    FrameResult render(std::optional<int> frame, bool allow_empty);
+
+    // Renders and writes the EXR for `frame` to the scene's output path (#### expanded).
+    FrameResult renderToFile(std::optional<int> frame, bool allow_empty);
+
+private:
+    Scene scene_;
+    std::vector<PlannedStage> plan_;
+    std::unique_ptr<MarchBackend> backend_;
+};
+
+// FNV-1a of the scene as rendered (canonical JSON), hex; written into the EXR metadata.
+std::string sceneHash(const Scene& scene);
+
+}  // namespace voxlux

@@ -1,0 +1,281 @@
+#include "scene_json.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "error.h"
+#include "json_reader.h"
+
+namespace voxlux {
+namespace fs = std::filesystem;
+
+const std::vector<std::string>& knownAovs() {
+    static const std::vector<std::string> aovs{"direct", "emission", "transmittance", "depth"};
+    return aovs;
+}
+
+namespace {
+
+GridRef readGridRef(const JsonObject& parent, const std::string& key) {
+    const auto& v = parent.raw(key);
+    if (v.is_string()) return {v.get<std::string>(), 0};
+    JsonObject o = parent.object(key);
+    o.rejectUnknown({"name", "index"});
+    GridRef ref{o.string("name"), o.integer("index", 0)};
+    if (ref.index < 0) o.fail("index", "must be 0 or more");
+    return ref;
+}
+
+nlohmann::json gridRefToJson(const GridRef& g) {
+    if (g.index == 0) return g.name;
+    return {{"name", g.name}, {"index", g.index}};
+}
+
+VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
+    o.rejectUnknown({"path", "frames", "density", "emission", "color", "level_set"});
+    VolumeSpec v;
+    v.path = o.string("path");
+    if (fs::path(v.path).is_relative() && !base_dir.empty())
+        v.path = (fs::path(base_dir) / v.path).lexically_normal().string();
+    if (o.has("frames")) {
+        auto f = o.numbers("frames", 2);
+        if (f[0] > f[1] || f[0] != int(f[0]) || f[1] != int(f[1]))
+            o.fail("frames", "expected [first, last] integers with first <= last");
+        v.frames = std::array<int, 2>{int(f[0]), int(f[1])};
+    }
+    if (o.has("density")) v.density = readGridRef(o, "density");
+    if (o.has("emission")) v.emission = readGridRef(o, "emission");
+    if (o.has("color")) v.color = readGridRef(o, "color");
+    v.level_set = o.choice("level_set", {"reject", "fog"}, "reject") == "fog"
+                      ? LevelSetPolicy::ConvertToFog
+                      : LevelSetPolicy::Reject;
+    return v;
+}
+
+Material readMaterial(const JsonObject& o) {
+    o.rejectUnknown({"density_scale", "albedo", "anisotropy", "emission_color", "emission_scale",
+                     "transfer_function"});
+    Material m;
+    m.density_scale = o.number("density_scale", m.density_scale);
+    if (m.density_scale < 0) o.fail("density_scale", "must be 0 or more");
+    m.albedo = o.vec3("albedo", m.albedo);
+    if (glm::any(glm::lessThan(m.albedo, glm::vec3(0))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1))))
+        o.fail("albedo", "each component must lie in [0, 1]");
+    m.anisotropy = o.number("anisotropy", m.anisotropy);
+    if (!(m.anisotropy > -1 && m.anisotropy < 1)) o.fail("anisotropy", "must lie in (-1, 1)");
+    m.emission_color = o.vec3("emission_color", m.emission_color);
+    m.emission_scale = o.number("emission_scale", m.emission_scale);
+    if (o.has("transfer_function")) {
+        for (const auto& p : o.objects("transfer_function")) {
+            p.rejectUnknown({"value", "extinction", "albedo"});
+            TransferPoint t{p.number("value"), p.number("extinction"), p.vec3("albedo", glm::vec3(1))};
+            if (t.extinction < 0) p.fail("extinction", "must be 0 or more");
+            if (!m.transfer.empty() && t.value <= m.transfer.back().value)
+                p.fail("value", "control points must have increasing values");
+            m.transfer.push_back(t);
+        }
+        if (m.transfer.size() < 2) o.fail("transfer_function", "needs at least 2 control points");
+    }
+    return m;
+}
+
+Light readLight(const JsonObject& o) {
+    o.rejectUnknown({"type", "position", "direction", "color", "intensity", "cone_angle", "cone_softness"});
+    Light l;
+    std::string type = o.choice("type", {"directional", "point", "spot"}, "directional");
+    l.type = type == "point" ? LightType::Point : type == "spot" ? LightType::Spot : LightType::Directional;
+    if (l.type != LightType::Directional) l.position = o.vec3("position");
+    if (l.type != LightType::Point) {
+        l.direction = o.vec3("direction");
+        if (glm::length(l.direction) == 0) o.fail("direction", "must not be zero");
+        l.direction = glm::normalize(l.direction);
+    }
+    l.color = o.vec3("color", l.color);
+    l.intensity = o.number("intensity", l.intensity);
+    if (!(l.intensity >= 0) || !std::isfinite(l.intensity)) o.fail("intensity", "must be a finite number >= 0");
+    l.cone_angle = o.number("cone_angle", l.cone_angle);
+    if (!(l.cone_angle > 0 && l.cone_angle < 90)) o.fail("cone_angle", "must lie in (0, 90) degrees");
+    l.cone_softness = o.number("cone_softness", l.cone_softness);
+    if (!(l.cone_softness >= 0 && l.cone_softness <= l.cone_angle))
+        o.fail("cone_softness", "must lie in [0, cone_angle]");
+    return l;
+}
+
+Camera readCamera(const JsonObject& o) {
+    o.rejectUnknown({"position", "look_at", "up", "matrix", "fov"});
+    Camera c;
+    c.fov = o.number("fov", c.fov);
+    if (!(c.fov > 0 && c.fov < 180)) o.fail("fov", "must lie in (0, 180) degrees");
+    if (o.has("matrix")) {
+        auto m = o.numbers("matrix", 16);
+        glm::mat4 mat;
+        for (int i = 0; i < 16; ++i) mat[i / 4][i % 4] = m[i];  // column-major, as glm and GLSL
+        c.matrix = mat;
+        return c;
+    }
+    c.position = o.vec3("position");
+    c.look_at = o.vec3("look_at");
+    c.up = o.vec3("up", c.up);
+    if (glm::length(c.look_at - c.position) == 0) o.fail("look_at", "must differ from position");
+    if (glm::length(glm::cross(c.look_at - c.position, c.up)) < 1e-6f)
+        o.fail("up", "must not be parallel to the view direction");
+    return c;
+}
+
+RenderSettings readRender(const JsonObject& o) {
+    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "backend"});
+    RenderSettings r;
+    if (o.has("resolution")) {
+        auto res = o.numbers("resolution", 2);
+        r.width = int(res[0]);
+        r.height = int(res[1]);
+        if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384 || res[0] != r.width ||
+            res[1] != r.height)
+            o.fail("resolution", "expected [width, height], integers in 1..16384");
+    }
+    r.step = o.number("step", r.step);
+    if (!(r.step >= 0.01f && r.step <= 64)) o.fail("step", "must lie in [0.01, 64] voxels");
+    r.shadow_step = o.number("shadow_step", r.shadow_step);
+    if (!(r.shadow_step >= 0.01f && r.shadow_step <= 64)) o.fail("shadow_step", "must lie in [0.01, 64] voxels");
+    r.transmittance_cutoff = o.number("transmittance_cutoff", r.transmittance_cutoff);
+    if (!(r.transmittance_cutoff > 0 && r.transmittance_cutoff < 1))
+        o.fail("transmittance_cutoff", "must lie in (0, 1)");
+    std::string b = o.choice("backend", {"auto", "cpu", "gl"}, "auto");
+    r.backend = b == "cpu" ? Backend::Cpu : b == "gl" ? Backend::Gl : Backend::Auto;
+    return r;
+}
+
+Effects readEffects(const JsonObject& o) {
+    o.rejectUnknown({"shadows"});
+    Effects e;
+    e.shadows = o.choice("shadows", {"none", "raymarch"}, "raymarch") == "none" ? ShadowMethod::None
+                                                                                : ShadowMethod::Raymarch;
+    return e;
+}
+
+OutputSpec readOutput(const JsonObject& o) {
+    o.rejectUnknown({"path", "pixel_type", "compression", "aovs"});
+    OutputSpec out;
+    out.path = o.string("path", "");
+    out.pixel_type = o.choice("pixel_type", {"half", "float"}, "half") == "float" ? PixelType::Float : PixelType::Half;
+    out.compression = o.choice("compression", {"none", "zip", "zips", "piz", "dwaa"}, "zip");
+    if (o.has("aovs")) {
+        const auto& list = o.raw("aovs");
+        if (!list.is_array()) o.fail("aovs", "expected an array of AOV names");
+        for (const auto& a : list) {
+            std::string name = a.is_string() ? a.get<std::string>() : "";
+            if (std::find(knownAovs().begin(), knownAovs().end(), name) == knownAovs().end())
+                o.fail("aovs", "unknown AOV '" + (a.is_string() ? name : a.dump()) +
+                                   "' (expected direct, emission, transmittance or depth)");
+            out.aovs.push_back(name);
+        }
+    }
+    return out;
+}
+
+// Floats as the shortest decimal that reads back to the same float (0.9f prints as 0.9).
+double decimal(float f) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", f);
+    for (int digits = 1; digits <= 9; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, f);
+        if (std::strtof(buf, nullptr) == f) break;
+    }
+    return std::strtod(buf, nullptr);
+}
+
+nlohmann::json vec(glm::vec3 v) { return {decimal(v.x), decimal(v.y), decimal(v.z)}; }
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir) {
+    const nlohmann::json json = parseJson(text, file);
+    JsonObject root(json, file, "");
+    root.rejectUnknown({"volume", "material", "lights", "camera", "render", "effects", "output"});
+    Scene s;
+    s.volume = readVolume(root.object("volume"), base_dir);
+    if (root.has("material")) s.material = readMaterial(root.object("material"));
+    if (root.has("lights"))
+        for (const auto& l : root.objects("lights")) s.lights.push_back(readLight(l));
+    if (root.has("camera")) s.camera = readCamera(root.object("camera"));
+    if (root.has("render")) s.render = readRender(root.object("render"));
+    if (root.has("effects")) s.effects = readEffects(root.object("effects"));
+    if (root.has("output")) s.output = readOutput(root.object("output"));
+    return s;
+}
+
+Scene loadSceneFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open scene file");
+    std::stringstream text;
+    text << in.rdbuf();
+    return parseScene(text.str(), path, fs::path(path).parent_path().string());
+}
+
+nlohmann::json sceneToJson(const Scene& s) {
+    nlohmann::json j;
+    auto& v = j["volume"];
+    v["path"] = s.volume.path;
+    if (s.volume.frames) v["frames"] = {(*s.volume.frames)[0], (*s.volume.frames)[1]};
+    v["density"] = gridRefToJson(s.volume.density);
+    if (s.volume.emission) v["emission"] = gridRefToJson(*s.volume.emission);
+    if (s.volume.color) v["color"] = gridRefToJson(*s.volume.color);
+    v["level_set"] = s.volume.level_set == LevelSetPolicy::ConvertToFog ? "fog" : "reject";
+
+    auto& m = j["material"];
+    m["density_scale"] = decimal(s.material.density_scale);
+    m["albedo"] = vec(s.material.albedo);
+    m["anisotropy"] = decimal(s.material.anisotropy);
+    m["emission_color"] = vec(s.material.emission_color);
+    m["emission_scale"] = decimal(s.material.emission_scale);
+    for (const auto& p : s.material.transfer)
+        m["transfer_function"].push_back({{"value", decimal(p.value)}, {"extinction", decimal(p.extinction)}, {"albedo", vec(p.albedo)}});
+
+    j["lights"] = nlohmann::json::array();
+    for (const auto& l : s.lights) {
+        nlohmann::json lj;
+        lj["type"] = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : "directional";
+        if (l.type != LightType::Directional) lj["position"] = vec(l.position);
+        if (l.type != LightType::Point) lj["direction"] = vec(l.direction);
+        lj["color"] = vec(l.color);
+        lj["intensity"] = decimal(l.intensity);
+        if (l.type == LightType::Spot) {
+            lj["cone_angle"] = decimal(l.cone_angle);
+            lj["cone_softness"] = decimal(l.cone_softness);
+        }
+        j["lights"].push_back(lj);
+    }
+
+    if (s.camera) {
+        auto& c = j["camera"];
+        c["fov"] = decimal(s.camera->fov);
+        if (s.camera->matrix) {
+            for (int i = 0; i < 16; ++i) c["matrix"].push_back(decimal((*s.camera->matrix)[i / 4][i % 4]));
+        } else {
+            c["position"] = vec(s.camera->position);
+            c["look_at"] = vec(s.camera->look_at);
+            c["up"] = vec(s.camera->up);
+        }
+    }
+
+    auto& r = j["render"];
+    r["resolution"] = {s.render.width, s.render.height};
+    r["step"] = decimal(s.render.step);
+    r["shadow_step"] = decimal(s.render.shadow_step);
+    r["transmittance_cutoff"] = decimal(s.render.transmittance_cutoff);
+    r["backend"] = s.render.backend == Backend::Cpu ? "cpu" : s.render.backend == Backend::Gl ? "gl" : "auto";
+
+    j["effects"]["shadows"] = s.effects.shadows == ShadowMethod::None ? "none" : "raymarch";
+
+    auto& o = j["output"];
+    if (!s.output.path.empty()) o["path"] = s.output.path;
+    o["pixel_type"] = s.output.pixel_type == PixelType::Float ? "float" : "half";
+    o["compression"] = s.output.compression;
+    o["aovs"] = s.output.aovs;
+    return j;
+}
+
+}  // namespace voxlux

@@ -1,0 +1,19 @@
+// Scene <-> JSON. The format is documented in docs/scene.md.
+#pragma once
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scene.h"
+
+namespace voxlux {
+
+// Reads and validates a scene file. Relative volume paths are resolved against the scene
+// file's folder. Throws InputError naming the file and the JSON pointer of the bad key.
+Scene loadSceneFile(const std::string& path);
+Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir);
+
+// The JSON a scene file would need to reproduce `scene` (used by `voxlux scene`).
+nlohmann::json sceneToJson(const Scene& scene);
+
+}  // namespace voxlux

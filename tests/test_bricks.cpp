@@ -1,0 +1,124 @@
+// Bricking: exact round trip of real data, tiles expanded, memory that follows active voxels.
+#include <unordered_map>
+
+#include "cpu_kernel.h"
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+
+struct BrickHash {
+    size_t operator()(const glm::ivec3& b) const { return size_t(b.x) * 73856093u ^ size_t(b.y) * 19349663u ^ size_t(b.z) * 83492791u; }
+};
+
+// Every active voxel of `grid` (leaf voxels and tile voxels) must read back bit-exactly from
+// the atlas, through the slot the kernel's page lookup returns.
+void expectRoundTrip(const openvdb::FloatGrid& grid, const BrickAtlas& atlas, const PageTable& pages) {
+    kernel::CpuKernel k;
+    k.P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, 0, 0);
+    k.P.bricks_min = glm::ivec4(pages.bricks_min, 0);
+    k.P.bricks_max = glm::ivec4(pages.bricks_max, 0);
+    k.page = pages.entries.data();
+    size_t checked = 0, wrong = 0;
+    for (auto it = grid.cbeginValueOn(); it; ++it) {
+        openvdb::CoordBBox box = it.getBoundingBox();
+        for (auto c = box.begin(); c; ++c) {
+            const glm::ivec3 v((*c).x(), (*c).y(), (*c).z());
+            const glm::ivec3 b = v >> 3;
+            const int slot = k.vx_page_lookup(b);
+            ASSERT_NE(slot, VX_PAGE_EMPTY) << "brick of voxel " << v.x << "," << v.y << "," << v.z << " missing";
+            const glm::ivec3 l = v - b * 8;
+            const float stored = atlas.density[size_t(slot) * VX_BRICK_VOXELS + (l.z * 9 + l.y) * 9 + l.x];
+            wrong += stored != *it;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_EQ(checked, grid.activeVoxelCount());
+}
+
+TEST(Bricks, SmokeRoundTripIsExact) {
+    VOXLUX_REQUIRE_SHARED(path, "arnold-usd/smoke.vdb");
+    Scene scene;
+    scene.volume.path = path;
+    auto volume = loadVolume(path, scene.volume);
+    BrickAtlas atlas = buildBrickAtlas(volume);
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material));
+    expectRoundTrip(*volume.density, atlas, pages);
+    EXPECT_EQ(atlas.active_voxels, 1049275u);
+}
+
+TEST(Bricks, CloudTilesAreExpandedNotDropped) {
+    VOXLUX_REQUIRE_SHARED(path, "disney-wdas-cloud/wdas_cloud_sixteenth.vdb");
+    Scene scene;
+    auto volume = loadVolume(path, scene.volume);
+    ASSERT_GT(volume.density->tree().activeTileCount(), 0u);
+    BrickAtlas atlas = buildBrickAtlas(volume);
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material));
+    expectRoundTrip(*volume.density, atlas, pages);
+}
+
+TEST(Bricks, ApronHoldsTheNextBricksFirstVoxels) {
+    auto g = openvdb::FloatGrid::create(0.0f);
+    auto acc = g->getAccessor();
+    for (int i = 0; i < 24; ++i) acc.setValue({i, 2 * i % 17, (5 * i) % 19}, 1.0f + float(i));
+    auto volume = volumeFromGrid(g);
+    BrickAtlas atlas = buildBrickAtlas(volume);
+    for (size_t s = 0; s < atlas.slots(); ++s) {
+        const glm::ivec3 o = atlas.coords[s] * 8;
+        for (int z = 0; z < 9; ++z)
+            for (int y = 0; y < 9; ++y)
+                for (int x = 0; x < 9; ++x)
+                    ASSERT_EQ(atlas.density[s * VX_BRICK_VOXELS + (z * 9 + y) * 9 + x],
+                              acc.getValue({o.x + x, o.y + y, o.z + z}));
+    }
+}
+
+openvdb::FloatGrid::Ptr blob(openvdb::FloatGrid::Ptr g, openvdb::Coord centre, int radius) {
+    auto acc = g->getAccessor();
+    for (int z = -radius; z <= radius; ++z)
+        for (int y = -radius; y <= radius; ++y)
+            for (int x = -radius; x <= radius; ++x)
+                if (x * x + y * y + z * z <= radius * radius) acc.setValue(centre.offsetBy(x, y, z), 0.5f);
+    return g;
+}
+
+size_t totalBytes(const openvdb::FloatGrid::Ptr& g) {
+    auto volume = volumeFromGrid(g);
+    BrickAtlas atlas = buildBrickAtlas(volume);
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}));
+    return atlas.bytes() + pages.entries.size() * sizeof(glm::ivec4);
+}
+
+TEST(Bricks, MemoryFollowsActiveVoxelsNotTheBoundingBox) {
+    const size_t one = totalBytes(blob(openvdb::FloatGrid::create(0.0f), {0, 0, 0}, 20));
+    auto two = blob(openvdb::FloatGrid::create(0.0f), {0, 0, 0}, 20);
+    blob(two, {10000, 10000, 10000}, 20);  // 17,320 voxels apart along the diagonal
+    const size_t both = totalBytes(two);
+    EXPECT_LT(both, 2 * one);
+    EXPECT_GT(both, one);
+}
+
+TEST(Bricks, EmptyGridGivesAnEmptyPageTable) {
+    auto volume = volumeFromGrid(openvdb::FloatGrid::create(0.0f));
+    BrickAtlas atlas = buildBrickAtlas(volume);
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}));
+    EXPECT_EQ(atlas.slots(), 0u);
+    EXPECT_TRUE(pages.empty());
+}
+
+TEST(Bricks, TransferFunctionClassifiesTransparentBricksAway) {
+    auto g = boxGrid({0, 0, 0}, {7, 7, 7}, 0.2f);
+    g->denseFill(openvdb::CoordBBox({64, 0, 0}, {71, 7, 7}), 0.8f, true);
+    auto volume = volumeFromGrid(g);
+    BrickAtlas atlas = buildBrickAtlas(volume);
+    Material m;
+    m.transfer = {{0.0f, 0.0f, glm::vec3(1)}, {0.5f, 0.0f, glm::vec3(1)}, {1.0f, 1.0f, glm::vec3(1)}};
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, m));
+    // Only the 0.8 block (brick 8) and its - side neighbours whose aprons reach it stay.
+    EXPECT_EQ(pages.bricks_min.x, 7);
+    EXPECT_EQ(pages.bricks_max.x, 8);
+}
+
+}  // namespace
+}  // namespace voxlux::test

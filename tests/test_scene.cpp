@@ -1,0 +1,75 @@
+// Scene files: validation messages name the file and the JSON pointer of the bad key.
+#include "error.h"
+#include "scene_json.h"
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+
+std::string errorOf(const std::string& json) {
+    try {
+        parseScene(json, "shot.json", "/shots");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(Scene, MinimalSceneGetsDefaults) {
+    Scene s = parseScene(R"({"volume": {"path": "smoke.vdb"}})", "shot.json", "/shots");
+    EXPECT_EQ(s.volume.path, "/shots/smoke.vdb");
+    EXPECT_EQ(s.volume.density, (GridRef{"density", 0}));
+    EXPECT_FALSE(s.camera.has_value());
+    EXPECT_EQ(s.render.width, 512);
+    EXPECT_FLOAT_EQ(s.render.step, 0.5f);
+    EXPECT_EQ(s.effects.shadows, ShadowMethod::Raymarch);
+}
+
+TEST(Scene, ErrorsNameTheKeyAndItsPath) {
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "area"}]})"),
+              "shot.json: /lights/0/type: 'area' is not one of directional, point, spot");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{}, {"intensity": "lots", "direction": [0,0,1]}]})"),
+              "shot.json: /lights/0/direction: required key is missing");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
+              "shot.json: /render/stepp: unknown key (expected one of resolution, step, shadow_step, "
+              "transmittance_cutoff, backend)");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),
+              "shot.json: /render/resolution: expected an array of 2 numbers");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "material": {"albedo": [1.5, 0, 0]}})"),
+              "shot.json: /material/albedo: each component must lie in [0, 1]");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "camera": {"position": [0,0,0], "look_at": [0,0,0]}})"),
+              "shot.json: /camera/look_at: must differ from position");
+    EXPECT_EQ(errorOf(R"({"material": {}})"), "shot.json: /volume: required key is missing");
+    EXPECT_EQ(errorOf(R"([1, 2])"), "shot.json: /: expected an object, got array");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb", "density": {"name": "d", "index": -1}}})"),
+              "shot.json: /volume/density/index: must be 0 or more");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
+              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, emission, transmittance or depth)");
+}
+
+TEST(Scene, MalformedJsonGivesLineAndColumn) {
+    EXPECT_EQ(errorOf("{\n  \"volume\": {\"path\": \"a.vdb\"},\n  \"render\": {\"step\": 0.5,}\n}"),
+              "shot.json: malformed JSON at line 3, column 25: unexpected '}'; expected string literal");
+}
+
+TEST(Scene, RoundTripThroughJson) {
+    Scene s = parseScene(R"({
+        "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
+                   "emission": "temperature", "color": "Cd", "level_set": "fog"},
+        "material": {"density_scale": 2.5, "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
+                     "transfer_function": [{"value": 0, "extinction": 0}, {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
+        "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 40, "cone_angle": 25}],
+        "camera": {"position": [0, 1, 10], "look_at": [0, 1, 0], "fov": 35},
+        "render": {"resolution": [320, 240], "step": 0.25, "backend": "cpu"},
+        "effects": {"shadows": "none"},
+        "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth"]}})",
+                         "shot.json", "");
+    Scene again = parseScene(sceneToJson(s).dump(), "again.json", "");
+    EXPECT_EQ(sceneToJson(again), sceneToJson(s));
+    EXPECT_EQ(again.volume.density.index, 2);
+    EXPECT_EQ(again.lights[0].type, LightType::Spot);
+    EXPECT_FLOAT_EQ(again.material.transfer[1].albedo.z, 0.2f);
+}
+
+}  // namespace
+}  // namespace voxlux::test

@@ -1,0 +1,82 @@
+#include "test_support.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace voxlux::test {
+namespace fs = std::filesystem;
+
+std::string sharedData(const std::string& relative) {
+    fs::path p = fs::path(VOXLUX_SHARED_DATA) / relative;
+    return fs::exists(p) ? p.string() : std::string();
+}
+
+std::unique_ptr<MarchBackend> glBackendOrSkip() {
+    const char* skip = std::getenv("VOXLUX_SKIP_GL");
+    if (skip && std::string(skip) == "1") return nullptr;
+    try {
+        return makeGlBackend();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "no GL backend (set VOXLUX_SKIP_GL=1 to skip GL tests): " << e.what();
+        return nullptr;
+    }
+}
+
+LoadedVolume volumeFromGrid(openvdb::FloatGrid::Ptr density, openvdb::FloatGrid::Ptr emission,
+                            openvdb::Vec3SGrid::Ptr color) {
+    initOpenVdb();
+    LoadedVolume v;
+    v.file = "memory.vdb";
+    v.index_to_world = indexToWorld(*density, v.file);
+    v.density = density;
+    v.emission = emission;
+    v.color = color;
+    return v;
+}
+
+openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigma, double voxel) {
+    initOpenVdb();
+    auto g = openvdb::FloatGrid::create(0.0f);
+    g->setName("density");
+    g->setGridClass(openvdb::GRID_FOG_VOLUME);
+    g->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+    g->denseFill(openvdb::CoordBBox(lo, hi), sigma, true);
+    return g;
+}
+
+std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const Camera& camera) {
+    auto p = std::make_unique<Prepared>();
+    p->volume = std::move(volume);
+    p->atlas = buildBrickAtlas(p->volume);
+    p->pages = buildPageTable(p->atlas.coords, classifyBricks(p->atlas, scene.material));
+    p->inputs = makeKernelInputs(scene, camera, p->atlas, p->pages);
+    return p;
+}
+
+CliResult runCli(const std::string& args) {
+    static int counter = 0;
+    const std::string base = tempDir("cli") + "/run" + std::to_string(counter++);
+    const std::string cmd = std::string(VOXLUX_BINARY) + " " + args + " >" + base + ".out 2>" + base + ".err";
+    int status = std::system(cmd.c_str());
+    CliResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    auto slurp = [](const std::string& path) {
+        std::ifstream in(path);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    };
+    r.out = slurp(base + ".out");
+    r.err = slurp(base + ".err");
+    return r;
+}
+
+std::string tempDir(const std::string& name) {
+    fs::path p = fs::temp_directory_path() / ("voxlux-tests-" + std::to_string(::getpid())) / name;
+    fs::create_directories(p);
+    return p.string();
+}
+
+}  // namespace voxlux::test

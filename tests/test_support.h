@@ -1,0 +1,58 @@
+// Helpers shared by the tests: synthetic volumes, the shared real-data folder, running the CLI.
+#pragma once
+#include <optional>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+
+#include "brick_atlas.h"
+#include "kernel_inputs.h"
+#include "march_backend.h"
+#include "page_table.h"
+#include "scene.h"
+#include "vdb_loader.h"
+
+namespace voxlux::test {
+
+// Path of a file in ../shared/data, or GTEST_SKIP-worthy empty when the folder is absent
+// (a user's fresh clone has no ../shared; CI does).
+std::string sharedData(const std::string& relative);
+#define VOXLUX_REQUIRE_SHARED(var, relative)                                                   \
+    const std::string var = ::voxlux::test::sharedData(relative);                               \
+    if (var.empty()) GTEST_SKIP() << "../shared/data/" relative " is absent (fresh clone): skipped"
+
+// GL backend for tests: fails the test when no context can be made, unless VOXLUX_SKIP_GL=1.
+std::unique_ptr<MarchBackend> glBackendOrSkip();
+#define VOXLUX_REQUIRE_GL(var)                                                  \
+    auto var = ::voxlux::test::glBackendOrSkip();                               \
+    if (!var) GTEST_SKIP() << "VOXLUX_SKIP_GL=1: GL backend tests skipped"
+
+// A fog grid in memory, as the loader would return it.
+LoadedVolume volumeFromGrid(openvdb::FloatGrid::Ptr density, openvdb::FloatGrid::Ptr emission = nullptr,
+                            openvdb::Vec3SGrid::Ptr color = nullptr);
+
+// A constant-density box of `sigma` over index voxels [lo, hi] (inclusive), voxel size `voxel`.
+openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigma, double voxel = 1.0);
+
+// Everything one render needs, kept alive together.
+struct Prepared {
+    LoadedVolume volume;
+    BrickAtlas atlas;
+    PageTable pages;
+    KernelInputs inputs;
+};
+std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const Camera& camera);
+
+struct CliResult {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+};
+// Runs the voxlux binary with `args` (shell-quoted by the caller where needed).
+CliResult runCli(const std::string& args);
+
+// A folder under this test run's temp dir (created if needed).
+std::string tempDir(const std::string& name);
+
+}  // namespace voxlux::test
