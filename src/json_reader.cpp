@@ -125,16 +125,13 @@ nlohmann::json parseJson(const std::string& text, const std::string& file) {
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
-        size_t line = 1, column = 1;
-        for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-            if (text[i] == '\n') { ++line; column = 1; } else { ++column; }
-        }
+        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: syntax error
+        // while parsing <what> - <problem>"; keep the position and the problem.
         std::string what = e.what();
-        auto cut = what.find("syntax error while parsing value - ");
-        if (cut != std::string::npos) what = what.substr(cut + 35);
-        else if ((cut = what.find("] ")) != std::string::npos) what = what.substr(cut + 2);
-        throw InputError(file + ": malformed JSON at line " + std::to_string(line) + ", column " +
-                         std::to_string(column) + ": " + what);
+        std::string where;
+        if (auto at = what.find("at line "); at != std::string::npos) where = what.substr(at, what.find(':', at) - at);
+        if (auto dash = what.find(" - "); dash != std::string::npos) what = what.substr(dash + 3);
+        throw InputError(file + ": malformed JSON" + (where.empty() ? "" : " " + where) + ": " + what);
     }
 }
 

@@ -51,14 +51,20 @@ std::string emptyReason(const LoadedVolume& v, const BrickAtlas& atlas) {
 
 }  // namespace
 
+Camera frameActiveVoxels(const LoadedVolume& volume, const RenderSettings& render) {
+    openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
+    glm::vec3 lo(0.0f), hi(1.0f);
+    if (!box.empty())
+        worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
+                    glm::vec3(box.max().x(), box.max().y(), box.max().z()), lo, hi);
+    return frameBox(lo, hi, Camera{}.fov, float(render.width) / float(render.height));
+}
+
 Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
     auto volume = loadVolume(file, scene.volume);
-    openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
-    if (box.empty()) throw InputError(file + ": grid '" + volume.density->getName() + "' has no active voxels");
-    glm::vec3 lo, hi;
-    worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
-                glm::vec3(box.max().x(), box.max().y(), box.max().z()), lo, hi);
-    return frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height));
+    if (volume.density->activeVoxelCount() == 0)
+        throw InputError(file + ": grid '" + volume.density->getName() + "' has no active voxels");
+    return frameActiveVoxels(volume, scene.render);
 }
 
 Renderer::Renderer(Scene scene)
@@ -84,14 +90,7 @@ FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
         r.empty = true;
     }
 
-    if (scene_.camera) {
-        r.camera = *scene_.camera;
-    } else {
-        glm::vec3 lo(0.0f), hi(1.0f);
-        if (!pages.empty())
-            worldBounds(atlas.index_to_world, glm::vec3(pages.bricks_min * 8), glm::vec3((pages.bricks_max + 1) * 8), lo, hi);
-        r.camera = frameBox(lo, hi, Camera{}.fov, float(scene_.render.width) / float(scene_.render.height));
-    }
+    r.camera = scene_.camera ? *scene_.camera : frameActiveVoxels(volume, scene_.render);
     KernelInputs inputs = makeKernelInputs(scene_, r.camera, atlas, pages);
     r.image = clock("march", [&] { return backend_->march(inputs); });
     return r;

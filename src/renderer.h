@@ -9,6 +9,7 @@
 #include "march_backend.h"
 #include "render_plan.h"
 #include "scene.h"
+#include "vdb_loader.h"
 
 namespace voxlux {
 
@@ -22,7 +23,9 @@ struct FrameResult {
     size_t bricks = 0;
 };
 
-// Camera framing the active voxels of the scene's density grid (what the quick form renders).
+// Camera framing the active voxels of the density grid: what a scene without a camera renders
+// and what `voxlux scene` writes out.
+Camera frameActiveVoxels(const LoadedVolume& volume, const RenderSettings& render);
 Camera frameVolumeCamera(const std::string& file, const Scene& scene);
 
 class Renderer {

@@ -12,7 +12,8 @@ struct BrickHash {
 };
 
 // Every active voxel of `grid` (leaf voxels and tile voxels) must read back bit-exactly from
-// the atlas, through the slot the kernel's page lookup returns.
+// the atlas, through the slot the kernel's page lookup returns. Bricks that are zero throughout
+// are classified away, so a missing brick is right only for a zero voxel.
 void expectRoundTrip(const openvdb::FloatGrid& grid, const BrickAtlas& atlas, const PageTable& pages) {
     kernel::CpuKernel k;
     k.P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, 0, 0);
@@ -26,7 +27,11 @@ void expectRoundTrip(const openvdb::FloatGrid& grid, const BrickAtlas& atlas, co
             const glm::ivec3 v((*c).x(), (*c).y(), (*c).z());
             const glm::ivec3 b = v >> 3;
             const int slot = k.vx_page_lookup(b);
-            ASSERT_NE(slot, VX_PAGE_EMPTY) << "brick of voxel " << v.x << "," << v.y << "," << v.z << " missing";
+            if (slot == VX_PAGE_EMPTY) {
+                ASSERT_EQ(*it, 0.0f) << "brick of voxel " << v.x << "," << v.y << "," << v.z << " missing";
+                ++checked;
+                continue;
+            }
             const glm::ivec3 l = v - b * 8;
             const float stored = atlas.density[size_t(slot) * VX_BRICK_VOXELS + (l.z * 9 + l.y) * 9 + l.x];
             wrong += stored != *it;
@@ -95,7 +100,9 @@ TEST(Bricks, MemoryFollowsActiveVoxelsNotTheBoundingBox) {
     auto two = blob(openvdb::FloatGrid::create(0.0f), {0, 0, 0}, 20);
     blob(two, {10000, 10000, 10000}, 20);  // 17,320 voxels apart along the diagonal
     const size_t both = totalBytes(two);
-    EXPECT_LT(both, 2 * one);
+    // Two identical blobs: every brick and page-table entry doubles, and nothing else is added
+    // for the 10,000 empty voxels between them (a dense box would need 4e12 bytes).
+    EXPECT_LE(both, 2 * one);
     EXPECT_GT(both, one);
 }
 

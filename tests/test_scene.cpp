@@ -49,7 +49,7 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
 
 TEST(Scene, MalformedJsonGivesLineAndColumn) {
     EXPECT_EQ(errorOf("{\n  \"volume\": {\"path\": \"a.vdb\"},\n  \"render\": {\"step\": 0.5,}\n}"),
-              "shot.json: malformed JSON at line 3, column 25: unexpected '}'; expected string literal");
+              "shot.json: malformed JSON at line 3, column 26: unexpected '}'; expected string literal");
 }
 
 TEST(Scene, RoundTripThroughJson) {

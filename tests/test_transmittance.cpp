@@ -1,5 +1,6 @@
 // Analytic checks of the march: transmittance through a homogeneous box equals exp(-sigma * d),
 // on both backends, for an axis-aligned and a diagonal ray; stability on hard inputs.
+#include <algorithm>
 #include <cmath>
 
 #include "camera.h"
@@ -13,9 +14,12 @@ constexpr int kN = 64;          // box edge in voxels
 constexpr double kVoxel = 0.5;  // non-unit voxel size on purpose
 
 // Trilinear reconstruction ramps the box to zero over one voxel outside each face, so a ray that
-// enters and leaves through the two x faces sees exactly kN voxels of density along x:
-// tau = sigma * kN * voxel / |dir.x|.
-double expectedTau(float sigma, glm::vec3 dir) { return double(sigma) * kN * kVoxel / std::abs(dir.x); }
+// enters and leaves through the two faces across its dominant axis a sees exactly kN voxels of
+// density along a: tau = sigma * kN * voxel / |dir.a|.
+double expectedTau(float sigma, glm::vec3 dir) {
+    glm::vec3 a = glm::abs(dir);
+    return double(sigma) * kN * kVoxel / std::max({a.x, a.y, a.z});
+}
 
 Scene boxScene(float step) {
     Scene s;

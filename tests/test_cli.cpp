@@ -1,0 +1,240 @@
+// The voxlux command line end to end: real caches render, bad input gives one line and exit 2
+// and leaves no file behind, and the EXR carries the layers and metadata asked for.
+#include <filesystem>
+#include <fstream>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
+#include <nlohmann/json.hpp>
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+namespace fs = std::filesystem;
+
+struct Exr {
+    int width = 0, height = 0;
+    std::vector<std::string> channels;
+    std::map<std::string, std::vector<float>> planes;
+    Imf::Header header;
+};
+
+Exr readExr(const std::string& path) {
+    Imf::InputFile file(path.c_str());
+    Exr e;
+    e.header = file.header();
+    const auto dw = file.header().dataWindow();
+    e.width = dw.max.x - dw.min.x + 1;
+    e.height = dw.max.y - dw.min.y + 1;
+    Imf::FrameBuffer fb;
+    for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c) {
+        e.channels.push_back(c.name());
+        auto& plane = e.planes[c.name()];
+        plane.resize(size_t(e.width) * e.height);
+        fb.insert(c.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(plane.data()), sizeof(float),
+                                       sizeof(float) * e.width));
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    return e;
+}
+
+// No file at `path` and no temporary file beside it.
+void expectNothingWritten(const std::string& path) {
+    EXPECT_FALSE(fs::exists(path)) << path;
+    for (const auto& entry : fs::directory_iterator(fs::path(path).parent_path()))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+void expectRejected(const std::string& args, const std::string& message) {
+    const std::string out = tempDir("rejected") + "/out.exr";
+    CliResult r = runCli(args + " -o " + out);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(r.err, "voxlux: error: " + message + "\n") << args;
+    expectNothingWritten(out);
+}
+
+TEST(Cli, DamagedFilesAreRefused) {
+    VOXLUX_REQUIRE_SHARED(dir, "oiio/damaged");
+    for (const char* name : {"bomb", "empty", "huge", "inverted", "overflow", "roundup"}) {
+        const std::string file = dir + "/bad-bbox-" + name + ".vdb";
+        expectRejected("render " + file, file + ": no grid named 'density' (grids: '" + name + "' (float))");
+        expectRejected("render " + file + " --grid " + name, file + ": grid '" + name + "' has no active voxels");
+    }
+    expectRejected("render " + dir + "/truncated.vdb",
+                   dir + "/truncated.vdb: not a readable OpenVDB file (LookupError: Cannot read grid. Grid type Tre "
+                         "is not registered.)");
+}
+
+TEST(Cli, EmptyAndWrongGridsAreRefused) {
+    VOXLUX_REQUIRE_SHARED(frame1, "openusd/smoke_000001.vdb");
+    expectRejected("render " + frame1, frame1 + ": grid 'density' has no active voxels");
+    expectRejected("render " + frame1 + " --grid velocity",
+                   frame1 + ": grid 'velocity' (vec3s) cannot be used as density (it needs float or double values)");
+    expectRejected("render " + frame1 + " --grid obstacles",
+                   frame1 + ": grid 'obstacles' (int32) cannot be used as density (it needs float or double values)");
+    VOXLUX_REQUIRE_SHARED(smoke, "arnold-usd/smoke.vdb");
+    expectRejected("render " + smoke + " --grid dens", smoke + ": no grid named 'dens' (grids: 'density' (float))");
+    expectRejected("render /nonexistent/cache.vdb", "/nonexistent/cache.vdb: no such file");
+}
+
+TEST(Cli, BlenderShadowGridIsNeverDensity) {
+    VOXLUX_REQUIRE_SHARED(fire, "blender/fire/fluid_data_0030.vdb");
+    expectRejected("render " + fire + " --grid shadow",
+                   fire + ": grid 'shadow' has nothing visible: its 118336 active voxels are all zero or negative "
+                          "(118336 negative) under the material");
+    const std::string out = tempDir("fire") + "/fire.exr";
+    CliResult r = runCli("render " + fire + " --res 48x48 --backend cpu -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    Exr e = readExr(out);
+    float alpha = 0.0f;
+    for (float a : e.planes["A"]) alpha = std::max(alpha, a);
+    EXPECT_GT(alpha, 0.5f);
+}
+
+TEST(Cli, MalformedSceneAndEmptyGridFileAreRefused) {
+    const std::string dir = tempDir("scenes");
+    const std::string scene = dir + "/broken.json";
+    std::ofstream(scene) << "{\n  \"volume\": {\"path\": \"x.vdb\"\n}\n";
+    expectRejected("render " + scene, scene + ": malformed JSON at line 4, column 1: unexpected end of input; "
+                                              "expected '}'");
+    initOpenVdb();
+    const std::string empty = dir + "/empty.vdb";
+    auto g = openvdb::FloatGrid::create(0.0f);
+    g->setName("density");
+    openvdb::io::File(empty).write({g});
+    expectRejected("render " + empty, empty + ": grid 'density' has no active voxels");
+}
+
+TEST(Cli, LevelSetsNeedExplicitConversion) {
+    initOpenVdb();
+    const std::string file = tempDir("levelset") + "/sphere.vdb";
+    auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(10.0f, openvdb::Vec3f(0), 0.5f);
+    sphere->setName("surface");
+    openvdb::io::File(file).write({sphere});
+    expectRejected("render " + file + " --grid surface",
+                   file + ": grid 'surface' is a level set, not a fog volume; set volume.level_set to \"fog\" "
+                          "(or pass --level-set fog) to convert it");
+    const std::string out = tempDir("levelset") + "/fog.exr";
+    CliResult r = runCli("render " + file + " --grid surface --level-set fog --res 32x32 --backend cpu -o " + out);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out));
+}
+
+// Real caches render; the image is finite and not empty.
+void expectRenders(const std::string& args, const std::string& name) {
+    const std::string out = tempDir("real") + "/" + name + ".exr";
+    CliResult r = runCli("render " + args + " --res 64x64 --backend cpu -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    Exr e = readExr(out);
+    float alpha = 0.0f;
+    for (const auto& [channel, plane] : e.planes)
+        for (float v : plane) ASSERT_TRUE(std::isfinite(v)) << channel;
+    for (float a : e.planes["A"]) alpha = std::max(alpha, a);
+    EXPECT_GT(alpha, 0.1f) << name;
+}
+
+TEST(Cli, RealCachesRender) {
+    VOXLUX_REQUIRE_SHARED(smoke, "arnold-usd/smoke.vdb");
+    VOXLUX_REQUIRE_SHARED(cloud, "disney-wdas-cloud/wdas_cloud_sixteenth.vdb");
+    VOXLUX_REQUIRE_SHARED(heat, "openusd/densityAndHeat.vdb");
+    VOXLUX_REQUIRE_SHARED(torus, "arnold-usd/torus01.vdb");
+    expectRenders(smoke, "smoke");
+    expectRenders(cloud + " --density-scale 0.5", "cloud");
+    expectRenders(heat + " --emission-grid heat --aovs emission", "heat");
+    expectRenders(torus + " --grid voxel_fog_density", "torus");
+}
+
+TEST(Cli, InfoListsGridsAndBricks) {
+    VOXLUX_REQUIRE_SHARED(fire, "blender/fire/fluid_data_0030.vdb");
+    CliResult r = runCli("info " + fire);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(fire + ": 5 grids\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("  shadow  float  fog volume\n    active voxels 118336 (200 active tiles)\n"
+                         "    bbox (index) [0, 0, 0] -> [42, 42, 63]  (43 x 43 x 64)\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("  velocity  vec3s"), std::string::npos);
+}
+
+TEST(Cli, ExplainShowsThePlan) {
+    CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --explain");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("run   load"), std::string::npos);
+    EXPECT_NE(r.out.find("run   march       1 light, ray-marched shadow rays per sample (reference)"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("skip  light_cache skipped: no effect in the scene needs a precomputed light cache"),
+              std::string::npos);
+    EXPECT_NE(r.out.find("skip  grade"), std::string::npos);
+}
+
+TEST(Cli, SceneCommandReproducesTheQuickForm) {
+    const std::string dir = tempDir("quick");
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    CliResult scene = runCli("scene " + cloud + " --res 40x30 --shadows none --density-scale 30");
+    ASSERT_EQ(scene.exit_code, 0) << scene.err;
+    std::ofstream(dir + "/scene.json") << scene.out;
+    ASSERT_EQ(runCli("render " + cloud + " --res 40x30 --shadows none --density-scale 30 --backend cpu -o " + dir +
+                     "/quick.exr").exit_code, 0);
+    ASSERT_EQ(runCli("render " + dir + "/scene.json --backend cpu -o " + dir + "/scene.exr").exit_code, 0);
+    Exr a = readExr(dir + "/quick.exr"), b = readExr(dir + "/scene.exr");
+    EXPECT_EQ(a.planes["R"], b.planes["R"]);
+    EXPECT_EQ(a.planes["A"], b.planes["A"]);
+    float alpha = 0.0f;
+    for (float v : a.planes["A"]) alpha = std::max(alpha, v);
+    EXPECT_GT(alpha, 0.5f);
+}
+
+TEST(Cli, ExrHasRequestedLayersAndMetadata) {
+    const std::string dir = tempDir("exr");
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    CliResult r = runCli("render " + cloud + " --res 32x24 --backend cpu --aovs direct,depth --pixel-type float "
+                         "--density-scale 30 --stats " + dir + "/stats.json -o " + dir + "/a.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    Exr e = readExr(dir + "/a.exr");
+    std::vector<std::string> expected{"A", "B", "G", "R", "depth.Z", "direct.B", "direct.G", "direct.R"};
+    EXPECT_EQ(e.channels, expected);
+    EXPECT_EQ(e.width, 32);
+    EXPECT_EQ(e.height, 24);
+    EXPECT_TRUE(Imf::hasWorldToCamera(e.header));
+    EXPECT_TRUE(Imf::hasWorldToNDC(e.header));
+    EXPECT_EQ(e.header.typedAttribute<Imf::StringAttribute>("voxlux/version").value(), VOXLUX_VERSION);
+    EXPECT_EQ(e.header.typedAttribute<Imf::StringAttribute>("voxlux/sceneHash").value().size(), 16u);
+    EXPECT_NE(e.header.find("voxlux/seconds/march"), e.header.end());
+    EXPECT_EQ(e.header.compression(), Imf::ZIP_COMPRESSION);
+    // Premultiplied: where nothing is hit, colour and alpha are both 0; direct == beauty here.
+    for (size_t i = 0; i < e.planes["R"].size(); ++i) {
+        EXPECT_FLOAT_EQ(e.planes["R"][i], e.planes["direct.R"][i]);
+        if (e.planes["A"][i] == 0.0f) {
+            EXPECT_EQ(e.planes["R"][i], 0.0f);
+        }
+    }
+    std::ifstream statsFile(dir + "/stats.json");
+    auto stats = nlohmann::json::parse(statsFile);
+    EXPECT_EQ(stats["backend"], "cpu");
+    EXPECT_GT(stats["peak_rss_bytes"].get<double>(), 0.0);
+    for (const char* stage : {"load", "brick", "classify", "march", "write"})
+        EXPECT_TRUE(stats["frames"][0]["stages"].contains(stage)) << stage;
+}
+
+TEST(Cli, SequenceWithAnEmptyFrameRendersItTransparent) {
+    VOXLUX_REQUIRE_SHARED(frame1, "openusd/smoke_000001.vdb");
+    const std::string dir = tempDir("sequence");
+    const std::string pattern = fs::path(frame1).parent_path().string() + "/smoke_######.vdb";
+    CliResult r = runCli("render " + pattern + " --frames 1-3 --res 24x24 --backend cpu --shadows none -o " + dir +
+                         "/seq.####.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("voxlux: warning: 1 empty frame(s) rendered transparent"), std::string::npos) << r.err;
+    for (const char* f : {"0001", "0002", "0003"}) EXPECT_TRUE(fs::exists(dir + "/seq." + f + ".exr")) << f;
+    Exr first = readExr(dir + "/seq.0001.exr");
+    for (float a : first.planes["A"]) ASSERT_EQ(a, 0.0f);
+}
+
+}  // namespace
+}  // namespace voxlux::test
