@@ -87,7 +87,7 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
 
     std::vector<Channel> channels;
     auto add = [&](const std::string& name, Imf::PixelType type, auto get) {
-        Channel c{name, type, std::vector<float>(n)};
+        Channel c{name, type, std::vector<float>(n), {}};
         for (size_t i = 0; i < n; ++i) c.plane[i] = get(img.pixels[i]);
         channels.push_back(std::move(c));
     };

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs voxlux's Debian 12 packages (when any is missing), builds it, and renders the bundled
+# default scene to out/default.exr. Safe to run again: it only does what is not done yet.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libopenvdb-dev libboost-iostreams-dev libopenvdb-tools
+  libopenexr-dev openexr libtbb-dev libglm-dev nlohmann-json3-dev libcli11-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
+  libgtest-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
+fi
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build
+
+mkdir -p out
+build/voxlux render grids/default.json -o out/default.exr --stats out/default-stats.json
+echo "setup: the default scene is in out/default.exr (stage times above, and in out/default-stats.json)"

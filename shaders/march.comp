@@ -1,0 +1,30 @@
+// GL entry point of the march: one invocation per pixel of a band of rows, running the shared
+// kernel (vx_march.h) and writing the pixel's AOVs. The backend dispatches the image band by band.
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform int vx_row_offset;   // image row of the band's first row
+
+// 12 floats per pixel of the band, row-major: rgba, direct, emission, transmittance, depth
+// (the byte layout of the C++ VxPixel).
+layout(std430, binding = 6) writeonly buffer Band { float vx_band[]; };
+
+void main() {
+    int x = int(gl_GlobalInvocationID.x);
+    int y = int(gl_GlobalInvocationID.y);
+    if (x >= int(P.camera_frame.z) || y + vx_row_offset >= int(P.camera_frame.w)) return;
+    VxPixel px = vx_render_pixel(x, y + vx_row_offset);
+    int o = 12 * (y * int(P.camera_frame.z) + x);
+    vx_band[o] = px.rgba.x;
+    vx_band[o + 1] = px.rgba.y;
+    vx_band[o + 2] = px.rgba.z;
+    vx_band[o + 3] = px.rgba.w;
+    vx_band[o + 4] = px.direct.x;
+    vx_band[o + 5] = px.direct.y;
+    vx_band[o + 6] = px.direct.z;
+    vx_band[o + 7] = px.emission.x;
+    vx_band[o + 8] = px.emission.y;
+    vx_band[o + 9] = px.emission.z;
+    vx_band[o + 10] = px.transmittance;
+    vx_band[o + 11] = px.depth;
+}
