@@ -91,26 +91,80 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
             for (int k = vx_first_sample(s.t, dt);; ++k) {
                 float t = (float(k) + 0.5f) * dt;
                 if (t >= t_exit) break;
-                tau += vx_extinction(vx_corners(slot, s.brick, o + d * t)) * dt;
+                tau += vx_extinction(vx_corners_at(slot, s.brick, o + d * t)) * dt;
             }
             if (tau > tau_cut) return 0.0f;
         }
         vx_dda_advance(s);
     }
-    return exp(-tau);
+    return vx_exp(-tau);
 }
 
-// Single-scattered light at world point x for a camera ray travelling along unit direction dir.
-vec3 vx_in_scattered(vec3 x, vec3 dir) {
+// Single-scattered light at world point x for a camera ray travelling along unit direction dir,
+// from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
+// along a ray, so the march sums it once per ray and asks here for the local lights only.
+vec3 vx_in_scattered(vec3 x, vec3 dir, int which) {
     vec3 sum = vec3(0.0f);
     for (int i = 0; i < P.bricks_min.w; ++i) {
+        VxLight light = vx_light(i);
+        bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;
+        if ((which == VX_LIGHTS_DIRECTIONAL && !directional) || (which == VX_LIGHTS_LOCAL && directional)) continue;
         vec3 wi;
         float dist;
-        vec3 e = vx_light_incident(vx_light(i), x, wi, dist);
+        vec3 e = vx_light_incident(light, x, wi, dist);
         if (e.x + e.y + e.z <= 0.0f) continue;
         float shadow = 1.0f;
         if (P.bricks_max.w == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
         sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.march.w));
+    }
+    return sum;
+}
+
+// Extinction at VX_CHUNK consecutive samples t_j = (k + j + 0.5) * dt inside one brick. The
+// samples are independent, so the C++ build evaluates them as one SIMD batch (gathers from the
+// atlas); a GPU thread runs the loop. Samples past the brick read clamped, in-bounds voxels and
+// are ignored by the caller.
+struct VxChunk {
+    float sigma[VX_CHUNK];
+    float tau[VX_CHUNK];    // optical depth from the camera to the end of each sample's segment
+    float T[VX_CHUNK];      // exp(-tau)
+};
+
+VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, int k, float dt, VX_INOUT(VxChunk) c) {
+    // Scalars only inside the loops (vector temporaries would be spilled per SIMD lane); two loops
+    // because reconstruction vectorises on its own and the transfer-function branch is uniform,
+    // so the compiler hoists it out of the second.
+    vec3 local = o - vec3(brick * VX_BRICK);
+    VX_SIMD_LOOP
+    for (int j = 0; j < VX_CHUNK; ++j) {
+        float t = (float(k + j) + 0.5f) * dt;
+        c.sigma[j] = VX_TRILINEAR(vx_atlas_density, vx_corners(slot, local.x + d.x * t, local.y + d.y * t, local.z + d.z * t));
+    }
+    VX_SIMD_LOOP
+    for (int j = 0; j < VX_CHUNK; ++j)
+        c.sigma[j] = vx_value_extinction(c.sigma[j]);
+}
+
+// Optical depth is accumulated as a sum (Schlegel 2011, Eq. 2) and turned into transmittance
+// per sample, not multiplied up sample by sample; the exponentials are one SIMD batch.
+VX_INLINE void vx_chunk_transmittance(float tau, float dt, VX_INOUT(VxChunk) c) {
+    for (int j = 0; j < VX_CHUNK; ++j) {
+        tau += c.sigma[j] * dt;
+        c.tau[j] = tau;
+    }
+    VX_SIMD_LOOP
+    for (int j = 0; j < VX_CHUNK; ++j)
+        c.T[j] = vx_exp(-c.tau[j]);
+}
+
+// Sum over the chunk's first n samples of (light absorbed in the sample's segment) * t, for the
+// opacity-weighted depth; T_before is the transmittance before the chunk.
+VX_INLINE float vx_chunk_depth(float T_before, int k, int n, float dt, VX_INOUT(VxChunk) c) {
+    float sum = 0.0f;
+    VX_SIMD_SUM(sum)
+    for (int j = 0; j < VX_CHUNK; ++j) {
+        float before = j == 0 ? T_before : c.T[max(j - 1, 0)];
+        sum += j < n ? (before - c.T[j]) * ((float(k + j) + 0.5f) * dt) : 0.0f;
     }
     return sum;
 }
@@ -123,6 +177,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     px.emission = vec3(0.0f);
     px.transmittance = 1.0f;
     px.depth = 0.0f;
+    px.samples = 0.0f;
 
     vec3 o = vx_to_index_point(origin);
     vec3 d = vx_to_index_dir(dir);
@@ -131,33 +186,59 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     if (!vx_clip_to_bricks(o, d, t0, t1)) return px;
 
     float dt = P.march.x;
+    float cutoff = P.march.z;
+    bool per_ray_directional = P.bricks_max.w == VX_SHADOWS_NONE;
+    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL) : vec3(0.0f);
+    int per_sample_lights = per_ray_directional ? VX_LIGHTS_LOCAL : VX_LIGHTS_ALL;
+    bool emits = P.emission.w > 0.5f;
+    bool plain_albedo = P.tf_domain.z < 0.5f && P.tf_domain.w < 0.5f;
+    // When the light a sample scatters is the same all along the ray (unshadowed directional
+    // lights only, one albedo, no emission), a chunk's scattered light telescopes exactly to
+    // albedo * L * (T before - T after): no per-sample work beyond the SIMD batches.
+    bool constant_light = per_ray_directional && plain_albedo && !emits && P.page.z == 0;
     float tau = 0.0f;
     float T = 1.0f;
     float depth_weighted = 0.0f;
     float cos_forward = dot(dir, forward);
+    VxChunk chunk;
     VxDda s = vx_dda_begin(o, d, t0, t1);
-    while (s.t < s.t_end && T > P.march.z) {
+    while (s.t < s.t_end && T > cutoff) {
         float t_exit = vx_dda_exit(s);
         int slot = vx_page_lookup(s.brick);
-        if (slot != VX_PAGE_EMPTY) {
-            for (int k = vx_first_sample(s.t, dt);; ++k) {
-                float t = (float(k) + 0.5f) * dt;
-                if (t >= t_exit || T <= P.march.z) break;
-                VxOptics m = vx_optics(vx_corners(slot, s.brick, o + d * t));
-                if (m.sigma_t <= 0.0f && m.emission.x + m.emission.y + m.emission.z <= 0.0f) continue;
+        int k_end = vx_first_sample(t_exit, dt);
+        for (int k = vx_first_sample(s.t, dt); slot != VX_PAGE_EMPTY && k < k_end && T > cutoff; k += VX_CHUNK) {
+            vx_chunk_extinction(slot, s.brick, o, d, k, dt, chunk);
+            vx_chunk_transmittance(tau, dt, chunk);
+            int n = min(VX_CHUNK, k_end - k);
+            px.samples += float(n);
+            if (constant_light) {
+                float T_after = chunk.T[n - 1];
+                px.direct += vec3(P.material) * directional * (T - T_after);
+                depth_weighted += vx_chunk_depth(T, k, n, dt, chunk) * cos_forward;
+                tau = chunk.tau[n - 1];
+                T = T_after;
+                continue;
+            }
+            for (int j = 0; j < n; ++j) {
+                float sigma = chunk.sigma[j];
+                float t = (float(k + j) + 0.5f) * dt;
+                vec3 le = vec3(0.0f);
+                if (emits) le = vx_emission(vx_corners_at(slot, s.brick, o + d * t));
+                if (sigma <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
                 // Exact integral of a constant segment: the light scattered in a segment of
                 // extinction sigma is albedo * L_in * (T_k - T_k+1); emission integrates to
                 // Le * (T_k - T_k+1) / sigma, which tends to Le * T_k * dt as sigma -> 0.
-                tau += m.sigma_t * dt;
-                float T_next = exp(-tau);
+                tau = chunk.tau[j];
+                float T_next = chunk.T[j];
                 float absorbed = T - T_next;
-                vec3 x = origin + dir * t;
                 if (absorbed > 0.0f) {
-                    vec3 scattered = m.albedo * vx_in_scattered(x, dir) * absorbed;
+                    vec3 x = origin + dir * t;
+                    vec3 albedo = plain_albedo ? vec3(P.material) : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
+                    vec3 scattered = albedo * (directional + vx_in_scattered(x, dir, per_sample_lights)) * absorbed;
                     px.direct += scattered;
                     depth_weighted += absorbed * t * cos_forward;
                 }
-                px.emission += m.emission * (m.sigma_t > 1e-6f ? absorbed / m.sigma_t : T * dt);
+                px.emission += le * (sigma > 1e-6f ? absorbed / sigma : T * dt);
                 T = T_next;
             }
         }

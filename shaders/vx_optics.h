@@ -1,40 +1,52 @@
-// Optical properties at a sample (material / transfer function), light emission and phase.
+// Optical properties at a sample (extinction, albedo, emission), light emission and phase.
 #pragma once
 #include "vx_sample.h"
 
-struct VxOptics {
-    float sigma_t;   // extinction, per world unit
-    vec3 albedo;     // single-scattering albedo
-    vec3 emission;   // emitted radiance per world unit
-};
+// e^x for x <= 0, to about 2e-7 relative: x = n ln2 + r with |r| <= ln2 / 2, e^r by its Taylor
+// series to r^6, 2^n built in the exponent bits. Written out (rather than the library's exp) so
+// that the CPU build vectorises it inside the SIMD batches; the GPU runs the same arithmetic.
+VX_INLINE float vx_exp(float x) {
+    x = max(x, -87.0f);  // below this e^x is under the smallest normal float
+    float n = floor(x * 1.44269504f + 0.5f);
+    float r = (x - n * 0.693145752f) - n * 1.42860677e-6f;  // ln2 split in two: r keeps its low bits
+    float p = 1.0f / 720.0f;
+    p = p * r + 1.0f / 120.0f;
+    p = p * r + 1.0f / 24.0f;
+    p = p * r + 1.0f / 6.0f;
+    p = p * r + 0.5f;
+    p = p * r + 1.0f;
+    p = p * r + 1.0f;
+    return p * intBitsToFloat((int(n) + 127) << 23);
+}
 
 // Transfer-function lookup for a raw grid value: rgb = albedo tint, a = extinction multiplier.
-vec4 vx_tf_eval(float value) {
+VX_INLINE vec4 vx_tf_eval(float value) {
     float x = clamp((value - P.tf_domain.x) * P.tf_domain.y, 0.0f, 1.0f) * float(VX_TF_LUT_SIZE - 1);
     int i = min(int(x), VX_TF_LUT_SIZE - 2);
     return mix(vx_tf_lut(i), vx_tf_lut(i + 1), x - float(i));
 }
 
-float vx_extinction(VxCorners c) {
-    float v = VX_TRILINEAR(vx_atlas_density, c);
+// Extinction per world unit for a raw (reconstructed) grid value.
+VX_INLINE float vx_value_extinction(float v) {
     if (P.tf_domain.z > 0.5f) v = vx_tf_eval(v).w;
     return v * P.material.w;
 }
 
-VxOptics vx_optics(VxCorners c) {
-    VxOptics o;
-    float v = VX_TRILINEAR(vx_atlas_density, c);
-    o.albedo = vec3(P.material);
-    if (P.tf_domain.z > 0.5f) {
-        vec4 tf = vx_tf_eval(v);
-        v = tf.w;
-        o.albedo *= vec3(tf);
-    }
-    o.sigma_t = v * P.material.w;
-    if (P.tf_domain.w > 0.5f) o.albedo *= VX_TRILINEAR(vx_atlas_color, c);
-    o.emission = vec3(0.0f);
-    if (P.emission.w > 0.5f) o.emission = vec3(P.emission) * VX_TRILINEAR(vx_atlas_emission, c);
-    return o;
+VX_INLINE float vx_extinction(VxCorners c) {
+    return vx_value_extinction(VX_TRILINEAR(vx_atlas_density, c));
+}
+
+// Albedo at a sample: the material's, tinted by the transfer function and the colour grid.
+vec3 vx_albedo(VxCorners c) {
+    vec3 a = vec3(P.material);
+    if (P.tf_domain.z > 0.5f) a *= vec3(vx_tf_eval(VX_TRILINEAR(vx_atlas_density, c)));
+    if (P.tf_domain.w > 0.5f) a *= VX_TRILINEAR(vx_atlas_color, c);
+    return a;
+}
+
+// Emitted radiance per world unit at a sample.
+vec3 vx_emission(VxCorners c) {
+    return vec3(P.emission) * VX_TRILINEAR(vx_atlas_emission, c);
 }
 
 // Unshadowed radiance arriving at world point x from light L. Returns the direction towards the
@@ -62,7 +74,7 @@ vec3 vx_light_incident(VxLight L, vec3 x, VX_OUT(vec3) wi, VX_OUT(float) dist) {
 
 // Henyey-Greenstein phase function; cos_theta is between the direction light travels and the
 // direction it leaves towards the eye.
-float vx_phase_hg(float cos_theta, float g) {
+VX_INLINE float vx_phase_hg(float cos_theta, float g) {
     float denom = 1.0f + g * g - 2.0f * g * cos_theta;
     return (1.0f - g * g) / (4.0f * VX_PI * denom * sqrt(denom));
 }

@@ -15,9 +15,18 @@
 #ifdef VX_GLSL
 #define VX_OUT(T) out T
 #define VX_INOUT(T) inout T
+#define VX_INLINE
+#define VX_SIMD_LOOP
+#define VX_SIMD_SUM(var)
 #else
 #define VX_OUT(T) T&
 #define VX_INOUT(T) T&
+// The CPU march is only fast when the per-sample functions inline into the SIMD loops.
+#define VX_INLINE [[gnu::always_inline]] inline
+// Iterations are independent: vectorise across them (needs -fopenmp-simd).
+#define VX_SIMD_LOOP _Pragma("omp simd")
+#define VX_PRAGMA(text) _Pragma(#text)
+#define VX_SIMD_SUM(var) VX_PRAGMA(omp simd reduction(+ : var))
 #endif
 
 #define VX_PI 3.14159265f
@@ -26,6 +35,7 @@
 #define VX_BRICK_VOXELS 729        // VX_BRICK_STRIDE^3
 #define VX_PAGE_EMPTY -1
 #define VX_TF_LUT_SIZE 256
+#define VX_CHUNK 16                 // samples whose extinction is evaluated together (one SIMD batch)
 
 #define VX_LIGHT_DIRECTIONAL 0
 #define VX_LIGHT_POINT 1
@@ -33,3 +43,7 @@
 
 #define VX_SHADOWS_NONE 0
 #define VX_SHADOWS_RAYMARCH 1
+
+#define VX_LIGHTS_ALL 0            // which lights vx_in_scattered sums
+#define VX_LIGHTS_DIRECTIONAL 1
+#define VX_LIGHTS_LOCAL 2

@@ -26,7 +26,8 @@ struct VxParams {
                             // w = 1 if a colour (Cd) grid is bound
     ivec4 bricks_min;       // xyz = lowest occupied brick coordinate, w = light count
     ivec4 bricks_max;       // xyz = highest occupied brick coordinate, w = shadow mode VX_SHADOWS_*
-    ivec4 page;             // x = page-table capacity (power of two), y = max probe length
+    ivec4 page;             // x = page-table capacity (power of two), y = max probe length,
+                            // z = number of point and spot lights
 };
 
 // What one camera ray returns; the AOVs are kept separate so the EXR writer can lay them out.
@@ -36,4 +37,5 @@ struct VxPixel {
     vec3 emission;          // self-emitted light
     float transmittance;    // of the whole ray
     float depth;            // camera-space distance, opacity-weighted mean (0 where nothing was hit)
+    float samples;          // samples the march evaluated (its cost; the benchmark counts these)
 };

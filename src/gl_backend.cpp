@@ -14,8 +14,8 @@
 namespace voxlux {
 namespace {
 
-// march.comp writes 12 floats per pixel in VxPixel's member order, so a band reads straight back.
-static_assert(sizeof(kernel::VxPixel) == 12 * sizeof(float));
+// march.comp writes 13 floats per pixel in VxPixel's member order, so a band reads straight back.
+static_assert(sizeof(kernel::VxPixel) == 13 * sizeof(float));
 static_assert(offsetof(kernel::VxPixel, direct) == 4 * sizeof(float));
 static_assert(offsetof(kernel::VxPixel, depth) == 11 * sizeof(float));
 

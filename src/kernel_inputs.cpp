@@ -64,7 +64,9 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
     P.bricks_min = glm::ivec4(pages.bricks_min, int(in.lights.size()));
     P.bricks_max = glm::ivec4(pages.bricks_max, scene.effects.shadows == ShadowMethod::Raymarch ? VX_SHADOWS_RAYMARCH
                                                                                                 : VX_SHADOWS_NONE);
-    P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, 0, 0);
+    int local_lights = 0;
+    for (const auto& l : scene.lights) local_lights += l.type != LightType::Directional;
+    P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, local_lights, 0);
     in.tf_lut = bakeTransfer(m.transfer);
     return in;
 }
