@@ -1,0 +1,121 @@
+// Stage timings of the foundation pipeline on one cache (default: the shared Houdini smoke),
+// for both backends: load, brick, classify, march without and with ray-marched shadows, write.
+// Prints figures; it asserts nothing. docs/performance.md quotes its output.
+//
+//   build/voxlux_bench [cache.vdb] [--res 512] [--backends cpu,gl] [--repeats 3]
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "brick_atlas.h"
+#include "camera.h"
+#include "exr_writer.h"
+#include "kernel_inputs.h"
+#include "march_backend.h"
+#include "page_table.h"
+#include "renderer.h"
+#include "vdb_loader.h"
+
+namespace {
+
+using namespace voxlux;
+
+// Best wall time of `repeats` runs of `work`, in seconds.
+double best(int repeats, const std::function<void()>& work) {
+    double best = 1e30;
+    for (int i = 0; i < repeats; ++i) {
+        auto start = std::chrono::steady_clock::now();
+        work();
+        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    return best;
+}
+
+double totalSamples(const RenderImage& img) {
+    double n = 0;
+    for (const auto& p : img.pixels) n += p.samples;
+    return n;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string cache = std::string(VOXLUX_SOURCE_DIR) + "/../shared/data/arnold-usd/smoke.vdb";
+    int res = 512, repeats = 3;
+    std::vector<std::string> backends{"cpu", "gl"};
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--res") && i + 1 < argc) res = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--backends") && i + 1 < argc) {
+            backends.clear();
+            std::string list = argv[++i];
+            for (size_t at = 0; at <= list.size();) {
+                size_t comma = list.find(',', at);
+                backends.push_back(list.substr(at, comma == std::string::npos ? std::string::npos : comma - at));
+                at = comma == std::string::npos ? list.size() + 1 : comma + 1;
+            }
+        } else cache = argv[i];
+    }
+    if (!std::filesystem::exists(cache)) {
+        std::fprintf(stderr, "voxlux_bench: %s not found (pass a .vdb)\n", cache.c_str());
+        return 2;
+    }
+
+    Scene scene;
+    scene.volume.path = cache;
+    scene.render.width = scene.render.height = res;
+    scene.render.step = 0.5f;
+    scene.lights = {defaultKeyLight()};
+
+    LoadedVolume volume;
+    BrickAtlas atlas;
+    PageTable pages;
+    const double tLoad = best(repeats, [&] { volume = loadVolume(cache, scene.volume); });
+    const double tBrick = best(repeats, [&] { atlas = buildBrickAtlas(volume); });
+    const double tClassify = best(repeats, [&] { pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material)); });
+    const Camera camera = frameActiveVoxels(volume, scene.render);
+
+    std::printf("voxlux_bench: %s, %dx%d, step %.2f voxel, 1 directional light\n", cache.c_str(), res, res,
+                scene.render.step);
+    std::printf("  active voxels %llu, bricks %zu, atlas %.1f MB, %u threads\n",
+                static_cast<unsigned long long>(atlas.active_voxels), pages.occupied, atlas.bytes() / 1e6,
+                std::thread::hardware_concurrency());
+    std::printf("  %-34s %9.4f s\n", "load", tLoad);
+    std::printf("  %-34s %9.4f s\n", "brick", tBrick);
+    std::printf("  %-34s %9.4f s\n", "classify", tClassify);
+
+    RenderImage image;
+    for (const auto& name : backends) {
+        std::unique_ptr<MarchBackend> backend;
+        try {
+            backend = makeBackend(name == "gl" ? Backend::Gl : Backend::Cpu);
+        } catch (const std::exception& e) {
+            std::printf("  %s backend unavailable: %s\n", name.c_str(), e.what());
+            continue;
+        }
+        for (ShadowMethod shadows : {ShadowMethod::None, ShadowMethod::Raymarch}) {
+            scene.effects.shadows = shadows;
+            KernelInputs inputs = makeKernelInputs(scene, camera, atlas, pages);
+            backend->march(inputs);  // warm-up: GL compiles its program and uploads here
+            const int runs = shadows == ShadowMethod::None ? repeats : 1;
+            const double t = best(runs, [&] { image = backend->march(inputs); });
+            const double samples = totalSamples(image);
+            std::string label = "march " + backend->name() + (shadows == ShadowMethod::None ? ", no shadows" : ", shadows");
+            std::printf("  %-34s %9.4f s  %7.1f M camera samples", label.c_str(), t, samples / 1e6);
+            if (shadows == ShadowMethod::None) std::printf("  %7.1f M samples/s", samples / t / 1e6);
+            std::printf("\n");
+        }
+    }
+
+    const std::string out = (std::filesystem::temp_directory_path() / "voxlux_bench.exr").string();
+    OutputSpec spec;
+    const double tWrite = best(repeats, [&] { writeExr(out, image, spec, ExrMetadata{}); });
+    std::filesystem::remove(out);
+    std::printf("  %-34s %9.4f s\n", "write (half, zip)", tWrite);
+    return 0;
+}
