@@ -3,10 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
-#include <ImfInputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <nlohmann/json.hpp>
@@ -17,33 +14,6 @@
 namespace voxlux::test {
 namespace {
 namespace fs = std::filesystem;
-
-struct Exr {
-    int width = 0, height = 0;
-    std::vector<std::string> channels;
-    std::map<std::string, std::vector<float>> planes;
-    Imf::Header header;
-};
-
-Exr readExr(const std::string& path) {
-    Imf::InputFile file(path.c_str());
-    Exr e;
-    e.header = file.header();
-    const auto dw = file.header().dataWindow();
-    e.width = dw.max.x - dw.min.x + 1;
-    e.height = dw.max.y - dw.min.y + 1;
-    Imf::FrameBuffer fb;
-    for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c) {
-        e.channels.push_back(c.name());
-        auto& plane = e.planes[c.name()];
-        plane.resize(size_t(e.width) * e.height);
-        fb.insert(c.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(plane.data()), sizeof(float),
-                                       sizeof(float) * e.width));
-    }
-    file.setFrameBuffer(fb);
-    file.readPixels(dw.min.y, dw.max.y);
-    return e;
-}
 
 // No file at `path` and no temporary file beside it.
 void expectNothingWritten(const std::string& path) {
@@ -234,6 +204,38 @@ TEST(Cli, SequenceWithAnEmptyFrameRendersItTransparent) {
     for (const char* f : {"0001", "0002", "0003"}) EXPECT_TRUE(fs::exists(dir + "/seq." + f + ".exr")) << f;
     Exr first = readExr(dir + "/seq.0001.exr");
     for (float a : first.planes["A"]) ASSERT_EQ(a, 0.0f);
+}
+
+}  // namespace
+}  // namespace voxlux::test
+
+namespace voxlux::test {
+namespace {
+
+TEST(Cli, RepeatedGridNamesArePickedByIndexWithAWarning) {
+    VOXLUX_REQUIRE_SHARED(grids, "arnold-usd/grids.vdb");
+    const std::string dir = tempDir("repeated");
+    CliResult first = runCli("render " + grids + " --res 32x32 --backend cpu --shadows none -o " + dir + "/0.exr");
+    ASSERT_EQ(first.exit_code, 0) << first.err;
+    EXPECT_EQ(first.err, "voxlux: warning: " + grids +
+                             ": 3 grids are named 'density'; using index 0 (set the grid's \"index\" to choose)\n");
+    CliResult third = runCli("render " + grids + " --grid-index 2 --res 32x32 --backend cpu --shadows none -o " + dir +
+                             "/2.exr");
+    ASSERT_EQ(third.exit_code, 0) << third.err;
+    EXPECT_NE(third.err.find("using index 2"), std::string::npos);
+    // The three grids differ (491 and 803 active voxels), so the framed images differ.
+    EXPECT_NE(readExr(dir + "/0.exr").planes["A"], readExr(dir + "/2.exr").planes["A"]);
+    expectRejected("render " + grids + " --grid-index 3",
+                   grids + ": grid index 3 for 'density' is out of range (the file has 3)");
+}
+
+TEST(Cli, BadOptionsAreRefusedWithTheOptionNamed) {
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    expectRejected("render " + cloud + " --res 512", "--res '512': expected WIDTHxHEIGHT");
+    expectRejected("render " + cloud + " --light area:pos=0,0,0", "--light 'area:pos=0,0,0': type must be directional, point or spot");
+    expectRejected("render " + cloud + " --light point:intensity=5", "--light 'point:intensity=5': needs pos=x,y,z");
+    expectRejected("render " + cloud + " --step 0", "command line: /render/step: must lie in [0.01, 64] voxels");
+    expectRejected("render " + cloud + " --shadows sat", "command line: /effects/shadows: 'sat' is not one of none, raymarch");
 }
 
 }  // namespace

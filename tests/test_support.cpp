@@ -5,6 +5,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfInputFile.h>
+
 namespace voxlux::test {
 namespace fs = std::filesystem;
 
@@ -71,6 +75,26 @@ CliResult runCli(const std::string& args) {
     r.out = slurp(base + ".out");
     r.err = slurp(base + ".err");
     return r;
+}
+
+Exr readExr(const std::string& path) {
+    Imf::InputFile file(path.c_str());
+    Exr e;
+    e.header = file.header();
+    const auto dw = file.header().dataWindow();
+    e.width = dw.max.x - dw.min.x + 1;
+    e.height = dw.max.y - dw.min.y + 1;
+    Imf::FrameBuffer fb;
+    for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c) {
+        e.channels.push_back(c.name());
+        auto& plane = e.planes[c.name()];
+        plane.resize(size_t(e.width) * e.height);
+        fb.insert(c.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(plane.data()), sizeof(float),
+                                       sizeof(float) * e.width));
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    return e;
 }
 
 std::string tempDir(const std::string& name) {

@@ -3,6 +3,10 @@
 #include <optional>
 #include <string>
 
+#include <map>
+#include <vector>
+
+#include <ImfHeader.h>
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
 
@@ -51,6 +55,15 @@ struct CliResult {
 };
 // Runs the voxlux binary with `args` (shell-quoted by the caller where needed).
 CliResult runCli(const std::string& args);
+
+// An EXR read back through the OpenEXR API: every channel as float, and the header.
+struct Exr {
+    int width = 0, height = 0;
+    std::vector<std::string> channels;
+    std::map<std::string, std::vector<float>> planes;
+    Imf::Header header;
+};
+Exr readExr(const std::string& path);
 
 // A folder under this test run's temp dir (created if needed).
 std::string tempDir(const std::string& name);
