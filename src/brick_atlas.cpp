@@ -150,31 +150,29 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
         if (v.emission)
             for (int k = 0; k < kVoxels; ++k) em = std::max(em, emission[i * kVoxels + k]);
         if (v.emission) emissionMax[i] = em;
-        keep[i] = std::binary_search(active.begin(), active.end(), candidates[i],
-                                     [](const glm::ivec3& a, const glm::ivec3& c) {
-                                         return a.z != c.z ? a.z < c.z : a.y != c.y ? a.y < c.y : a.x < c.x;
-                                     }) ||
-                  mm.y > 0.0f || em > 0.0f;
+        keep[i] = std::binary_search(active.begin(), active.end(), candidates[i], brickLess) || mm.y > 0.0f || em > 0.0f;
     });
 
-    size_t kept = 0;
-    for (size_t i = 0; i < n; ++i) kept += keep[i];
-    atlas.coords.reserve(kept);
-    atlas.density.resize(kept * kVoxels);
-    if (v.emission) atlas.emission.resize(kept * kVoxels);
-    if (v.color) atlas.color.resize(kept * kVoxels * 3);
-    for (size_t i = 0, s = 0; i < n; ++i) {
+    // Compact in place (slot s <= candidate i), so the atlas never exists twice in memory.
+    size_t s = 0;
+    for (size_t i = 0; i < n; ++i) {
         if (!keep[i]) continue;
         atlas.coords.push_back(candidates[i]);
         atlas.density_range.push_back(range[i]);
-        std::copy_n(&density[i * kVoxels], kVoxels, &atlas.density[s * kVoxels]);
+        std::copy_n(&density[i * kVoxels], kVoxels, &density[s * kVoxels]);
         if (v.emission) {
             atlas.emission_max.push_back(emissionMax[i]);
-            std::copy_n(&emission[i * kVoxels], kVoxels, &atlas.emission[s * kVoxels]);
+            std::copy_n(&emission[i * kVoxels], kVoxels, &emission[s * kVoxels]);
         }
-        if (v.color) std::copy_n(&color[i * kVoxels * 3], kVoxels * 3, &atlas.color[s * kVoxels * 3]);
+        if (v.color) std::copy_n(&color[i * kVoxels * 3], kVoxels * 3, &color[s * kVoxels * 3]);
         ++s;
     }
+    density.resize(s * kVoxels);
+    emission.resize(v.emission ? s * kVoxels : 0);
+    color.resize(v.color ? s * kVoxels * 3 : 0);
+    atlas.density = std::move(density);
+    atlas.emission = std::move(emission);
+    atlas.color = std::move(color);
     return atlas;
 }
 

@@ -5,10 +5,7 @@
 namespace voxlux {
 
 void uniqueBricks(std::vector<glm::ivec3>& b) {
-    auto less = [](const glm::ivec3& a, const glm::ivec3& c) {
-        return a.z != c.z ? a.z < c.z : a.y != c.y ? a.y < c.y : a.x < c.x;
-    };
-    std::sort(b.begin(), b.end(), less);
+    std::sort(b.begin(), b.end(), brickLess);
     b.erase(std::unique(b.begin(), b.end()), b.end());
 }
 

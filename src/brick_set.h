@@ -35,7 +35,12 @@ void collectBricks(const TreeT& tree, std::vector<glm::ivec3>& out, const std::s
     }
 }
 
-// Sorts and removes repeats (z-major order, which keeps neighbouring bricks close in the atlas).
+// z-major order, which keeps neighbouring bricks close in the atlas.
+inline bool brickLess(const glm::ivec3& a, const glm::ivec3& b) {
+    return a.z != b.z ? a.z < b.z : a.y != b.y ? a.y < b.y : a.x < b.x;
+}
+
+// Sorts (brickLess) and removes repeats.
 void uniqueBricks(std::vector<glm::ivec3>& bricks);
 
 // Number of distinct bricks a grid of any type occupies (for `voxlux info`).

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "camera.h"
+#include "transfer_function.h"
 
 namespace voxlux {
 
@@ -20,23 +21,6 @@ kernel::VxLight packLight(const Light& l) {
     k.dir_cos = glm::vec4(glm::normalize(l.direction), std::cos(glm::radians(l.cone_angle)));
     k.color = glm::vec4(l.color * l.intensity, std::cos(glm::radians(std::max(0.0f, l.cone_angle - l.cone_softness))));
     return k;
-}
-
-// Samples the piecewise-linear transfer function at VX_TF_LUT_SIZE evenly spaced values.
-std::vector<glm::vec4> bakeTransfer(const std::vector<TransferPoint>& tf) {
-    std::vector<glm::vec4> lut(VX_TF_LUT_SIZE, glm::vec4(1.0f));
-    if (tf.empty()) return lut;
-    const float lo = tf.front().value, hi = tf.back().value;
-    size_t seg = 0;
-    for (int i = 0; i < VX_TF_LUT_SIZE; ++i) {
-        float v = lo + (hi - lo) * float(i) / float(VX_TF_LUT_SIZE - 1);
-        while (seg + 2 < tf.size() && v > tf[seg + 1].value) ++seg;
-        const auto& a = tf[seg];
-        const auto& b = tf[seg + 1];
-        float f = std::clamp((v - a.value) / (b.value - a.value), 0.0f, 1.0f);
-        lut[i] = glm::vec4(glm::mix(a.albedo, b.albedo, f), a.extinction + (b.extinction - a.extinction) * f);
-    }
-    return lut;
 }
 
 }  // namespace

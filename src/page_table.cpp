@@ -3,32 +3,17 @@
 #include <algorithm>
 
 #include "cpu_kernel.h"
+#include "transfer_function.h"
 
 namespace voxlux {
 
-namespace {
-// Largest transfer-function extinction over raw values in [lo, hi] (piecewise linear, clamped).
-float maxTransferExtinction(const std::vector<TransferPoint>& tf, float lo, float hi) {
-    auto at = [&](float v) {
-        if (v <= tf.front().value) return tf.front().extinction;
-        if (v >= tf.back().value) return tf.back().extinction;
-        auto it = std::upper_bound(tf.begin(), tf.end(), v, [](float x, const TransferPoint& p) { return x < p.value; });
-        const auto& a = *(it - 1);
-        const auto& b = *it;
-        return a.extinction + (b.extinction - a.extinction) * (v - a.value) / (b.value - a.value);
-    };
-    float m = std::max(at(lo), at(hi));
-    for (const auto& p : tf)
-        if (p.value > lo && p.value < hi) m = std::max(m, p.extinction);
-    return m;
-}
-}  // namespace
-
 std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material) {
     std::vector<char> visible(atlas.slots());
+    const std::vector<glm::vec4> table = bakeTransfer(material.transfer);  // the kernel's own table
     for (size_t i = 0; i < atlas.slots(); ++i) {
         const glm::vec2 r = atlas.density_range[i];
-        float extinction = material.transfer.empty() ? r.y : maxTransferExtinction(material.transfer, r.x, r.y);
+        float extinction =
+            material.transfer.empty() ? r.y : maxTransferExtinction(table, material.transfer, r.x, r.y);
         bool emits = !atlas.emission_max.empty() && atlas.emission_max[i] > 0.0f && material.emission_scale > 0.0f;
         visible[i] = (extinction * material.density_scale > 0.0f) || emits;
     }
