@@ -156,7 +156,6 @@ int runRender(const RenderCommand& cmd) {
         std::cout << explainPlan(planRender(scene));
         return 0;
     }
-    if (scene.output.path.empty()) throw InputError("no output path: pass -o FILE.exr or set output.path in the scene");
     auto frames = framesOf(scene);
     const bool sequence = frames.size() > 1 || frames.front().has_value();
 
