@@ -191,6 +191,15 @@ TEST(GlBackend, MatchesCpuWithShadowedDirectionalAndPointLights) {
     EXPECT_EQ(stats[kEmission].peak, 0.0);
 }
 
+// Unshadowed directional light only: the march takes its telescoped per-batch path.
+TEST(GlBackend, MatchesCpuWithUnshadowedDirectionalLight) {
+    VOXLUX_REQUIRE_GL(gl);
+    Scene scene = baseScene();
+    scene.effects.shadows = ShadowMethod::None;
+    scene.lights = {directionalLight()};
+    EXPECT_GT(expectMatch(renderBoth(makeVolume(false), scene, *gl))[kDirect].peak, 0.0);
+}
+
 TEST(GlBackend, MatchesCpuWithEmissionAndColourGrids) {
     VOXLUX_REQUIRE_GL(gl);
     Scene scene = baseScene();

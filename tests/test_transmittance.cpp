@@ -159,3 +159,40 @@ TEST(KernelMath, ExpIsAccurateOverTheWholeRange) {
 
 }  // namespace
 }  // namespace voxlux::test
+
+namespace voxlux::test {
+namespace {
+
+// The telescoped per-batch lighting (unshadowed directional light only) and the per-sample path
+// integrate the same thing: adding a black point light forces the per-sample path.
+TEST(March, TelescopedLightingEqualsPerSampleLighting) {
+    auto g = boxGrid({0, 0, 0}, {40, 30, 20}, 0.08f);
+    g->denseFill(openvdb::CoordBBox({10, 5, 5}, {20, 25, 15}), 0.5f, true);
+    Scene scene = boxScene(0.5f);
+    scene.render.width = 24;
+    scene.render.height = 20;
+    scene.lights = {defaultKeyLight()};
+    Camera camera = cameraAlong({1, -0.3f, 0.4f});
+    camera.fov = 30.0f;
+    auto telescoped = prepare(volumeFromGrid(g), scene, camera);
+    Light black;
+    black.type = LightType::Point;
+    black.intensity = 0.0f;
+    scene.lights.push_back(black);
+    auto per_sample = prepare(volumeFromGrid(g), scene, camera);
+    ASSERT_EQ(telescoped->inputs.params.page.z, 0);
+    ASSERT_EQ(per_sample->inputs.params.page.z, 1);
+    auto cpu = makeCpuBackend();
+    RenderImage a = cpu->march(telescoped->inputs), b = cpu->march(per_sample->inputs);
+    float peak = 0.0f;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        peak = std::max(peak, a.pixels[i].direct.x);
+        EXPECT_NEAR(a.pixels[i].direct.x, b.pixels[i].direct.x, 1e-5f * (1.0f + b.pixels[i].direct.x)) << i;
+        EXPECT_NEAR(a.pixels[i].depth, b.pixels[i].depth, 1e-3f * (1.0f + b.pixels[i].depth)) << i;
+        EXPECT_EQ(a.pixels[i].transmittance, b.pixels[i].transmittance) << i;
+    }
+    EXPECT_GT(peak, 0.1f);
+}
+
+}  // namespace
+}  // namespace voxlux::test
