@@ -120,49 +120,49 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which) {
     return sum;
 }
 
-// Extinction at VX_CHUNK consecutive samples t_j = (k + j + 0.5) * dt inside one brick. The
-// samples are independent, so the C++ build evaluates them as one SIMD batch (gathers from the
-// atlas); a GPU thread runs the loop. Samples past the brick read clamped, in-bounds voxels and
-// are ignored by the caller.
+// Extinction at the first `lanes` (a multiple of VX_LANES, at most VX_CHUNK) of the consecutive
+// samples t_j = (k + j + 0.5) * dt inside one brick. The samples are independent, so the C++
+// build evaluates them as one SIMD batch (gathers from the atlas); a GPU thread runs the loop.
+// Samples past the brick read clamped, in-bounds voxels and are ignored by the caller.
 struct VxChunk {
     float sigma[VX_CHUNK];
     float tau[VX_CHUNK];    // optical depth from the camera to the end of each sample's segment
     float T[VX_CHUNK];      // exp(-tau)
 };
 
-VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, int k, float dt, VX_INOUT(VxChunk) c) {
+VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, int k, int lanes, float dt, VX_INOUT(VxChunk) c) {
     // Scalars only inside the loops (vector temporaries would be spilled per SIMD lane); two loops
     // because reconstruction vectorises on its own and the transfer-function branch is uniform,
     // so the compiler hoists it out of the second.
     vec3 local = o - vec3(brick * VX_BRICK);
     VX_SIMD_LOOP
-    for (int j = 0; j < VX_CHUNK; ++j) {
+    for (int j = 0; j < lanes; ++j) {
         float t = (float(k + j) + 0.5f) * dt;
         c.sigma[j] = VX_TRILINEAR(vx_atlas_density, vx_corners(slot, local.x + d.x * t, local.y + d.y * t, local.z + d.z * t));
     }
     VX_SIMD_LOOP
-    for (int j = 0; j < VX_CHUNK; ++j)
+    for (int j = 0; j < lanes; ++j)
         c.sigma[j] = vx_value_extinction(c.sigma[j]);
 }
 
 // Optical depth is accumulated as a sum (Schlegel 2011, Eq. 2) and turned into transmittance
 // per sample, not multiplied up sample by sample; the exponentials are one SIMD batch.
-VX_INLINE void vx_chunk_transmittance(float tau, float dt, VX_INOUT(VxChunk) c) {
-    for (int j = 0; j < VX_CHUNK; ++j) {
+VX_INLINE void vx_chunk_transmittance(float tau, int lanes, float dt, VX_INOUT(VxChunk) c) {
+    for (int j = 0; j < lanes; ++j) {
         tau += c.sigma[j] * dt;
         c.tau[j] = tau;
     }
     VX_SIMD_LOOP
-    for (int j = 0; j < VX_CHUNK; ++j)
+    for (int j = 0; j < lanes; ++j)
         c.T[j] = vx_exp(-c.tau[j]);
 }
 
 // Sum over the chunk's first n samples of (light absorbed in the sample's segment) * t, for the
 // opacity-weighted depth; T_before is the transmittance before the chunk.
-VX_INLINE float vx_chunk_depth(float T_before, int k, int n, float dt, VX_INOUT(VxChunk) c) {
+VX_INLINE float vx_chunk_depth(float T_before, int k, int n, int lanes, float dt, VX_INOUT(VxChunk) c) {
     float sum = 0.0f;
     VX_SIMD_SUM(sum)
-    for (int j = 0; j < VX_CHUNK; ++j) {
+    for (int j = 0; j < lanes; ++j) {
         float before = j == 0 ? T_before : c.T[max(j - 1, 0)];
         sum += j < n ? (before - c.T[j]) * ((float(k + j) + 0.5f) * dt) : 0.0f;
     }
@@ -207,14 +207,17 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
         int slot = vx_page_lookup(s.brick);
         int k_end = vx_first_sample(t_exit, dt);
         for (int k = vx_first_sample(s.t, dt); slot != VX_PAGE_EMPTY && k < k_end && T > cutoff; k += VX_CHUNK) {
-            vx_chunk_extinction(slot, s.brick, o, d, k, dt, chunk);
-            vx_chunk_transmittance(tau, dt, chunk);
             int n = min(VX_CHUNK, k_end - k);
+            // A brick often holds only a few samples of a ray: evaluate whole SIMD widths, not the
+            // whole batch.
+            int lanes = min(VX_CHUNK, (n + VX_LANES - 1) / VX_LANES * VX_LANES);
+            vx_chunk_extinction(slot, s.brick, o, d, k, lanes, dt, chunk);
+            vx_chunk_transmittance(tau, lanes, dt, chunk);
             px.samples += float(n);
             if (constant_light) {
                 float T_after = chunk.T[n - 1];
                 px.direct += vec3(P.material) * directional * (T - T_after);
-                depth_weighted += vx_chunk_depth(T, k, n, dt, chunk) * cos_forward;
+                depth_weighted += vx_chunk_depth(T, k, n, lanes, dt, chunk) * cos_forward;
                 tau = chunk.tau[n - 1];
                 T = T_after;
                 continue;

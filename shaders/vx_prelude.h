@@ -35,7 +35,8 @@
 #define VX_BRICK_VOXELS 729        // VX_BRICK_STRIDE^3
 #define VX_PAGE_EMPTY -1
 #define VX_TF_LUT_SIZE 256
-#define VX_CHUNK 16                 // samples whose extinction is evaluated together (one SIMD batch)
+#define VX_CHUNK 16                // samples whose extinction is evaluated together (one SIMD batch)
+#define VX_LANES 8                 // batches run in whole multiples of this (the CPU's SIMD width)
 
 #define VX_LIGHT_DIRECTIONAL 0
 #define VX_LIGHT_POINT 1
