@@ -73,6 +73,35 @@ TEST(Transmittance, HomogeneousBoxGl) {
         for (float sigma : {0.01f, 0.05f}) checkBox(*gl, c, sigma);
 }
 
+// Any affine index-to-world transform: anisotropic scale, rotation and translation. A ray along
+// the grid's index x axis crosses kN index units, i.e. kN * |A e_x| world units.
+TEST(Transmittance, AffineTransformCpuAndGl) {
+    const float sigma = 0.02f;
+    auto g = boxGrid({0, 0, 0}, {kN - 1, kN - 1, kN - 1}, sigma);
+    openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+    m.preScale(openvdb::Vec3d(0.5, 1.0, 2.0));
+    m.postRotate(openvdb::math::Z_AXIS, 0.5);
+    m.postRotate(openvdb::math::X_AXIS, -0.3);
+    m.postTranslate(openvdb::Vec3d(3.0, -7.0, 11.0));
+    g->setTransform(openvdb::math::Transform::createLinearTransform(m));
+    const LoadedVolume volume = volumeFromGrid(g);
+    const glm::vec3 axis = glm::vec3(volume.index_to_world[0]);
+    const glm::vec3 centre = glm::vec3(volume.index_to_world * glm::vec4(glm::vec3((kN - 1) * 0.5f), 1.0f));
+    Camera camera;
+    camera.look_at = centre;
+    camera.position = centre - glm::normalize(axis) * 300.0f;
+    camera.fov = 1.0f;
+    const double expected = std::exp(-double(sigma) * kN * glm::length(axis));
+    std::vector<std::unique_ptr<MarchBackend>> backends;
+    backends.push_back(makeCpuBackend());
+    if (auto gl = glBackendOrSkip()) backends.push_back(std::move(gl));
+    for (auto& backend : backends) {
+        auto prepared = prepare(volume, boxScene(0.5f), camera);
+        const auto& px = backend->march(prepared->inputs).pixels[4 * 9 + 4];
+        EXPECT_NEAR(px.transmittance, expected, 1e-4) << backend->name();
+    }
+}
+
 TEST(Stability, DenseMediumIsOpaqueAndFinite) {
     auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {31, 31, 31}, 1e6f)), boxScene(0.5f), cameraAlong({1, 0, 0}));
     RenderImage img = makeCpuBackend()->march(prepared->inputs);
