@@ -13,7 +13,8 @@ namespace voxlux::test {
 namespace fs = std::filesystem;
 
 std::string sharedData(const std::string& relative) {
-    fs::path p = fs::path(VOXLUX_SHARED_DATA) / relative;
+    const char* root = std::getenv("VOXLUX_SHARED_DATA");  // another checkout layout
+    fs::path p = fs::path(root ? root : VOXLUX_SHARED_DATA) / relative;
     return fs::exists(p) ? p.string() : std::string();
 }
 

@@ -19,8 +19,8 @@
 
 namespace voxlux::test {
 
-// Path of a file in ../shared/data, or GTEST_SKIP-worthy empty when the folder is absent
-// (a user's fresh clone has no ../shared; CI does).
+// Path of a file in ../shared/data (or $VOXLUX_SHARED_DATA), or empty when it is absent: a
+// user's fresh clone has no ../shared, CI does; VOXLUX_REQUIRE_SHARED then skips with a message.
 std::string sharedData(const std::string& relative);
 #define VOXLUX_REQUIRE_SHARED(var, relative)                                                   \
     const std::string var = ::voxlux::test::sharedData(relative);                               \
