@@ -64,9 +64,10 @@ void vx_dda_advance(VX_INOUT(VxDda) s) {
     }
 }
 
-// Index of the first sample t_k = (k + 0.5f) * dt with t_k >= t.
-int vx_first_sample(float t, float dt) {
-    return max(int(ceil(t / dt - 0.5f)), 0);
+// Index of the first sample t_k = (k + 0.5f) * dt with t_k >= t (inv_dt = 1 / dt). The same t
+// ends one brick and starts the next, so every sample belongs to exactly one brick.
+int vx_first_sample(float t, float inv_dt) {
+    return max(int(ceil(t * inv_dt - 0.5f)), 0);
 }
 
 vec3 vx_to_index_point(vec3 x) { return vec3(P.world_to_index * vec4(x, 1.0f)); }
@@ -81,18 +82,16 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
     float t1 = dist;
     if (!vx_clip_to_bricks(o, d, t0, t1)) return 1.0f;
     float dt = P.march.y;
+    float inv_dt = 1.0f / dt;
     float tau = 0.0f;
     float tau_cut = -log(P.march.z);
     VxDda s = vx_dda_begin(o, d, t0, t1);
     while (s.t < s.t_end) {
-        float t_exit = vx_dda_exit(s);
         int slot = vx_page_lookup(s.brick);
         if (slot != VX_PAGE_EMPTY) {
-            for (int k = vx_first_sample(s.t, dt);; ++k) {
-                float t = (float(k) + 0.5f) * dt;
-                if (t >= t_exit) break;
-                tau += vx_extinction(vx_corners_at(slot, s.brick, o + d * t)) * dt;
-            }
+            int k_end = vx_first_sample(vx_dda_exit(s), inv_dt);
+            for (int k = vx_first_sample(s.t, inv_dt); k < k_end; ++k)
+                tau += vx_extinction(vx_corners_at(slot, s.brick, o + d * ((float(k) + 0.5f) * dt))) * dt;
             if (tau > tau_cut) return 0.0f;
         }
         vx_dda_advance(s);
@@ -202,11 +201,11 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     float cos_forward = dot(dir, forward);
     VxChunk chunk;
     VxDda s = vx_dda_begin(o, d, t0, t1);
+    float inv_dt = 1.0f / dt;
     while (s.t < s.t_end && T > cutoff) {
-        float t_exit = vx_dda_exit(s);
         int slot = vx_page_lookup(s.brick);
-        int k_end = vx_first_sample(t_exit, dt);
-        for (int k = vx_first_sample(s.t, dt); slot != VX_PAGE_EMPTY && k < k_end && T > cutoff; k += VX_CHUNK) {
+        int k_end = slot == VX_PAGE_EMPTY ? 0 : vx_first_sample(vx_dda_exit(s), inv_dt);
+        for (int k = vx_first_sample(s.t, inv_dt); k < k_end && T > cutoff; k += VX_CHUNK) {
             int n = min(VX_CHUNK, k_end - k);
             // A brick often holds only a few samples of a ray: evaluate whole SIMD widths, not the
             // whole batch.
