@@ -2,6 +2,7 @@
 #include <unordered_map>
 
 #include "cpu_kernel.h"
+#include "error.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -125,6 +126,37 @@ TEST(Bricks, TransferFunctionClassifiesTransparentBricksAway) {
     // Only the 0.8 block (brick 8) and its - side neighbours whose aprons reach it stay.
     EXPECT_EQ(pages.bricks_min.x, 7);
     EXPECT_EQ(pages.bricks_max.x, 8);
+}
+
+}  // namespace
+}  // namespace voxlux::test
+
+namespace voxlux::test {
+namespace {
+
+TEST(Bricks, HugeActiveTilesAreRefusedNotDensified) {
+    auto g = openvdb::FloatGrid::create(0.0f);
+    g->tree().addTile(3, openvdb::Coord(0), 1.0f, true);  // a root tile: 4096^3 voxels, 512^3 bricks
+    auto volume = volumeFromGrid(g);
+    volume.file = "hostile.vdb";
+    try {
+        buildBrickAtlas(volume);
+        FAIL() << "a 4096^3 tile was densified";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "hostile.vdb: active tiles expand to more than 4194304 bricks of 8^3 voxels; refusing to densify");
+    }
+}
+
+TEST(Bricks, ModerateTilesAreExpanded) {
+    auto g = openvdb::FloatGrid::create(0.0f);
+    g->tree().addTile(2, openvdb::Coord(0), 0.25f, true);  // 128^3 voxels in one tile
+    auto volume = volumeFromGrid(g);
+    BrickAtlas atlas = buildBrickAtlas(volume);
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}));
+    EXPECT_EQ(pages.bricks_min, glm::ivec3(-1));  // - side neighbours hold the ramp into the tile
+    EXPECT_EQ(pages.bricks_max, glm::ivec3(15));
+    expectRoundTrip(*g, atlas, pages);
 }
 
 }  // namespace
