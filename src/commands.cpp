@@ -194,8 +194,24 @@ int runScene(const std::string& vdb, const SceneOverrides& overrides) {
     return 0;
 }
 
-int runInfo(const std::string& vdb) {
+int runInfo(const std::string& vdb, bool json) {
     auto grids = summarizeFile(vdb);
+    if (json) {
+        nlohmann::json out = {{"file", vdb}, {"grids", nlohmann::json::array()}};
+        for (const auto& g : grids) {
+            nlohmann::json gj = {{"name", g.name}, {"type", g.value_type}, {"class", g.grid_class},
+                                 {"active_voxels", g.active_voxels}, {"active_tiles", g.active_tiles},
+                                 {"voxel_size", {g.voxel_size.x(), g.voxel_size.y(), g.voxel_size.z()}},
+                                 {"bricks", g.bricks}};
+            if (g.active_voxels > 0) {
+                gj["bbox_min"] = {g.bbox.min().x(), g.bbox.min().y(), g.bbox.min().z()};
+                gj["bbox_max"] = {g.bbox.max().x(), g.bbox.max().y(), g.bbox.max().z()};
+            }
+            out["grids"].push_back(gj);
+        }
+        std::cout << out.dump(2) << "\n";
+        return 0;
+    }
     std::cout << vdb << ": " << grids.size() << (grids.size() == 1 ? " grid\n" : " grids\n");
     for (const auto& g : grids) {
         std::cout << "  " << g.name << "  " << g.value_type << "  " << g.grid_class << "\n"

@@ -28,7 +28,7 @@ struct RenderCommand {
 
 int runRender(const RenderCommand& cmd);
 int runScene(const std::string& vdb, const SceneOverrides& overrides);
-int runInfo(const std::string& vdb);
+int runInfo(const std::string& vdb, bool json);
 int runMakeCloud(const std::string& output, int resolution, unsigned seed);
 
 }  // namespace voxlux

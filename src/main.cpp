@@ -50,8 +50,10 @@ int main(int argc, char** argv) {
     addSceneOverrides(*sceneCmd, sceneOverrides);
 
     std::string infoInput;
+    bool infoJson = false;
     auto* infoCmd = app.add_subcommand("info", "list the grids of a .vdb file");
     infoCmd->add_option("volume", infoInput, "volume .vdb")->required();
+    infoCmd->add_flag("--json", infoJson, "print JSON for pipeline tools");
 
     std::string cloudOutput;
     int cloudResolution = 96;
@@ -70,7 +72,7 @@ int main(int argc, char** argv) {
     try {
         if (*renderCmd) return voxlux::runRender(render);
         if (*sceneCmd) return voxlux::runScene(sceneInput, sceneOverrides);
-        if (*infoCmd) return voxlux::runInfo(infoInput);
+        if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
     } catch (const voxlux::InputError& e) {
         std::cerr << "voxlux: error: " << e.what() << "\n";

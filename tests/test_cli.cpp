@@ -124,6 +124,21 @@ TEST(Cli, InfoListsGridsAndBricks) {
     EXPECT_NE(r.out.find("  velocity  vec3s"), std::string::npos);
 }
 
+TEST(Cli, InfoAsJson) {
+    CliResult r = runCli("info --json " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["grids"].size(), 1u);
+    const auto& g = j["grids"][0];
+    EXPECT_EQ(g["name"], "density");
+    EXPECT_EQ(g["type"], "float");
+    EXPECT_EQ(g["class"], "fog volume");
+    EXPECT_GT(g["active_voxels"].get<int>(), 50000);
+    EXPECT_GT(g["bricks"].get<int>(), 100);
+    EXPECT_NEAR(g["voxel_size"][0].get<double>(), 2.0 / 96.0, 1e-9);
+    EXPECT_EQ(g["bbox_min"].size(), 3u);
+}
+
 TEST(Cli, ExplainShowsThePlan) {
     CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --explain");
     ASSERT_EQ(r.exit_code, 0) << r.err;
