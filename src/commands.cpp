@@ -166,8 +166,7 @@ int runRender(const RenderCommand& cmd) {
         FrameResult r = renderer.renderToFile(frame, sequence);
         for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
         emptyFrames += r.empty;
-        const std::string out = frame ? expandFramePattern(scene.output.path, *frame) : scene.output.path;
-        std::cout << "wrote " << out << " (" << renderer.backendName() << ", " << r.bricks << " bricks)";
+        std::cout << "wrote " << r.path << " (" << renderer.backendName() << ", " << r.bricks << " bricks)";
         nlohmann::json stages;
         double total = 0;
         for (const auto& [stage, seconds] : r.stage_seconds) {

@@ -17,23 +17,16 @@
 namespace voxlux {
 namespace {
 
+// Runs one stage and appends its wall time to `out`.
 class StageClock {
 public:
     explicit StageClock(std::vector<std::pair<std::string, double>>& out) : out_(out) {}
     template <typename F>
     auto operator()(const std::string& stage, F&& work) {
         auto start = std::chrono::steady_clock::now();
-        auto finish = [&] {
-            out_.emplace_back(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        };
-        if constexpr (std::is_void_v<decltype(work())>) {
-            work();
-            finish();
-        } else {
-            auto result = work();
-            finish();
-            return result;
-        }
+        auto result = work();
+        out_.emplace_back(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        return result;
     }
 
 private:
@@ -100,6 +93,7 @@ FrameResult Renderer::renderToFile(std::optional<int> frame, bool allow_empty) {
     if (scene_.output.path.empty()) throw InputError("no output path: pass -o FILE.exr or set output.path in the scene");
     FrameResult r = render(frame, allow_empty);
     const std::string path = frame ? expandFramePattern(scene_.output.path, *frame) : scene_.output.path;
+    r.path = path;
     std::filesystem::path parent = std::filesystem::path(path).parent_path();
     std::error_code ec;
     if (!parent.empty()) std::filesystem::create_directories(parent, ec);
@@ -111,9 +105,8 @@ FrameResult Renderer::renderToFile(std::optional<int> frame, bool allow_empty) {
     meta.scene_hash = sceneHash(scene_);
     meta.frame = frame;
     meta.stage_seconds = r.stage_seconds;
-    auto start = std::chrono::steady_clock::now();
-    ExrWriteReport written = writeExr(path, r.image, scene_.output, meta);
-    r.stage_seconds.emplace_back("write", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    StageClock clock(r.stage_seconds);
+    ExrWriteReport written = clock("write", [&] { return writeExr(path, r.image, scene_.output, meta); });
     if (written.non_finite)
         r.warnings.push_back(path + ": " + std::to_string(written.non_finite) + " non-finite samples written as 0");
     if (written.half_overflow)

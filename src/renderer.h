@@ -21,6 +21,7 @@ struct FrameResult {
     bool empty = false;                                     // nothing visible in this frame
     size_t atlas_bytes = 0;
     size_t bricks = 0;
+    std::string path;                                       // the EXR written (renderToFile)
 };
 
 // Camera framing the active voxels of the density grid: what a scene without a camera renders
