@@ -161,3 +161,29 @@ TEST(Bricks, ModerateTilesAreExpanded) {
 
 }  // namespace
 }  // namespace voxlux::test
+
+namespace voxlux::test {
+namespace {
+
+// Emission grids often come at another resolution than density: they are resampled onto the
+// density grid's index space, with a warning, so one page table serves both.
+TEST(Load, EmissionOnAnotherTransformIsResampled) {
+    auto density = boxGrid({0, 0, 0}, {15, 15, 15}, 0.3f, 1.0);
+    auto heat = boxGrid({0, 0, 0}, {31, 31, 31}, 2.0f, 0.5);  // the same 16-unit cube, finer
+    heat->setName("heat");
+    const std::string file = tempDir("load") + "/two_resolutions.vdb";
+    openvdb::io::File(file).write({density, heat});
+    VolumeSpec spec;
+    spec.emission = GridRef{"heat", 0};
+    LoadedVolume v = loadVolume(file, spec);
+    ASSERT_EQ(v.warnings.size(), 1u);
+    EXPECT_EQ(v.warnings[0], file + ": grid 'heat' has a different transform from 'density'; resampled onto it");
+    EXPECT_EQ(v.emission->transform(), v.density->transform());
+    EXPECT_NEAR(v.emission->tree().getValue(openvdb::Coord(8, 8, 8)), 2.0f, 1e-5f);
+    BrickAtlas atlas = buildBrickAtlas(v);
+    ASSERT_FALSE(atlas.emission_max.empty());
+    EXPECT_NEAR(*std::max_element(atlas.emission_max.begin(), atlas.emission_max.end()), 2.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace voxlux::test
