@@ -179,7 +179,6 @@ OutputSpec readOutput(const JsonObject& o) {
 // Floats as the shortest decimal that reads back to the same float (0.9f prints as 0.9).
 double decimal(float f) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", f);
     for (int digits = 1; digits <= 9; ++digits) {
         std::snprintf(buf, sizeof buf, "%.*g", digits, f);
         if (std::strtof(buf, nullptr) == f) break;
