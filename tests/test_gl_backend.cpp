@@ -130,8 +130,9 @@ constexpr Channel kChannels[kChannelCount] = {{"rgba", 0, 4, 0.0f},
 
 // Tolerances, relative to the CPU channel's scale. The backends differ only by float rounding
 // (log/sqrt implementations, FMA contraction). Measured on llvmpipe: RMSE <= 1.5e-6 of the mean,
-// max abs <= 4.1e-6 of the peak (each run prints them). 1e-4 leaves room for that and for a GPU's approximate exp/log, while a sample
-// taken by one backend and skipped by the other at a brick boundary (~1e-2) still fails.
+// max abs <= 4.1e-6 of the peak (each run prints them). 1e-4 leaves room for that and for a GPU's
+// approximate log/sqrt, while a sample taken by one backend and skipped by the other at a brick
+// boundary (~1e-2) still fails.
 constexpr double kRmseOfMean = 1e-4;
 constexpr double kMaxAbsOfPeak = 1e-4;
 
