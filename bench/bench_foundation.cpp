@@ -16,7 +16,7 @@
 #include "camera.h"
 #include "exr_writer.h"
 #include "kernel_inputs.h"
-#include "march_backend.h"
+#include "kernel_backend.h"
 #include "page_table.h"
 #include "renderer.h"
 #include "vdb_loader.h"
@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
 
     RenderImage image;
     for (const auto& name : backends) {
-        std::unique_ptr<MarchBackend> backend;
+        std::unique_ptr<KernelBackend> backend;
         try {
             backend = makeBackend(name == "gl" ? Backend::Gl : Backend::Cpu);
         } catch (const std::exception& e) {

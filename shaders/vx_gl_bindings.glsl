@@ -4,6 +4,7 @@
 // Every array is std430: float arrays are tightly packed, vec4/ivec4/VxLight match the C++ bytes.
 
 layout(std140, binding = 0) uniform Params { VxParams P; };  // all mat4/vec4/ivec4: std140 == C++ layout
+layout(std140, binding = 1) uniform SatParams { VxSatParams S; };  // light passes only
 
 layout(std430, binding = 0) readonly buffer AtlasDensity { float vx_density_data[]; };
 layout(std430, binding = 1) readonly buffer AtlasEmission { float vx_emission_data[]; };
@@ -11,6 +12,8 @@ layout(std430, binding = 2) readonly buffer AtlasColor { float vx_color_data[]; 
 layout(std430, binding = 3) readonly buffer PageTable { ivec4 vx_page_data[]; };
 layout(std430, binding = 4) readonly buffer Lights { VxLight vx_light_data[]; };
 layout(std430, binding = 5) readonly buffer TransferLut { vec4 vx_tf_data[]; };
+layout(std430, binding = 7) readonly buffer LightCache { float vx_cache_data[]; };
+layout(std430, binding = 8) readonly buffer Sat { uint vx_sat_data[]; };     // 3 words per entry
 
 float vx_atlas_density(int i) { return vx_density_data[i]; }
 float vx_atlas_emission(int i) { return vx_emission_data[i]; }
@@ -18,3 +21,5 @@ vec3 vx_atlas_color(int i) { return vec3(vx_color_data[3 * i], vx_color_data[3 *
 ivec4 vx_page_entry(int i) { return vx_page_data[i]; }
 VxLight vx_light(int i) { return vx_light_data[i]; }
 vec4 vx_tf_lut(int i) { return vx_tf_data[i]; }
+float vx_cache(int i) { return vx_cache_data[i]; }
+uint vx_sat_word(int i) { return vx_sat_data[i]; }

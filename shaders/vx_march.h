@@ -1,7 +1,7 @@
 // Ray marching through the brick atlas: brick-level DDA with empty-space skipping, optical depth
 // accumulated as a sum (tau += sigma * dt, T = exp(-tau)), brute-force shadow rays, compositing.
 #pragma once
-#include "vx_optics.h"
+#include "vx_cache.h"
 
 // Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.
 struct VxDda {
@@ -102,7 +102,8 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
 // Single-scattered light at world point x for a camera ray travelling along unit direction dir,
 // from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
-vec3 vx_in_scattered(vec3 x, vec3 dir, int which) {
+// `cell` locates x in the light cache (read only for SAT-cone shadows).
+vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell) {
     vec3 sum = vec3(0.0f);
     for (int i = 0; i < P.bricks_min.w; ++i) {
         VxLight light = vx_light(i);
@@ -114,6 +115,7 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which) {
         if (e.x + e.y + e.z <= 0.0f) continue;
         float shadow = 1.0f;
         if (P.bricks_max.w == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
+        if (P.bricks_max.w == VX_SHADOWS_SAT_CONE && P.cache_map.z >= 0) shadow = vx_exp(-vx_cache_value(cell, P.cache_map.z + i));
         sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.march.w));
     }
     return sum;
@@ -173,6 +175,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     VxPixel px;
     px.rgba = vec4(0.0f);
     px.direct = vec3(0.0f);
+    px.ambient = vec3(0.0f);
     px.emission = vec3(0.0f);
     px.transmittance = 1.0f;
     px.depth = 0.0f;
@@ -187,14 +190,22 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     float dt = P.march.x;
     float cutoff = P.march.z;
     bool per_ray_directional = P.bricks_max.w == VX_SHADOWS_NONE;
-    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL) : vec3(0.0f);
+    VxCacheCell no_cell;
+    no_cell.base = 0;
+    no_cell.fx = 0.0f;
+    no_cell.fy = 0.0f;
+    no_cell.fz = 0.0f;
+    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, no_cell) : vec3(0.0f);
+    bool cached = P.cache_dims.x > 0;
+    vec3 ambient = vec3(P.ambient);
     int per_sample_lights = per_ray_directional ? VX_LIGHTS_LOCAL : VX_LIGHTS_ALL;
     bool emits = P.emission.w > 0.5f;
     bool plain_albedo = P.tf_domain.z < 0.5f && P.tf_domain.w < 0.5f;
     // When the light a sample scatters is the same all along the ray (unshadowed directional
-    // lights only, one albedo, no emission), a chunk's scattered light telescopes exactly to
-    // albedo * L * (T before - T after): no per-sample work beyond the SIMD batches.
-    bool constant_light = per_ray_directional && plain_albedo && !emits && P.page.z == 0;
+    // lights and unoccluded ambient only, one albedo, no emission), a chunk's scattered light
+    // telescopes exactly to albedo * L * (T before - T after): no per-sample work beyond the
+    // SIMD batches.
+    bool constant_light = per_ray_directional && plain_albedo && !emits && P.page.z == 0 && !cached;
     float tau = 0.0f;
     float T = 1.0f;
     float depth_weighted = 0.0f;
@@ -216,6 +227,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
             if (constant_light) {
                 float T_after = chunk.T[n - 1];
                 px.direct += vec3(P.material) * directional * (T - T_after);
+                px.ambient += vec3(P.material) * ambient * (T - T_after);
                 depth_weighted += vx_chunk_depth(T, k, n, lanes, dt, chunk) * cos_forward;
                 tau = chunk.tau[n - 1];
                 T = T_after;
@@ -236,8 +248,9 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                 if (absorbed > 0.0f) {
                     vec3 x = origin + dir * t;
                     vec3 albedo = plain_albedo ? vec3(P.material) : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
-                    vec3 scattered = albedo * (directional + vx_in_scattered(x, dir, per_sample_lights)) * absorbed;
-                    px.direct += scattered;
+                    VxCacheCell cell = cached ? vx_cache_cell(x) : no_cell;
+                    px.direct += albedo * (directional + vx_in_scattered(x, dir, per_sample_lights, cell)) * absorbed;
+                    px.ambient += albedo * ambient * vx_ambient_occlusion(cell) * absorbed;
                     depth_weighted += absorbed * t * cos_forward;
                 }
                 px.emission += le * (sigma > 1e-6f ? absorbed / sigma : T * dt);
@@ -247,7 +260,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
         vx_dda_advance(s);
     }
     float alpha = 1.0f - T;
-    px.rgba = vec4(px.direct + px.emission, alpha);
+    px.rgba = vec4(px.direct + px.ambient + px.emission, alpha);
     px.transmittance = T;
     px.depth = alpha > 0.0f ? depth_weighted / alpha : 0.0f;
     return px;

@@ -11,6 +11,8 @@
 //      float  vx_atlas_density(int index);   vec3 vx_atlas_color(int index);
 //      float  vx_atlas_emission(int index);  ivec4 vx_page_entry(int index);
 //      VxLight vx_light(int index);          vec4  vx_tf_lut(int index);
+//      float  vx_cache(int index);           (light cache, read by the march)
+//      uint   vx_sat_word(int index);        (SAT, 3 words per entry, read by the light passes)
 //    and read the parameters in VxParams through the global/member `P`.
 #ifdef VX_GLSL
 #define VX_OUT(T) out T
@@ -27,6 +29,16 @@
 #define VX_SIMD_LOOP _Pragma("omp simd")
 #define VX_PRAGMA(text) _Pragma(#text)
 #define VX_SIMD_SUM(var) VX_PRAGMA(omp simd reduction(+ : var))
+// GLSL's scalar carry/borrow built-ins (GLM has only the vector forms).
+inline uint uaddCarry(uint x, uint y, uint& carry) {
+    uint s = x + y;
+    carry = s < x ? 1u : 0u;
+    return s;
+}
+inline uint usubBorrow(uint x, uint y, uint& borrow) {
+    borrow = x < y ? 1u : 0u;
+    return x - y;
+}
 #endif
 
 #define VX_PI 3.14159265f
@@ -44,6 +56,7 @@
 
 #define VX_SHADOWS_NONE 0
 #define VX_SHADOWS_RAYMARCH 1
+#define VX_SHADOWS_SAT_CONE 2      // shadow optical depth read from the light cache
 
 #define VX_LIGHTS_ALL 0            // which lights vx_in_scattered sums
 #define VX_LIGHTS_DIRECTIONAL 1

@@ -28,12 +28,33 @@ struct VxParams {
     ivec4 bricks_max;       // xyz = highest occupied brick coordinate, w = shadow mode VX_SHADOWS_*
     ivec4 page;             // x = page-table capacity (power of two), y = max probe length,
                             // z = number of point and spot lights
+    vec4 ambient;           // rgb = ambient light radiance (light type "ambient"), w = 1 if any
+    mat4 world_to_cache;    // world -> light-cache cell coordinates (cell centres at i + 0.5)
+    ivec4 cache_dims;       // xyz = light-cache cells (0 = no cache), w = floats per cell
+    ivec4 cache_map;        // x = first ambient-occlusion channel (-1 none), y = 3 if AO is RGB
+                            // (colour bleeding) else 1, z = first shadow channel (-1 none)
+};
+
+// The light passes' parameters (Schlegel 2011): the extinction SAT over the light grid and the
+// AO-shell and shadow-cone queries that fill the light cache. Light-grid coordinates are cells:
+// cell (i, j, k) spans [i, i+1) x [j, j+1) x [k, k+1).
+struct VxSatParams {
+    mat4 light_to_world;    // light-grid coordinates -> world
+    mat4 world_to_light;
+    ivec4 dims;             // xyz = light-grid cells, w = SAT planes (1 extinction, 4 with bleeding)
+    vec4 quantum;           // per SAT plane: the value of one integer unit (a power of two)
+    vec4 shells;            // x = shell count, y = neighbourhood radius in cells,
+                            // z = world edge of one cell, w = SAT plane the AO pass reads
+    vec4 cone;              // x = tan(cone half-angle), y = cuboids per cone, z = growth, w = unused
+    ivec4 pass;             // x = light index (shadow pass), y = cache channel written,
+                            // z = floats per cache cell, w = unused
 };
 
 // What one camera ray returns; the AOVs are kept separate so the EXR writer can lay them out.
 struct VxPixel {
     vec4 rgba;              // premultiplied scene-linear radiance, alpha = 1 - transmittance
     vec3 direct;            // single-scattered light from the scene lights
+    vec3 ambient;           // scattered ambient light (occluded when ambient occlusion is on)
     vec3 emission;          // self-emitted light
     float transmittance;    // of the whole ray
     float depth;            // camera-space distance, opacity-weighted mean (0 where nothing was hit)

@@ -1,10 +1,10 @@
 // Backend selection: `auto` prefers a hardware GPU and falls back to the TBB CPU backend, which
 // beats Mesa's software rasteriser (llvmpipe) on every stage.
-#include "march_backend.h"
+#include "kernel_backend.h"
 
 namespace voxlux {
 
-std::unique_ptr<MarchBackend> makeBackend(Backend choice) {
+std::unique_ptr<KernelBackend> makeBackend(Backend choice) {
     switch (choice) {
         case Backend::Cpu: return makeCpuBackend();
         case Backend::Gl: return makeGlBackend();

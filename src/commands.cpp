@@ -51,9 +51,13 @@ Light parseLight(const std::string& spec) {
     const std::string context = "--light '" + spec + "'";
     auto parts = split(spec, ':');
     Light l;
-    if (parts.empty() || (parts[0] != "directional" && parts[0] != "point" && parts[0] != "spot"))
-        throw InputError(context + ": type must be directional, point or spot");
-    l.type = parts[0] == "point" ? LightType::Point : parts[0] == "spot" ? LightType::Spot : LightType::Directional;
+    if (parts.empty() ||
+        (parts[0] != "directional" && parts[0] != "point" && parts[0] != "spot" && parts[0] != "ambient"))
+        throw InputError(context + ": type must be directional, point, spot or ambient");
+    l.type = parts[0] == "point"     ? LightType::Point
+             : parts[0] == "spot"    ? LightType::Spot
+             : parts[0] == "ambient" ? LightType::Ambient
+                                     : LightType::Directional;
     bool hasPos = false, hasDir = false;
     for (size_t i = 1; i < parts.size(); ++i) {
         auto eq = parts[i].find('=');
@@ -67,9 +71,30 @@ Light parseLight(const std::string& spec) {
         else if (key == "softness") l.cone_softness = parseFloat(value, context);
         else throw InputError(context + ": unknown key '" + key + "' (dir, pos, color, intensity, angle, softness)");
     }
-    if (l.type != LightType::Directional && !hasPos) throw InputError(context + ": needs pos=x,y,z");
-    if (l.type != LightType::Point && !hasDir) throw InputError(context + ": needs dir=x,y,z");
+    const bool positioned = l.type == LightType::Point || l.type == LightType::Spot;
+    const bool aimed = l.type == LightType::Directional || l.type == LightType::Spot;
+    if (positioned && !hasPos) throw InputError(context + ": needs pos=x,y,z");
+    if (aimed && !hasDir) throw InputError(context + ": needs dir=x,y,z");
+    if (!positioned && hasPos) throw InputError(context + ": a " + parts[0] + " light has no pos");
+    if (!aimed && hasDir) throw InputError(context + ": a " + parts[0] + " light has no dir");
     return l;
+}
+
+// --set effects.cone.samples=50: the value is JSON when it parses as JSON (numbers, true, arrays,
+// objects), else a string; objects on the way are created.
+void applySet(nlohmann::json& scene, const std::string& set) {
+    const auto eq = set.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError("--set '" + set + "': expected KEY=VALUE");
+    const std::string text = set.substr(eq + 1);
+    nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
+    if (value.is_discarded()) value = text;
+    nlohmann::json* node = &scene;
+    for (const auto& key : split(set.substr(0, eq), '.')) {
+        if (key.empty()) throw InputError("--set '" + set + "': empty key");
+        if (!node->is_object()) *node = nlohmann::json::object();
+        node = &(*node)[key];
+    }
+    *node = value;
 }
 
 // Overrides go through the scene JSON so that they are validated by exactly the same rules.
@@ -103,6 +128,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
     if (o.pixel_type) j["output"]["pixel_type"] = *o.pixel_type;
     if (o.aovs) j["output"]["aovs"] = *o.aovs;
     if (o.output) j["output"]["path"] = *o.output;
+    for (const auto& set : o.sets) applySet(j, set);
     Scene s = parseScene(j.dump(), "command line", "");
     if (!o.lights.empty()) {
         s.lights.clear();

@@ -17,6 +17,7 @@ struct SceneOverrides {
     std::optional<std::string> shadows, backend, frames, pixel_type;
     std::optional<std::vector<std::string>> aovs;
     std::optional<std::string> output;
+    std::vector<std::string> sets;              // "dotted.key=JSON value", any scene key
 };
 
 struct RenderCommand {

@@ -2,6 +2,7 @@
 // struct, so their functions become members and the backend data accessors below are in scope,
 // exactly as the GL backend provides them as buffer reads (shaders/march.comp).
 #pragma once
+#include "kernel_inputs.h"
 #include "kernel_types.h"
 
 namespace voxlux::kernel {
@@ -14,6 +15,9 @@ struct CpuKernel {
     const ivec4* page = nullptr;
     const VxLight* lights = nullptr;
     const vec4* tf_lut = nullptr;
+    const float* cache = nullptr;          // light cache, P.cache_dims.w floats per cell
+    VxSatParams S{};                       // light passes only
+    const uint* sat = nullptr;
 
     float vx_atlas_density(int i) const { return density[i]; }
     float vx_atlas_emission(int i) const { return emission[i]; }
@@ -21,8 +25,16 @@ struct CpuKernel {
     ivec4 vx_page_entry(int i) const { return page[i]; }
     VxLight vx_light(int i) const { return lights[i]; }
     vec4 vx_tf_lut(int i) const { return tf_lut[i]; }
+    float vx_cache(int i) const { return cache[i]; }
+    uint vx_sat_word(int i) const { return sat[i]; }
 
 #include "vx_march.h"
+#include "vx_sat.h"
 };
 
 }  // namespace voxlux::kernel
+
+namespace voxlux {
+// The kernel bound to the march inputs' arrays (the light-pass members S and sat stay unset).
+kernel::CpuKernel bindCpuKernel(const KernelInputs& inputs);
+}  // namespace voxlux

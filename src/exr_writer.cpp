@@ -97,6 +97,9 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
     if (wants("direct"))
         for (int k = 0; k < 3; ++k)
             add(std::string("direct.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.direct[k]; });
+    if (wants("ambient"))
+        for (int k = 0; k < 3; ++k)
+            add(std::string("ambient.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.ambient[k]; });
     if (wants("emission"))
         for (int k = 0; k < 3; ++k)
             add(std::string("emission.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.emission[k]; });

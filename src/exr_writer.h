@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "march_backend.h"
+#include "kernel_backend.h"
 #include "scene.h"
 
 namespace voxlux {

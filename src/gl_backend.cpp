@@ -1,5 +1,6 @@
-// GL backend: the shared kernel as a compute shader (shaders/march.comp) on the process's headless
-// EGL context. Inputs are uploaded as buffers each march; the image comes back in bands of rows.
+// GL backend: the shared kernel as compute shaders (march.comp, sat_scan.comp, light_cache.comp)
+// on the process's headless EGL context. Inputs are uploaded as buffers; the image comes back in
+// bands of rows, the SAT and each light-cache channel whole.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -8,16 +9,17 @@
 #include <string>
 
 #include "gl_context.h"
-#include "march_backend.h"
+#include "kernel_backend.h"
 #include "shader_source.h"
 
 namespace voxlux {
 namespace {
 
-// march.comp writes 13 floats per pixel in VxPixel's member order, so a band reads straight back.
-static_assert(sizeof(kernel::VxPixel) == 13 * sizeof(float));
+// march.comp writes 16 floats per pixel in VxPixel's member order, so a band reads straight back.
+static_assert(sizeof(kernel::VxPixel) == 16 * sizeof(float));
 static_assert(offsetof(kernel::VxPixel, direct) == 4 * sizeof(float));
-static_assert(offsetof(kernel::VxPixel, depth) == 11 * sizeof(float));
+static_assert(offsetof(kernel::VxPixel, ambient) == 7 * sizeof(float));
+static_assert(offsetof(kernel::VxPixel, depth) == 14 * sizeof(float));
 
 // Rows per dispatch: keeps each submission short whatever the image size (and the band buffer small).
 constexpr int kBandRows = 64;
@@ -63,10 +65,36 @@ GLuint compileProgram(const std::string& entry) {
     return program;
 }
 
-// One program per process, like the context it belongs to.
+// One program per entry point and process, like the context they belong to.
 GLuint marchProgram() {
     static const GLuint program = compileProgram("march.comp");
     return program;
+}
+GLuint satScanProgram() {
+    static const GLuint program = compileProgram("sat_scan.comp");
+    return program;
+}
+GLuint lightCacheProgram() {
+    static const GLuint program = compileProgram("light_cache.comp");
+    return program;
+}
+
+// Invocations per dispatch of the one-dimensional passes: whole groups within the 65535-group
+// limit every GL 4.5 implementation has.
+constexpr int kLinearGroup = 64;  // local_size_x of sat_scan.comp and light_cache.comp
+constexpr int kMaxGroups = 65535;
+
+// Runs `count` invocations of `program` (already in use) in dispatches of at most kMaxGroups
+// groups, telling each its first invocation through the uniform `offset_uniform`.
+void dispatchLinear(GLuint program, const char* offset_uniform, size_t count) {
+    const GLint offset = glGetUniformLocation(program, offset_uniform);
+    const size_t per_dispatch = size_t(kMaxGroups) * kLinearGroup;
+    for (size_t first = 0; first < count; first += per_dispatch) {
+        const size_t n = std::min(per_dispatch, count - first);
+        glProgramUniform1i(program, offset, GLint(first));
+        glDispatchCompute(GLuint((n + kLinearGroup - 1) / kLinearGroup), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
 }
 
 class Buffer {
@@ -108,7 +136,7 @@ private:
     GLuint id_ = 0;
 };
 
-class GlBackend final : public MarchBackend {
+class GlBackend final : public KernelBackend {
 public:
     GlBackend()
         : context_(ensureGlContext()),
@@ -142,6 +170,7 @@ public:
             {pages_, "PageTable", in.pages->entries.data(), in.pages->entries.size() * sizeof(glm::ivec4)},
             {lights_, "Lights", in.lights.data(), in.lights.size() * sizeof(kernel::VxLight)},
             {tf_lut_, "TransferLut", in.tf_lut.data(), in.tf_lut.size() * sizeof(glm::vec4)},
+            {cache_, "LightCache", in.cache, in.cache_floats * sizeof(float)},
         };
         for (const auto& a : arrays) {
             checkStorageSize(a.block, a.bytes);
@@ -171,6 +200,64 @@ public:
         return img;
     }
 
+    void scanSat(SummedVolume& sat) override {
+        ensureGlContext();
+        const GLuint program = satScanProgram();
+        kernel::VxSatParams params{};
+        params.dims = glm::ivec4(sat.dims, sat.planes);
+        sat_params_.upload(&params, sizeof params, GL_STREAM_DRAW, "SatParams");
+        sat_params_.bind(program, GL_UNIFORM_BLOCK, "SatParams");
+        const size_t bytes = sat.words.size() * sizeof(uint32_t);
+        checkStorageSize("SatScan", bytes);
+        sat_.upload(sat.words.data(), bytes, GL_DYNAMIC_COPY, "SatScan");
+        sat_.bind(program, GL_SHADER_STORAGE_BLOCK, "SatScan");
+        sat_generation_ = 0;  // the buffer now holds this scan, not a light pass's SAT
+        glUseProgram(program);
+        const GLint axis = glGetUniformLocation(program, "vx_scan_axis");
+        const size_t entries = sat.planeEntries();
+        const size_t length[3] = {size_t(sat.dims.x) + 1, size_t(sat.dims.y) + 1, size_t(sat.dims.z) + 1};
+        for (int a = 0; a < 3; ++a) {
+            glProgramUniform1i(program, axis, a);
+            dispatchLinear(program, "vx_line_offset", entries / length[a] * size_t(sat.planes));
+        }
+        glGetNamedBufferSubData(sat_.id(), 0, GLsizeiptr(bytes), sat.words.data());
+        if (GLenum error = glGetError(); error != GL_NO_ERROR)
+            throw std::runtime_error("GL backend: the SAT scan failed with GL error " + std::to_string(error));
+    }
+
+    void fillLightChannel(const LightPass& pass, LightCache& cache) override {
+        ensureGlContext();
+        const GLuint program = lightCacheProgram();
+        sat_params_.upload(&pass.params, sizeof pass.params, GL_STREAM_DRAW, "SatParams");
+        sat_params_.bind(program, GL_UNIFORM_BLOCK, "SatParams");
+        // The SAT and the mask stay on the GPU across the passes of one SAT.
+        if (pass.sat_generation != sat_generation_) {
+            const size_t bytes = pass.sat->words.size() * sizeof(uint32_t);
+            checkStorageSize("Sat", bytes);
+            sat_.upload(pass.sat->words.data(), bytes, GL_STATIC_DRAW, "Sat");
+            std::vector<uint8_t> needed(*pass.needed);
+            needed.resize((needed.size() + 3) / 4 * 4, 0);  // whole uints
+            needed_.upload(needed.data(), needed.size(), GL_STATIC_DRAW, "Needed");
+            sat_generation_ = pass.sat_generation;
+        }
+        sat_.bind(program, GL_SHADER_STORAGE_BLOCK, "Sat");
+        needed_.bind(program, GL_SHADER_STORAGE_BLOCK, "Needed");
+        lights_.upload(pass.lights->data(), pass.lights->size() * sizeof(kernel::VxLight), GL_STREAM_DRAW, "Lights");
+        lights_.bind(program, GL_SHADER_STORAGE_BLOCK, "Lights");
+        const size_t cells = pass.needed->size();
+        channel_.upload(nullptr, cells * sizeof(float), GL_STREAM_READ, "Channel");
+        channel_.bind(program, GL_SHADER_STORAGE_BLOCK, "Channel");
+        glUseProgram(program);
+        dispatchLinear(program, "vx_cell_offset", cells);
+        std::vector<float> values(cells);
+        glGetNamedBufferSubData(channel_.id(), 0, GLsizeiptr(cells * sizeof(float)), values.data());
+        if (GLenum error = glGetError(); error != GL_NO_ERROR)
+            throw std::runtime_error("GL backend: a light pass failed with GL error " + std::to_string(error));
+        const int channel = pass.params.pass.y;
+        for (size_t i = 0; i < cells; ++i)
+            if ((*pass.needed)[i]) cache.values[i * size_t(cache.channels) + size_t(channel)] = values[i];
+    }
+
 private:
     // Atlases can outgrow what one shader storage block may address on this GL.
     void checkStorageSize(const char* block, size_t bytes) const {
@@ -185,12 +272,14 @@ private:
     const GLuint program_;
     const GLint row_offset_;
     GLint64 max_storage_block_ = 0;
-    Buffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, band_;
+    Buffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, cache_, band_;
+    Buffer sat_params_, sat_, needed_, channel_;
+    uint64_t sat_generation_ = 0;   // LightPass::sat_generation of the SAT in sat_, 0 = none
 };
 
 }  // namespace
 
-std::unique_ptr<MarchBackend> makeGlBackend() { return std::make_unique<GlBackend>(); }
+std::unique_ptr<KernelBackend> makeGlBackend() { return std::make_unique<GlBackend>(); }
 
 bool hardwareGlAvailable() {
     try {

@@ -44,12 +44,26 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
     float lo = m.transfer.empty() ? 0.0f : m.transfer.front().value;
     float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
     P.tf_domain = glm::vec4(lo, 1.0f / (hi - lo), m.transfer.empty() ? 0.0f : 1.0f, atlas.color.empty() ? 0.0f : 1.0f);
-    for (const auto& l : scene.lights) in.lights.push_back(packLight(l));
-    P.bricks_min = glm::ivec4(pages.bricks_min, int(in.lights.size()));
-    P.bricks_max = glm::ivec4(pages.bricks_max, scene.effects.shadows == ShadowMethod::Raymarch ? VX_SHADOWS_RAYMARCH
-                                                                                                : VX_SHADOWS_NONE);
+    // Ambient lights are not shadowed and act the same everywhere: they sum into one radiance.
+    glm::vec3 ambient(0.0f);
     int local_lights = 0;
-    for (const auto& l : scene.lights) local_lights += l.type != LightType::Directional;
+    for (const auto& l : scene.lights) {
+        if (l.type == LightType::Ambient) {
+            ambient += l.color * l.intensity;
+            continue;
+        }
+        in.lights.push_back(packLight(l));
+        local_lights += l.type != LightType::Directional;
+    }
+    P.ambient = glm::vec4(ambient, glm::any(glm::greaterThan(ambient, glm::vec3(0.0f))) ? 1.0f : 0.0f);
+    const int shadows = scene.effects.shadows == ShadowMethod::Raymarch  ? VX_SHADOWS_RAYMARCH
+                        : scene.effects.shadows == ShadowMethod::SatCone ? VX_SHADOWS_SAT_CONE
+                                                                         : VX_SHADOWS_NONE;
+    P.bricks_min = glm::ivec4(pages.bricks_min, int(in.lights.size()));
+    P.bricks_max = glm::ivec4(pages.bricks_max, shadows);
+    // No light cache until the light stage attaches one (src/light_stage.cpp).
+    P.cache_dims = glm::ivec4(0);
+    P.cache_map = glm::ivec4(-1, 1, -1, 0);
     P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, local_lights, 0);
     in.tf_lut = bakeTransfer(m.transfer);
     return in;

@@ -16,6 +16,8 @@ struct KernelInputs {
     std::vector<glm::vec4> tf_lut;          // VX_TF_LUT_SIZE entries; a constant row if unused
     const BrickAtlas* atlas = nullptr;
     const PageTable* pages = nullptr;
+    const float* cache = nullptr;           // light cache (P.cache_dims), or none
+    size_t cache_floats = 0;
 };
 
 // `camera` must be resolved (the scene's, or the default framing).

@@ -6,6 +6,7 @@ namespace voxlux::kernel {
 using namespace glm;
 using uint = unsigned int;
 #include "vx_types.h"
-static_assert(sizeof(VxParams) == 2 * 64 + 8 * 16, "VxParams must match the std430 layout");
+static_assert(sizeof(VxParams) == 3 * 64 + 11 * 16, "VxParams must match the std430 layout");
+static_assert(sizeof(VxSatParams) == 2 * 64 + 5 * 16, "VxSatParams must match the std140 layout");
 static_assert(sizeof(VxLight) == 48, "VxLight must match the std430 layout");
 }  // namespace voxlux::kernel

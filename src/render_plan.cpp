@@ -1,9 +1,60 @@
 #include "render_plan.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 namespace voxlux {
+
+namespace {
+
+bool hasLight(const Scene& s, bool ambient) {
+    return std::any_of(s.lights.begin(), s.lights.end(),
+                       [&](const Light& l) { return (l.type == LightType::Ambient) == ambient; });
+}
+
+// Why the light-cache stage runs (which passes), or why it is skipped.
+std::string lightCacheReason(const Scene& s) {
+    const Effects& fx = s.effects;
+    std::vector<std::string> passes, idle;
+    if (needsAmbientOcclusion(s))
+        passes.push_back("ambient occlusion, " + std::to_string(fx.ambient_occlusion->shells) + " shells" +
+                         (fx.color_bleeding > 0 ? " with colour bleeding" : ""));
+    else if (fx.ambient_occlusion)
+        idle.push_back("ambient_occlusion is on but no ambient light is in the scene");
+    if (needsConeShadows(s)) {
+        size_t lights = 0;
+        for (const auto& l : s.lights) lights += l.type != LightType::Ambient;
+        char cone[96];
+        std::snprintf(cone, sizeof cone, "%zu shadow cone%s of %d cuboids (%g deg)", lights, lights == 1 ? "" : "s",
+                      fx.cone.samples, double(fx.cone.angle));
+        passes.push_back(cone);
+    }
+    if (fx.color_bleeding > 0 && !needsAmbientOcclusion(s)) idle.push_back("color_bleeding needs ambient occlusion");
+    std::string out;
+    if (passes.empty()) {
+        out = "skipped: no effect in the scene needs a precomputed light cache";
+    } else {
+        out = "extinction SAT over a " + std::to_string(fx.light_resolution) + "-cell light grid; ";
+        for (size_t i = 0; i < passes.size(); ++i) out += (i ? ", " : "") + passes[i];
+    }
+    for (const auto& why : idle) out += " (" + why + ")";
+    return out;
+}
+
+std::string shadowDescription(ShadowMethod m) {
+    switch (m) {
+        case ShadowMethod::Raymarch: return "ray-marched shadow rays per sample (reference)";
+        case ShadowMethod::SatCone: return "SAT-cone shadows read from the light cache";
+        case ShadowMethod::None: break;
+    }
+    return "unshadowed (effects.shadows = none)";
+}
+
+}  // namespace
+
+bool needsAmbientOcclusion(const Scene& s) { return s.effects.ambient_occlusion && hasLight(s, true); }
+bool needsConeShadows(const Scene& s) { return s.effects.shadows == ShadowMethod::SatCone && hasLight(s, false); }
 
 std::vector<PlannedStage> planRender(const Scene& s) {
     std::vector<PlannedStage> plan;
@@ -15,16 +66,16 @@ std::vector<PlannedStage> planRender(const Scene& s) {
     plan.push_back({"classify", {"brick", "material"}, true,
                     s.material.transfer.empty() ? "drops bricks with zero density and emission"
                                                 : "drops bricks the transfer function makes transparent"});
-    plan.push_back({"light_cache", {"classify", "lights", "effects"}, false,
-                    "skipped: no effect in the scene needs a precomputed light cache"});
+    plan.push_back({"light_cache", {"classify", "lights", "effects"}, needsAmbientOcclusion(s) || needsConeShadows(s),
+                    lightCacheReason(s)});
 
     std::string march;
     if (s.lights.empty()) {
         march = "no lights: emission and transmittance only";
     } else {
         march = std::to_string(s.lights.size()) + (s.lights.size() == 1 ? " light, " : " lights, ");
-        march += s.effects.shadows == ShadowMethod::Raymarch ? "ray-marched shadow rays per sample (reference)"
-                                                             : "unshadowed (effects.shadows = none)";
+        march += hasLight(s, false) ? shadowDescription(s.effects.shadows) : "ambient only";
+        if (hasLight(s, true)) march += needsAmbientOcclusion(s) ? ", occluded ambient" : ", unoccluded ambient";
     }
     if (s.volume.emission) march += ", emission";
     plan.push_back({"march", {"classify", "light_cache", "camera", "lights", "render"}, true, march});

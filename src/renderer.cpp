@@ -1,6 +1,5 @@
 #include "renderer.h"
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -12,26 +11,11 @@
 #include "kernel_inputs.h"
 #include "page_table.h"
 #include "scene_json.h"
+#include "stage_clock.h"
 #include "vdb_loader.h"
 
 namespace voxlux {
 namespace {
-
-// Runs one stage and appends its wall time to `out`.
-class StageClock {
-public:
-    explicit StageClock(std::vector<std::pair<std::string, double>>& out) : out_(out) {}
-    template <typename F>
-    auto operator()(const std::string& stage, F&& work) {
-        auto start = std::chrono::steady_clock::now();
-        auto result = work();
-        out_.emplace_back(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        return result;
-    }
-
-private:
-    std::vector<std::pair<std::string, double>>& out_;
-};
 
 std::string emptyReason(const LoadedVolume& v, const BrickAtlas& atlas) {
     std::string grid = "grid '" + v.density->getName() + "'";
@@ -63,14 +47,42 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
 Renderer::Renderer(Scene scene)
     : scene_(std::move(scene)), plan_(planRender(scene_)), backend_(makeBackend(scene_.render.backend)) {}
 
+void Renderer::setScene(Scene scene) {
+    if (scene.render.backend != scene_.render.backend) backend_ = makeBackend(scene.render.backend);
+    scene_ = std::move(scene);
+    plan_ = planRender(scene_);
+}
+
+// The file's identity (path, size, modification time) and how it is read: equal keys mean equal
+// bricks, so the load and brick stages can be skipped.
+std::string Renderer::volumeKey(const std::string& file) const {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(file, ec);
+    if (ec) return "";
+    const auto time = std::filesystem::last_write_time(file, ec);
+    if (ec) return "";
+    nlohmann::json spec = sceneToJson(scene_)["volume"];
+    spec.erase("frames");
+    return file + "|" + std::to_string(size) + "|" + std::to_string(time.time_since_epoch().count()) + "|" + spec.dump();
+}
+
 FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     FrameResult r;
     StageClock clock(r.stage_seconds);
     const std::string file = frame ? expandFramePattern(scene_.volume.path, *frame) : scene_.volume.path;
 
-    LoadedVolume volume = clock("load", [&] { return loadVolume(file, scene_.volume); });
+    const std::string key = volumeKey(file);
+    if (key.empty() || key != volume_key_) {
+        volume_key_.clear();  // stays cleared if loading throws
+        volume_ = std::make_unique<LoadedVolume>(clock("load", [&] { return loadVolume(file, scene_.volume); }));
+        atlas_ = std::make_unique<BrickAtlas>(clock("brick", [&] { return buildBrickAtlas(*volume_); }));
+        volume_key_ = key;
+    } else {
+        r.reused = {"load", "brick"};
+    }
+    const LoadedVolume& volume = *volume_;
+    const BrickAtlas& atlas = *atlas_;
     r.warnings = volume.warnings;
-    BrickAtlas atlas = clock("brick", [&] { return buildBrickAtlas(volume); });
     for (auto& line : sanitizeReport(atlas, volume)) r.warnings.push_back(line);
     PageTable pages = clock("classify", [&] {
         return buildPageTable(atlas.coords, classifyBricks(atlas, scene_.material));
@@ -85,6 +97,8 @@ FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
 
     r.camera = scene_.camera ? *scene_.camera : frameActiveVoxels(volume, scene_.render);
     KernelInputs inputs = makeKernelInputs(scene_, r.camera, atlas, pages);
+    if (stageRuns(plan_, "light_cache") && !pages.empty())
+        light_.update(scene_, key, inputs, *backend_, r.stage_seconds, r.reused, r.warnings);
     r.image = clock("march", [&] { return backend_->march(inputs); });
     return r;
 }

@@ -1,12 +1,14 @@
-// Runs the render plan for one frame: load -> brick -> classify -> march -> write, timing each
-// stage. The CLI, the benchmark and the tests all render through this.
+// Runs the render plan for one frame: load -> brick -> classify -> light cache -> march -> write,
+// timing each stage and keeping what a later frame or scene edit can reuse. The CLI, the benchmark and the tests all render through this.
 #pragma once
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "march_backend.h"
+#include "brick_atlas.h"
+#include "kernel_backend.h"
+#include "light_stage.h"
 #include "render_plan.h"
 #include "scene.h"
 #include "vdb_loader.h"
@@ -22,6 +24,7 @@ struct FrameResult {
     size_t atlas_bytes = 0;
     size_t bricks = 0;
     std::string path;                                       // the EXR written (renderToFile)
+    std::vector<std::string> reused;                        // stages and passes kept from before
 };
 
 // Camera framing the active voxels of the density grid: what a scene without a camera renders
@@ -32,7 +35,11 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene);
 class Renderer {
 public:
     explicit Renderer(Scene scene);
+    // Replaces the scene; the next render recomputes only what the change invalidates.
+    void setScene(Scene scene);
+    const Scene& scene() const { return scene_; }
     const std::vector<PlannedStage>& plan() const { return plan_; }
+    const LightStage& lightStage() const { return light_; }
     std::string backendName() const { return backend_->name(); }
 
     // Renders one frame (`frame` expands a #### volume path). An empty frame throws InputError
@@ -43,9 +50,15 @@ public:
     FrameResult renderToFile(std::optional<int> frame, bool allow_empty);
 
 private:
+    std::string volumeKey(const std::string& file) const;
+
     Scene scene_;
     std::vector<PlannedStage> plan_;
-    std::unique_ptr<MarchBackend> backend_;
+    std::unique_ptr<KernelBackend> backend_;
+    std::string volume_key_;                                // of the volume below; "" = none
+    std::unique_ptr<LoadedVolume> volume_;
+    std::unique_ptr<BrickAtlas> atlas_;
+    LightStage light_;
 };
 
 // FNV-1a of the scene as rendered (canonical JSON), hex; written into the EXR metadata.

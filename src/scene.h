@@ -43,7 +43,9 @@ struct Material {
     std::vector<TransferPoint> transfer;   // empty: extinction = density * density_scale
 };
 
-enum class LightType { Directional, Point, Spot };
+// Ambient is uniform light from every direction (radiance color * intensity), occluded only when
+// effects.ambient_occlusion is on.
+enum class LightType { Directional, Point, Spot, Ambient };
 
 struct Light {
     LightType type = LightType::Directional;
@@ -74,10 +76,28 @@ struct RenderSettings {
     Backend backend = Backend::Auto;
 };
 
-enum class ShadowMethod { None, Raymarch };
+// Raymarch: a shadow ray per sample and light (the reference). SatCone: Schlegel 2011 cones of
+// SAT cuboids, precomputed into the light cache.
+enum class ShadowMethod { None, Raymarch, SatCone };
+
+struct AmbientOcclusion {
+    int shells = 3;
+    float radius = 0.0f;                   // world units; 0 = 6% of the light grid's longest side
+};
+
+struct ShadowCone {
+    float angle = 2.0f;                    // half-angle, degrees
+    int samples = 20;                      // cuboids per cone
+    float growth = 0.05f;                  // each cuboid this much longer than the one before
+};
 
 struct Effects {
     ShadowMethod shadows = ShadowMethod::Raymarch;
+    std::optional<AmbientOcclusion> ambient_occlusion;
+    float color_bleeding = 0.0f;           // 0..1: how much the neighbourhood's albedo tints AO
+    ShadowCone cone;
+    int light_resolution = 128;            // light-grid cells along the volume's longest side
+    int light_memory_mb = 2048;            // budget for light grid, SAT and light cache
 };
 
 enum class PixelType { Half, Float };

@@ -13,7 +13,7 @@ namespace voxlux {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& knownAovs() {
-    static const std::vector<std::string> aovs{"direct", "emission", "transmittance", "depth"};
+    static const std::vector<std::string> aovs{"direct", "ambient", "emission", "transmittance", "depth"};
     return aovs;
 }
 
@@ -83,12 +83,18 @@ Material readMaterial(const JsonObject& o) {
 }
 
 Light readLight(const JsonObject& o) {
-    o.rejectUnknown({"type", "position", "direction", "color", "intensity", "cone_angle", "cone_softness"});
     Light l;
-    std::string type = o.choice("type", {"directional", "point", "spot"}, "directional");
-    l.type = type == "point" ? LightType::Point : type == "spot" ? LightType::Spot : LightType::Directional;
-    if (l.type != LightType::Directional) l.position = o.vec3("position");
-    if (l.type != LightType::Point) {
+    std::string type = o.choice("type", {"directional", "point", "spot", "ambient"}, "directional");
+    l.type = type == "point"     ? LightType::Point
+             : type == "spot"    ? LightType::Spot
+             : type == "ambient" ? LightType::Ambient
+                                 : LightType::Directional;
+    if (l.type == LightType::Ambient)
+        o.rejectUnknown({"type", "color", "intensity"});
+    else
+        o.rejectUnknown({"type", "position", "direction", "color", "intensity", "cone_angle", "cone_softness"});
+    if (l.type == LightType::Point || l.type == LightType::Spot) l.position = o.vec3("position");
+    if (l.type == LightType::Directional || l.type == LightType::Spot) {
         l.direction = o.vec3("direction");
         if (glm::length(l.direction) == 0) o.fail("direction", "must not be zero");
         l.direction = glm::normalize(l.direction);
@@ -148,11 +154,50 @@ RenderSettings readRender(const JsonObject& o) {
     return r;
 }
 
+// `true` takes the defaults, `false` turns the effect off, an object sets knobs.
+std::optional<AmbientOcclusion> readAmbientOcclusion(const JsonObject& o) {
+    const auto& v = o.raw("ambient_occlusion");
+    if (v.is_boolean()) return v.get<bool>() ? std::optional<AmbientOcclusion>(AmbientOcclusion{}) : std::nullopt;
+    if (!v.is_object()) o.fail("ambient_occlusion", "expected true, false or an object");
+    JsonObject ao = o.object("ambient_occlusion");
+    ao.rejectUnknown({"shells", "radius"});
+    AmbientOcclusion a;
+    a.shells = ao.integer("shells", a.shells);
+    if (a.shells < 1 || a.shells > 64) ao.fail("shells", "must lie in 1..64");
+    a.radius = ao.number("radius", a.radius);
+    if (!(a.radius >= 0) || !std::isfinite(a.radius)) ao.fail("radius", "must be a finite distance >= 0 (0 = automatic)");
+    return a;
+}
+
+ShadowCone readCone(const JsonObject& o) {
+    o.rejectUnknown({"angle", "samples", "growth"});
+    ShadowCone c;
+    c.angle = o.number("angle", c.angle);
+    if (!(c.angle >= 0 && c.angle < 60)) o.fail("angle", "must lie in [0, 60) degrees");
+    c.samples = o.integer("samples", c.samples);
+    if (c.samples < 1 || c.samples > 1024) o.fail("samples", "must lie in 1..1024");
+    c.growth = o.number("growth", c.growth);
+    if (!(c.growth >= 0 && c.growth <= 1)) o.fail("growth", "must lie in [0, 1]");
+    return c;
+}
+
 Effects readEffects(const JsonObject& o) {
-    o.rejectUnknown({"shadows"});
+    o.rejectUnknown({"shadows", "ambient_occlusion", "color_bleeding", "cone", "light_resolution", "light_memory_mb"});
     Effects e;
-    e.shadows = o.choice("shadows", {"none", "raymarch"}, "raymarch") == "none" ? ShadowMethod::None
-                                                                                : ShadowMethod::Raymarch;
+    std::string shadows = o.choice("shadows", {"none", "raymarch", "sat_cone"}, "raymarch");
+    e.shadows = shadows == "none" ? ShadowMethod::None : shadows == "sat_cone" ? ShadowMethod::SatCone : ShadowMethod::Raymarch;
+    if (o.has("ambient_occlusion")) e.ambient_occlusion = readAmbientOcclusion(o);
+    if (o.has("color_bleeding")) {
+        const auto& v = o.raw("color_bleeding");
+        e.color_bleeding = v.is_boolean() ? (v.get<bool>() ? 1.0f : 0.0f) : o.number("color_bleeding");
+        if (!(e.color_bleeding >= 0 && e.color_bleeding <= 1))
+            o.fail("color_bleeding", "must be true, false or a strength in [0, 1]");
+    }
+    if (o.has("cone")) e.cone = readCone(o.object("cone"));
+    e.light_resolution = o.integer("light_resolution", e.light_resolution);
+    if (e.light_resolution < 2 || e.light_resolution > 1024) o.fail("light_resolution", "must lie in 2..1024 cells");
+    e.light_memory_mb = o.integer("light_memory_mb", e.light_memory_mb);
+    if (e.light_memory_mb < 1) o.fail("light_memory_mb", "must be at least 1");
     return e;
 }
 
@@ -169,7 +214,7 @@ OutputSpec readOutput(const JsonObject& o) {
             std::string name = a.is_string() ? a.get<std::string>() : "";
             if (std::find(knownAovs().begin(), knownAovs().end(), name) == knownAovs().end())
                 o.fail("aovs", "unknown AOV '" + (a.is_string() ? name : a.dump()) +
-                                   "' (expected direct, emission, transmittance or depth)");
+                                   "' (expected direct, ambient, emission, transmittance or depth)");
             out.aovs.push_back(name);
         }
     }
@@ -236,9 +281,12 @@ nlohmann::json sceneToJson(const Scene& s) {
     j["lights"] = nlohmann::json::array();
     for (const auto& l : s.lights) {
         nlohmann::json lj;
-        lj["type"] = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : "directional";
-        if (l.type != LightType::Directional) lj["position"] = vec(l.position);
-        if (l.type != LightType::Point) lj["direction"] = vec(l.direction);
+        lj["type"] = l.type == LightType::Point     ? "point"
+                     : l.type == LightType::Spot    ? "spot"
+                     : l.type == LightType::Ambient ? "ambient"
+                                                    : "directional";
+        if (l.type == LightType::Point || l.type == LightType::Spot) lj["position"] = vec(l.position);
+        if (l.type == LightType::Directional || l.type == LightType::Spot) lj["direction"] = vec(l.direction);
         lj["color"] = vec(l.color);
         lj["intensity"] = decimal(l.intensity);
         if (l.type == LightType::Spot) {
@@ -267,7 +315,20 @@ nlohmann::json sceneToJson(const Scene& s) {
     r["transmittance_cutoff"] = decimal(s.render.transmittance_cutoff);
     r["backend"] = s.render.backend == Backend::Cpu ? "cpu" : s.render.backend == Backend::Gl ? "gl" : "auto";
 
-    j["effects"]["shadows"] = s.effects.shadows == ShadowMethod::None ? "none" : "raymarch";
+    auto& e = j["effects"];
+    e["shadows"] = s.effects.shadows == ShadowMethod::None      ? "none"
+                   : s.effects.shadows == ShadowMethod::SatCone ? "sat_cone"
+                                                                : "raymarch";
+    if (s.effects.ambient_occlusion)
+        e["ambient_occlusion"] = {{"shells", s.effects.ambient_occlusion->shells},
+                                  {"radius", decimal(s.effects.ambient_occlusion->radius)}};
+    else
+        e["ambient_occlusion"] = false;
+    e["color_bleeding"] = decimal(s.effects.color_bleeding);
+    e["cone"] = {{"angle", decimal(s.effects.cone.angle)}, {"samples", s.effects.cone.samples},
+                 {"growth", decimal(s.effects.cone.growth)}};
+    e["light_resolution"] = s.effects.light_resolution;
+    e["light_memory_mb"] = s.effects.light_memory_mb;
 
     auto& o = j["output"];
     if (!s.output.path.empty()) o["path"] = s.output.path;

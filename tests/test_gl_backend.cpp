@@ -101,7 +101,7 @@ struct Renders {
 
 // Both backends on the same inputs. The camera is the default framing moved in, so the volume
 // reaches the image's edges and every dispatch band has something to get wrong.
-Renders renderBoth(LoadedVolume volume, const Scene& scene, MarchBackend& gl) {
+Renders renderBoth(LoadedVolume volume, const Scene& scene, KernelBackend& gl) {
     const CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
     glm::vec3 lo, hi;
     worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
@@ -112,7 +112,7 @@ Renders renderBoth(LoadedVolume volume, const Scene& scene, MarchBackend& gl) {
     return {makeCpuBackend()->march(prepared->inputs), gl.march(prepared->inputs)};
 }
 
-// AOV channels as float ranges of VxPixel (rgba, direct, emission, transmittance, depth; the
+// AOV channels as float ranges of VxPixel (rgba, direct, ambient, emission, transmittance, depth; the
 // trailing sample count is a cost, not an image, and is not compared).
 // Depth is an opacity-weighted mean, a ratio of two tiny numbers where alpha is tiny (alpha 4e-6
 // turns a 1-ulp difference in T into 3e-3 of depth), so it is compared where alpha >= 1e-3 only.
@@ -121,12 +121,13 @@ struct Channel {
     int first, count;
     float min_alpha;
 };
-enum ChannelId { kRgba, kDirect, kEmission, kTransmittance, kDepth, kChannelCount };
+enum ChannelId { kRgba, kDirect, kAmbient, kEmission, kTransmittance, kDepth, kChannelCount };
 constexpr Channel kChannels[kChannelCount] = {{"rgba", 0, 4, 0.0f},
                                               {"direct", 4, 3, 0.0f},
-                                              {"emission", 7, 3, 0.0f},
-                                              {"transmittance", 10, 1, 0.0f},
-                                              {"depth", 11, 1, 1e-3f}};
+                                              {"ambient", 7, 3, 0.0f},
+                                              {"emission", 10, 3, 0.0f},
+                                              {"transmittance", 13, 1, 0.0f},
+                                              {"depth", 14, 1, 1e-3f}};
 
 // Tolerances, relative to the CPU channel's scale. The backends differ only by float rounding
 // (log/sqrt implementations, FMA contraction). Measured on llvmpipe: RMSE <= 1.5e-6 of the mean,

@@ -18,7 +18,7 @@ std::string sharedData(const std::string& relative) {
     return fs::exists(p) ? p.string() : std::string();
 }
 
-std::unique_ptr<MarchBackend> glBackendOrSkip() {
+std::unique_ptr<KernelBackend> glBackendOrSkip() {
     const char* skip = std::getenv("VOXLUX_SKIP_GL");
     if (skip && std::string(skip) == "1") return nullptr;
     try {

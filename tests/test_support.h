@@ -12,7 +12,7 @@
 
 #include "brick_atlas.h"
 #include "kernel_inputs.h"
-#include "march_backend.h"
+#include "kernel_backend.h"
 #include "page_table.h"
 #include "scene.h"
 #include "vdb_loader.h"
@@ -27,7 +27,7 @@ std::string sharedData(const std::string& relative);
     if (var.empty()) GTEST_SKIP() << "../shared/data/" relative " is absent (fresh clone): skipped"
 
 // GL backend for tests: fails the test when no context can be made, unless VOXLUX_SKIP_GL=1.
-std::unique_ptr<MarchBackend> glBackendOrSkip();
+std::unique_ptr<KernelBackend> glBackendOrSkip();
 #define VOXLUX_REQUIRE_GL(var)                                                  \
     auto var = ::voxlux::test::glBackendOrSkip();                               \
     if (!var) GTEST_SKIP() << "VOXLUX_SKIP_GL=1: GL backend tests skipped"

@@ -46,7 +46,7 @@ struct Case {
     float step;
 };
 
-void checkBox(MarchBackend& backend, const Case& c, float sigma) {
+void checkBox(KernelBackend& backend, const Case& c, float sigma) {
     auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {kN - 1, kN - 1, kN - 1}, sigma, kVoxel)),
                             boxScene(c.step), cameraAlong(c.dir));
     RenderImage img = backend.march(prepared->inputs);
@@ -92,7 +92,7 @@ TEST(Transmittance, AffineTransformCpuAndGl) {
     camera.position = centre - glm::normalize(axis) * 300.0f;
     camera.fov = 1.0f;
     const double expected = std::exp(-double(sigma) * kN * glm::length(axis));
-    std::vector<std::unique_ptr<MarchBackend>> backends;
+    std::vector<std::unique_ptr<KernelBackend>> backends;
     backends.push_back(makeCpuBackend());
     if (auto gl = glBackendOrSkip()) backends.push_back(std::move(gl));
     for (auto& backend : backends) {

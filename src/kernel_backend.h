@@ -1,10 +1,12 @@
-// March stage backends. Both run the same kernel (shaders/vx_march.h) over every pixel.
+// Kernel backends: the SAT scan, the light passes and the march, each running the shared kernel
+// (shaders/vx_*.h) on the CPU (TBB) or as GL compute shaders.
 #pragma once
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "kernel_inputs.h"
+#include "light_cache.h"
 
 namespace voxlux {
 
@@ -14,22 +16,26 @@ struct RenderImage {
     std::vector<kernel::VxPixel> pixels;   // row-major, row 0 at the top
 };
 
-class MarchBackend {
+class KernelBackend {
 public:
-    virtual ~MarchBackend() = default;
+    virtual ~KernelBackend() = default;
     virtual std::string name() const = 0;   // "cpu" or "gl (<renderer>)"
     virtual RenderImage march(const KernelInputs& inputs) = 0;
+    // Prefix sums of a quantised SAT (quantizeLightGrid), in place.
+    virtual void scanSat(SummedVolume& sat) = 0;
+    // One light-cache channel (see LightPass).
+    virtual void fillLightChannel(const LightPass& pass, LightCache& cache) = 0;
 };
 
-std::unique_ptr<MarchBackend> makeCpuBackend();
+std::unique_ptr<KernelBackend> makeCpuBackend();
 
 // Throws std::runtime_error when no OpenGL 4.5 context can be created (EGL, headless).
-std::unique_ptr<MarchBackend> makeGlBackend();
+std::unique_ptr<KernelBackend> makeGlBackend();
 
 // True when an EGL context exists and runs on a hardware GPU (not llvmpipe/softpipe).
 bool hardwareGlAvailable();
 
 // Picks the backend for `choice`: Auto means GL on a hardware GPU, else CPU.
-std::unique_ptr<MarchBackend> makeBackend(Backend choice);
+std::unique_ptr<KernelBackend> makeBackend(Backend choice);
 
 }  // namespace voxlux

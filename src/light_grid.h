@@ -1,0 +1,44 @@
+// Light grid: the dense, usually coarser grid the light passes work on (Schlegel 2011, Fig. 11).
+// It covers the occupied bricks' bounding box at a resolution the scene chooses, independent of
+// the data's, and box-filters the visible bricks' extinction into it. It is dense on purpose: a
+// summed-area table needs every cell. Its size is bounded by effects.light_resolution and by the
+// memory budget, never by the data's bounding box.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "kernel_inputs.h"
+
+namespace voxlux {
+
+struct LightGrid {
+    glm::ivec3 dims{0};
+    glm::vec3 origin{0.0f};        // index-space position of cell (0, 0, 0)'s low corner
+    float cell = 1.0f;             // cell edge in index voxels
+    int planes = 1;                // 1: extinction; 4: and extinction * (1 - bleeding * albedo) rgb
+    std::vector<float> values;     // plane-major; in a plane x fastest: mean value over the cell
+    std::vector<uint8_t> needed;   // 1 where the march may read the light cache (near extinction)
+    size_t cells() const { return size_t(dims.x) * dims.y * dims.z; }
+    glm::mat4 lightToIndex() const;
+};
+
+// What a light grid of resolution `resolution` (cells along the longest side) costs in bytes:
+// grid, SAT and a light cache of `cache_channels` floats per cell.
+size_t lightGridBytes(glm::ivec3 dims, int planes, int cache_channels);
+
+// Cells per axis for a box of `extent` index voxels at `resolution` cells along the longest side.
+glm::ivec3 lightGridDims(glm::vec3 extent, int resolution);
+
+// The resolution actually used: `requested`, or the largest below it whose light grid, SAT and
+// cache fit in `budget_bytes`. Sets `warning` (naming both resolutions) when it had to reduce.
+int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_channels, size_t budget_bytes,
+                       std::string& warning);
+
+// Box-filters the visible bricks into a light grid of `resolution` over the occupied bricks'
+// box. `bleeding` > 0 adds the three colour-bleeding planes.
+LightGrid buildLightGrid(const KernelInputs& inputs, int resolution, float bleeding);
+
+}  // namespace voxlux

@@ -1,0 +1,151 @@
+#include "light_stage.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include "scene_json.h"
+
+namespace voxlux {
+namespace {
+
+// Channels the cache holds for `scene` with `lights` packed (non-ambient) lights.
+LightCache cacheLayout(const Scene& scene, int lights) {
+    LightCache c;
+    if (needsAmbientOcclusion(scene)) {
+        c.ambient_channel = 0;
+        c.ambient_width = scene.effects.color_bleeding > 0.0f ? 3 : 1;
+        c.channels = c.ambient_width;
+    }
+    if (needsConeShadows(scene)) {
+        c.shadow_channel = c.channels;
+        c.channels += lights;
+    }
+    return c;
+}
+
+// Distinct across every stage in the process, so a backend shared by several renderers never
+// mistakes one SAT for another.
+uint64_t nextSatGeneration() {
+    static std::atomic<uint64_t> next{1};
+    return next++;
+}
+
+float cubeRootOfDeterminant(const glm::mat4& m) { return std::cbrt(std::abs(glm::determinant(glm::mat3(m)))); }
+
+}  // namespace
+
+void LightStage::update(const Scene& scene, const std::string& volume_key, KernelInputs& inputs,
+                        KernelBackend& backend, StageTimes& times, std::vector<std::string>& reused,
+                        std::vector<std::string>& warnings) {
+    StageClock clock(times);
+    const Effects& fx = scene.effects;
+    LightCache layout = cacheLayout(scene, int(inputs.lights.size()));
+    const int planes = fx.color_bleeding > 0.0f && layout.ambient_channel >= 0 ? 4 : 1;
+    const float bleeding = planes == 4 ? fx.color_bleeding : 0.0f;
+
+    // Grid and SAT: from the volume, the material and the grid settings.
+    const glm::vec3 extent((inputs.pages->bricks_max - inputs.pages->bricks_min + 1) * VX_BRICK);
+    std::string warning;
+    const int resolution = fitLightResolution(extent, fx.light_resolution, planes, layout.channels,
+                                              size_t(fx.light_memory_mb) << 20, warning);
+    if (!warning.empty()) warnings.push_back(warning);
+    const nlohmann::json scene_json = sceneToJson(scene);
+    const std::string grid_key = volume_key + "|" + scene_json["material"].dump() + "|" + std::to_string(resolution) +
+                                 "|" + std::to_string(bleeding);
+    if (grid_key == grid_key_) {
+        reused.push_back("light_grid");
+        reused.push_back("sat");
+    } else {
+        grid_key_.clear();  // stays cleared if a pass throws
+        grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, bleeding); });
+        sat_ = clock("sat", [&] {
+            SummedVolume s = quantizeLightGrid(grid_);
+            backend.scanSat(s);
+            return s;
+        });
+        sat_generation_ = nextSatGeneration();
+        grid_key_ = grid_key;
+        channel_keys_.clear();
+    }
+
+    // The cache: kept as it is when its layout is unchanged, so unchanged channels survive.
+    layout.dims = grid_.dims;
+    const glm::mat4 light_to_world = inputs.atlas->index_to_world * grid_.lightToIndex();
+    layout.world_to_cache = glm::inverse(light_to_world);
+    const bool same_layout = cache_.channels == layout.channels && cache_.ambient_width == layout.ambient_width &&
+                             cache_.dims == layout.dims && !channel_keys_.empty();
+    if (!same_layout) {
+        layout.values.assign(grid_.cells() * size_t(layout.channels), 0.0f);
+        cache_ = std::move(layout);
+        channel_keys_.assign(size_t(cache_.channels), "");
+    }
+
+    LightPass pass;
+    pass.lights = &inputs.lights;
+    pass.sat = &sat_;
+    pass.sat_generation = sat_generation_;
+    pass.needed = &grid_.needed;
+    kernel::VxSatParams& S = pass.params;
+    S.light_to_world = light_to_world;
+    S.world_to_light = cache_.world_to_cache;
+    S.dims = glm::ivec4(grid_.dims, sat_.planes);
+    S.quantum = sat_.quantum;
+    S.pass.z = cache_.channels;
+    const float cell_world = cubeRootOfDeterminant(light_to_world);
+    S.cone = glm::vec4(std::tan(glm::radians(fx.cone.angle)), float(fx.cone.samples), fx.cone.growth, 0.0f);
+
+    // Runs the pass for `channel` unless it was computed from the same inputs; returns whether it ran.
+    auto fill = [&](int channel, const std::string& key) {
+        if (channel_keys_[size_t(channel)] == key) return false;
+        channel_keys_[size_t(channel)].clear();
+        S.pass.y = channel;
+        backend.fillLightChannel(pass, cache_);
+        channel_keys_[size_t(channel)] = key;
+        return true;
+    };
+
+    if (cache_.ambient_channel >= 0) {
+        const AmbientOcclusion& ao = *fx.ambient_occlusion;
+        const float radius_cells = ao.radius > 0.0f ? ao.radius / cell_world : 0.06f * float(resolution);
+        S.shells = glm::vec4(float(ao.shells), radius_cells, cell_world, 0.0f);
+        S.pass.x = -1;
+        const std::string key = grid_key_ + "|ao|" + std::to_string(ao.shells) + "|" + std::to_string(radius_cells);
+        bool ran = false;
+        clock("ambient", [&] {
+            for (int i = 0; i < cache_.ambient_width; ++i) {
+                S.shells.w = float(cache_.ambient_width == 3 ? i + 1 : 0);
+                ran |= fill(cache_.ambient_channel + i, key + "|" + std::to_string(i));
+            }
+        });
+        if (!ran) {
+            times.pop_back();
+            reused.push_back("ambient");
+        }
+    }
+
+    if (cache_.shadow_channel >= 0) {
+        const std::string cone_key = grid_key_ + "|" + scene_json["effects"]["cone"].dump();
+        int packed = 0;
+        bool ran = false;
+        clock("shadows", [&] {
+            for (const auto& light : scene_json["lights"]) {
+                if (light["type"] == "ambient") continue;
+                S.pass.x = packed;
+                if (fill(cache_.shadow_channel + packed, cone_key + "|" + light.dump())) ran = true;
+                else reused.push_back("shadow of light " + std::to_string(packed));
+                ++packed;
+            }
+        });
+        if (!ran) times.pop_back();
+    }
+
+    auto& P = inputs.params;
+    P.world_to_cache = cache_.world_to_cache;
+    P.cache_dims = glm::ivec4(cache_.dims, cache_.channels);
+    P.cache_map = glm::ivec4(cache_.ambient_channel, cache_.ambient_width, cache_.shadow_channel, 0);
+    inputs.cache = cache_.values.data();
+    inputs.cache_floats = cache_.values.size();
+}
+
+}  // namespace voxlux

@@ -1,0 +1,37 @@
+// The extinction summed-area table (Schlegel 2011, Sec. 3.1) in exact integer arithmetic.
+// Each plane of the light grid is quantised to multiples of a power-of-two quantum chosen from the
+// plane's maximum (values down to 2^-40 of it are exact), and prefix sums are kept modulo 2^96 in
+// three 32-bit words. A box sum is a difference of prefix sums, exact in modular arithmetic as
+// long as the box's own sum is below 2^96 quanta, which holds for any grid of fewer than 2^32
+// cells. The kernel converts it to float once (shaders/vx_sat.h). docs/accuracy-sat.md has the
+// error bound.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "light_grid.h"
+
+namespace voxlux {
+
+struct SummedVolume {
+    glm::ivec3 dims{0};            // light-grid cells; entries are (dims + 1) per axis
+    int planes = 0;
+    glm::vec4 quantum{1.0f};       // per plane: the value of one integer unit
+    std::vector<uint32_t> words;   // plane-major, x fastest, 3 words (low first) per entry
+    size_t planeEntries() const { return size_t(dims.x + 1) * (dims.y + 1) * (dims.z + 1); }
+};
+
+// The quantum for a plane whose largest value is `max_value`: 2^(e - 63), where 2^e is the
+// smallest power of two above max_value, so every cell is below 2^63 quanta.
+float satQuantum(float max_value);
+
+// The quantised cells in place (entry (x+1, y+1, z+1) holds cell (x, y, z); the zero faces stay
+// zero), before any prefix sum. Both backends start their scans from this.
+SummedVolume quantizeLightGrid(const LightGrid& grid);
+
+// Prefix sums along x, then y, then z, in place, on the CPU (TBB).
+void scanSummedVolume(SummedVolume& sat);
+
+}  // namespace voxlux
