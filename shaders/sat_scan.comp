@@ -6,13 +6,13 @@ layout(local_size_x = 64) in;
 uniform int vx_scan_axis;     // 0 = x, 1 = y, 2 = z
 uniform int vx_line_offset;   // first line of this dispatch
 
-layout(std430, binding = 11) buffer SatScan { uint vx_scan[]; };
+layout(std430, binding = 11) buffer SatScan { uint vx_scan[]; };   // the word layout of vx_sat.h
 
-VxU96 vx_scan_load(int e) {
+VxU96 vx_scan_load(int plane, int e) {
     VxU96 v;
-    v.lo = vx_scan[3 * e];
-    v.mid = vx_scan[3 * e + 1];
-    v.hi = vx_scan[3 * e + 2];
+    v.lo = vx_scan[vx_sat_word_index(plane, 0, e)];
+    v.mid = vx_scan[vx_sat_word_index(plane, 1, e)];
+    v.hi = vx_scan[vx_sat_word_index(plane, 2, e)];
     return v;
 }
 
@@ -25,7 +25,8 @@ void main() {
     int line = int(gl_GlobalInvocationID.x) + vx_line_offset;
     if (line >= lines * S.dims.w) return;
     int l = line % lines;
-    int base = (line / lines) * sx * sy * sz;
+    int plane = line / lines;
+    int base = 0;
     int stride = 1;
     if (vx_scan_axis == 0) {
         base += l * sx;
@@ -36,12 +37,12 @@ void main() {
         base += l;
         stride = sx * sy;
     }
-    VxU96 run = vx_scan_load(base);
+    VxU96 run = vx_scan_load(plane, base);
     for (int k = 1; k < n; ++k) {
         int e = base + k * stride;
-        run = vx_u96_add(run, vx_scan_load(e));
-        vx_scan[3 * e] = run.lo;
-        vx_scan[3 * e + 1] = run.mid;
-        vx_scan[3 * e + 2] = run.hi;
+        run = vx_u96_add(run, vx_scan_load(plane, e));
+        vx_scan[vx_sat_word_index(plane, 0, e)] = run.lo;
+        vx_scan[vx_sat_word_index(plane, 1, e)] = run.mid;
+        vx_scan[vx_sat_word_index(plane, 2, e)] = run.hi;
     }
 }

@@ -29,16 +29,6 @@
 #define VX_SIMD_LOOP _Pragma("omp simd")
 #define VX_PRAGMA(text) _Pragma(#text)
 #define VX_SIMD_SUM(var) VX_PRAGMA(omp simd reduction(+ : var))
-// GLSL's scalar carry/borrow built-ins (GLM has only the vector forms).
-inline uint uaddCarry(uint x, uint y, uint& carry) {
-    uint s = x + y;
-    carry = s < x ? 1u : 0u;
-    return s;
-}
-inline uint usubBorrow(uint x, uint y, uint& borrow) {
-    borrow = x < y ? 1u : 0u;
-    return x - y;
-}
 #endif
 
 #define VX_PI 3.14159265f

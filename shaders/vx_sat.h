@@ -16,26 +16,28 @@ struct VxU96 {
     uint hi;
 };
 
+// Carries and borrows are comparisons, not uaddCarry/usubBorrow: no out parameters, so the CPU's
+// SIMD loops keep every value in registers.
 VX_INLINE VxU96 vx_u96_add(VxU96 a, VxU96 b) {
-    uint c0;
-    uint c1;
-    uint c2;
     VxU96 r;
-    r.lo = uaddCarry(a.lo, b.lo, c0);
-    r.mid = uaddCarry(a.mid, b.mid, c1);
-    r.mid = uaddCarry(r.mid, c0, c2);
+    r.lo = a.lo + b.lo;
+    uint c0 = r.lo < a.lo ? 1u : 0u;
+    uint m = a.mid + b.mid;
+    uint c1 = m < a.mid ? 1u : 0u;
+    r.mid = m + c0;
+    uint c2 = r.mid < m ? 1u : 0u;
     r.hi = a.hi + b.hi + c1 + c2;
     return r;
 }
 
 VX_INLINE VxU96 vx_u96_sub(VxU96 a, VxU96 b) {
-    uint b0;
-    uint b1;
-    uint b2;
     VxU96 r;
-    r.lo = usubBorrow(a.lo, b.lo, b0);
-    r.mid = usubBorrow(a.mid, b.mid, b1);
-    r.mid = usubBorrow(r.mid, b0, b2);
+    r.lo = a.lo - b.lo;
+    uint b0 = a.lo < b.lo ? 1u : 0u;
+    uint m = a.mid - b.mid;
+    uint b1 = a.mid < b.mid ? 1u : 0u;
+    r.mid = m - b0;
+    uint b2 = m < b0 ? 1u : 0u;
     r.hi = a.hi - b.hi - b1 - b2;
     return r;
 }
@@ -45,19 +47,41 @@ VX_INLINE float vx_u96_float(VxU96 v) {
     return (float(v.hi) * 4294967296.0f + float(v.mid)) * 4294967296.0f + float(v.lo);
 }
 
-// SAT entry (x, y, z), 0 <= x <= dims.x etc., of plane `plane`. Entry (x, y, z) is the sum over
-// cells [0, x) x [0, y) x [0, z); the x = 0, y = 0 and z = 0 faces are zero, so a box query needs
-// no branches at the grid's low faces.
-VX_INLINE VxU96 vx_sat_entry(int plane, int x, int y, int z) {
-    int sx = S.dims.x + 1;
-    int sy = S.dims.y + 1;
-    int plane_entries = sx * sy * (S.dims.z + 1);
-    int i = 3 * (plane * plane_entries + (z * sy + y) * sx + x);
+// Word w (0 = low) of SAT entry e of plane `plane`. The words are stored as separate arrays
+// (plane-major, then word, then entry; x fastest) so that neighbouring cells' lookups are
+// neighbouring words, which the CPU backend loads as whole SIMD vectors.
+VX_INLINE int vx_sat_word_index(int plane, int w, int e) {
+    return (plane * 3 + w) * (S.dims.x + 1) * (S.dims.y + 1) * (S.dims.z + 1) + e;
+}
+
+// Entry e = (z * (dims.y + 1) + y) * (dims.x + 1) + x, 0 <= x <= dims.x etc.: the sum over cells
+// [0, x) x [0, y) x [0, z). The x = 0, y = 0 and z = 0 faces are zero.
+VX_INLINE VxU96 vx_sat_entry(int plane, int e) {
     VxU96 v;
-    v.lo = vx_sat_word(i);
-    v.mid = vx_sat_word(i + 1);
-    v.hi = vx_sat_word(i + 2);
+    v.lo = vx_sat_word(vx_sat_word_index(plane, 0, e));
+    v.mid = vx_sat_word(vx_sat_word_index(plane, 1, e));
+    v.hi = vx_sat_word(vx_sat_word_index(plane, 2, e));
     return v;
+}
+
+VX_INLINE int vx_sat_entry_index(int x, int y, int z) {
+    return (z * (S.dims.y + 1) + y) * (S.dims.x + 1) + x;
+}
+
+// The box [a, b) from its eight corner entries, exactly: + b - (a.x) - (a.y) - (a.z) + ... - a.
+VX_INLINE VxU96 vx_sat_corners(int plane, ivec3 a, ivec3 b) {
+    VxU96 s = vx_sat_entry(plane, vx_sat_entry_index(b.x, b.y, b.z));
+    s = vx_u96_sub(s, vx_sat_entry(plane, vx_sat_entry_index(a.x, b.y, b.z)));
+    s = vx_u96_sub(s, vx_sat_entry(plane, vx_sat_entry_index(b.x, a.y, b.z)));
+    s = vx_u96_sub(s, vx_sat_entry(plane, vx_sat_entry_index(b.x, b.y, a.z)));
+    s = vx_u96_add(s, vx_sat_entry(plane, vx_sat_entry_index(a.x, a.y, b.z)));
+    s = vx_u96_add(s, vx_sat_entry(plane, vx_sat_entry_index(a.x, b.y, a.z)));
+    s = vx_u96_add(s, vx_sat_entry(plane, vx_sat_entry_index(b.x, a.y, a.z)));
+    return vx_u96_sub(s, vx_sat_entry(plane, vx_sat_entry_index(a.x, a.y, a.z)));
+}
+
+VX_INLINE float vx_sat_quantum(int plane) {
+    return plane == 0 ? S.quantum.x : (plane == 1 ? S.quantum.y : (plane == 2 ? S.quantum.z : S.quantum.w));
 }
 
 // Sum over the cells of box [lo, hi) (clamped to the grid; cells outside are empty), in the
@@ -66,93 +90,138 @@ float vx_sat_box(int plane, ivec3 lo, ivec3 hi) {
     ivec3 a = clamp(lo, ivec3(0), ivec3(S.dims));
     ivec3 b = clamp(hi, ivec3(0), ivec3(S.dims));
     if (a.x >= b.x || a.y >= b.y || a.z >= b.z) return 0.0f;
-    VxU96 s = vx_sat_entry(plane, b.x, b.y, b.z);
-    s = vx_u96_sub(s, vx_sat_entry(plane, a.x, b.y, b.z));
-    s = vx_u96_sub(s, vx_sat_entry(plane, b.x, a.y, b.z));
-    s = vx_u96_sub(s, vx_sat_entry(plane, b.x, b.y, a.z));
-    s = vx_u96_add(s, vx_sat_entry(plane, a.x, a.y, b.z));
-    s = vx_u96_add(s, vx_sat_entry(plane, a.x, b.y, a.z));
-    s = vx_u96_add(s, vx_sat_entry(plane, b.x, a.y, a.z));
-    s = vx_u96_sub(s, vx_sat_entry(plane, a.x, a.y, a.z));
-    float q = plane == 0 ? S.quantum.x : plane == 1 ? S.quantum.y : plane == 2 ? S.quantum.z : S.quantum.w;
-    return vx_u96_float(s) * q;
+    return vx_u96_float(vx_sat_corners(plane, a, b)) * vx_sat_quantum(plane);
 }
 
-// Ambient-occlusion optical depth at cell `c` (Eq. 4, 8) from SAT plane `plane`:
-//   tau = sum_i (SAT(Sh_i) - SAT(Sh_i-1)) * V_cell / (4 pi r_i^2),
-// the 1/r^2-weighted extinction in cuboid shells Sh_i of inscribed radius r_i. The 1/(4 pi)
-// makes tau the mean optical depth to the neighbourhood's edge: sigma * R in a homogeneous medium.
-// Shell i = 1..n is the cube of 2k+1 cells centred on the cell (r = k + 1/2), k spread evenly out
-// to the radius, the innermost being the cell itself, each at least one cell wider than the last.
-float vx_ambient_tau(ivec3 c, int plane) {
+// Both light passes are weighted sums of box sums, sum_j weight_j * SAT(c + lo_j, c + hi_j), over
+// cuboids given relative to the cell c. Where the cuboids are the same for every cell (AO shells,
+// directional-light cones) the CPU backend evaluates a row of cells per cuboid with SIMD.
+struct VxCuboid {
+    ivec3 lo;
+    ivec3 hi;
+    float weight;
+};
+
+// Ambient occlusion (Eq. 4, 5, 8): tau = sum_i (SAT(Sh_i) - SAT(Sh_i-1)) * V_cell / (4 pi r_i^2),
+// the 1/r^2-weighted extinction in cuboid shells Sh_i of inscribed radius r_i. The 1/(4 pi) makes
+// tau the mean optical depth to the neighbourhood's edge: sigma * R in a homogeneous medium.
+// Shell i = 1..n is the cube of 2k_i + 1 cells centred on the cell (r_i = k_i + 1/2),
+// k_i = max(k_i-1 + 1, floor(i R / n)) from k_0 = -1: spread evenly out to the radius R, the
+// innermost being the cell itself. Regrouped by cube, cube i has weight 1/r_i^2 - 1/r_i+1^2
+// (all positive, so the float sum has no cancellation).
+VxCuboid vx_shell_cuboid(int i) {
     int n = int(S.shells.x);
-    float sum = 0.0f;
-    float inner = 0.0f;
     int k = -1;
-    for (int i = 1; i <= n; ++i) {
-        k = max(k + 1, int(floor(float(i) * S.shells.y / float(n))));
-        float outer = vx_sat_box(plane, c - ivec3(k), c + ivec3(k + 1));
-        float r = float(k) + 0.5f;
-        sum += (outer - inner) / (r * r);
-        inner = outer;
+    int k_next = -1;
+    for (int j = 1; j <= min(i + 1, n); ++j) {
+        k = k_next;
+        k_next = max(k_next + 1, int(floor(float(j) * S.shells.y / float(n))));
     }
-    return sum * S.shells.z / (4.0f * VX_PI);
+    if (i == n) k = k_next;
+    float r = float(k) + 0.5f;
+    float r_next = float(k_next) + 0.5f;
+    VxCuboid q;
+    q.lo = ivec3(-k);
+    q.hi = ivec3(k + 1);
+    q.weight = (1.0f / (r * r) - (i < n ? 1.0f / (r_next * r_next) : 0.0f)) * S.shells.z / (4.0f * VX_PI);
+    return q;
 }
 
-// Shadow optical depth at the centre of cell `c` towards light L (Eq. 7): the cone from the cell
-// to the light is covered by cuboids stacked along its primary axis (the axis closest to the
-// light direction, Fig. 7). Each cuboid contributes its mean extinction (the paper's weight
-// h = 1 / V_q) times the length of ray inside it, so a thin cone in a homogeneous medium gives
-// exactly sigma * distance. Cuboid boundaries on the primary axis lie on cell faces, spaced by
-// the growth rate; across it they are rounded to cell faces and at least one cell wide.
-float vx_cone_tau(ivec3 c, VxLight L) {
-    vec3 p = vec3(c) + vec3(0.5f);
+float vx_ambient_tau(ivec3 c, int plane) {
+    float tau = 0.0f;
+    for (int i = 1; i <= int(S.shells.x); ++i) {
+        VxCuboid q = vx_shell_cuboid(i);
+        tau += q.weight * vx_sat_box(plane, c + q.lo, c + q.hi);
+    }
+    return tau;
+}
+
+// Shadow optical depth towards a light (Eq. 7): the cone from the cell centre to the light is
+// covered by cuboids stacked along its primary axis (the axis closest to the light direction,
+// Fig. 7). Each contributes its mean extinction (the paper's weight h = 1 / V_q) times the length
+// of ray inside it, so a thin cone in a homogeneous medium gives exactly sigma * distance.
+// VxCone is the cone seen from one cell: `wh` is the direction to the light scaled to one cell
+// per primary step, `reach` the primary-axis distance the cone covers (to the light, or for
+// directional lights the grid's whole extent: cuboids beyond its face read empty cells).
+struct VxCone {
+    vec3 wh;
+    int axis;
+    bool forward;           // towards +axis
+    float reach;
+    float step_world;       // world length of one primary step along the ray
+};
+
+VxCone vx_cone_from(ivec3 c, VxLight L) {
+    VxCone k;
     vec3 w;
     bool directional = int(L.pos_type.w) == VX_LIGHT_DIRECTIONAL;
     if (directional) w = vec3(S.world_to_light * vec4(-vec3(L.dir_cos), 0.0f));
-    else w = vec3(S.world_to_light * vec4(vec3(L.pos_type), 1.0f)) - p;
+    else w = vec3(S.world_to_light * vec4(vec3(L.pos_type), 1.0f)) - (vec3(c) + vec3(0.5f));
     vec3 aw = abs(w);
-    int a = aw.x >= aw.y && aw.x >= aw.z ? 0 : (aw.y >= aw.z ? 1 : 2);
-    if (aw[a] < 1e-20f) return 0.0f;     // the light is at this cell's centre
-    vec3 wh = w / aw[a];                 // ray direction scaled to one cell per primary step
-    bool forward = w[a] > 0.0f;
-    // Primary-axis distance from the centre to the light, or to the grid's face when the light
-    // is beyond it (outside the grid nothing attenuates).
-    float to_face = forward ? float(S.dims[a] - c[a]) - 0.5f : float(c[a]) + 0.5f;
-    float reach = directional ? to_face : min(aw[a], to_face);
-    float step_world = length(vec3(S.light_to_world * vec4(wh, 0.0f)));
+    k.axis = aw.x >= aw.y && aw.x >= aw.z ? 0 : (aw.y >= aw.z ? 1 : 2);
+    k.forward = w[k.axis] > 0.0f;
+    k.wh = aw[k.axis] > 1e-20f ? w / aw[k.axis] : vec3(0.0f);
+    // Primary-axis distance from the centre to the grid's face (or the whole grid for directional
+    // lights, so that every cell sees the same cuboids), and to a point or spot light.
+    float to_face = directional ? float(S.dims[k.axis]) - 0.5f
+                                : (k.forward ? float(S.dims[k.axis] - c[k.axis]) - 0.5f : float(c[k.axis]) + 0.5f);
+    k.reach = directional ? to_face : min(aw[k.axis], to_face);
+    k.step_world = length(vec3(S.light_to_world * vec4(k.wh, 0.0f)));
+    return k;
+}
 
-    // The cell's own half: its extinction over the distance to its face (or to the light).
-    float tau = vx_sat_box(0, c, c + ivec3(1)) * min(0.5f, reach);
-    float span = reach - 0.5f;
-    int n = int(S.cone.y);
-    float ratio = 1.0f + S.cone.z;
-    float ratio_n = pow(ratio, float(n));
-    float ratio_j = 1.0f;
+// Primary-axis distance from the cell centre after j of the n cuboids: 1/2 (the cell's own face)
+// for j = 0, then geometric in j over the grid's extent `span` (each cuboid 1 + growth times
+// longer than the one before), rounded to cell faces. The same for every cell of a pass.
+float vx_cone_boundary(int j, float span) {
+    if (j == 0) return 0.5f;
+    float n = S.cone.y;
+    float g = S.cone.z;
+    float f = g > 1e-4f ? (pow(1.0f + g, float(j)) - 1.0f) / (pow(1.0f + g, n) - 1.0f) : float(j) / n;
+    return 0.5f + floor(f * (span - 0.5f) + 0.5f);
+}
+
+// Cuboid covering the cone between primary distances t0 < t1, relative to the cell: along the
+// primary axis the cells the segment passes through; across it the ray's extent widened by the
+// cone radius at t1, rounded to cell faces and at least one cell wide.
+VxCuboid vx_cone_cuboid(VxCone k, float t0, float t1) {
+    float radius = S.cone.x * t1 * length(k.wh);
+    vec3 e0 = vec3(0.5f) + k.wh * t0;
+    vec3 e1 = vec3(0.5f) + k.wh * t1;
+    VxCuboid q;
+    q.lo = ivec3(floor(min(e0, e1) - vec3(radius) + vec3(0.5f)));
+    q.hi = max(ivec3(floor(max(e0, e1) + vec3(radius) + vec3(0.5f))), q.lo + ivec3(1));
+    float a0 = k.forward ? 0.5f + t0 : 0.5f - t1;
+    float a1 = k.forward ? 0.5f + t1 : 0.5f - t0;
+    q.lo[k.axis] = int(floor(a0));
+    q.hi[k.axis] = max(int(ceil(a1)), q.lo[k.axis] + 1);
+    ivec3 size = q.hi - q.lo;
+    q.weight = (t1 - t0) * k.step_world / (float(size.x) * float(size.y) * float(size.z));
+    return q;
+}
+
+// The cell's own contribution: its extinction over the distance to its face (or to the light).
+VxCuboid vx_cone_own_cell(VxCone k) {
+    VxCuboid q;
+    q.lo = ivec3(0);
+    q.hi = ivec3(1);
+    q.weight = min(0.5f, k.reach) * k.step_world;
+    return q;
+}
+
+float vx_cone_tau(ivec3 c, VxLight L) {
+    VxCone k = vx_cone_from(c, L);
+    if (k.reach <= 0.0f || k.step_world <= 0.0f) return 0.0f;  // the light is at this cell's centre
+    VxCuboid own = vx_cone_own_cell(k);
+    float tau = own.weight * vx_sat_box(0, c + own.lo, c + own.hi);
+    float span = float(S.dims[k.axis]) - 0.5f;
     float t0 = 0.5f;
-    for (int j = 1; j <= n && span > 0.0f; ++j) {
-        // Fraction of the span covered after j cuboids: geometric in j (each cuboid 1 + growth
-        // times longer than the one before), rounded to whole cells except at the light.
-        ratio_j *= ratio;
-        float f = S.cone.z > 1e-4f ? (ratio_j - 1.0f) / (ratio_n - 1.0f) : float(j) / float(n);
-        float t1 = j == n ? reach : 0.5f + floor(f * span + 0.5f);
+    for (int j = 1; j <= int(S.cone.y) && t0 < k.reach; ++j) {
+        float t1 = min(vx_cone_boundary(j, span), k.reach);
         if (t1 <= t0) continue;
-        // Cross-section: the ray's extent over the segment widened by the cone radius at t1,
-        // rounded to cell faces and at least one cell wide.
-        float radius = S.cone.x * t1 * length(wh);
-        vec3 e0 = p + wh * t0;
-        vec3 e1 = p + wh * t1;
-        ivec3 blo = ivec3(floor(min(e0, e1) - vec3(radius) + vec3(0.5f)));
-        ivec3 bhi = max(ivec3(floor(max(e0, e1) + vec3(radius) + vec3(0.5f))), blo + ivec3(1));
-        // Along the primary axis: the cells the segment [t0, t1) passes through.
-        float pa0 = forward ? p[a] + t0 : p[a] - t1;
-        float pa1 = forward ? p[a] + t1 : p[a] - t0;
-        blo[a] = int(floor(pa0));
-        bhi[a] = max(int(ceil(pa1)), blo[a] + 1);
-        ivec3 size = bhi - blo;
-        float volume = float(size.x) * float(size.y) * float(size.z);
-        tau += vx_sat_box(0, blo, bhi) / volume * (t1 - t0);
+        VxCuboid q = vx_cone_cuboid(k, t0, t1);
+        tau += q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
         t0 = t1;
     }
-    return tau * step_world;
+    return tau;
 }

@@ -1,8 +1,10 @@
-// CPU backend: the shared kernel run over 16x16 pixel tiles with TBB.
+// CPU backend: the shared kernel with TBB: the march over 16x16 pixel tiles, the SAT scan
+// (summed_volume.cpp) and the light passes (cpu_light_pass.cpp).
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include "cpu_kernel.h"
+#include "cpu_light_pass.h"
 #include "kernel_backend.h"
 #include "summed_volume.h"
 
@@ -30,26 +32,7 @@ public:
 
     void scanSat(SummedVolume& sat) override { scanSummedVolume(sat); }
 
-    void fillLightChannel(const LightPass& pass, LightCache& cache) override {
-        kernel::CpuKernel k;
-        k.S = pass.params;
-        k.sat = pass.sat->words.data();
-        k.lights = pass.lights->data();
-        const glm::ivec3 d = pass.params.dims;
-        const int light = pass.params.pass.x, channel = pass.params.pass.y, plane = int(pass.params.shells.w);
-        const uint8_t* needed = pass.needed->data();
-        tbb::parallel_for(tbb::blocked_range2d<int>(0, d.z, 1, 0, d.y, 8), [&](const tbb::blocked_range2d<int>& r) {
-            for (int z = r.rows().begin(); z < r.rows().end(); ++z)
-                for (int y = r.cols().begin(); y < r.cols().end(); ++y)
-                    for (int x = 0; x < d.x; ++x) {
-                        const size_t i = (size_t(z) * d.y + y) * d.x + x;
-                        if (!needed[i]) continue;
-                        const glm::ivec3 c(x, y, z);
-                        cache.values[i * cache.channels + channel] =
-                            light < 0 ? k.vx_ambient_tau(c, plane) : k.vx_cone_tau(c, k.vx_light(light));
-                    }
-        });
-    }
+    void fillLightChannel(const LightPass& pass, LightCache& cache) override { fillLightChannelCpu(pass, cache); }
 };
 
 }  // namespace

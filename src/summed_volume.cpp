@@ -12,17 +12,22 @@ namespace {
 
 using U96 = kernel::CpuKernel::VxU96;
 
-U96 load(const uint32_t* w) { return {w[0], w[1], w[2]}; }
-void store(uint32_t* w, U96 v) {
-    w[0] = v.lo;
-    w[1] = v.mid;
-    w[2] = v.hi;
-}
+// One plane's three word arrays, addressed by entry.
+struct Words {
+    uint32_t *lo, *mid, *hi;
+    U96 load(size_t e) const { return {lo[e], mid[e], hi[e]}; }
+    void store(size_t e, U96 v) const {
+        lo[e] = v.lo;
+        mid[e] = v.mid;
+        hi[e] = v.hi;
+    }
+};
 
-// dst[i] += src[i] for `count` consecutive entries, with the kernel's modular addition.
-void addRow(uint32_t* dst, const uint32_t* src, size_t count) {
+// Entries [dst, dst + count) += entries [src, src + count), with the kernel's modular addition.
+void addRange(const Words& w, size_t dst, size_t src, size_t count) {
     kernel::CpuKernel k;
-    for (size_t i = 0; i < 3 * count; i += 3) store(dst + i, k.vx_u96_add(load(dst + i), load(src + i)));
+    VX_SIMD_LOOP
+    for (size_t i = 0; i < count; ++i) w.store(dst + i, k.vx_u96_add(w.load(dst + i), w.load(src + i)));
 }
 
 }  // namespace
@@ -45,16 +50,17 @@ SummedVolume quantizeLightGrid(const LightGrid& g) {
         const float* v = g.values.data() + p * cells;
         const float q = satQuantum(*std::max_element(v, v + cells));
         s.quantum[p] = q;
-        uint32_t* plane = s.words.data() + p * s.planeEntries() * 3;
+        uint32_t* lo = s.word(p, 0);
+        uint32_t* mid = s.word(p, 1);
         tbb::parallel_for(0, g.dims.z, [&](int z) {
             for (int y = 0; y < g.dims.y; ++y)
                 for (int x = 0; x < g.dims.x; ++x) {
                     // v / q scales by a power of two: exact; rounding is the only quantisation.
                     const double units = std::nearbyint(std::max(double(v[(size_t(z) * g.dims.y + y) * g.dims.x + x]), 0.0) / q);
                     const auto n = uint64_t(units);
-                    uint32_t* w = plane + 3 * ((size_t(z + 1) * sy + (y + 1)) * sx + (x + 1));
-                    w[0] = uint32_t(n);
-                    w[1] = uint32_t(n >> 32);
+                    const size_t e = (size_t(z + 1) * sy + (y + 1)) * sx + (x + 1);
+                    lo[e] = uint32_t(n);
+                    mid[e] = uint32_t(n >> 32);
                 }
         });
     }
@@ -64,24 +70,25 @@ SummedVolume quantizeLightGrid(const LightGrid& g) {
 void scanSummedVolume(SummedVolume& s) {
     const size_t sx = size_t(s.dims.x) + 1, sy = size_t(s.dims.y) + 1, sz = size_t(s.dims.z) + 1;
     for (int p = 0; p < s.planes; ++p) {
-        uint32_t* plane = s.words.data() + p * s.planeEntries() * 3;
-        // x and y run within a z slice; z adds whole slices, each depending on the one before.
+        const Words w{s.word(p, 0), s.word(p, 1), s.word(p, 2)};
+        // x and y run within a z slice (which stays in cache); z adds whole slices in turn.
         tbb::parallel_for(size_t(1), sz, [&](size_t z) {
-            uint32_t* slice = plane + 3 * z * sy * sx;
             kernel::CpuKernel k;
+            const size_t slice = z * sy * sx;
             for (size_t y = 1; y < sy; ++y) {
-                uint32_t* row = slice + 3 * y * sx;
-                for (size_t x = 1; x < sx; ++x) store(row + 3 * x, k.vx_u96_add(load(row + 3 * x), load(row + 3 * (x - 1))));
+                const size_t row = slice + y * sx;
+                U96 run = w.load(row);
+                for (size_t x = 1; x < sx; ++x) {
+                    run = k.vx_u96_add(run, w.load(row + x));
+                    w.store(row + x, run);
+                }
+                if (y > 1) addRange(w, row, row - sx, sx);
             }
-            for (size_t y = 2; y < sy; ++y) addRow(slice + 3 * y * sx, slice + 3 * (y - 1) * sx, sx);
         });
-        for (size_t z = 2; z < sz; ++z) {
-            uint32_t* slice = plane + 3 * z * sy * sx;
-            const uint32_t* below = slice - 3 * sy * sx;
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, sy * sx, 4096), [&](const tbb::blocked_range<size_t>& r) {
-                addRow(slice + 3 * r.begin(), below + 3 * r.begin(), r.size());
+        for (size_t z = 2; z < sz; ++z)
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, sy * sx, 8192), [&](const tbb::blocked_range<size_t>& r) {
+                addRange(w, z * sy * sx + r.begin(), (z - 1) * sy * sx + r.begin(), r.size());
             });
-        }
     }
 }
 

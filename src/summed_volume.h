@@ -19,8 +19,9 @@ struct SummedVolume {
     glm::ivec3 dims{0};            // light-grid cells; entries are (dims + 1) per axis
     int planes = 0;
     glm::vec4 quantum{1.0f};       // per plane: the value of one integer unit
-    std::vector<uint32_t> words;   // plane-major, x fastest, 3 words (low first) per entry
+    std::vector<uint32_t> words;   // per plane, the low, middle and high word arrays; x fastest
     size_t planeEntries() const { return size_t(dims.x + 1) * (dims.y + 1) * (dims.z + 1); }
+    uint32_t* word(int plane, int w) { return words.data() + (size_t(plane) * 3 + size_t(w)) * planeEntries(); }
 };
 
 // The quantum for a plane whose largest value is `max_value`: 2^(e - 63), where 2^e is the

@@ -1,0 +1,124 @@
+// CPU light passes: AO shells and shadow cones from the SAT (shaders/vx_sat.h). When every cell of
+// a pass uses the same cuboids (AO shells, directional lights) a row of cells along x is
+// evaluated per cuboid as one SIMD batch, the eight corner lookups being contiguous loads across
+// the row; cones towards point and spot lights differ per cell and run cell by cell. Both paths
+// compute the same integer box sums and the same float weights as the GL backend's per-cell one.
+#include "cpu_light_pass.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include "cpu_kernel.h"
+
+namespace voxlux {
+namespace {
+
+using kernel::CpuKernel;
+constexpr int kRow = 16;  // cells per batch: one AVX-512 vector of 32-bit words
+
+// The cuboids every cell of the pass shares, or none when they depend on the cell.
+std::vector<CpuKernel::VxCuboid> sharedStencil(CpuKernel& k, int light) {
+    std::vector<CpuKernel::VxCuboid> stencil;
+    if (light < 0) {
+        for (int i = 1; i <= int(k.S.shells.x); ++i) stencil.push_back(k.vx_shell_cuboid(i));
+        return stencil;
+    }
+    const kernel::VxLight L = k.vx_light(light);
+    if (int(L.pos_type.w) != VX_LIGHT_DIRECTIONAL) return stencil;
+    const CpuKernel::VxCone cone = k.vx_cone_from(glm::ivec3(0), L);
+    stencil.push_back(k.vx_cone_own_cell(cone));
+    const float span = float(k.S.dims[cone.axis]) - 0.5f;
+    float t0 = 0.5f;
+    for (int j = 1; j <= int(k.S.cone.y); ++j) {
+        const float t1 = k.vx_cone_boundary(j, span);
+        if (t1 <= t0) continue;
+        stencil.push_back(k.vx_cone_cuboid(cone, t0, t1));
+        t0 = t1;
+    }
+    return stencil;
+}
+
+// acc[i] += weight * SAT box (c + lo, c + hi) for the cells c = (x0 + i, y, z), i < kRow.
+// `Clamp` is false when every lane's x range lies inside the grid, so the loads are contiguous.
+template <bool Clamp>
+void addCuboidRow(CpuKernel& k, const uint32_t* const words[3], float quantum, const CpuKernel::VxCuboid& q,
+                  glm::ivec3 c, float* __restrict acc) {
+    const glm::ivec3 dims(k.S.dims);
+    const int ay = glm::clamp(c.y + q.lo.y, 0, dims.y), by = glm::clamp(c.y + q.hi.y, 0, dims.y);
+    const int az = glm::clamp(c.z + q.lo.z, 0, dims.z), bz = glm::clamp(c.z + q.hi.z, 0, dims.z);
+    if (ay >= by || az >= bz) return;
+    // Entries of the four (y, z) corner lines at x = 0; a lane adds its x.
+    const int bb = k.vx_sat_entry_index(0, by, bz), ab = k.vx_sat_entry_index(0, ay, bz);
+    const int ba = k.vx_sat_entry_index(0, by, az), aa = k.vx_sat_entry_index(0, ay, az);
+    const int xa0 = c.x + q.lo.x, xb0 = c.x + q.hi.x;
+    const float weight = q.weight;
+    const uint32_t* __restrict lo = words[0];
+    const uint32_t* __restrict mid = words[1];
+    const uint32_t* __restrict hi = words[2];
+    // No `omp simd` here: it would privatise the VxU96 temporaries into memory before they are
+    // inlined away; the auto-vectoriser, running after inlining, vectorises the plain loop.
+    for (int i = 0; i < kRow; ++i) {
+        const int xa = Clamp ? glm::clamp(xa0 + i, 0, dims.x) : xa0 + i;
+        const int xb = Clamp ? glm::clamp(xb0 + i, 0, dims.x) : xb0 + i;
+#define VX_LOAD(e) CpuKernel::VxU96{lo[e], mid[e], hi[e]}
+        CpuKernel::VxU96 s = VX_LOAD(bb + xb);
+        s = k.vx_u96_sub(s, VX_LOAD(bb + xa));
+        s = k.vx_u96_sub(s, VX_LOAD(ab + xb));
+        s = k.vx_u96_sub(s, VX_LOAD(ba + xb));
+        s = k.vx_u96_add(s, VX_LOAD(ab + xa));
+        s = k.vx_u96_add(s, VX_LOAD(ba + xa));
+        s = k.vx_u96_add(s, VX_LOAD(aa + xb));
+        s = k.vx_u96_sub(s, VX_LOAD(aa + xa));
+#undef VX_LOAD
+        const float sum = k.vx_u96_float(s) * quantum;
+        acc[i] += xa < xb ? weight * sum : 0.0f;
+    }
+}
+
+}  // namespace
+
+void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
+    CpuKernel k;
+    k.S = pass.params;
+    k.sat = pass.sat->words.data();
+    k.lights = pass.lights->data();
+    const glm::ivec3 d = pass.params.dims;
+    const int light = pass.params.pass.x, channel = pass.params.pass.y;
+    const int plane = light < 0 ? int(pass.params.shells.w) : 0;
+    const uint8_t* needed = pass.needed->data();
+    const std::vector<CpuKernel::VxCuboid> stencil = sharedStencil(k, light);
+    const size_t entries = pass.sat->planeEntries();
+    const uint32_t* const words[3] = {k.sat + (plane * 3) * entries, k.sat + (plane * 3 + 1) * entries,
+                                      k.sat + (plane * 3 + 2) * entries};
+    const float quantum = k.vx_sat_quantum(plane);
+    auto store = [&](size_t cell, float tau) { cache.values[cell * size_t(cache.channels) + size_t(channel)] = tau; };
+
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, d.z, 1, 0, d.y, 4), [&](const tbb::blocked_range2d<int>& r) {
+        CpuKernel kk = k;
+        for (int z = r.rows().begin(); z < r.rows().end(); ++z)
+            for (int y = r.cols().begin(); y < r.cols().end(); ++y)
+                for (int x0 = 0; x0 < d.x; x0 += kRow) {
+                    const size_t row = (size_t(z) * d.y + y) * d.x;
+                    const int lanes = std::min(kRow, d.x - x0);
+                    bool any = false;
+                    for (int i = 0; i < lanes; ++i) any |= needed[row + x0 + i] != 0;
+                    if (!any) continue;
+                    if (stencil.empty()) {  // per-cell cone (point and spot lights)
+                        for (int i = 0; i < lanes; ++i)
+                            if (needed[row + x0 + i])
+                                store(row + x0 + i, kk.vx_cone_tau({x0 + i, y, z}, kk.vx_light(light)));
+                        continue;
+                    }
+                    float acc[kRow] = {};
+                    for (const auto& q : stencil) {
+                        const bool inside = x0 + q.lo.x >= 0 && x0 + kRow - 1 + q.hi.x <= d.x;
+                        if (inside) addCuboidRow<false>(kk, words, quantum, q, {x0, y, z}, acc);
+                        else addCuboidRow<true>(kk, words, quantum, q, {x0, y, z}, acc);
+                    }
+                    for (int i = 0; i < lanes; ++i)
+                        if (needed[row + x0 + i]) store(row + x0 + i, acc[i]);
+                }
+    });
+}
+
+}  // namespace voxlux

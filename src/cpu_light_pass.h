@@ -1,0 +1,9 @@
+// The CPU backend's light passes (see cpu_light_pass.cpp).
+#pragma once
+#include "light_cache.h"
+
+namespace voxlux {
+
+void fillLightChannelCpu(const LightPass& pass, LightCache& cache);
+
+}  // namespace voxlux
