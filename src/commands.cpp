@@ -75,8 +75,8 @@ Light parseLight(const std::string& spec) {
     const bool aimed = l.type == LightType::Directional || l.type == LightType::Spot;
     if (positioned && !hasPos) throw InputError(context + ": needs pos=x,y,z");
     if (aimed && !hasDir) throw InputError(context + ": needs dir=x,y,z");
-    if (!positioned && hasPos) throw InputError(context + ": a " + parts[0] + " light has no pos");
-    if (!aimed && hasDir) throw InputError(context + ": a " + parts[0] + " light has no dir");
+    if (!positioned && hasPos) throw InputError(context + ": " + parts[0] + " lights have no pos");
+    if (!aimed && hasDir) throw InputError(context + ": " + parts[0] + " lights have no dir");
     return l;
 }
 

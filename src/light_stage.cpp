@@ -132,7 +132,12 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
             for (const auto& light : scene_json["lights"]) {
                 if (light["type"] == "ambient") continue;
                 S.pass.x = packed;
-                if (fill(cache_.shadow_channel + packed, cone_key + "|" + light.dump())) ran = true;
+                // Only where the light is (or, directional, where it points) shapes its cone:
+                // colour, intensity and spot angles leave the cached optical depth as it is.
+                nlohmann::json where = {{"type", light["type"]}};
+                if (light.contains("position")) where["position"] = light["position"];
+                if (light["type"] == "directional") where["direction"] = light["direction"];
+                if (fill(cache_.shadow_channel + packed, cone_key + "|" + where.dump())) ran = true;
                 else reused.push_back("shadow of light " + std::to_string(packed));
                 ++packed;
             }

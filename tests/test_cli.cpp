@@ -238,10 +238,15 @@ TEST(Cli, RepeatedGridNamesArePickedByIndexWithAWarning) {
 TEST(Cli, BadOptionsAreRefusedWithTheOptionNamed) {
     const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
     expectRejected("render " + cloud + " --res 512", "--res '512': expected WIDTHxHEIGHT");
-    expectRejected("render " + cloud + " --light area:pos=0,0,0", "--light 'area:pos=0,0,0': type must be directional, point or spot");
+    expectRejected("render " + cloud + " --light area:pos=0,0,0",
+                   "--light 'area:pos=0,0,0': type must be directional, point, spot or ambient");
+    expectRejected("render " + cloud + " --light ambient:dir=0,1,0", "--light 'ambient:dir=0,1,0': ambient lights have no dir");
+    expectRejected("render " + cloud + " --set effects.cone.samples", "--set 'effects.cone.samples': expected KEY=VALUE");
+    expectRejected("render " + cloud + " --set effects.cone.samples=0",
+                   "command line: /effects/cone/samples: must lie in 1..1024");
     expectRejected("render " + cloud + " --light point:intensity=5", "--light 'point:intensity=5': needs pos=x,y,z");
     expectRejected("render " + cloud + " --step 0", "command line: /render/step: must lie in [0.01, 64] voxels");
-    expectRejected("render " + cloud + " --shadows sat", "command line: /effects/shadows: 'sat' is not one of none, raymarch");
+    expectRejected("render " + cloud + " --shadows sat", "command line: /effects/shadows: 'sat' is not one of none, raymarch, sat_cone");
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <utility>
 
 #include "camera.h"
+#include "light_stage.h"
+#include "render_plan.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -109,7 +111,37 @@ Renders renderBoth(LoadedVolume volume, const Scene& scene, KernelBackend& gl) {
     Camera camera = frameBox(lo, hi, 40.0f, float(scene.render.width) / float(scene.render.height));
     camera.position = glm::mix(camera.look_at, camera.position, 0.45f);
     auto prepared = prepare(std::move(volume), scene, camera);
-    return {makeCpuBackend()->march(prepared->inputs), gl.march(prepared->inputs)};
+    auto cpu = makeCpuBackend();
+    if (!needsAmbientOcclusion(scene) && !needsConeShadows(scene))
+        return {cpu->march(prepared->inputs), gl.march(prepared->inputs)};
+    // Each backend builds its own light cache, as a render on it would.
+    Renders r;
+    for (KernelBackend* backend : {static_cast<KernelBackend*>(cpu.get()), &gl}) {
+        LightStage stage;
+        KernelInputs inputs = prepared->inputs;
+        StageTimes times;
+        std::vector<std::string> reused, warnings;
+        stage.update(scene, "test volume", inputs, *backend, times, reused, warnings);
+        (backend == &gl ? r.gl : r.cpu) = backend->march(inputs);
+    }
+    return r;
+}
+
+// Ambient light with colour-bleeding AO, and SAT-cone shadows from a directional light, a point
+// light inside the volume and a spot light, on a coarse light grid.
+Scene satScene() {
+    Scene s = baseScene();
+    s.effects.shadows = ShadowMethod::SatCone;
+    s.effects.ambient_occlusion = AmbientOcclusion{5, 0.6f};
+    s.effects.color_bleeding = 0.7f;
+    s.effects.light_resolution = 40;
+    s.effects.cone = {3.0f, 24, 0.1f};
+    Light ambient;
+    ambient.type = LightType::Ambient;
+    ambient.color = glm::vec3(0.5f, 0.6f, 0.8f);
+    ambient.intensity = 0.4f;
+    s.lights = {directionalLight(), pointLight(), spotLight(), ambient};
+    return s;
 }
 
 // AOV channels as float ranges of VxPixel (rgba, direct, ambient, emission, transmittance, depth; the
@@ -224,6 +256,46 @@ TEST(GlBackend, MatchesCpuWithTransferFunction) {
                                {0.5f, 1.5f, glm::vec3(1.0f, 0.6f, 0.3f)},
                                {1.2f, 0.4f, glm::vec3(0.3f, 0.5f, 1.0f)}};
     EXPECT_GT(expectMatch(renderBoth(makeVolume(false), scene, *gl))[kDirect].peak, 0.0);
+}
+
+// The light caches themselves: the SATs are the same integers and every cached optical depth
+// agrees to float rounding (CPU rows and GL cells sum the same terms in the same order; only
+// multiply-add fusion may differ).
+TEST(GlBackend, LightCacheMatchesCpu) {
+    VOXLUX_REQUIRE_GL(gl);
+    const Scene scene = satScene();
+    auto prepared = prepare(makeVolume(true), scene, Camera{});
+    auto cpu = makeCpuBackend();
+    LightStage stages[2];
+    KernelBackend* backends[2] = {cpu.get(), gl.get()};
+    for (int b = 0; b < 2; ++b) {
+        KernelInputs inputs = prepared->inputs;
+        StageTimes times;
+        std::vector<std::string> reused, warnings;
+        stages[b].update(scene, "test volume", inputs, *backends[b], times, reused, warnings);
+    }
+    EXPECT_TRUE(stages[0].sat().words == stages[1].sat().words) << "CPU and GL SATs differ";
+    const LightCache &c = stages[0].cache(), &g = stages[1].cache();
+    ASSERT_EQ(c.channels, 3 + 3);  // RGB ambient occlusion, three lights
+    ASSERT_EQ(c.values.size(), g.values.size());
+    for (int ch = 0; ch < c.channels; ++ch) {
+        double peak = 0.0, worst = 0.0;
+        for (size_t i = ch; i < c.values.size(); i += size_t(c.channels)) {
+            peak = std::max(peak, double(std::abs(c.values[i])));
+            worst = std::max(worst, double(std::abs(c.values[i] - g.values[i])));
+        }
+        EXPECT_GT(peak, 0.0) << "channel " << ch << " is empty";
+        EXPECT_LE(worst, 1e-5 * peak) << "channel " << ch;
+        std::printf("  light-cache channel %d: peak tau %.3g, max |gl - cpu| / peak %.2g\n", ch, peak,
+                    peak > 0 ? worst / peak : 0.0);
+    }
+}
+
+TEST(GlBackend, MatchesCpuWithSatLighting) {
+    VOXLUX_REQUIRE_GL(gl);
+    const auto stats = expectMatch(renderBoth(makeVolume(true), satScene(), *gl));
+    EXPECT_GT(stats[kDirect].peak, 0.0);
+    EXPECT_GT(stats[kAmbient].peak, 0.0);
 }
 
 TEST(GlBackend, MatchesCpuWithoutLights) {

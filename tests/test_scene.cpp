@@ -27,7 +27,7 @@ TEST(Scene, MinimalSceneGetsDefaults) {
 
 TEST(Scene, ErrorsNameTheKeyAndItsPath) {
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "area"}]})"),
-              "shot.json: /lights/0/type: 'area' is not one of directional, point, spot");
+              "shot.json: /lights/0/type: 'area' is not one of directional, point, spot, ambient");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{}, {"intensity": "lots", "direction": [0,0,1]}]})"),
               "shot.json: /lights/0/direction: required key is missing");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
@@ -44,7 +44,19 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb", "density": {"name": "d", "index": -1}}})"),
               "shot.json: /volume/density/index: must be 0 or more");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
-              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, emission, transmittance or depth)");
+              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, emission, transmittance or depth)");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"cone": {"samples": 0}}})"),
+              "shot.json: /effects/cone/samples: must lie in 1..1024");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": {"shells": 3, "radios": 2}}})"),
+              "shot.json: /effects/ambient_occlusion/radios: unknown key (expected one of shells, radius)");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": 3}})"),
+              "shot.json: /effects/ambient_occlusion: expected true, false or an object");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"color_bleeding": 2}})"),
+              "shot.json: /effects/color_bleeding: must be true, false or a strength in [0, 1]");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"light_resolution": 1}})"),
+              "shot.json: /effects/light_resolution: must lie in 2..1024 cells");
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "position": [0, 0, 0]}]})"),
+              "shot.json: /lights/0/position: unknown key (expected one of type, color, intensity)");
 }
 
 TEST(Scene, MalformedJsonGivesLineAndColumn) {
@@ -61,14 +73,33 @@ TEST(Scene, RoundTripThroughJson) {
         "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 40, "cone_angle": 25}],
         "camera": {"position": [0, 1, 10], "look_at": [0, 1, 0], "fov": 35},
         "render": {"resolution": [320, 240], "step": 0.25, "backend": "cpu"},
-        "effects": {"shadows": "none"},
-        "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth"]}})",
+        "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": true,
+                    "cone": {"angle": 4, "samples": 30, "growth": 0.2}, "light_resolution": 96, "light_memory_mb": 512},
+        "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth", "ambient"]}})",
                          "shot.json", "");
     Scene again = parseScene(sceneToJson(s).dump(), "again.json", "");
     EXPECT_EQ(sceneToJson(again), sceneToJson(s));
     EXPECT_EQ(again.volume.density.index, 2);
     EXPECT_EQ(again.lights[0].type, LightType::Spot);
     EXPECT_FLOAT_EQ(again.material.transfer[1].albedo.z, 0.2f);
+    EXPECT_EQ(again.effects.shadows, ShadowMethod::SatCone);
+    EXPECT_EQ(again.effects.ambient_occlusion->shells, 7);
+    EXPECT_EQ(again.effects.color_bleeding, 1.0f);
+    EXPECT_EQ(again.effects.cone.samples, 30);
+    EXPECT_EQ(again.effects.light_resolution, 96);
+}
+
+TEST(Scene, AmbientOcclusionAndLightsDefaults) {
+    Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "intensity": 0.5}],
+                             "effects": {"ambient_occlusion": true}})",
+                         "shot.json", "");
+    EXPECT_EQ(s.lights[0].type, LightType::Ambient);
+    ASSERT_TRUE(s.effects.ambient_occlusion.has_value());
+    EXPECT_EQ(s.effects.ambient_occlusion->shells, 3);
+    EXPECT_EQ(s.effects.ambient_occlusion->radius, 0.0f);
+    EXPECT_EQ(s.effects.light_resolution, 128);
+    EXPECT_FALSE(parseScene(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": false}})", "s.json", "")
+                     .effects.ambient_occlusion.has_value());
 }
 
 }  // namespace

@@ -1,0 +1,195 @@
+// The light-cache stage end to end: what a scene change recomputes and what it keeps, the memory
+// budget, and SAT-cone shadows against the ray-marched reference on real smoke.
+#include <cmath>
+#include <filesystem>
+
+#include "light_grid.h"
+#include "renderer.h"
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+
+// A noisy ball written to a .vdb (the renderer keys its caches on the file).
+std::string writeBall(const std::string& dir) {
+    initOpenVdb();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setName("density");
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    auto acc = grid->getAccessor();
+    for (int z = -20; z <= 20; ++z)
+        for (int y = -20; y <= 20; ++y)
+            for (int x = -20; x <= 20; ++x) {
+                const float r = std::sqrt(float(x * x + y * y + z * z)) / 20.0f;
+                if (r <= 1.0f) acc.setValue({x, y, z}, (1.0f - r) * (1.2f + std::sin(0.5f * x) * std::cos(0.4f * y)));
+            }
+    const std::string path = dir + "/ball.vdb";
+    openvdb::io::File(path).write({grid});
+    return path;
+}
+
+Scene ballScene(const std::string& vdb) {
+    Scene s;
+    s.volume.path = vdb;
+    s.render.width = 48;
+    s.render.height = 40;
+    s.render.backend = Backend::Cpu;
+    s.material.density_scale = 4.0f;
+    s.effects.shadows = ShadowMethod::SatCone;
+    s.effects.ambient_occlusion = AmbientOcclusion{};
+    s.effects.light_resolution = 32;
+    Light key, fill, ambient;
+    key.direction = glm::normalize(glm::vec3(-1, -1, -0.5f));
+    key.intensity = 5.0f;
+    fill.type = LightType::Point;
+    fill.position = glm::vec3(0.5f, 0.2f, 0.0f);  // inside the ball
+    fill.intensity = 0.5f;
+    ambient.type = LightType::Ambient;
+    ambient.intensity = 0.3f;
+    s.lights = {key, fill, ambient};
+    return s;
+}
+
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+bool ran(const FrameResult& r, const std::string& stage) {
+    return std::any_of(r.stage_seconds.begin(), r.stage_seconds.end(), [&](const auto& p) { return p.first == stage; });
+}
+
+float rgbaAt(const FrameResult& r, size_t i, int c) { return r.image.pixels[i].rgba[c]; }
+
+void expectSameImage(const FrameResult& a, const FrameResult& b) {
+    ASSERT_EQ(a.image.pixels.size(), b.image.pixels.size());
+    for (size_t i = 0; i < a.image.pixels.size(); ++i)
+        for (int c = 0; c < 4; ++c) ASSERT_EQ(rgbaAt(a, i, c), rgbaAt(b, i, c)) << "pixel " << i;
+}
+
+TEST(LightStage, AChangeRecomputesOnlyWhatItInvalidates) {
+    const std::string vdb = writeBall(tempDir("light_stage"));
+    Scene scene = ballScene(vdb);
+    Renderer renderer(scene);
+    const FrameResult first = renderer.render(std::nullopt, false);
+    for (const char* stage : {"load", "brick", "light_grid", "sat", "ambient", "shadows"}) EXPECT_TRUE(ran(first, stage)) << stage;
+    EXPECT_TRUE(first.reused.empty());
+
+    // The same scene again: nothing but classify and march runs.
+    const FrameResult again = renderer.render(std::nullopt, false);
+    for (const char* part : {"load", "brick", "light_grid", "sat", "ambient", "shadow of light 0", "shadow of light 1"})
+        EXPECT_TRUE(has(again.reused, part)) << part;
+    EXPECT_FALSE(ran(again, "sat"));
+    EXPECT_FALSE(ran(again, "shadows"));
+    expectSameImage(first, again);
+
+    // Moving the point light recomputes its cone only; the image is what a fresh render gives.
+    scene.lights[1].position = glm::vec3(-0.6f, 0.3f, 0.4f);
+    renderer.setScene(scene);
+    const FrameResult moved = renderer.render(std::nullopt, false);
+    EXPECT_TRUE(has(moved.reused, "sat"));
+    EXPECT_TRUE(has(moved.reused, "ambient"));
+    EXPECT_TRUE(has(moved.reused, "shadow of light 0"));
+    EXPECT_FALSE(has(moved.reused, "shadow of light 1"));
+    EXPECT_TRUE(ran(moved, "shadows"));
+    expectSameImage(moved, Renderer(scene).render(std::nullopt, false));
+
+    // A brighter key light changes no optical depth: every pass is reused, the image changes.
+    scene.lights[0].intensity = 9.0f;
+    renderer.setScene(scene);
+    const FrameResult brighter = renderer.render(std::nullopt, false);
+    EXPECT_FALSE(ran(brighter, "shadows"));
+    EXPECT_NE(brighter.image.pixels[20 * 48 + 24].rgba.x, moved.image.pixels[20 * 48 + 24].rgba.x);
+    expectSameImage(brighter, Renderer(scene).render(std::nullopt, false));
+
+    // A denser material invalidates the grid, the SAT and every channel, but not the bricks.
+    scene.material.density_scale = 6.0f;
+    renderer.setScene(scene);
+    const FrameResult denser = renderer.render(std::nullopt, false);
+    EXPECT_TRUE(has(denser.reused, "brick"));
+    for (const char* stage : {"light_grid", "sat", "ambient", "shadows"}) EXPECT_TRUE(ran(denser, stage)) << stage;
+    expectSameImage(denser, Renderer(scene).render(std::nullopt, false));
+}
+
+TEST(LightStage, PassesTheSceneDoesNotNeedNeverRun) {
+    const std::string vdb = writeBall(tempDir("light_stage_idle"));
+    Scene scene = ballScene(vdb);
+    scene.lights.pop_back();  // no ambient light: nothing for AO to occlude
+    FrameResult r = Renderer(scene).render(std::nullopt, false);
+    EXPECT_TRUE(ran(r, "shadows"));
+    EXPECT_FALSE(ran(r, "ambient"));
+    scene.effects.shadows = ShadowMethod::Raymarch;  // and no SAT shadows: no light cache at all
+    r = Renderer(scene).render(std::nullopt, false);
+    EXPECT_FALSE(ran(r, "light_grid"));
+    EXPECT_FALSE(ran(r, "sat"));
+}
+
+TEST(LightStage, MemoryBudgetLowersTheResolutionAndSaysSo) {
+    std::string warning;
+    const glm::vec3 extent(400, 200, 100);
+    const int r = fitLightResolution(extent, 256, 1, 2, size_t(16) << 20, warning);
+    EXPECT_LT(r, 256);
+    EXPECT_LE(lightGridBytes(lightGridDims(extent, r), 1, 2), size_t(16) << 20);
+    EXPECT_GT(lightGridBytes(lightGridDims(extent, r + 1), 1, 2), size_t(16) << 20);
+    EXPECT_EQ(warning, "light grid of 256 cells needs " +
+                           std::to_string(lightGridBytes(lightGridDims(extent, 256), 1, 2) >> 20) +
+                           " MiB, over effects.light_memory_mb = 16; using " + std::to_string(r) + " cells instead");
+    std::string none;
+    EXPECT_EQ(fitLightResolution(extent, 64, 1, 2, size_t(16) << 20, none), 64);
+    EXPECT_TRUE(none.empty());
+
+    const std::string vdb = writeBall(tempDir("light_budget"));
+    Scene scene = ballScene(vdb);
+    scene.effects.light_resolution = 200;
+    scene.effects.light_memory_mb = 1;
+    const FrameResult small = Renderer(scene).render(std::nullopt, false);
+    ASSERT_EQ(small.warnings.size(), 1u);
+    EXPECT_NE(small.warnings[0].find("light grid of 200 cells needs"), std::string::npos) << small.warnings[0];
+}
+
+TEST(LightStage, GridDimsFollowTheLongestSide) {
+    EXPECT_EQ(lightGridDims(glm::vec3(400, 200, 100), 128), glm::ivec3(128, 64, 32));
+    EXPECT_EQ(lightGridDims(glm::vec3(8, 8, 1), 64), glm::ivec3(64, 64, 8));
+    EXPECT_EQ(lightGridDims(glm::vec3(100, 3, 100), 10), glm::ivec3(10, 1, 10));
+}
+
+// RMSE of rgb between two renders, and the reference's mean.
+double rgbRmse(const FrameResult& a, const FrameResult& ref) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(a.image.pixels[i].rgba[c]) - ref.image.pixels[i].rgba[c];
+            sum += d * d;
+        }
+    return std::sqrt(sum / double(3 * a.image.pixels.size()));
+}
+
+// On real smoke, narrow SAT cones approach the ray-marched shadows, and more cuboids per cone
+// bring them closer.
+TEST(LightStage, NarrowConesApproachRayMarchedShadowsOnSmoke) {
+    VOXLUX_REQUIRE_SHARED(smoke, "arnold-usd/smoke.vdb");
+    Scene scene;
+    scene.volume.path = smoke;
+    scene.render.width = 96;
+    scene.render.height = 128;
+    scene.render.backend = Backend::Cpu;
+    scene.material.density_scale = 2.0f;
+    Light key;
+    key.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.3f));
+    key.intensity = 6.0f;
+    scene.lights = {key};
+    const FrameResult reference = Renderer(scene).render(std::nullopt, false);
+    scene.effects.shadows = ShadowMethod::None;
+    const double unshadowed = rgbRmse(Renderer(scene).render(std::nullopt, false), reference);
+    scene.effects.shadows = ShadowMethod::SatCone;
+    scene.effects.light_resolution = 128;
+    scene.effects.cone = {0.5f, 0, 0.1f};
+    double last = unshadowed;
+    for (int samples : {12, 20, 50}) {
+        scene.effects.cone.samples = samples;
+        const double e = rgbRmse(Renderer(scene).render(std::nullopt, false), reference);
+        std::printf("  %d cuboids: rgb rmse %.4g (unshadowed %.4g)\n", samples, e, unshadowed);
+        EXPECT_LT(e, last) << samples << " cuboids";
+        last = e;
+    }
+    EXPECT_LT(last, 0.25 * unshadowed);
+}
+
+}  // namespace
+}  // namespace voxlux::test
