@@ -86,7 +86,7 @@ VX_INLINE float vx_sat_quantum(int plane) {
 
 // Sum over the cells of box [lo, hi) (clamped to the grid; cells outside are empty), in the
 // plane's value units: eight lookups, exact until the final float conversion.
-float vx_sat_box(int plane, ivec3 lo, ivec3 hi) {
+VX_INLINE float vx_sat_box(int plane, ivec3 lo, ivec3 hi) {
     ivec3 a = clamp(lo, ivec3(0), ivec3(S.dims));
     ivec3 b = clamp(hi, ivec3(0), ivec3(S.dims));
     if (a.x >= b.x || a.y >= b.y || a.z >= b.z) return 0.0f;
@@ -102,28 +102,26 @@ struct VxCuboid {
     float weight;
 };
 
-// Ambient occlusion (Eq. 4, 5, 8): tau = sum_i (SAT(Sh_i) - SAT(Sh_i-1)) * V_cell / (4 pi r_i^2),
-// the 1/r^2-weighted extinction in cuboid shells Sh_i of inscribed radius r_i. The 1/(4 pi) makes
-// tau the mean optical depth to the neighbourhood's edge: sigma * R in a homogeneous medium.
+// Ambient occlusion (Eq. 4, 5, 8): tau = sum_i (SAT(Sh_i) - SAT(Sh_i-1)) * V_cell / (24 r_i^2),
+// the 1/r^2-weighted extinction in cuboid shells Sh_i of inscribed radius r_i. A cube of
+// inscribed radius r has volume 8 r^3, so its shell of width dr holds 24 r^2 dr: the 1/24 (the
+// cube's 4 pi) makes tau the optical depth to the neighbourhood's edge, sigma * R, in a
+// homogeneous medium.
 // Shell i = 1..n is the cube of 2k_i + 1 cells centred on the cell (r_i = k_i + 1/2),
-// k_i = max(k_i-1 + 1, floor(i R / n)) from k_0 = -1: spread evenly out to the radius R, the
-// innermost being the cell itself. Regrouped by cube, cube i has weight 1/r_i^2 - 1/r_i+1^2
-// (all positive, so the float sum has no cancellation).
+// k_i = floor(i R / n): spread evenly out to the radius R; with n >= R the innermost is the cell
+// itself and every ring of cells is a shell. Regrouped by cube, cube i has weight
+// 1/r_i^2 - 1/r_i+1^2 (never negative, so the float sum has no cancellation; zero for a cube
+// repeated when n > R).
 VxCuboid vx_shell_cuboid(int i) {
     int n = int(S.shells.x);
-    int k = -1;
-    int k_next = -1;
-    for (int j = 1; j <= min(i + 1, n); ++j) {
-        k = k_next;
-        k_next = max(k_next + 1, int(floor(float(j) * S.shells.y / float(n))));
-    }
-    if (i == n) k = k_next;
+    int k = int(floor(float(i) * S.shells.y / float(n)));
+    int k_next = int(floor(float(i + 1) * S.shells.y / float(n)));
     float r = float(k) + 0.5f;
     float r_next = float(k_next) + 0.5f;
     VxCuboid q;
     q.lo = ivec3(-k);
     q.hi = ivec3(k + 1);
-    q.weight = (1.0f / (r * r) - (i < n ? 1.0f / (r_next * r_next) : 0.0f)) * S.shells.z / (4.0f * VX_PI);
+    q.weight = (1.0f / (r * r) - (i < n ? 1.0f / (r_next * r_next) : 0.0f)) * S.shells.z / 24.0f;
     return q;
 }
 
@@ -173,18 +171,19 @@ VxCone vx_cone_from(ivec3 c, VxLight L) {
 // Primary-axis distance from the cell centre after j of the n cuboids: 1/2 (the cell's own face)
 // for j = 0, then geometric in j over the grid's extent `span` (each cuboid 1 + growth times
 // longer than the one before), rounded to cell faces. The same for every cell of a pass.
-float vx_cone_boundary(int j, float span) {
+// `ratio_j` is (1 + growth)^j, kept by the caller's loop (pow per cuboid would dominate).
+VX_INLINE float vx_cone_boundary(int j, float ratio_j, float span) {
     if (j == 0) return 0.5f;
     float n = S.cone.y;
     float g = S.cone.z;
-    float f = g > 1e-4f ? (pow(1.0f + g, float(j)) - 1.0f) / (pow(1.0f + g, n) - 1.0f) : float(j) / n;
+    float f = g > 1e-4f ? (ratio_j - 1.0f) / (S.cone.w - 1.0f) : float(j) / n;
     return 0.5f + floor(f * (span - 0.5f) + 0.5f);
 }
 
 // Cuboid covering the cone between primary distances t0 < t1, relative to the cell: along the
 // primary axis the cells the segment passes through; across it the ray's extent widened by the
 // cone radius at t1, rounded to cell faces and at least one cell wide.
-VxCuboid vx_cone_cuboid(VxCone k, float t0, float t1) {
+VX_INLINE VxCuboid vx_cone_cuboid(VxCone k, float t0, float t1) {
     float radius = S.cone.x * t1 * length(k.wh);
     vec3 e0 = vec3(0.5f) + k.wh * t0;
     vec3 e1 = vec3(0.5f) + k.wh * t1;
@@ -216,8 +215,10 @@ float vx_cone_tau(ivec3 c, VxLight L) {
     float tau = own.weight * vx_sat_box(0, c + own.lo, c + own.hi);
     float span = float(S.dims[k.axis]) - 0.5f;
     float t0 = 0.5f;
+    float ratio_j = 1.0f;
     for (int j = 1; j <= int(S.cone.y) && t0 < k.reach; ++j) {
-        float t1 = min(vx_cone_boundary(j, span), k.reach);
+        ratio_j *= 1.0f + S.cone.z;
+        float t1 = min(vx_cone_boundary(j, ratio_j, span), k.reach);
         if (t1 <= t0) continue;
         VxCuboid q = vx_cone_cuboid(k, t0, t1);
         tau += q.weight * vx_sat_box(0, c + q.lo, c + q.hi);

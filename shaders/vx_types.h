@@ -45,7 +45,8 @@ struct VxSatParams {
     vec4 quantum;           // per SAT plane: the value of one integer unit (a power of two)
     vec4 shells;            // x = shell count, y = neighbourhood radius in cells,
                             // z = world edge of one cell, w = SAT plane the AO pass reads
-    vec4 cone;              // x = tan(cone half-angle), y = cuboids per cone, z = growth, w = unused
+    vec4 cone;              // x = tan(cone half-angle), y = cuboids per cone, z = growth,
+                            // w = (1 + growth)^cuboids
     ivec4 pass;             // x = light index (shadow pass), y = cache channel written,
                             // z = floats per cache cell, w = unused
 };

@@ -30,7 +30,7 @@ public:
         return img;
     }
 
-    void scanSat(SummedVolume& sat) override { scanSummedVolume(sat); }
+    void buildSat(const LightGrid& grid, SummedVolume& sat) override { buildSummedVolume(grid, sat); }
 
     void fillLightChannel(const LightPass& pass, LightCache& cache) override { fillLightChannelCpu(pass, cache); }
 };

@@ -28,9 +28,10 @@ std::vector<CpuKernel::VxCuboid> sharedStencil(CpuKernel& k, int light) {
     const CpuKernel::VxCone cone = k.vx_cone_from(glm::ivec3(0), L);
     stencil.push_back(k.vx_cone_own_cell(cone));
     const float span = float(k.S.dims[cone.axis]) - 0.5f;
-    float t0 = 0.5f;
+    float t0 = 0.5f, ratio_j = 1.0f;
     for (int j = 1; j <= int(k.S.cone.y); ++j) {
-        const float t1 = k.vx_cone_boundary(j, span);
+        ratio_j *= 1.0f + k.S.cone.z;
+        const float t1 = k.vx_cone_boundary(j, ratio_j, span);
         if (t1 <= t0) continue;
         stencil.push_back(k.vx_cone_cuboid(cone, t0, t1));
         t0 = t1;

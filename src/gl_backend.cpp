@@ -200,7 +200,8 @@ public:
         return img;
     }
 
-    void scanSat(SummedVolume& sat) override {
+    void buildSat(const LightGrid& grid, SummedVolume& sat) override {
+        quantizeLightGrid(grid, sat);
         ensureGlContext();
         const GLuint program = satScanProgram();
         kernel::VxSatParams params{};

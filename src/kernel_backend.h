@@ -7,6 +7,7 @@
 
 #include "kernel_inputs.h"
 #include "light_cache.h"
+#include "light_grid.h"
 
 namespace voxlux {
 
@@ -21,8 +22,8 @@ public:
     virtual ~KernelBackend() = default;
     virtual std::string name() const = 0;   // "cpu" or "gl (<renderer>)"
     virtual RenderImage march(const KernelInputs& inputs) = 0;
-    // Prefix sums of a quantised SAT (quantizeLightGrid), in place.
-    virtual void scanSat(SummedVolume& sat) = 0;
+    // The SAT of a light grid, reusing `sat`'s storage; both backends give the same integers.
+    virtual void buildSat(const LightGrid& grid, SummedVolume& sat) = 0;
     // One light-cache channel (see LightPass).
     virtual void fillLightChannel(const LightPass& pass, LightCache& cache) = 0;
 };

@@ -59,11 +59,7 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     } else {
         grid_key_.clear();  // stays cleared if a pass throws
         grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, bleeding); });
-        sat_ = clock("sat", [&] {
-            SummedVolume s = quantizeLightGrid(grid_);
-            backend.scanSat(s);
-            return s;
-        });
+        clock("sat", [&] { backend.buildSat(grid_, sat_); });
         sat_generation_ = nextSatGeneration();
         grid_key_ = grid_key;
         channel_keys_.clear();
@@ -93,7 +89,8 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     S.quantum = sat_.quantum;
     S.pass.z = cache_.channels;
     const float cell_world = cubeRootOfDeterminant(light_to_world);
-    S.cone = glm::vec4(std::tan(glm::radians(fx.cone.angle)), float(fx.cone.samples), fx.cone.growth, 0.0f);
+    S.cone = glm::vec4(std::tan(glm::radians(fx.cone.angle)), float(fx.cone.samples), fx.cone.growth,
+                       std::pow(1.0f + fx.cone.growth, float(fx.cone.samples)));
 
     // Runs the pass for `channel` unless it was computed from the same inputs; returns whether it ran.
     auto fill = [&](int channel, const std::string& key) {

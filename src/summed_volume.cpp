@@ -12,9 +12,15 @@ namespace {
 
 using U96 = kernel::CpuKernel::VxU96;
 
+// Cell value -> integer quanta. Scaling by a power of two is exact; rounding is the only
+// quantisation. Negative values never reach here (the atlas clamps them), but stay 0 if they do.
+uint64_t quantize(float v, double inv_quantum) { return uint64_t(std::nearbyint(std::max(double(v), 0.0) * inv_quantum)); }
+
 // One plane's three word arrays, addressed by entry.
 struct Words {
-    uint32_t *lo, *mid, *hi;
+    uint32_t* lo;
+    uint32_t* mid;
+    uint32_t* hi;
     U96 load(size_t e) const { return {lo[e], mid[e], hi[e]}; }
     void store(size_t e, U96 v) const {
         lo[e] = v.lo;
@@ -22,13 +28,6 @@ struct Words {
         hi[e] = v.hi;
     }
 };
-
-// Entries [dst, dst + count) += entries [src, src + count), with the kernel's modular addition.
-void addRange(const Words& w, size_t dst, size_t src, size_t count) {
-    kernel::CpuKernel k;
-    VX_SIMD_LOOP
-    for (size_t i = 0; i < count; ++i) w.store(dst + i, k.vx_u96_add(w.load(dst + i), w.load(src + i)));
-}
 
 }  // namespace
 
@@ -39,56 +38,90 @@ float satQuantum(float max_value) {
     return std::ldexp(1.0f, e - 63);
 }
 
-SummedVolume quantizeLightGrid(const LightGrid& g) {
-    SummedVolume s;
+void prepareSummedVolume(const LightGrid& g, SummedVolume& s) {
     s.dims = g.dims;
     s.planes = g.planes;
-    s.words.assign(s.planeEntries() * s.planes * 3, 0u);
+    s.words.resize(s.planeEntries() * size_t(s.planes) * 3);
     const size_t cells = g.cells();
-    const size_t sx = size_t(g.dims.x) + 1, sy = size_t(g.dims.y) + 1;
     for (int p = 0; p < g.planes; ++p) {
         const float* v = g.values.data() + p * cells;
-        const float q = satQuantum(*std::max_element(v, v + cells));
-        s.quantum[p] = q;
+        s.quantum[p] = satQuantum(*std::max_element(v, v + cells));
+    }
+}
+
+void quantizeLightGrid(const LightGrid& g, SummedVolume& s) {
+    prepareSummedVolume(g, s);
+    std::fill(s.words.begin(), s.words.end(), 0u);
+    const size_t sx = size_t(g.dims.x) + 1, sy = size_t(g.dims.y) + 1;
+    for (int p = 0; p < g.planes; ++p) {
+        const float* v = g.values.data() + p * g.cells();
+        const double inv_q = 1.0 / double(s.quantum[p]);
         uint32_t* lo = s.word(p, 0);
         uint32_t* mid = s.word(p, 1);
         tbb::parallel_for(0, g.dims.z, [&](int z) {
             for (int y = 0; y < g.dims.y; ++y)
                 for (int x = 0; x < g.dims.x; ++x) {
-                    // v / q scales by a power of two: exact; rounding is the only quantisation.
-                    const double units = std::nearbyint(std::max(double(v[(size_t(z) * g.dims.y + y) * g.dims.x + x]), 0.0) / q);
-                    const auto n = uint64_t(units);
+                    const uint64_t n = quantize(v[(size_t(z) * g.dims.y + y) * g.dims.x + x], inv_q);
                     const size_t e = (size_t(z + 1) * sy + (y + 1)) * sx + (x + 1);
                     lo[e] = uint32_t(n);
                     mid[e] = uint32_t(n >> 32);
                 }
         });
     }
-    return s;
 }
 
-void scanSummedVolume(SummedVolume& s) {
-    const size_t sx = size_t(s.dims.x) + 1, sy = size_t(s.dims.y) + 1, sz = size_t(s.dims.z) + 1;
-    for (int p = 0; p < s.planes; ++p) {
+void buildSummedVolume(const LightGrid& g, SummedVolume& s) {
+    prepareSummedVolume(g, s);
+    const int dx = g.dims.x, dy = g.dims.y, dz = g.dims.z;
+    const size_t sx = size_t(dx) + 1, slice = sx * (size_t(dy) + 1);
+    for (int p = 0; p < g.planes; ++p) {
         const Words w{s.word(p, 0), s.word(p, 1), s.word(p, 2)};
-        // x and y run within a z slice (which stays in cache); z adds whole slices in turn.
-        tbb::parallel_for(size_t(1), sz, [&](size_t z) {
-            kernel::CpuKernel k;
-            const size_t slice = z * sy * sx;
-            for (size_t y = 1; y < sy; ++y) {
-                const size_t row = slice + y * sx;
-                U96 run = w.load(row);
-                for (size_t x = 1; x < sx; ++x) {
-                    run = k.vx_u96_add(run, w.load(row + x));
-                    w.store(row + x, run);
+        const float* v = g.values.data() + p * g.cells();
+        const double inv_q = 1.0 / double(s.quantum[p]);
+        std::fill(w.lo, w.lo + slice, 0u);  // the z = 0 face
+        std::fill(w.mid, w.mid + slice, 0u);
+        std::fill(w.hi, w.hi + slice, 0u);
+        // Slice z from slice z - 1 (both in cache): S(y) = R(y) + S(y-1) + S'(y) - S'(y-1), where R
+        // is the row's x prefix sum and S' the previous slice. Rows are independent in the x scan;
+        // the y recurrence runs across x in SIMD.
+        for (int z = 1; z <= dz; ++z) {
+            const size_t base = size_t(z) * slice;
+            tbb::parallel_for(tbb::blocked_range<int>(0, dy + 1, 16), [&](const tbb::blocked_range<int>& rows) {
+                kernel::CpuKernel k;
+                std::vector<uint64_t> quanta(static_cast<size_t>(dx));
+                for (int y = rows.begin(); y < rows.end(); ++y) {
+                    const size_t row = base + size_t(y) * sx;
+                    U96 run{0u, 0u, 0u};
+                    w.store(row, run);
+                    if (y == 0) {  // the y = 0 face
+                        std::fill(w.lo + row, w.lo + row + sx, 0u);
+                        std::fill(w.mid + row, w.mid + row + sx, 0u);
+                        std::fill(w.hi + row, w.hi + row + sx, 0u);
+                        continue;
+                    }
+                    // Quantise the row as one SIMD loop, then the (serial) running sum.
+                    const float* cells = v + (size_t(z - 1) * dy + size_t(y - 1)) * dx;
+                    for (int x = 0; x < dx; ++x) quanta[size_t(x)] = quantize(cells[x], inv_q);
+                    for (int x = 0; x < dx; ++x) {
+                        const uint64_t n = quanta[size_t(x)];
+                        run = k.vx_u96_add(run, {uint32_t(n), uint32_t(n >> 32), 0u});
+                        w.store(row + size_t(x) + 1, run);
+                    }
                 }
-                if (y > 1) addRange(w, row, row - sx, sx);
-            }
-        });
-        for (size_t z = 2; z < sz; ++z)
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, sy * sx, 8192), [&](const tbb::blocked_range<size_t>& r) {
-                addRange(w, z * sy * sx + r.begin(), (z - 1) * sy * sx + r.begin(), r.size());
             });
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, sx, 64), [&](const tbb::blocked_range<size_t>& cols) {
+                kernel::CpuKernel k;
+                for (int y = 1; y <= dy; ++y) {
+                    const size_t row = base + size_t(y) * sx, up = row - sx, prev = row - slice, prev_up = up - slice;
+#pragma GCC ivdep  // the four rows are distinct
+                    for (size_t x = cols.begin(); x < cols.end(); ++x) {
+                        const U96 sum = k.vx_u96_add(k.vx_u96_add(w.load(row + x), w.load(up + x)),
+                                                     k.vx_u96_sub(w.load(prev + x), w.load(prev_up + x)));
+                        w.store(row + x, sum);
+                    }
+                }
+            });
+        }
     }
 }
 

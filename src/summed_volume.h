@@ -28,11 +28,15 @@ struct SummedVolume {
 // smallest power of two above max_value, so every cell is below 2^63 quanta.
 float satQuantum(float max_value);
 
-// The quantised cells in place (entry (x+1, y+1, z+1) holds cell (x, y, z); the zero faces stay
-// zero), before any prefix sum. Both backends start their scans from this.
-SummedVolume quantizeLightGrid(const LightGrid& grid);
+// Sizes `sat` for `grid` (keeping its storage when it fits) and sets the quanta.
+void prepareSummedVolume(const LightGrid& grid, SummedVolume& sat);
 
-// Prefix sums along x, then y, then z, in place, on the CPU (TBB).
-void scanSummedVolume(SummedVolume& sat);
+// The quantised cells alone (entry (x+1, y+1, z+1) holds cell (x, y, z), the faces zero), before
+// any prefix sum: what the GL backend uploads and scans.
+void quantizeLightGrid(const LightGrid& grid, SummedVolume& sat);
+
+// The whole table on the CPU: quantisation and the three prefix sums fused slice by slice, so that
+// beyond the cache only the grid is read and the table written once.
+void buildSummedVolume(const LightGrid& grid, SummedVolume& sat);
 
 }  // namespace voxlux

@@ -21,8 +21,7 @@ struct SatGrid {
         grid.dims = dims;
         grid.values = std::move(values);
         grid.needed.assign(grid.cells(), 1);
-        sat = quantizeLightGrid(grid);
-        scanSummedVolume(sat);
+        buildSummedVolume(grid, sat);
         k.sat = sat.words.data();
         k.S.dims = glm::ivec4(dims, 1);
         k.S.quantum = sat.quantum;
@@ -140,11 +139,10 @@ TEST(Sat, QuantumIsAPowerOfTwoAboveTheMaximum) {
     EXPECT_EQ(satQuantum(1e-30f), std::ldexp(1.0f, -60 - 63));   // stays a normal float
 }
 
-// AO shells: half-widths k_i = max(k_{i-1} + 1, floor(i R / n)), from k_0 = -1.
+// AO shells: half-widths k_i = floor(i R / n).
 std::vector<int> shellHalfWidths(int n, float radius_cells) {
     std::vector<int> k;
-    int last = -1;
-    for (int i = 1; i <= n; ++i) k.push_back(last = std::max(last + 1, int(std::floor(i * radius_cells / n))));
+    for (int i = 1; i <= n; ++i) k.push_back(int(std::floor(i * radius_cells / n)));
     return k;
 }
 
@@ -169,19 +167,35 @@ TEST(AmbientOcclusion, HomogeneousMediumMatchesTheShellSum) {
     const glm::ivec3 d(48);
     const float sigma = 0.3f, cell = 0.25f;
     SatGrid g(d, std::vector<float>(size_t(d.x) * d.y * d.z, sigma), cell);
-    for (int shells : {1, 3, 7, 11}) {
+    for (int shells : {1, 3, 7, 11, 40}) {  // 40 > radius: repeated cubes
         kernel::CpuKernel k = g.k;
         const float radius = 12.0f;
         setShells(k, shells, radius, cell);
         double expected = 0.0, inner = 0.0;
-        for (int h : shellHalfWidths(shells, radius)) {
+        for (int h : shellHalfWidths(shells, radius)) {  // Eq. 4 shell by shell
             const double outer = std::pow(2.0 * h + 1.0, 3.0) * sigma;
             expected += (outer - inner) / ((h + 0.5) * (h + 0.5));
             inner = outer;
         }
-        expected *= cell / (4.0 * M_PI);
+        expected *= cell / 24.0;
         EXPECT_NEAR(k.vx_ambient_tau({24, 24, 24}, 0), expected, 1e-6 * expected) << shells << " shells";
     }
+}
+
+// With a shell per ring of cells, the homogeneous AO approaches the optical depth to the edge,
+// sigma * R. Weighting each ring by its outer radius (as the paper does) undercounts the inner
+// rings: sum_k (24k^2 + 2) / (k + 1/2)^2 falls short of 24 (R + 1/2) by about 24 (ln R + 1), a
+// relative deficit below (ln R + 1.5) / R.
+TEST(AmbientOcclusion, ManyShellsGiveTheOpticalDepthToTheEdge) {
+    const glm::ivec3 d(64);
+    const float sigma = 0.4f, cell = 0.5f, radius = 24.0f;
+    SatGrid g(d, std::vector<float>(size_t(d.x) * d.y * d.z, sigma), cell);
+    kernel::CpuKernel k = g.k;
+    setShells(k, 96, radius, cell);
+    const double edge = sigma * (radius + 0.5) * cell;  // the outermost cube's inscribed radius
+    const double ratio = k.vx_ambient_tau({32, 32, 32}, 0) / edge;
+    EXPECT_LE(ratio, 1.0);
+    EXPECT_GE(ratio, 1.0 - (std::log(radius) + 1.5) / radius);
 }
 
 TEST(AmbientOcclusion, MonotoneInDensity) {
@@ -214,7 +228,7 @@ kernel::VxLight point(glm::vec3 position) {
 }
 
 void setCone(kernel::CpuKernel& k, float angle_deg, int samples, float growth) {
-    k.S.cone = glm::vec4(std::tan(glm::radians(angle_deg)), float(samples), growth, 0.0f);
+    k.S.cone = glm::vec4(std::tan(glm::radians(angle_deg)), float(samples), growth, std::pow(1.0f + growth, float(samples)));
 }
 
 // A slab of extinction sigma filling cells z in [z0, z1) of a grid, empty elsewhere.

@@ -1,0 +1,316 @@
+// What the Extinction-SAT lighting costs and how accurate it is (docs/accuracy-sat.md).
+//
+// 1. The paper's GTX 285 figures (Schlegel 2011, Sec. 4) against the CPU backend on a full 256^3
+//    light grid, and the SAT build against a STREAM-style copy measured here.
+// 2. On real caches, sweeps of each quality knob (light resolution, AO shells, cone cuboids):
+//    the time of every pass and the final image's error against a reference render.
+// Prints figures and writes an error-against-time plot; it asserts nothing.
+//
+//   build/voxlux_bench_sat [--data DIR] [--svg docs/accuracy-sat.svg] [--quick] [--paper-only | --sweeps-only]
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "camera.h"
+#include "cpu_light_pass.h"
+#include "kernel_backend.h"
+#include "renderer.h"
+#include "summed_volume.h"
+#include "svg_plot.h"
+
+namespace {
+
+using namespace voxlux;
+
+double seconds(const std::function<void()>& work) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double best(int repeats, const std::function<void()>& work) {
+    double t = 1e30;
+    for (int i = 0; i < repeats; ++i) t = std::min(t, seconds(work));
+    return t;
+}
+
+// STREAM "copy": a[i] = b[i] over arrays far larger than the caches, all threads; bytes moved
+// per second counting the read and the write.
+double copyBandwidth() {
+    const size_t n = size_t(64) << 20;  // 256 MB per array
+    std::vector<float> a(n, 1.0f), b(n, 2.0f);
+    const double t = best(5, [&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+            std::copy(b.begin() + r.begin(), b.begin() + r.end(), a.begin() + r.begin());
+        });
+    });
+    return 2.0 * n * sizeof(float) / t;
+}
+
+// A full light grid of n^3 cells of smooth noise, every cell needed (the paper computes all).
+LightGrid syntheticGrid(int n, int planes) {
+    LightGrid g;
+    g.dims = glm::ivec3(n);
+    g.planes = planes;
+    g.values.resize(g.cells() * planes);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (auto& v : g.values) v = u(rng) * u(rng) * 4.0f;
+    g.needed.assign(g.cells(), 1);
+    return g;
+}
+
+LightPass passOver(const LightGrid& g, const SummedVolume& sat, const std::vector<kernel::VxLight>& lights) {
+    LightPass p;
+    p.lights = &lights;
+    p.sat = &sat;
+    p.sat_generation = 1;
+    p.needed = &g.needed;
+    p.params.dims = glm::ivec4(g.dims, sat.planes);
+    p.params.quantum = sat.quantum;
+    p.params.light_to_world = glm::mat4(1.0f);
+    p.params.world_to_light = glm::mat4(1.0f);
+    p.params.pass.z = 1;
+    return p;
+}
+
+void paperComparison(int repeats) {
+    const int n = 256;
+    std::printf("## Against Schlegel et al. 2011 (GTX 285), full %d^3 light grid, CPU backend, %u threads\n\n", n,
+                std::thread::hardware_concurrency());
+    const double copy = copyBandwidth();
+    std::printf("STREAM-style copy bandwidth (same binary): %.1f GB/s\n\n", copy / 1e9);
+    std::printf("| pass | paper (s) | voxlux (s) | paper / voxlux |\n|---|---|---|---|\n");
+    auto row = [](const char* pass, double paper, double ours) {
+        std::printf("| %s | %s | %.3f | %s |\n", pass, paper > 0 ? std::to_string(paper).substr(0, 5).c_str() : "-", ours,
+                    paper > 0 ? (std::to_string(paper / ours).substr(0, 4) + "x").c_str() : "-");
+    };
+
+    SummedVolume sat;
+    for (int planes : {1, 4}) {
+        const LightGrid g = syntheticGrid(n, planes);
+        sat = SummedVolume{};
+        const double first = seconds([&] { buildSummedVolume(g, sat); });
+        const double t = best(repeats, [&] { buildSummedVolume(g, sat); });  // storage reused, as across frames
+        std::printf("|  (first build, allocating: %.3f s) | | | |\n", first);
+        row(planes == 1 ? "SAT build, extinction" : "SAT build, extinction + RGB bleeding", planes == 4 ? 0.311 : 0.0, t);
+        if (planes == 1) {
+            // At least 4 bytes in and 12 out per cell: the floor any SAT build must move.
+            const double floor_bytes = double(g.cells()) * (4.0 + 12.0);
+            std::printf("|  (moves >= %.0f MB: %.1f GB/s, %.0f%% of copy bandwidth) | | | |\n", floor_bytes / 1e6,
+                        floor_bytes / t / 1e9, 100.0 * floor_bytes / t / copy);
+        }
+    }
+    const LightGrid g = syntheticGrid(n, 1);
+    buildSummedVolume(g, sat);
+    LightCache cache;
+    cache.channels = 1;
+    cache.values.assign(g.cells(), 0.0f);
+    std::vector<kernel::VxLight> lights(2);
+    lights[0].pos_type = glm::vec4(0, 0, 0, VX_LIGHT_DIRECTIONAL);
+    lights[0].dir_cos = glm::vec4(glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f)), 0);
+    lights[1].pos_type = glm::vec4(100.0f, 200.0f, 140.0f, VX_LIGHT_POINT);
+    const std::map<int, double> paper_ao = {{3, 0.0307}, {7, 0.0791}, {11, 0.1382}};
+    for (int shells : {3, 7, 11}) {
+        LightPass p = passOver(g, sat, lights);
+        p.params.pass.x = -1;
+        p.params.shells = glm::vec4(float(shells), 8.0f, 1.0f, 0.0f);
+        const double t = best(repeats, [&] { fillLightChannelCpu(p, cache); });
+        row(("AO, " + std::to_string(shells) + " shells").c_str(), paper_ao.at(shells), t);
+    }
+    const std::map<int, double> paper_cone = {{20, 0.1821}, {50, 0.2671}};
+    for (int light : {0, 1})
+        for (int samples : {20, 50}) {
+            LightPass p = passOver(g, sat, lights);
+            p.params.pass.x = light;
+            p.params.cone = glm::vec4(std::tan(glm::radians(2.0f)), float(samples), 0.1f, std::pow(1.1f, float(samples)));
+            const double t = best(light == 0 ? repeats : 1, [&] { fillLightChannelCpu(p, cache); });
+            const std::string label = std::string(light == 0 ? "cone shadows, directional, " : "cone shadows, point, ") +
+                                      std::to_string(samples) + " cuboids";
+            row(label.c_str(), light == 0 ? paper_cone.at(samples) : 0.0, t);
+        }
+    std::printf("\n");
+}
+
+struct Render {
+    double sat = 0, light_grid = 0, ambient = 0, shadows = 0, march = 0;
+    RenderImage image;
+    double light() const { return light_grid + sat + ambient + shadows; }
+};
+
+// Renders `scene` twice on fresh renderers (nothing reused) and keeps the faster time per stage.
+Render render(const Scene& scene) {
+    Render r;
+    for (int run = 0; run < 2; ++run) {
+        FrameResult f = Renderer(scene).render(std::nullopt, false);
+        std::map<std::string, double> t(f.stage_seconds.begin(), f.stage_seconds.end());
+        auto keep = [&](double& slot, const char* stage) { slot = run ? std::min(slot, t[stage]) : t[stage]; };
+        keep(r.light_grid, "light_grid");
+        keep(r.sat, "sat");
+        keep(r.ambient, "ambient");
+        keep(r.shadows, "shadows");
+        keep(r.march, "march");
+        r.image = std::move(f.image);
+    }
+    return r;
+}
+
+struct Error {
+    double rmse = 0, max_abs = 0;
+};
+
+// On scene-linear RGB.
+Error imageError(const RenderImage& a, const RenderImage& ref) {
+    Error e;
+    double sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(a.pixels[i].rgba[c]) - ref.pixels[i].rgba[c];
+            sum += d * d;
+            e.max_abs = std::max(e.max_abs, std::abs(d));
+        }
+    e.rmse = std::sqrt(sum / (3.0 * a.pixels.size()));
+    return e;
+}
+
+struct Dataset {
+    std::string name, file;
+    glm::ivec2 res;
+    float density_scale;
+};
+
+Light keyLight() {
+    Light l;
+    l.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.3f));
+    l.intensity = 6.0f;
+    return l;
+}
+
+void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, const char* color_shadow,
+           const char* color_ao) {
+    Scene base;
+    base.volume.path = d.file;
+    base.render.width = d.res.x;
+    base.render.height = d.res.y;
+    base.render.backend = Backend::Cpu;
+    base.material.density_scale = d.density_scale;
+
+    // Shadows: one directional key light; the reference marches a shadow ray per sample at half
+    // a voxel (render.shadow_step 0.5).
+    Scene shadowed = base;
+    shadowed.lights = {keyLight()};
+    shadowed.render.shadow_step = 0.5f;
+    const Render ref = render(shadowed);
+    std::printf("## %s (%s), %dx%d\n\n", d.name.c_str(), d.file.c_str(), d.res.x, d.res.y);
+    std::printf("Reference: ray-marched shadows (shadow step 0.5 voxel), march %.3f s.\n\n", ref.march);
+    std::printf("| light res | cone cuboids | light grid (s) | SAT (s) | shadows (s) | march (s) | RMSE | max abs |\n");
+    std::printf("|---|---|---|---|---|---|---|---|\n");
+    bench::PlotSeries by_res{d.name + ": light res 64..256, 20 cuboids", color_shadow, {}};
+    bench::PlotSeries by_cuboids{d.name + ": 12, 20, 50 cuboids, res 256", color_shadow, {}};
+    by_cuboids.dashed = true;
+    auto shadowPoint = [&](int res, int samples, bench::PlotSeries& series, const std::string& label) {
+        Scene s = shadowed;
+        s.effects.shadows = ShadowMethod::SatCone;
+        s.effects.light_resolution = res;
+        s.effects.cone = {1.0f, samples, 0.1f};
+        const Render r = render(s);
+        const Error e = imageError(r.image, ref.image);
+        std::printf("| %d | %d | %.3f | %.3f | %.3f | %.3f | %.4g | %.4g |\n", res, samples, r.light_grid, r.sat,
+                    r.shadows, r.march, e.rmse, e.max_abs);
+        series.points.push_back({r.light() + r.march, e.rmse, label});
+    };
+    for (int res : {64, 128, 192, 256}) shadowPoint(res, 20, by_res, std::to_string(res));
+    for (int samples : {12, 50}) shadowPoint(128, samples, by_res, "");  // table only
+    by_res.points.resize(4);
+    for (int samples : quick ? std::vector<int>{} : std::vector<int>{12, 20, 50})
+        shadowPoint(256, samples, by_cuboids, std::to_string(samples));
+    std::printf("\n");
+
+    // Ambient occlusion: an ambient light only. AO has no ray-marched counterpart, so the reference
+    // is the same model with a shell at every ring of cells out to the radius (64 shells).
+    Scene ambient = base;
+    Light sky;
+    sky.type = LightType::Ambient;
+    sky.intensity = 1.0f;
+    ambient.lights = {sky};
+    // A neighbourhood of 1/8 of the volume's longest side (16 cells at light res 128).
+    const LoadedVolume volume = loadVolume(d.file, base.volume);
+    const openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
+    glm::vec3 lo, hi;
+    worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
+                glm::vec3(box.max().x(), box.max().y(), box.max().z()), lo, hi);
+    const float radius = 0.125f * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    ambient.effects.ambient_occlusion = AmbientOcclusion{64, radius};
+    ambient.effects.light_resolution = 128;
+    const Render ao_ref = render(ambient);
+    std::printf("AO reference: radius %.3g (1/8 of the longest side), 64 shells (one per ring of cells) at light res "
+                "128, AO pass %.3f s.\n\n",
+                radius, ao_ref.ambient);
+    std::printf("| light res | shells | light grid (s) | SAT (s) | AO (s) | march (s) | RMSE | max abs |\n");
+    std::printf("|---|---|---|---|---|---|---|---|\n");
+    bench::PlotSeries ao_series{d.name + ": AO 3, 7, 11 shells (vs 64)", color_ao, {}};
+    for (int shells : {3, 7, 11}) {
+        Scene s = ambient;
+        s.effects.ambient_occlusion->shells = shells;
+        const Render r = render(s);
+        const Error e = imageError(r.image, ao_ref.image);
+        std::printf("| 128 | %d | %.3f | %.3f | %.3f | %.3f | %.4g | %.4g |\n", shells, r.light_grid, r.sat,
+                    r.ambient, r.march, e.rmse, e.max_abs);
+        ao_series.points.push_back({r.light() + r.march, e.rmse, std::to_string(shells)});
+        ao_series.dotted = true;
+    }
+    std::printf("\n");
+    plot.push_back(by_res);
+    if (!by_cuboids.points.empty()) plot.push_back(by_cuboids);
+    plot.push_back(ao_series);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string data = std::string(VOXLUX_SOURCE_DIR) + "/../shared/data";
+    std::string svg;
+    bool quick = false, paper = true, sweeps = true;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
+        else if (!std::strcmp(argv[i], "--paper-only")) sweeps = false;
+        else if (!std::strcmp(argv[i], "--sweeps-only")) paper = false;
+        else if (!std::strcmp(argv[i], "--svg") && i + 1 < argc) svg = argv[++i];
+        else if (!std::strcmp(argv[i], "--quick")) quick = true;
+        else {
+            std::fprintf(stderr,
+                         "usage: voxlux_bench_sat [--data DIR] [--svg FILE] [--quick] [--paper-only | --sweeps-only]\n");
+            return 2;
+        }
+    }
+    if (paper) paperComparison(quick ? 1 : 3);
+    if (!sweeps) return 0;
+
+    const std::vector<Dataset> sets = {{"smoke", data + "/arnold-usd/smoke.vdb", {240, 400}, 2.0f},
+                                       {"cloud", data + "/disney-wdas-cloud/wdas_cloud_sixteenth.vdb", {400, 300}, 0.1f}};
+    std::vector<bench::PlotSeries> plot;
+    const char* colors[][2] = {{"#1f77b4", "#9ecae1"}, {"#d62728", "#fc9272"}};
+    for (size_t i = 0; i < sets.size(); ++i) {
+        if (!std::filesystem::exists(sets[i].file)) {
+            std::printf("%s: %s absent, skipped\n", sets[i].name.c_str(), sets[i].file.c_str());
+            continue;
+        }
+        sweep(sets[i], quick, plot, colors[i][0], colors[i][1]);
+    }
+    if (!svg.empty() && !plot.empty()) {
+        bench::writeLogLogSvg(svg, "Extinction-SAT lighting: image error against time (CPU, 2 cores)",
+                              "light passes + march (s)", "RMSE of scene-linear RGB", plot);
+        std::printf("wrote %s\n", svg.c_str());
+    }
+    return 0;
+}
