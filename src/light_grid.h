@@ -14,6 +14,11 @@
 
 namespace voxlux {
 
+// Cells are clamped to this optical depth across one cell. Beyond it a cell is black either way;
+// the clamp keeps one absurd voxel (1e30) from setting the SAT's quantum and so from rounding
+// every ordinary cell to zero (src/summed_volume.h).
+constexpr float kMaxCellOpticalDepth = 1e4f;
+
 struct LightGrid {
     glm::ivec3 dims{0};
     glm::vec3 origin{0.0f};        // index-space position of cell (0, 0, 0)'s low corner
@@ -21,6 +26,7 @@ struct LightGrid {
     int planes = 1;                // 1: extinction; 4: and extinction * (1 - bleeding * albedo) rgb
     std::vector<float> values;     // plane-major; in a plane x fastest: mean value over the cell
     std::vector<uint8_t> needed;   // 1 where the march may read the light cache (near extinction)
+    uint64_t clamped_cells = 0;    // cells above kMaxCellOpticalDepth, clamped
     size_t cells() const { return size_t(dims.x) * dims.y * dims.z; }
     glm::mat4 lightToIndex() const;
 };

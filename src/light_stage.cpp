@@ -46,8 +46,10 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
 
     // Grid and SAT: from the volume, the material and the grid settings.
     const glm::vec3 extent((inputs.pages->bricks_max - inputs.pages->bricks_min + 1) * VX_BRICK);
+    // Cells finer than a quarter voxel would only repeat voxels (a tiny volume at the default 128).
+    const int wanted = std::min(fx.light_resolution, 4 * int(std::max({extent.x, extent.y, extent.z})));
     std::string warning;
-    const int resolution = fitLightResolution(extent, fx.light_resolution, planes, layout.channels,
+    const int resolution = fitLightResolution(extent, wanted, planes, layout.channels,
                                               size_t(fx.light_memory_mb) << 20, warning);
     if (!warning.empty()) warnings.push_back(warning);
     const nlohmann::json scene_json = sceneToJson(scene);
@@ -59,6 +61,9 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     } else {
         grid_key_.clear();  // stays cleared if a pass throws
         grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, bleeding); });
+        if (grid_.clamped_cells)
+            warnings.push_back(std::to_string(grid_.clamped_cells) + " light-grid cells clamped to an optical depth of " +
+                               std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)");
         clock("sat", [&] { backend.buildSat(grid_, sat_); });
         sat_generation_ = nextSatGeneration();
         grid_key_ = grid_key;
