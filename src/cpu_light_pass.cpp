@@ -94,31 +94,44 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
     const float quantum = k.vx_sat_quantum(plane);
     auto store = [&](size_t cell, float tau) { cache.values[cell * size_t(cache.channels) + size_t(channel)] = tau; };
 
+    // Chunks of kRow cells of one row whose cells the march can read (the rest are skipped).
+    auto chunkNeeded = [&](size_t row, int x0) {
+        bool any = false;
+        for (int i = x0; i < std::min(x0 + kRow, d.x); ++i) any |= needed[row + size_t(i)] != 0;
+        return any;
+    };
+    const int chunks = (d.x + kRow - 1) / kRow;
     tbb::parallel_for(tbb::blocked_range2d<int>(0, d.z, 1, 0, d.y, 4), [&](const tbb::blocked_range2d<int>& r) {
         CpuKernel kk = k;
+        std::vector<float> acc(size_t(chunks) * kRow);
+        std::vector<uint8_t> active(static_cast<size_t>(chunks));
         for (int z = r.rows().begin(); z < r.rows().end(); ++z)
-            for (int y = r.cols().begin(); y < r.cols().end(); ++y)
-                for (int x0 = 0; x0 < d.x; x0 += kRow) {
-                    const size_t row = (size_t(z) * d.y + y) * d.x;
-                    const int lanes = std::min(kRow, d.x - x0);
-                    bool any = false;
-                    for (int i = 0; i < lanes; ++i) any |= needed[row + x0 + i] != 0;
-                    if (!any) continue;
-                    if (stencil.empty()) {  // per-cell cone (point and spot lights)
-                        for (int i = 0; i < lanes; ++i)
-                            if (needed[row + x0 + i])
-                                store(row + x0 + i, kk.vx_cone_tau({x0 + i, y, z}, kk.vx_light(light)));
-                        continue;
-                    }
-                    float acc[kRow] = {};
-                    for (const auto& q : stencil) {
-                        const bool inside = x0 + q.lo.x >= 0 && x0 + kRow - 1 + q.hi.x <= d.x;
-                        if (inside) addCuboidRow<false>(kk, words, quantum, q, {x0, y, z}, acc);
-                        else addCuboidRow<true>(kk, words, quantum, q, {x0, y, z}, acc);
-                    }
-                    for (int i = 0; i < lanes; ++i)
-                        if (needed[row + x0 + i]) store(row + x0 + i, acc[i]);
+            for (int y = r.cols().begin(); y < r.cols().end(); ++y) {
+                const size_t row = (size_t(z) * d.y + y) * d.x;
+                bool any = false;
+                for (int c = 0; c < chunks; ++c) any |= (active[size_t(c)] = chunkNeeded(row, c * kRow));
+                if (!any) continue;
+                if (stencil.empty()) {  // per-cell cones (point and spot lights)
+                    for (int x = 0; x < d.x; ++x)
+                        if (needed[row + size_t(x)]) store(row + size_t(x), kk.vx_cone_tau({x, y, z}, kk.vx_light(light)));
+                    continue;
                 }
+                // Cuboid by cuboid along the whole row: each cuboid's eight corner lines are then
+                // read front to back, few enough streams for the hardware prefetcher.
+                std::fill(acc.begin(), acc.end(), 0.0f);
+                for (const auto& q : stencil)
+                    for (int c = 0; c < chunks; ++c) {
+                        if (!active[size_t(c)]) continue;
+                        const int x0 = c * kRow;
+                        float* a = acc.data() + size_t(x0);
+                        if (x0 + q.lo.x >= 0 && x0 + kRow - 1 + q.hi.x <= d.x)
+                            addCuboidRow<false>(kk, words, quantum, q, {x0, y, z}, a);
+                        else
+                            addCuboidRow<true>(kk, words, quantum, q, {x0, y, z}, a);
+                    }
+                for (int x = 0; x < d.x; ++x)
+                    if (needed[row + size_t(x)]) store(row + size_t(x), acc[size_t(x)]);
+            }
     });
 }
 
