@@ -208,21 +208,32 @@ VxCuboid vx_cone_own_cell(VxCone k) {
     return q;
 }
 
+// The cone's own-cell term, or 0 when the light is at the cell's centre.
+VX_INLINE float vx_cone_start(ivec3 c, VxCone k) {
+    if (k.reach <= 0.0f || k.step_world <= 0.0f) return 0.0f;
+    VxCuboid own = vx_cone_own_cell(k);
+    return own.weight * vx_sat_box(0, c + own.lo, c + own.hi);
+}
+
+// Cuboid j's term of the cone at cell c (`ratio_j` = (1 + growth)^j); `t0` is where the last
+// cuboid ended (1/2 before the first) and advances. 0 past the light or for an empty cuboid.
+VX_INLINE float vx_cone_step(ivec3 c, VxCone k, int j, float ratio_j, VX_INOUT(float) t0) {
+    if (t0 >= k.reach || k.step_world <= 0.0f) return 0.0f;
+    float t1 = min(vx_cone_boundary(j, ratio_j, float(S.dims[k.axis]) - 0.5f), k.reach);
+    if (t1 <= t0) return 0.0f;
+    VxCuboid q = vx_cone_cuboid(k, t0, t1);
+    t0 = t1;
+    return q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
+}
+
 float vx_cone_tau(ivec3 c, VxLight L) {
     VxCone k = vx_cone_from(c, L);
-    if (k.reach <= 0.0f || k.step_world <= 0.0f) return 0.0f;  // the light is at this cell's centre
-    VxCuboid own = vx_cone_own_cell(k);
-    float tau = own.weight * vx_sat_box(0, c + own.lo, c + own.hi);
-    float span = float(S.dims[k.axis]) - 0.5f;
+    float tau = vx_cone_start(c, k);
     float t0 = 0.5f;
     float ratio_j = 1.0f;
-    for (int j = 1; j <= int(S.cone.y) && t0 < k.reach; ++j) {
+    for (int j = 1; j <= int(S.cone.y); ++j) {
         ratio_j *= 1.0f + S.cone.z;
-        float t1 = min(vx_cone_boundary(j, ratio_j, span), k.reach);
-        if (t1 <= t0) continue;
-        VxCuboid q = vx_cone_cuboid(k, t0, t1);
-        tau += q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
-        t0 = t1;
+        tau += vx_cone_step(c, k, j, ratio_j, t0);
     }
     return tau;
 }

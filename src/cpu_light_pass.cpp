@@ -1,7 +1,8 @@
 // CPU light passes: AO shells and shadow cones from the SAT (shaders/vx_sat.h). When every cell of
 // a pass uses the same cuboids (AO shells, directional lights) a row of cells along x is
 // evaluated per cuboid as one SIMD batch, the eight corner lookups being contiguous loads across
-// the row; cones towards point and spot lights differ per cell and run cell by cell. Both paths
+// the row; cones towards point and spot lights differ per cell, and run cell by cell within each
+// cuboid so that neighbouring cells' lookups stay neighbours in memory. Both paths
 // compute the same integer box sums and the same float weights as the GL backend's per-cell one.
 #include "cpu_light_pass.h"
 
@@ -105,15 +106,30 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
         CpuKernel kk = k;
         std::vector<float> acc(size_t(chunks) * kRow);
         std::vector<uint8_t> active(static_cast<size_t>(chunks));
+        std::vector<CpuKernel::VxCone> cones(static_cast<size_t>(d.x));
+        std::vector<float> t0(static_cast<size_t>(d.x));
         for (int z = r.rows().begin(); z < r.rows().end(); ++z)
             for (int y = r.cols().begin(); y < r.cols().end(); ++y) {
                 const size_t row = (size_t(z) * d.y + y) * d.x;
                 bool any = false;
                 for (int c = 0; c < chunks; ++c) any |= (active[size_t(c)] = chunkNeeded(row, c * kRow));
                 if (!any) continue;
-                if (stencil.empty()) {  // per-cell cones (point and spot lights)
+                if (stencil.empty()) {  // per-cell cones (point and spot lights), cuboid by cuboid
+                    const kernel::VxLight L = kk.vx_light(light);
+                    for (int x = 0; x < d.x; ++x) {
+                        cones[size_t(x)] = kk.vx_cone_from({x, y, z}, L);
+                        acc[size_t(x)] = kk.vx_cone_start({x, y, z}, cones[size_t(x)]);
+                        t0[size_t(x)] = 0.5f;
+                    }
+                    float ratio_j = 1.0f;
+                    for (int j = 1; j <= int(kk.S.cone.y); ++j) {
+                        ratio_j *= 1.0f + kk.S.cone.z;
+                        for (int x = 0; x < d.x; ++x)
+                            if (needed[row + size_t(x)])
+                                acc[size_t(x)] += kk.vx_cone_step({x, y, z}, cones[size_t(x)], j, ratio_j, t0[size_t(x)]);
+                    }
                     for (int x = 0; x < d.x; ++x)
-                        if (needed[row + size_t(x)]) store(row + size_t(x), kk.vx_cone_tau({x, y, z}, kk.vx_light(light)));
+                        if (needed[row + size_t(x)]) store(row + size_t(x), acc[size_t(x)]);
                     continue;
                 }
                 // Cuboid by cuboid along the whole row: each cuboid's eight corner lines are then
