@@ -13,10 +13,7 @@ namespace {
 
 // A noisy ball written to a .vdb (the renderer keys its caches on the file).
 std::string writeBall(const std::string& dir) {
-    initOpenVdb();
-    auto grid = openvdb::FloatGrid::create(0.0f);
-    grid->setName("density");
-    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    auto grid = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);  // empty, named density
     auto acc = grid->getAccessor();
     for (int z = -20; z <= 20; ++z)
         for (int y = -20; y <= 20; ++y)
@@ -148,14 +145,8 @@ TEST(LightStage, MemoryBudgetLowersTheResolutionAndSaysSo) {
 // medium, and an empty frame. No NaN reaches the image; the oddities are counted.
 TEST(LightStage, HostileVoxelsAndEmptyFramesStayFinite) {
     const std::string dir = tempDir("light_hostile");
-    initOpenVdb();
-    auto grid = openvdb::FloatGrid::create(0.0f);
-    grid->setName("density");
-    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    auto grid = boxGrid({-12, -12, -12}, {12, 12, 12}, 1.0f, 0.1);
     auto acc = grid->getAccessor();
-    for (int z = -12; z <= 12; ++z)
-        for (int y = -12; y <= 12; ++y)
-            for (int x = -12; x <= 12; ++x) acc.setValue({x, y, z}, 1.0f);
     acc.setValue({0, 0, 0}, std::numeric_limits<float>::quiet_NaN());
     acc.setValue({3, 0, 0}, std::numeric_limits<float>::infinity());
     acc.setValue({0, 5, 0}, 1e30f);
@@ -177,10 +168,7 @@ TEST(LightStage, HostileVoxelsAndEmptyFramesStayFinite) {
     EXPECT_NE(warnings.find("1 light-grid cells clamped to an optical depth of 10000 per cell"), std::string::npos)
         << warnings;
 
-    openvdb::io::File(dir + "/empty.vdb").write({openvdb::FloatGrid::create(0.0f)});
-    auto empty = openvdb::FloatGrid::create(0.0f);
-    empty->setName("density");
-    openvdb::io::File(dir + "/empty.vdb").write({empty});
+    openvdb::io::File(dir + "/empty.vdb").write({boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1)});
     scene.volume.path = dir + "/empty.vdb";
     const FrameResult blank = Renderer(scene).render(std::nullopt, true);
     EXPECT_TRUE(blank.empty);
