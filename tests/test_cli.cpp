@@ -148,6 +148,30 @@ TEST(Cli, ExplainShowsThePlan) {
     EXPECT_NE(r.out.find("skip  light_cache skipped: no effect in the scene needs a precomputed light cache"),
               std::string::npos);
     EXPECT_NE(r.out.find("skip  grade"), std::string::npos);
+
+    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_sat.json --explain");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("run   light_cache extinction SAT over a 128-cell light grid; ambient occlusion, 5 shells, 1 "
+                         "shadow cone of 20 cuboids (2 deg)"),
+              std::string::npos)
+        << r.out;
+    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) +
+               "/grids/cloud_sat.json --explain --light directional:dir=0,-1,0 --set effects.color_bleeding=1");
+    EXPECT_NE(r.out.find("ambient_occlusion is on but no ambient light is in the scene"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("color_bleeding needs ambient occlusion"), std::string::npos) << r.out;
+}
+
+// The SAT scene end to end through the CLI: the light passes run, the ambient AOV is written.
+TEST(Cli, SatSceneRendersWithAmbientLayer) {
+    const std::string dir = tempDir("sat_cli");
+    CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_sat.json --backend cpu --res 80x50 -o " +
+                         dir + "/sat.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* stage : {"light_grid", "sat", "ambient", "shadows"}) EXPECT_NE(r.out.find(stage), std::string::npos);
+    Exr exr = readExr(dir + "/sat.exr");
+    float ambient = 0.0f;
+    for (float v : exr.planes["ambient.B"]) ambient = std::max(ambient, v);
+    EXPECT_GT(ambient, 0.0f);
 }
 
 TEST(Cli, SceneCommandReproducesTheQuickForm) {
