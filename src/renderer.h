@@ -37,9 +37,7 @@ public:
     explicit Renderer(Scene scene);
     // Replaces the scene; the next render recomputes only what the change invalidates.
     void setScene(Scene scene);
-    const Scene& scene() const { return scene_; }
     const std::vector<PlannedStage>& plan() const { return plan_; }
-    const LightStage& lightStage() const { return light_; }
     std::string backendName() const { return backend_->name(); }
 
     // Renders one frame (`frame` expands a #### volume path). An empty frame throws InputError

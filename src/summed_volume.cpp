@@ -38,6 +38,10 @@ float satQuantum(float max_value) {
     return std::ldexp(1.0f, e - 63);
 }
 
+
+namespace {
+
+// Sizes `sat` for `grid` (keeping its storage when it fits) and sets the quanta.
 void prepareSummedVolume(const LightGrid& g, SummedVolume& s) {
     s.dims = g.dims;
     s.planes = g.planes;
@@ -48,6 +52,8 @@ void prepareSummedVolume(const LightGrid& g, SummedVolume& s) {
         s.quantum[p] = satQuantum(*std::max_element(v, v + cells));
     }
 }
+
+}  // namespace
 
 void quantizeLightGrid(const LightGrid& g, SummedVolume& s) {
     prepareSummedVolume(g, s);

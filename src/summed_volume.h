@@ -28,9 +28,6 @@ struct SummedVolume {
 // smallest power of two above max_value, so every cell is below 2^63 quanta.
 float satQuantum(float max_value);
 
-// Sizes `sat` for `grid` (keeping its storage when it fits) and sets the quanta.
-void prepareSummedVolume(const LightGrid& grid, SummedVolume& sat);
-
 // The quantised cells alone (entry (x+1, y+1, z+1) holds cell (x, y, z), the faces zero), before
 // any prefix sum: what the GL backend uploads and scans.
 void quantizeLightGrid(const LightGrid& grid, SummedVolume& sat);
