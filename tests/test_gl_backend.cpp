@@ -103,6 +103,13 @@ struct Renders {
 
 // Both backends on the same inputs. The camera is the default framing moved in, so the volume
 // reaches the image's edges and every dispatch band has something to get wrong.
+// The light stage on `backend`, as a render runs it; points `inputs` at the stage's cache.
+void buildLightCache(LightStage& stage, const Scene& scene, KernelInputs& inputs, KernelBackend& backend) {
+    StageTimes times;
+    std::vector<std::string> reused, warnings;
+    stage.update(scene, "test volume", inputs, backend, times, reused, warnings);
+}
+
 Renders renderBoth(LoadedVolume volume, const Scene& scene, KernelBackend& gl) {
     const CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
     glm::vec3 lo, hi;
@@ -119,9 +126,7 @@ Renders renderBoth(LoadedVolume volume, const Scene& scene, KernelBackend& gl) {
     for (KernelBackend* backend : {static_cast<KernelBackend*>(cpu.get()), &gl}) {
         LightStage stage;
         KernelInputs inputs = prepared->inputs;
-        StageTimes times;
-        std::vector<std::string> reused, warnings;
-        stage.update(scene, "test volume", inputs, *backend, times, reused, warnings);
+        buildLightCache(stage, scene, inputs, *backend);
         (backend == &gl ? r.gl : r.cpu) = backend->march(inputs);
     }
     return r;
@@ -270,9 +275,7 @@ TEST(GlBackend, LightCacheMatchesCpu) {
     KernelBackend* backends[2] = {cpu.get(), gl.get()};
     for (int b = 0; b < 2; ++b) {
         KernelInputs inputs = prepared->inputs;
-        StageTimes times;
-        std::vector<std::string> reused, warnings;
-        stages[b].update(scene, "test volume", inputs, *backends[b], times, reused, warnings);
+        buildLightCache(stages[b], scene, inputs, *backends[b]);
     }
     EXPECT_TRUE(stages[0].sat().words == stages[1].sat().words) << "CPU and GL SATs differ";
     const LightCache &c = stages[0].cache(), &g = stages[1].cache();
