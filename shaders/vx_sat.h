@@ -147,6 +147,7 @@ struct VxCone {
     bool forward;           // towards +axis
     float reach;
     float step_world;       // world length of one primary step along the ray
+    float wh_length;        // length(wh): cells along the ray per primary step
 };
 
 VxCone vx_cone_from(ivec3 c, VxLight L) {
@@ -165,6 +166,7 @@ VxCone vx_cone_from(ivec3 c, VxLight L) {
                                 : (k.forward ? float(S.dims[k.axis] - c[k.axis]) - 0.5f : float(c[k.axis]) + 0.5f);
     k.reach = directional ? to_face : min(aw[k.axis], to_face);
     k.step_world = length(vec3(S.light_to_world * vec4(k.wh, 0.0f)));
+    k.wh_length = length(k.wh);
     return k;
 }
 
@@ -184,7 +186,7 @@ VX_INLINE float vx_cone_boundary(int j, float ratio_j, float span) {
 // primary axis the cells the segment passes through; across it the ray's extent widened by the
 // cone radius at t1, rounded to cell faces and at least one cell wide.
 VX_INLINE VxCuboid vx_cone_cuboid(VxCone k, float t0, float t1) {
-    float radius = S.cone.x * t1 * length(k.wh);
+    float radius = S.cone.x * t1 * k.wh_length;
     vec3 e0 = vec3(0.5f) + k.wh * t0;
     vec3 e1 = vec3(0.5f) + k.wh * t1;
     VxCuboid q;
@@ -215,15 +217,15 @@ VX_INLINE float vx_cone_start(ivec3 c, VxCone k) {
     return own.weight * vx_sat_box(0, c + own.lo, c + own.hi);
 }
 
-// Cuboid j's term of the cone at cell c (`ratio_j` = (1 + growth)^j); `t0` is where the last
-// cuboid ended (1/2 before the first) and advances. 0 past the light or for an empty cuboid.
-VX_INLINE float vx_cone_step(ivec3 c, VxCone k, int j, float ratio_j, VX_INOUT(float) t0) {
-    if (t0 >= k.reach || k.step_world <= 0.0f) return 0.0f;
+// Cuboid j of the cone (`ratio_j` = (1 + growth)^j) into `q`; `t0` is where the last cuboid
+// ended (1/2 before the first) and advances. False past the light or for an empty cuboid.
+VX_INLINE bool vx_cone_next(VxCone k, int j, float ratio_j, VX_INOUT(float) t0, VX_OUT(VxCuboid) q) {
+    if (t0 >= k.reach || k.step_world <= 0.0f) return false;
     float t1 = min(vx_cone_boundary(j, ratio_j, float(S.dims[k.axis]) - 0.5f), k.reach);
-    if (t1 <= t0) return 0.0f;
-    VxCuboid q = vx_cone_cuboid(k, t0, t1);
+    if (t1 <= t0) return false;
+    q = vx_cone_cuboid(k, t0, t1);
     t0 = t1;
-    return q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
+    return true;
 }
 
 float vx_cone_tau(ivec3 c, VxLight L) {
@@ -233,7 +235,8 @@ float vx_cone_tau(ivec3 c, VxLight L) {
     float ratio_j = 1.0f;
     for (int j = 1; j <= int(S.cone.y); ++j) {
         ratio_j *= 1.0f + S.cone.z;
-        tau += vx_cone_step(c, k, j, ratio_j, t0);
+        VxCuboid q;
+        if (vx_cone_next(k, j, ratio_j, t0, q)) tau += q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
     }
     return tau;
 }

@@ -77,6 +77,40 @@ void addCuboidRow(CpuKernel& k, const uint32_t* const words[3], float quantum, c
     }
 }
 
+// Per-cell boxes of one row, clamped to the grid (lo <= hi), as separate arrays for SIMD.
+struct RowBoxes {
+    std::vector<int> ax, ay, az, bx, by, bz;
+    std::vector<float> weight;   // 0 where a cell has no cuboid
+    explicit RowBoxes(int n) : ax(n), ay(n), az(n), bx(n), by(n), bz(n), weight(n) {}
+};
+
+// acc[i] += weight[i] * SAT box [a_i, b_i) for i < n: a gather per corner word, across lanes.
+void addRowBoxes(CpuKernel& k, const uint32_t* const words[3], float quantum, const RowBoxes& r, int n,
+                 float* __restrict acc) {
+    const int sx = k.S.dims.x + 1, sy = k.S.dims.y + 1;
+    const uint32_t* __restrict lo = words[0];
+    const uint32_t* __restrict mid = words[1];
+    const uint32_t* __restrict hi = words[2];
+    const int *ax = r.ax.data(), *ay = r.ay.data(), *az = r.az.data();
+    const int *bx = r.bx.data(), *by = r.by.data(), *bz = r.bz.data();
+    const float* weight = r.weight.data();
+    for (int i = 0; i < n; ++i) {
+        const int yz_bb = (bz[i] * sy + by[i]) * sx, yz_ab = (bz[i] * sy + ay[i]) * sx;
+        const int yz_ba = (az[i] * sy + by[i]) * sx, yz_aa = (az[i] * sy + ay[i]) * sx;
+#define VX_LOAD(e) CpuKernel::VxU96{lo[e], mid[e], hi[e]}
+        CpuKernel::VxU96 s = VX_LOAD(yz_bb + bx[i]);
+        s = k.vx_u96_sub(s, VX_LOAD(yz_bb + ax[i]));
+        s = k.vx_u96_sub(s, VX_LOAD(yz_ab + bx[i]));
+        s = k.vx_u96_sub(s, VX_LOAD(yz_ba + bx[i]));
+        s = k.vx_u96_add(s, VX_LOAD(yz_ab + ax[i]));
+        s = k.vx_u96_add(s, VX_LOAD(yz_ba + ax[i]));
+        s = k.vx_u96_add(s, VX_LOAD(yz_aa + bx[i]));
+        s = k.vx_u96_sub(s, VX_LOAD(yz_aa + ax[i]));
+#undef VX_LOAD
+        acc[i] += weight[i] * (k.vx_u96_float(s) * quantum);
+    }
+}
+
 }  // namespace
 
 void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
@@ -108,6 +142,8 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
         std::vector<uint8_t> active(static_cast<size_t>(chunks));
         std::vector<CpuKernel::VxCone> cones(static_cast<size_t>(d.x));
         std::vector<float> t0(static_cast<size_t>(d.x));
+        RowBoxes boxes(d.x);
+        const glm::ivec3 dims(d);
         for (int z = r.rows().begin(); z < r.rows().end(); ++z)
             for (int y = r.cols().begin(); y < r.cols().end(); ++y) {
                 const size_t row = (size_t(z) * d.y + y) * d.x;
@@ -124,9 +160,19 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
                     float ratio_j = 1.0f;
                     for (int j = 1; j <= int(kk.S.cone.y); ++j) {
                         ratio_j *= 1.0f + kk.S.cone.z;
-                        for (int x = 0; x < d.x; ++x)
-                            if (needed[row + size_t(x)])
-                                acc[size_t(x)] += kk.vx_cone_step({x, y, z}, cones[size_t(x)], j, ratio_j, t0[size_t(x)]);
+                        // Each cell's cuboid (scalar geometry), then every box sum of the row at once.
+                        for (int x = 0; x < d.x; ++x) {
+                            CpuKernel::VxCuboid q;
+                            const bool on = needed[row + size_t(x)] &&
+                                            kk.vx_cone_next(cones[size_t(x)], j, ratio_j, t0[size_t(x)], q);
+                            const glm::ivec3 a = on ? glm::clamp(glm::ivec3(x, y, z) + q.lo, glm::ivec3(0), dims) : glm::ivec3(0);
+                            const glm::ivec3 b = on ? glm::max(glm::clamp(glm::ivec3(x, y, z) + q.hi, glm::ivec3(0), dims), a)
+                                                    : glm::ivec3(0);
+                            boxes.ax[size_t(x)] = a.x, boxes.ay[size_t(x)] = a.y, boxes.az[size_t(x)] = a.z;
+                            boxes.bx[size_t(x)] = b.x, boxes.by[size_t(x)] = b.y, boxes.bz[size_t(x)] = b.z;
+                            boxes.weight[size_t(x)] = on ? q.weight : 0.0f;
+                        }
+                        addRowBoxes(kk, words, quantum, boxes, d.x, acc.data());
                     }
                     for (int x = 0; x < d.x; ++x)
                         if (needed[row + size_t(x)]) store(row + size_t(x), acc[size_t(x)]);
