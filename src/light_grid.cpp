@@ -72,11 +72,25 @@ glm::ivec3 lightGridDims(glm::vec3 extent, int resolution) {
     return glm::max(glm::ivec3(glm::ceil(extent / cell - 1e-4f)), glm::ivec3(1));
 }
 
+bool lightGridIndexable(glm::ivec3 d, int planes, int cache_channels) {
+    const uint64_t sat_words = uint64_t(d.x + 1) * (d.y + 1) * (d.z + 1) * uint64_t(planes) * 3;
+    const uint64_t cache_floats = uint64_t(d.x) * d.y * d.z * uint64_t(std::max(cache_channels, 1));
+    return sat_words < uint64_t(INT32_MAX) && cache_floats < uint64_t(INT32_MAX);
+}
+
 int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_channels, size_t budget,
                        std::string& warning) {
+    auto fits = [&](int r) {
+        const glm::ivec3 d = lightGridDims(extent, r);
+        return lightGridBytes(d, planes, cache_channels) <= budget && lightGridIndexable(d, planes, cache_channels);
+    };
     int r = requested;
-    while (r > 2 && lightGridBytes(lightGridDims(extent, r), planes, cache_channels) > budget) --r;
-    if (r != requested) {
+    while (r > 2 && !fits(r)) --r;
+    if (r != requested && !lightGridIndexable(lightGridDims(extent, requested), planes, cache_channels)) {
+        warning = "light grid of " + std::to_string(requested) +
+                  " cells is beyond the kernel's 32-bit indices (SAT or light cache over 2^31 values); using " +
+                  std::to_string(r) + " cells instead";
+    } else if (r != requested) {
         const size_t need = lightGridBytes(lightGridDims(extent, requested), planes, cache_channels);
         warning = "light grid of " + std::to_string(requested) + " cells needs " + std::to_string(need >> 20) +
                   " MiB, over effects.light_memory_mb = " + std::to_string(budget >> 20) + "; using " +

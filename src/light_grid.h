@@ -38,8 +38,12 @@ size_t lightGridBytes(glm::ivec3 dims, int planes, int cache_channels);
 // Cells per axis for a box of `extent` index voxels at `resolution` cells along the longest side.
 glm::ivec3 lightGridDims(glm::vec3 extent, int resolution);
 
+// Whether the kernel's 32-bit indices reach every SAT word and light-cache float.
+bool lightGridIndexable(glm::ivec3 dims, int planes, int cache_channels);
+
 // The resolution actually used: `requested`, or the largest below it whose light grid, SAT and
-// cache fit in `budget_bytes`. Sets `warning` (naming both resolutions) when it had to reduce.
+// cache fit in `budget_bytes` and are indexable. Sets `warning` (naming both resolutions) when it
+// had to reduce.
 int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_channels, size_t budget_bytes,
                        std::string& warning);
 

@@ -109,7 +109,9 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
 
     if (cache_.ambient_channel >= 0) {
         const AmbientOcclusion& ao = *fx.ambient_occlusion;
-        const float radius_cells = ao.radius > 0.0f ? ao.radius / cell_world : 0.06f * float(resolution);
+        // Beyond the grid's longest side a larger radius changes nothing (and would overflow k_i).
+        const float longest = float(std::max({grid_.dims.x, grid_.dims.y, grid_.dims.z}));
+        const float radius_cells = std::min(ao.radius > 0.0f ? ao.radius / cell_world : 0.06f * float(resolution), longest);
         S.shells = glm::vec4(float(ao.shells), radius_cells, cell_world, 0.0f);
         S.pass.x = -1;
         const std::string key = grid_key_ + "|ao|" + std::to_string(ao.shells) + "|" + std::to_string(radius_cells);

@@ -131,6 +131,13 @@ TEST(LightStage, MemoryBudgetLowersTheResolutionAndSaysSo) {
     std::string none;
     EXPECT_EQ(fitLightResolution(extent, 64, 1, 2, size_t(16) << 20, none), 64);
     EXPECT_TRUE(none.empty());
+    // A huge budget still stops where 32-bit kernel indices would overflow (4 planes of 1024^3).
+    std::string indices;
+    const int big = fitLightResolution(glm::vec3(1000), 1024, 4, 4, size_t(1) << 50, indices);
+    EXPECT_TRUE(lightGridIndexable(lightGridDims(glm::vec3(1000), big), 4, 4));
+    EXPECT_FALSE(lightGridIndexable(lightGridDims(glm::vec3(1000), big + 1), 4, 4));
+    EXPECT_EQ(indices, "light grid of 1024 cells is beyond the kernel's 32-bit indices (SAT or light cache over 2^31 "
+                       "values); using " + std::to_string(big) + " cells instead");
 
     const std::string vdb = writeBall(tempDir("light_budget"));
     Scene scene = ballScene(vdb);
