@@ -74,6 +74,8 @@ FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     const std::string key = volumeKey(file);
     if (key.empty() || key != volume_key_) {
         volume_key_.clear();  // stays cleared if loading throws
+        atlas_.reset();       // the last frame's bricks go before this frame's are built
+        volume_.reset();
         volume_ = std::make_unique<LoadedVolume>(clock("load", [&] { return loadVolume(file, scene_.volume); }));
         atlas_ = std::make_unique<BrickAtlas>(clock("brick", [&] { return buildBrickAtlas(*volume_); }));
         volume_key_ = key;
