@@ -26,13 +26,19 @@ std::string writeBall(const std::string& dir) {
     return path;
 }
 
-Scene ballScene(const std::string& vdb) {
+// A CPU render of `vdb` at width x height with the given density scale, no lights yet.
+Scene cpuScene(const std::string& vdb, int width, int height, float density_scale) {
     Scene s;
     s.volume.path = vdb;
-    s.render.width = 48;
-    s.render.height = 40;
+    s.render.width = width;
+    s.render.height = height;
     s.render.backend = Backend::Cpu;
-    s.material.density_scale = 4.0f;
+    s.material.density_scale = density_scale;
+    return s;
+}
+
+Scene ballScene(const std::string& vdb) {
+    Scene s = cpuScene(vdb, 48, 40, 4.0f);
     s.effects.shadows = ShadowMethod::SatCone;
     s.effects.ambient_occlusion = AmbientOcclusion{};
     s.effects.light_resolution = 32;
@@ -204,12 +210,7 @@ double rgbRmse(const FrameResult& a, const FrameResult& ref) {
 // bring them closer.
 TEST(LightStage, NarrowConesApproachRayMarchedShadowsOnSmoke) {
     VOXLUX_REQUIRE_SHARED(smoke, "arnold-usd/smoke.vdb");
-    Scene scene;
-    scene.volume.path = smoke;
-    scene.render.width = 96;
-    scene.render.height = 128;
-    scene.render.backend = Backend::Cpu;
-    scene.material.density_scale = 2.0f;
+    Scene scene = cpuScene(smoke, 96, 128, 2.0f);
     Light key;
     key.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.3f));
     key.intensity = 6.0f;
