@@ -61,6 +61,10 @@ glm::mat4 LightGrid::lightToIndex() const {
     return m;
 }
 
+float cellWorldSize(const glm::mat4& light_to_world) {
+    return std::cbrt(std::abs(glm::determinant(glm::mat3(light_to_world))));
+}
+
 size_t lightGridBytes(glm::ivec3 d, int planes, int cache_channels) {
     const size_t cells = size_t(d.x) * d.y * d.z;
     const size_t sat_entries = size_t(d.x + 1) * (d.y + 1) * (d.z + 1);
@@ -115,7 +119,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding)
     auto oz = axisOverlaps(g.dims.z, voxels.z, g.cell);
     const double inv_volume = 1.0 / (double(g.cell) * g.cell * g.cell);
     const size_t plane = g.cells();
-    const float cell_world = std::cbrt(std::abs(glm::determinant(glm::mat3(in.atlas->index_to_world)))) * g.cell;
+    const float cell_world = cellWorldSize(in.atlas->index_to_world * g.lightToIndex());
     const double max_sigma = double(kMaxCellOpticalDepth) / cell_world;
     std::atomic<uint64_t> clamped{0};
 

@@ -31,6 +31,10 @@ struct LightGrid {
     glm::mat4 lightToIndex() const;
 };
 
+// World edge of a light-grid cell: the cube root of its world volume (cells are cubes in index
+// space, so this is their edge where voxels are cubic and a mean edge where they are not).
+float cellWorldSize(const glm::mat4& light_to_world);
+
 // What a light grid of resolution `resolution` (cells along the longest side) costs in bytes:
 // grid, SAT and a light cache of `cache_channels` floats per cell.
 size_t lightGridBytes(glm::ivec3 dims, int planes, int cache_channels);

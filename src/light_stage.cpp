@@ -31,8 +31,6 @@ uint64_t nextSatGeneration() {
     return next++;
 }
 
-float cubeRootOfDeterminant(const glm::mat4& m) { return std::cbrt(std::abs(glm::determinant(glm::mat3(m)))); }
-
 }  // namespace
 
 void LightStage::update(const Scene& scene, const std::string& volume_key, KernelInputs& inputs,
@@ -93,7 +91,7 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     S.dims = glm::ivec4(grid_.dims, sat_.planes);
     S.quantum = sat_.quantum;
     S.pass.z = cache_.channels;
-    const float cell_world = cubeRootOfDeterminant(light_to_world);
+    const float cell_world = cellWorldSize(light_to_world);
     S.cone = glm::vec4(std::tan(glm::radians(fx.cone.angle)), float(fx.cone.samples), fx.cone.growth,
                        std::pow(1.0f + fx.cone.growth, float(fx.cone.samples)));
 
