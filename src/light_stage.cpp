@@ -36,15 +36,13 @@ uint64_t nextSatGeneration() {
 void LightStage::update(const Scene& scene, const std::string& volume_key, KernelInputs& inputs,
                         KernelBackend& backend, StageTimes& times, std::vector<std::string>& reused,
                         std::vector<std::string>& warnings) {
-    StageClock clock(times);
     const Effects& fx = scene.effects;
     LightCache layout = cacheLayout(scene, int(inputs.lights.size()));
     const int planes = fx.color_bleeding > 0.0f && layout.ambient_channel >= 0 ? 4 : 1;
     const float bleeding = planes == 4 ? fx.color_bleeding : 0.0f;
 
-    // Grid and SAT: from the volume, the material and the grid settings.
-    const glm::vec3 extent((inputs.pages->bricks_max - inputs.pages->bricks_min + 1) * VX_BRICK);
     // Cells finer than a quarter voxel would only repeat voxels (a tiny volume at the default 128).
+    const glm::vec3 extent((inputs.pages->bricks_max - inputs.pages->bricks_min + 1) * VX_BRICK);
     const int wanted = std::min(fx.light_resolution, 4 * int(std::max({extent.x, extent.y, extent.z})));
     std::string warning;
     const int resolution = fitLightResolution(extent, wanted, planes, layout.channels,
@@ -53,24 +51,18 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     const nlohmann::json scene_json = sceneToJson(scene);
     const std::string grid_key = volume_key + "|" + scene_json["material"].dump() + "|" + std::to_string(resolution) +
                                  "|" + std::to_string(bleeding);
+    StageClock clock(times);
     if (grid_key == grid_key_) {
         reused.push_back("light_grid");
         reused.push_back("sat");
     } else {
-        grid_key_.clear();  // stays cleared if a pass throws
-        grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, bleeding); });
-        if (grid_.clamped_cells)
-            warnings.push_back(std::to_string(grid_.clamped_cells) + " light-grid cells clamped to an optical depth of " +
-                               std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)");
-        clock("sat", [&] { backend.buildSat(grid_, sat_); });
-        sat_generation_ = nextSatGeneration();
+        rebuildGrid(inputs, resolution, bleeding, backend, clock, warnings);
         grid_key_ = grid_key;
-        channel_keys_.clear();
     }
 
     // The cache: kept as it is when its layout is unchanged, so unchanged channels survive.
-    layout.dims = grid_.dims;
     const glm::mat4 light_to_world = inputs.atlas->index_to_world * grid_.lightToIndex();
+    layout.dims = grid_.dims;
     layout.world_to_cache = glm::inverse(light_to_world);
     const bool same_layout = cache_.channels == layout.channels && cache_.ambient_width == layout.ambient_width &&
                              cache_.dims == layout.dims && !channel_keys_.empty();
@@ -95,16 +87,6 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     S.cone = glm::vec4(std::tan(glm::radians(fx.cone.angle)), float(fx.cone.samples), fx.cone.growth,
                        std::pow(1.0f + fx.cone.growth, float(fx.cone.samples)));
 
-    // Runs the pass for `channel` unless it was computed from the same inputs; returns whether it ran.
-    auto fill = [&](int channel, const std::string& key) {
-        if (channel_keys_[size_t(channel)] == key) return false;
-        channel_keys_[size_t(channel)].clear();
-        S.pass.y = channel;
-        backend.fillLightChannel(pass, cache_);
-        channel_keys_[size_t(channel)] = key;
-        return true;
-    };
-
     if (cache_.ambient_channel >= 0) {
         const AmbientOcclusion& ao = *fx.ambient_occlusion;
         // Beyond the grid's longest side a larger radius changes nothing (and would overflow k_i).
@@ -116,8 +98,8 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
         bool ran = false;
         clock("ambient", [&] {
             for (int i = 0; i < cache_.ambient_width; ++i) {
-                S.shells.w = float(cache_.ambient_width == 3 ? i + 1 : 0);
-                ran |= fill(cache_.ambient_channel + i, key + "|" + std::to_string(i));
+                S.shells.w = float(cache_.ambient_width == 3 ? i + 1 : 0);  // SAT plane: extinction or bleeding RGB
+                ran |= fillChannel(pass, cache_.ambient_channel + i, key + "|" + std::to_string(i), backend);
             }
         });
         if (!ran) {
@@ -139,7 +121,7 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
                 nlohmann::json where = {{"type", light["type"]}};
                 if (light.contains("position")) where["position"] = light["position"];
                 if (light["type"] == "directional") where["direction"] = light["direction"];
-                if (fill(cache_.shadow_channel + packed, cone_key + "|" + where.dump())) ran = true;
+                if (fillChannel(pass, cache_.shadow_channel + packed, cone_key + "|" + where.dump(), backend)) ran = true;
                 else reused.push_back("shadow of light " + std::to_string(packed));
                 ++packed;
             }
@@ -153,6 +135,27 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     P.cache_map = glm::ivec4(cache_.ambient_channel, cache_.ambient_width, cache_.shadow_channel, 0);
     inputs.cache = cache_.values.data();
     inputs.cache_floats = cache_.values.size();
+}
+
+void LightStage::rebuildGrid(const KernelInputs& inputs, int resolution, float bleeding, KernelBackend& backend,
+                             StageClock& clock, std::vector<std::string>& warnings) {
+    grid_key_.clear();  // stays cleared if a pass throws
+    channel_keys_.clear();
+    grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, bleeding); });
+    if (grid_.clamped_cells)
+        warnings.push_back(std::to_string(grid_.clamped_cells) + " light-grid cells clamped to an optical depth of " +
+                           std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)");
+    clock("sat", [&] { backend.buildSat(grid_, sat_); });
+    sat_generation_ = nextSatGeneration();
+}
+
+bool LightStage::fillChannel(LightPass& pass, int channel, const std::string& key, KernelBackend& backend) {
+    if (channel_keys_[size_t(channel)] == key) return false;
+    channel_keys_[size_t(channel)].clear();  // stays cleared if the pass throws
+    pass.params.pass.y = channel;
+    backend.fillLightChannel(pass, cache_);
+    channel_keys_[size_t(channel)] = key;
+    return true;
 }
 
 }  // namespace voxlux

@@ -30,6 +30,12 @@ public:
     const LightCache& cache() const { return cache_; }
 
 private:
+    // Light grid and SAT from scratch; every channel is then stale.
+    void rebuildGrid(const KernelInputs& inputs, int resolution, float bleeding, KernelBackend& backend,
+                     StageClock& clock, std::vector<std::string>& warnings);
+    // Runs `pass` into `channel` unless the channel was computed from `key`; true if it ran.
+    bool fillChannel(LightPass& pass, int channel, const std::string& key, KernelBackend& backend);
+
     std::string grid_key_;
     LightGrid grid_;
     SummedVolume sat_;
