@@ -69,15 +69,23 @@ VX_INLINE int vx_sat_entry_index(int x, int y, int z) {
 }
 
 // The box [a, b) from its eight corner entries, exactly: + b - (a.x) - (a.y) - (a.z) + ... - a.
+// The corners lie on four x lines; `bb`, `ab`, `ba`, `aa` are the entries at x = 0 of the lines
+// (y, z) = (b.y, b.z), (a.y, b.z), (b.y, a.z), (a.y, a.z), and `xa`, `xb` the box's x faces. (The
+// CPU's row batches call this with per-cell x, so the loads run along the lines.)
+VX_INLINE VxU96 vx_sat_lines(int plane, int bb, int ab, int ba, int aa, int xa, int xb) {
+    VxU96 s = vx_sat_entry(plane, bb + xb);
+    s = vx_u96_sub(s, vx_sat_entry(plane, bb + xa));
+    s = vx_u96_sub(s, vx_sat_entry(plane, ab + xb));
+    s = vx_u96_sub(s, vx_sat_entry(plane, ba + xb));
+    s = vx_u96_add(s, vx_sat_entry(plane, ab + xa));
+    s = vx_u96_add(s, vx_sat_entry(plane, ba + xa));
+    s = vx_u96_add(s, vx_sat_entry(plane, aa + xb));
+    return vx_u96_sub(s, vx_sat_entry(plane, aa + xa));
+}
+
 VX_INLINE VxU96 vx_sat_corners(int plane, ivec3 a, ivec3 b) {
-    VxU96 s = vx_sat_entry(plane, vx_sat_entry_index(b.x, b.y, b.z));
-    s = vx_u96_sub(s, vx_sat_entry(plane, vx_sat_entry_index(a.x, b.y, b.z)));
-    s = vx_u96_sub(s, vx_sat_entry(plane, vx_sat_entry_index(b.x, a.y, b.z)));
-    s = vx_u96_sub(s, vx_sat_entry(plane, vx_sat_entry_index(b.x, b.y, a.z)));
-    s = vx_u96_add(s, vx_sat_entry(plane, vx_sat_entry_index(a.x, a.y, b.z)));
-    s = vx_u96_add(s, vx_sat_entry(plane, vx_sat_entry_index(a.x, b.y, a.z)));
-    s = vx_u96_add(s, vx_sat_entry(plane, vx_sat_entry_index(b.x, a.y, a.z)));
-    return vx_u96_sub(s, vx_sat_entry(plane, vx_sat_entry_index(a.x, a.y, a.z)));
+    return vx_sat_lines(plane, vx_sat_entry_index(0, b.y, b.z), vx_sat_entry_index(0, a.y, b.z),
+                        vx_sat_entry_index(0, b.y, a.z), vx_sat_entry_index(0, a.y, a.z), a.x, b.x);
 }
 
 VX_INLINE float vx_sat_quantum(int plane) {
@@ -170,12 +178,11 @@ VxCone vx_cone_from(ivec3 c, VxLight L) {
     return k;
 }
 
-// Primary-axis distance from the cell centre after j of the n cuboids: 1/2 (the cell's own face)
-// for j = 0, then geometric in j over the grid's extent `span` (each cuboid 1 + growth times
+// Primary-axis distance from the cell centre after j >= 1 of the n cuboids (they start at 1/2, the
+// cell's own face): geometric in j over the grid's extent `span` (each cuboid 1 + growth times
 // longer than the one before), rounded to cell faces. The same for every cell of a pass.
 // `ratio_j` is (1 + growth)^j, kept by the caller's loop (pow per cuboid would dominate).
 VX_INLINE float vx_cone_boundary(int j, float ratio_j, float span) {
-    if (j == 0) return 0.5f;
     float n = S.cone.y;
     float g = S.cone.z;
     float f = g > 1e-4f ? (ratio_j - 1.0f) / (S.cone.w - 1.0f) : float(j) / n;

@@ -43,8 +43,8 @@ std::vector<CpuKernel::VxCuboid> sharedStencil(CpuKernel& k, int light) {
 // acc[i] += weight * SAT box (c + lo, c + hi) for the cells c = (x0 + i, y, z), i < kRow.
 // `Clamp` is false when every lane's x range lies inside the grid, so the loads are contiguous.
 template <bool Clamp>
-void addCuboidRow(CpuKernel& k, const uint32_t* const words[3], float quantum, const CpuKernel::VxCuboid& q,
-                  glm::ivec3 c, float* __restrict acc) {
+void addCuboidRow(CpuKernel& k, int plane, float quantum, const CpuKernel::VxCuboid& q, glm::ivec3 c,
+                  float* __restrict acc) {
     const glm::ivec3 dims(k.S.dims);
     const int ay = glm::clamp(c.y + q.lo.y, 0, dims.y), by = glm::clamp(c.y + q.hi.y, 0, dims.y);
     const int az = glm::clamp(c.z + q.lo.z, 0, dims.z), bz = glm::clamp(c.z + q.hi.z, 0, dims.z);
@@ -54,25 +54,12 @@ void addCuboidRow(CpuKernel& k, const uint32_t* const words[3], float quantum, c
     const int ba = k.vx_sat_entry_index(0, by, az), aa = k.vx_sat_entry_index(0, ay, az);
     const int xa0 = c.x + q.lo.x, xb0 = c.x + q.hi.x;
     const float weight = q.weight;
-    const uint32_t* __restrict lo = words[0];
-    const uint32_t* __restrict mid = words[1];
-    const uint32_t* __restrict hi = words[2];
     // No `omp simd` here: it would privatise the VxU96 temporaries into memory before they are
     // inlined away; the auto-vectoriser, running after inlining, vectorises the plain loop.
     for (int i = 0; i < kRow; ++i) {
         const int xa = Clamp ? glm::clamp(xa0 + i, 0, dims.x) : xa0 + i;
         const int xb = Clamp ? glm::clamp(xb0 + i, 0, dims.x) : xb0 + i;
-#define VX_LOAD(e) CpuKernel::VxU96{lo[e], mid[e], hi[e]}
-        CpuKernel::VxU96 s = VX_LOAD(bb + xb);
-        s = k.vx_u96_sub(s, VX_LOAD(bb + xa));
-        s = k.vx_u96_sub(s, VX_LOAD(ab + xb));
-        s = k.vx_u96_sub(s, VX_LOAD(ba + xb));
-        s = k.vx_u96_add(s, VX_LOAD(ab + xa));
-        s = k.vx_u96_add(s, VX_LOAD(ba + xa));
-        s = k.vx_u96_add(s, VX_LOAD(aa + xb));
-        s = k.vx_u96_sub(s, VX_LOAD(aa + xa));
-#undef VX_LOAD
-        const float sum = k.vx_u96_float(s) * quantum;
+        const float sum = k.vx_u96_float(k.vx_sat_lines(plane, bb, ab, ba, aa, xa, xb)) * quantum;
         acc[i] += xa < xb ? weight * sum : 0.0f;
     }
 }
@@ -85,29 +72,14 @@ struct RowBoxes {
 };
 
 // acc[i] += weight[i] * SAT box [a_i, b_i) for i < n: a gather per corner word, across lanes.
-void addRowBoxes(CpuKernel& k, const uint32_t* const words[3], float quantum, const RowBoxes& r, int n,
-                 float* __restrict acc) {
-    const int sx = k.S.dims.x + 1, sy = k.S.dims.y + 1;
-    const uint32_t* __restrict lo = words[0];
-    const uint32_t* __restrict mid = words[1];
-    const uint32_t* __restrict hi = words[2];
+void addRowBoxes(CpuKernel& k, int plane, float quantum, const RowBoxes& r, int n, float* __restrict acc) {
     const int *ax = r.ax.data(), *ay = r.ay.data(), *az = r.az.data();
     const int *bx = r.bx.data(), *by = r.by.data(), *bz = r.bz.data();
     const float* weight = r.weight.data();
     for (int i = 0; i < n; ++i) {
-        const int yz_bb = (bz[i] * sy + by[i]) * sx, yz_ab = (bz[i] * sy + ay[i]) * sx;
-        const int yz_ba = (az[i] * sy + by[i]) * sx, yz_aa = (az[i] * sy + ay[i]) * sx;
-#define VX_LOAD(e) CpuKernel::VxU96{lo[e], mid[e], hi[e]}
-        CpuKernel::VxU96 s = VX_LOAD(yz_bb + bx[i]);
-        s = k.vx_u96_sub(s, VX_LOAD(yz_bb + ax[i]));
-        s = k.vx_u96_sub(s, VX_LOAD(yz_ab + bx[i]));
-        s = k.vx_u96_sub(s, VX_LOAD(yz_ba + bx[i]));
-        s = k.vx_u96_add(s, VX_LOAD(yz_ab + ax[i]));
-        s = k.vx_u96_add(s, VX_LOAD(yz_ba + ax[i]));
-        s = k.vx_u96_add(s, VX_LOAD(yz_aa + bx[i]));
-        s = k.vx_u96_sub(s, VX_LOAD(yz_aa + ax[i]));
-#undef VX_LOAD
-        acc[i] += weight[i] * (k.vx_u96_float(s) * quantum);
+        const int bb = k.vx_sat_entry_index(0, by[i], bz[i]), ab = k.vx_sat_entry_index(0, ay[i], bz[i]);
+        const int ba = k.vx_sat_entry_index(0, by[i], az[i]), aa = k.vx_sat_entry_index(0, ay[i], az[i]);
+        acc[i] += weight[i] * (k.vx_u96_float(k.vx_sat_lines(plane, bb, ab, ba, aa, ax[i], bx[i])) * quantum);
     }
 }
 
@@ -123,9 +95,6 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
     const int plane = light < 0 ? int(pass.params.shells.w) : 0;
     const uint8_t* needed = pass.needed->data();
     const std::vector<CpuKernel::VxCuboid> stencil = sharedStencil(k, light);
-    const size_t entries = pass.sat->planeEntries();
-    const uint32_t* const words[3] = {k.sat + (plane * 3) * entries, k.sat + (plane * 3 + 1) * entries,
-                                      k.sat + (plane * 3 + 2) * entries};
     const float quantum = k.vx_sat_quantum(plane);
     auto store = [&](size_t cell, float tau) { cache.values[cell * size_t(cache.channels) + size_t(channel)] = tau; };
 
@@ -172,7 +141,7 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
                             boxes.bx[size_t(x)] = b.x, boxes.by[size_t(x)] = b.y, boxes.bz[size_t(x)] = b.z;
                             boxes.weight[size_t(x)] = on ? q.weight : 0.0f;
                         }
-                        addRowBoxes(kk, words, quantum, boxes, d.x, acc.data());
+                        addRowBoxes(kk, plane, quantum, boxes, d.x, acc.data());
                     }
                     for (int x = 0; x < d.x; ++x)
                         if (needed[row + size_t(x)]) store(row + size_t(x), acc[size_t(x)]);
@@ -187,9 +156,9 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
                         const int x0 = c * kRow;
                         float* a = acc.data() + size_t(x0);
                         if (x0 + q.lo.x >= 0 && x0 + kRow - 1 + q.hi.x <= d.x)
-                            addCuboidRow<false>(kk, words, quantum, q, {x0, y, z}, a);
+                            addCuboidRow<false>(kk, plane, quantum, q, {x0, y, z}, a);
                         else
-                            addCuboidRow<true>(kk, words, quantum, q, {x0, y, z}, a);
+                            addCuboidRow<true>(kk, plane, quantum, q, {x0, y, z}, a);
                     }
                 for (int x = 0; x < d.x; ++x)
                     if (needed[row + size_t(x)]) store(row + size_t(x), acc[size_t(x)]);
