@@ -5,9 +5,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform int vx_row_offset;   // image row of the band's first row
 
-// 16 floats per pixel of the band, row-major: rgba, direct, ambient, emission, transmittance, depth,
-// samples
-// (the byte layout of the C++ VxPixel).
+// 20 floats per pixel of the band, row-major: rgba, direct, ambient, emission, indirect,
+// transmittance, depth, samples, pad (the byte layout of the C++ VxPixel).
 layout(std430, binding = 6) writeonly buffer Band { float vx_band[]; };
 
 void main() {
@@ -15,7 +14,7 @@ void main() {
     int y = int(gl_GlobalInvocationID.y);
     if (x >= int(P.camera_frame.z) || y + vx_row_offset >= int(P.camera_frame.w)) return;
     VxPixel px = vx_render_pixel(x, y + vx_row_offset);
-    int o = 16 * (y * int(P.camera_frame.z) + x);
+    int o = 20 * (y * int(P.camera_frame.z) + x);
     vx_band[o] = px.rgba.x;
     vx_band[o + 1] = px.rgba.y;
     vx_band[o + 2] = px.rgba.z;
@@ -29,7 +28,11 @@ void main() {
     vx_band[o + 10] = px.emission.x;
     vx_band[o + 11] = px.emission.y;
     vx_band[o + 12] = px.emission.z;
-    vx_band[o + 13] = px.transmittance;
-    vx_band[o + 14] = px.depth;
-    vx_band[o + 15] = px.samples;
+    vx_band[o + 13] = px.indirect.x;
+    vx_band[o + 14] = px.indirect.y;
+    vx_band[o + 15] = px.indirect.z;
+    vx_band[o + 16] = px.transmittance;
+    vx_band[o + 17] = px.depth;
+    vx_band[o + 18] = px.samples;
+    vx_band[o + 19] = 0.0f;
 }

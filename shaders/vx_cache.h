@@ -5,7 +5,7 @@
 #pragma once
 #include "vx_optics.h"
 
-// The trilinear cell of a sample in the cache: first float of its lowest corner and fractions.
+// The trilinear cell of a sample in a grid: first float of its lowest corner and fractions.
 struct VxCacheCell {
     int base;
     float fx;
@@ -13,29 +13,53 @@ struct VxCacheCell {
     float fz;
 };
 
-VxCacheCell vx_cache_cell(vec3 world) {
-    vec3 q = vec3(P.world_to_cache * vec4(world, 1.0f)) - vec3(0.5f);
-    vec3 hi = vec3(P.cache_dims.x - 1, P.cache_dims.y - 1, P.cache_dims.z - 1);
+// The trilinear cell of grid point q (cell centres at i + 0.5) in a grid of `dims` cells holding
+// `floats` values per cell: first float of its lowest corner and fractions, clamped to the centres.
+VxCacheCell vx_grid_cell(vec3 q, ivec3 dims, int floats) {
+    q -= vec3(0.5f);
+    vec3 hi = vec3(dims.x - 1, dims.y - 1, dims.z - 1);
     q = clamp(q, vec3(0.0f), hi);
     vec3 c = min(floor(q), max(hi - vec3(1.0f), vec3(0.0f)));
     VxCacheCell cell;
-    cell.base = ((int(c.z) * P.cache_dims.y + int(c.y)) * P.cache_dims.x + int(c.x)) * P.cache_dims.w;
+    cell.base = ((int(c.z) * dims.y + int(c.y)) * dims.x + int(c.x)) * floats;
     cell.fx = min(q.x - c.x, 1.0f);
     cell.fy = min(q.y - c.y, 1.0f);
     cell.fz = min(q.z - c.z, 1.0f);
     return cell;
 }
 
-// Channel `ch` of the cache at a sample. Neighbours along an axis of one cell are the cell itself.
+// Trilinear value `ch` of such a cell, FETCH(index) reading the grid's floats (a macro for the
+// same reason as VX_TRILINEAR). Neighbours along an axis of one cell are the cell itself.
+#define VX_GRID_TRILINEAR(FETCH, cell, dims, floats, ch) \
+    vx_grid_mix(FETCH((cell).base + (ch)), FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 1)), \
+                FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 2)), \
+                FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 1) + vx_grid_step(dims, floats, 2)), \
+                FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 4)), \
+                FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 4) + vx_grid_step(dims, floats, 1)), \
+                FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 4) + vx_grid_step(dims, floats, 2)), \
+                FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 7)), cell)
+
+// Offset to the neighbour along the axes in `mask` (1 x, 2 y, 4 z; 7 all three).
+VX_INLINE int vx_grid_step(ivec3 dims, int floats, int mask) {
+    int sx = dims.x > 1 ? floats : 0;
+    int sy = dims.y > 1 ? dims.x * floats : 0;
+    int sz = dims.z > 1 ? dims.x * dims.y * floats : 0;
+    return ((mask & 1) != 0 ? sx : 0) + ((mask & 2) != 0 ? sy : 0) + ((mask & 4) != 0 ? sz : 0);
+}
+
+VX_INLINE float vx_grid_mix(float c000, float c100, float c010, float c110, float c001, float c101, float c011,
+                            float c111, VxCacheCell cell) {
+    return mix(mix(mix(c000, c100, cell.fx), mix(c010, c110, cell.fx), cell.fy),
+               mix(mix(c001, c101, cell.fx), mix(c011, c111, cell.fx), cell.fy), cell.fz);
+}
+
+VxCacheCell vx_cache_cell(vec3 world) {
+    return vx_grid_cell(vec3(P.world_to_cache * vec4(world, 1.0f)), ivec3(P.cache_dims), P.cache_dims.w);
+}
+
+// Channel `ch` of the cache at a sample.
 float vx_cache_value(VxCacheCell cell, int ch) {
-    int sx = P.cache_dims.x > 1 ? P.cache_dims.w : 0;
-    int sy = P.cache_dims.y > 1 ? P.cache_dims.x * P.cache_dims.w : 0;
-    int sz = P.cache_dims.z > 1 ? P.cache_dims.x * P.cache_dims.y * P.cache_dims.w : 0;
-    int b = cell.base + ch;
-    return mix(mix(mix(vx_cache(b), vx_cache(b + sx), cell.fx), mix(vx_cache(b + sy), vx_cache(b + sy + sx), cell.fx), cell.fy),
-               mix(mix(vx_cache(b + sz), vx_cache(b + sz + sx), cell.fx),
-                   mix(vx_cache(b + sz + sy), vx_cache(b + sz + sy + sx), cell.fx), cell.fy),
-               cell.fz);
+    return VX_GRID_TRILINEAR(vx_cache, cell, ivec3(P.cache_dims), P.cache_dims.w, ch);
 }
 
 // Ambient transmittance at a sample: exp(-tau_AO), per channel with colour bleeding.

@@ -1,7 +1,8 @@
 // Ray marching through the brick atlas: brick-level DDA with empty-space skipping, optical depth
 // accumulated as a sum (tau += sigma * dt, T = exp(-tau)), brute-force shadow rays, compositing.
 #pragma once
-#include "vx_cache.h"
+#include "vx_illumination.h"
+#include "vx_noise.h"
 
 // Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.
 struct VxDda {
@@ -17,10 +18,12 @@ float vx_safe_inv(float x) {
     return abs(x) > 1e-20f ? 1.0f / x : (x >= 0.0f ? 1e30f : -1e30f);
 }
 
-// Clips [t0, t1] against the box of occupied bricks. Returns false when nothing is left.
+// Clips [t0, t1] against the box of occupied bricks (grown by the perturbation's displacement,
+// which can pull density outwards). Returns false when nothing is left.
 bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
-    vec3 lo = vec3(P.bricks_min.x, P.bricks_min.y, P.bricks_min.z) * float(VX_BRICK);
-    vec3 hi = vec3(P.bricks_max.x + 1, P.bricks_max.y + 1, P.bricks_max.z + 1) * float(VX_BRICK);
+    float grow = vx_displaced() ? P.noise_offset.w : 0.0f;
+    vec3 lo = vec3(P.bricks_min.x, P.bricks_min.y, P.bricks_min.z) * float(VX_BRICK) - vec3(grow);
+    vec3 hi = vec3(P.bricks_max.x + 1, P.bricks_max.y + 1, P.bricks_max.z + 1) * float(VX_BRICK) + vec3(grow);
     vec3 inv = vec3(vx_safe_inv(d.x), vx_safe_inv(d.y), vx_safe_inv(d.z));
     vec3 ta = (lo - o) * inv;
     vec3 tb = (hi - o) * inv;
@@ -73,6 +76,18 @@ int vx_first_sample(float t, float inv_dt) {
 vec3 vx_to_index_point(vec3 x) { return vec3(P.world_to_index * vec4(x, 1.0f)); }
 vec3 vx_to_index_dir(vec3 v) { return vec3(P.world_to_index * vec4(v, 0.0f)); }
 
+// Extinction at index point p (world point x) under the perturbation (Kniss 2003 Sec. III.D):
+// the lookup displaced by the noise vector, the result scaled by the noise.
+float vx_perturbed_extinction(vec3 p, vec3 x) {
+    vec4 n = vx_noise_fbm(x);
+    float v = vx_displaced() ? vx_density_index(p + vec3(n) * P.noise_offset.w) : vx_density_index(p);
+    return vx_perturb_extinction(vx_value_extinction(v), n);
+}
+
+// Whether the march must visit a brick: occupied, or anywhere when displacement can pull
+// density into empty bricks.
+VX_INLINE bool vx_visits(int slot) { return slot != VX_PAGE_EMPTY || vx_displaced(); }
+
 // Transmittance from world point x towards a light at distance `dist` along unit direction wi.
 // Reference quality: fixed step P.march.y, stops only below the transmittance cutoff.
 float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
@@ -88,10 +103,13 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
     VxDda s = vx_dda_begin(o, d, t0, t1);
     while (s.t < s.t_end) {
         int slot = vx_page_lookup(s.brick);
-        if (slot != VX_PAGE_EMPTY) {
+        if (vx_visits(slot)) {
             int k_end = vx_first_sample(vx_dda_exit(s), inv_dt);
-            for (int k = vx_first_sample(s.t, inv_dt); k < k_end; ++k)
-                tau += vx_extinction(vx_corners_at(slot, s.brick, o + d * ((float(k) + 0.5f) * dt))) * dt;
+            for (int k = vx_first_sample(s.t, inv_dt); k < k_end; ++k) {
+                float t = (float(k) + 0.5f) * dt;
+                tau += (vx_perturbed() ? vx_perturbed_extinction(o + d * t, x + wi * t)
+                                       : vx_extinction(vx_corners_at(slot, s.brick, o + d * t))) * dt;
+            }
             if (tau > tau_cut) return 0.0f;
         }
         vx_dda_advance(s);
@@ -99,12 +117,38 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
     return vx_exp(-tau);
 }
 
+// Kniss 2003 Eq. 11: how much of a sample is shaded as a surface (0 in homogeneous regions, 1
+// where the density gradient is steep) and its normal, from central differences of the data.
+vec4 vx_surface(vec3 p) {
+    if (P.surface.y <= 0.0f) return vec4(0.0f);
+    vec3 g = vec3(vx_density_index(p + vec3(1.0f, 0.0f, 0.0f)) - vx_density_index(p - vec3(1.0f, 0.0f, 0.0f)),
+                  vx_density_index(p + vec3(0.0f, 1.0f, 0.0f)) - vx_density_index(p - vec3(0.0f, 1.0f, 0.0f)),
+                  vx_density_index(p + vec3(0.0f, 0.0f, 1.0f)) - vx_density_index(p - vec3(0.0f, 0.0f, 1.0f))) * 0.5f;
+    float m = length(g);
+    float weight = clamp((m - P.surface.x) * P.surface.y, 0.0f, 1.0f);
+    // Index-space gradient to a world normal: the inverse transpose of index->world is world_to_index^T.
+    vec3 n = m > 0.0f ? -normalize(transpose(mat3(P.world_to_index)) * g) : vec3(0.0f, 1.0f, 0.0f);
+    return vec4(n, weight);
+}
+
+// The factor Kniss Eq. 11 puts on the light from direction wi seen along dir: (1 - S) + S * f_s
+// with f_s Blinn-Phong (diffuse plus specular) about the surface normal.
+VX_INLINE float vx_surface_factor(vec4 surface, vec3 wi, vec3 dir) {
+    if (surface.w <= 0.0f) return 1.0f;
+    vec3 n = vec3(surface);
+    vec3 h = normalize(wi - dir);
+    float fs = max(dot(n, wi), 0.0f) + P.surface.z * pow(max(dot(n, h), 0.0f), P.surface.w);
+    return (1.0f - surface.w) + surface.w * fs;
+}
+
 // Single-scattered light at world point x for a camera ray travelling along unit direction dir,
 // from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
-// `cell` locates x in the light cache (read only for SAT-cone shadows).
-vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell) {
+// `cell` locates x in the light cache (read only for SAT-cone shadows); `surface` is vx_surface.
+vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell, vec4 surface) {
     vec3 sum = vec3(0.0f);
+    float unshadowed = 0.0f;   // luminance the lights would bring unshadowed (propagation)
+    bool propagated = P.bricks_max.w == VX_SHADOWS_PROPAGATION;
     for (int i = 0; i < P.bricks_min.w; ++i) {
         VxLight light = vx_light(i);
         bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;
@@ -116,22 +160,36 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell) {
         float shadow = 1.0f;
         if (P.bricks_max.w == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
         if (P.bricks_max.w == VX_SHADOWS_SAT_CONE && P.cache_map.z >= 0) shadow = vx_exp(-vx_cache_value(cell, P.cache_map.z + i));
-        sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.march.w));
+        unshadowed += vx_luminance(e);
+        sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.march.w) * vx_surface_factor(surface, wi, dir));
     }
+    // The illumination volume holds the lights' attenuated luminance together: each light keeps
+    // its colour and phase, scaled by the fraction of their unshadowed luminance that arrives.
+    if (propagated) sum *= unshadowed > 0.0f ? vx_illum_direct(x) / unshadowed : 0.0f;
     return sum;
 }
 
 // Extinction at the first `lanes` (a multiple of VX_LANES, at most VX_CHUNK) of the consecutive
 // samples t_j = (k + j + 0.5) * dt inside one brick. The samples are independent, so the C++
 // build evaluates them as one SIMD batch (gathers from the atlas); a GPU thread runs the loop.
-// Samples past the brick read clamped, in-bounds voxels and are ignored by the caller.
+// Samples past the brick read clamped, in-bounds voxels and are ignored by the caller. Under a
+// perturbation every sample is looked up on its own (its displaced point may lie in any brick);
+// wo + wd * t is the sample's world point.
 struct VxChunk {
     float sigma[VX_CHUNK];
     float tau[VX_CHUNK];    // optical depth from the camera to the end of each sample's segment
     float T[VX_CHUNK];      // exp(-tau)
 };
 
-VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, int k, int lanes, float dt, VX_INOUT(VxChunk) c) {
+VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 wo, vec3 wd, int k, int lanes, float dt,
+                                   VX_INOUT(VxChunk) c) {
+    if (vx_perturbed()) {
+        for (int j = 0; j < lanes; ++j) {
+            float t = (float(k + j) + 0.5f) * dt;
+            c.sigma[j] = vx_perturbed_extinction(o + d * t, wo + wd * t);
+        }
+        return;
+    }
     // Scalars only inside the loops (vector temporaries would be spilled per SIMD lane); two loops
     // because reconstruction vectorises on its own and the transfer-function branch is uniform,
     // so the compiler hoists it out of the second.
@@ -177,9 +235,11 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     px.direct = vec3(0.0f);
     px.ambient = vec3(0.0f);
     px.emission = vec3(0.0f);
+    px.indirect = vec3(0.0f);
     px.transmittance = 1.0f;
     px.depth = 0.0f;
     px.samples = 0.0f;
+    px.pad = 0.0f;
 
     vec3 o = vx_to_index_point(origin);
     vec3 d = vx_to_index_dir(dir);
@@ -189,13 +249,14 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
 
     float dt = P.march.x;
     float cutoff = P.march.z;
-    bool per_ray_directional = P.bricks_max.w == VX_SHADOWS_NONE;
+    bool shaded_surface = P.surface.y > 0.0f;
+    bool per_ray_directional = P.bricks_max.w == VX_SHADOWS_NONE && !shaded_surface;
     VxCacheCell no_cell;
     no_cell.base = 0;
     no_cell.fx = 0.0f;
     no_cell.fy = 0.0f;
     no_cell.fz = 0.0f;
-    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, no_cell) : vec3(0.0f);
+    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, no_cell, vec4(0.0f)) : vec3(0.0f);
     bool cached = P.cache_dims.x > 0;
     vec3 ambient = vec3(P.ambient);
     int per_sample_lights = per_ray_directional ? VX_LIGHTS_LOCAL : VX_LIGHTS_ALL;
@@ -215,13 +276,14 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     float inv_dt = 1.0f / dt;
     while (s.t < s.t_end && T > cutoff) {
         int slot = vx_page_lookup(s.brick);
-        int k_end = slot == VX_PAGE_EMPTY ? 0 : vx_first_sample(vx_dda_exit(s), inv_dt);
+        bool occupied = slot != VX_PAGE_EMPTY;
+        int k_end = vx_visits(slot) ? vx_first_sample(vx_dda_exit(s), inv_dt) : 0;
         for (int k = vx_first_sample(s.t, inv_dt); k < k_end && T > cutoff; k += VX_CHUNK) {
             int n = min(VX_CHUNK, k_end - k);
             // A brick often holds only a few samples of a ray: evaluate whole SIMD widths, not the
             // whole batch.
             int lanes = min(VX_CHUNK, (n + VX_LANES - 1) / VX_LANES * VX_LANES);
-            vx_chunk_extinction(slot, s.brick, o, d, k, lanes, dt, chunk);
+            vx_chunk_extinction(slot, s.brick, o, d, origin, dir, k, lanes, dt, chunk);
             vx_chunk_transmittance(tau, lanes, dt, chunk);
             px.samples += float(n);
             if (constant_light) {
@@ -237,7 +299,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                 float sigma = chunk.sigma[j];
                 float t = (float(k + j) + 0.5f) * dt;
                 vec3 le = vec3(0.0f);
-                if (emits) le = vx_emission(vx_corners_at(slot, s.brick, o + d * t));
+                if (emits && occupied) le = vx_emission(vx_corners_at(slot, s.brick, o + d * t));
                 if (sigma <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
                 // Exact integral of a constant segment: the light scattered in a segment of
                 // extinction sigma is albedo * L_in * (T_k - T_k+1); emission integrates to
@@ -247,9 +309,11 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                 float absorbed = T - T_next;
                 if (absorbed > 0.0f) {
                     vec3 x = origin + dir * t;
-                    vec3 albedo = plain_albedo ? vec3(P.material) : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
+                    vec3 albedo = plain_albedo || !occupied ? vec3(P.material) : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
                     VxCacheCell cell = cached ? vx_cache_cell(x) : no_cell;
-                    px.direct += albedo * (directional + vx_in_scattered(x, dir, per_sample_lights, cell)) * absorbed;
+                    vec4 surface = shaded_surface ? vx_surface(o + d * t) : vec4(0.0f);
+                    px.direct += albedo * (directional + vx_in_scattered(x, dir, per_sample_lights, cell, surface)) * absorbed;
+                    if (P.indirect.w > 0.0f) px.indirect += albedo * vx_illum_indirect(x) * (P.indirect.w * absorbed);
                     px.ambient += albedo * ambient * vx_ambient_occlusion(cell) * absorbed;
                     depth_weighted += absorbed * t * cos_forward;
                 }
@@ -260,7 +324,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
         vx_dda_advance(s);
     }
     float alpha = 1.0f - T;
-    px.rgba = vec4(px.direct + px.ambient + px.emission, alpha);
+    px.rgba = vec4(px.direct + px.ambient + px.emission + px.indirect, alpha);
     px.transmittance = T;
     px.depth = alpha > 0.0f ? depth_weighted / alpha : 0.0f;
     return px;

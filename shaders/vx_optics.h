@@ -51,8 +51,8 @@ vec3 vx_emission(VxCorners c) {
 
 // Unshadowed radiance arriving at world point x from light L. Returns the direction towards the
 // light in `wi` and the distance to it in `dist` (a huge value for directional lights).
-// Point-light falloff is clamped at half a march step so a light inside the medium stays finite.
-vec3 vx_light_incident(VxLight L, vec3 x, VX_OUT(vec3) wi, VX_OUT(float) dist) {
+// Point-light falloff is clamped at distance r_min so a light inside the medium stays finite.
+vec3 vx_light_radiance(VxLight L, vec3 x, float r_min, VX_OUT(vec3) wi, VX_OUT(float) dist) {
     int type = int(L.pos_type.w);
     if (type == VX_LIGHT_DIRECTIONAL) {
         wi = -vec3(L.dir_cos);
@@ -63,7 +63,6 @@ vec3 vx_light_incident(VxLight L, vec3 x, VX_OUT(vec3) wi, VX_OUT(float) dist) {
     float d2 = dot(to_light, to_light);
     dist = sqrt(d2);
     wi = dist > 0.0f ? to_light / dist : vec3(0.0f, 1.0f, 0.0f);
-    float r_min = 0.5f * P.march.x;
     vec3 e = vec3(L.color) / max(d2, r_min * r_min);
     if (type == VX_LIGHT_SPOT) {
         float cos_angle = dot(-wi, vec3(L.dir_cos));
@@ -71,6 +70,14 @@ vec3 vx_light_incident(VxLight L, vec3 x, VX_OUT(vec3) wi, VX_OUT(float) dist) {
     }
     return e;
 }
+
+// The march's version: the falloff clamps at half a march step.
+vec3 vx_light_incident(VxLight L, vec3 x, VX_OUT(vec3) wi, VX_OUT(float) dist) {
+    return vx_light_radiance(L, x, 0.5f * P.march.x, wi, dist);
+}
+
+// Rec. 709 luminance.
+VX_INLINE float vx_luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 
 // Henyey-Greenstein phase function; cos_theta is between the direction light travels and the
 // direction it leaves towards the eye.

@@ -13,6 +13,10 @@
 //      VxLight vx_light(int index);          vec4  vx_tf_lut(int index);
 //      float  vx_cache(int index);           (light cache, read by the march)
 //      uint   vx_sat_word(int index);        (SAT, 3 words per entry, read by the light passes)
+//      float  vx_illum(int index);           (illumination volume, read by the march)
+//      vec4   vx_noise(int index);           (perturbation table)
+//      float  vx_prop_sigma(int index), vx_prop_prev(int index), vx_prop_in(int index)
+//                                            (a propagation sweep's grid, previous slice, input)
 //    and read the parameters in VxParams through the global/member `P`.
 #ifdef VX_GLSL
 #define VX_OUT(T) out T
@@ -38,6 +42,7 @@
 #define VX_PAGE_EMPTY -1
 #define VX_TF_LUT_SIZE 256
 #define VX_CHUNK 16                // samples whose extinction is evaluated together (one SIMD batch)
+#define VX_NOISE_SIZE 32           // perturbation noise table edge (power of two); the table repeats
 #define VX_LANES 8                 // batches run in whole multiples of this (the CPU's SIMD width)
 
 #define VX_LIGHT_DIRECTIONAL 0
@@ -47,6 +52,7 @@
 #define VX_SHADOWS_NONE 0
 #define VX_SHADOWS_RAYMARCH 1
 #define VX_SHADOWS_SAT_CONE 2      // shadow optical depth read from the light cache
+#define VX_SHADOWS_PROPAGATION 3   // direct and indirect light read from the illumination volume
 
 #define VX_LIGHTS_ALL 0            // which lights vx_in_scattered sums
 #define VX_LIGHTS_DIRECTIONAL 1

@@ -61,3 +61,12 @@ VX_INLINE VxCorners vx_corners_at(int slot, ivec3 b, vec3 p) {
             mix(FETCH((c).base + 9), FETCH((c).base + 10), (c).fx), (c).fy), \
         mix(mix(FETCH((c).base + 81), FETCH((c).base + 82), (c).fx), \
             mix(FETCH((c).base + 90), FETCH((c).base + 91), (c).fx), (c).fy), (c).fz)
+
+// Raw density at index point p from whichever brick holds it (0 in empty bricks): for lookups
+// that may leave the brick being marched (displaced samples, gradients).
+float vx_density_index(vec3 p) {
+    ivec3 b = ivec3(floor(p / float(VX_BRICK)));
+    int slot = vx_page_lookup(b);
+    if (slot == VX_PAGE_EMPTY) return 0.0f;
+    return VX_TRILINEAR(vx_atlas_density, vx_corners_at(slot, b, p));
+}

@@ -33,6 +33,18 @@ struct VxParams {
     ivec4 cache_dims;       // xyz = light-cache cells (0 = no cache), w = floats per cell
     ivec4 cache_map;        // x = first ambient-occlusion channel (-1 none), y = 3 if AO is RGB
                             // (colour bleeding) else 1, z = first shadow channel (-1 none)
+    // The illumination volume (propagation shadows): direct luminance per cell, then the indirect
+    // RGB block, possibly at a coarser (chroma-subsampled) resolution.
+    mat4 world_to_illum;    // world -> illumination-volume cell coordinates (cell centres at i + 0.5)
+    ivec4 illum_dims;       // xyz = luminance cells (0 = no volume), w = chroma subsampling factor (1 or 2)
+    ivec4 chroma_dims;      // xyz = indirect cells, w = first float of the indirect block
+    vec4 indirect;          // rgb = transport colour, w = indirect strength / 4pi (0 = no indirect light)
+    vec4 surface;           // Kniss Eq. 11: x = gradient where surface shading starts, y = 1 / (gradient
+                            // where it is full - x) (0 = off), z = specular weight, w = shininess
+    vec4 noise_scale;       // perturbation: x = first-octave noise texels per world unit, y = octaves
+                            // (0 = off), z = lacunarity, w = gain
+    vec4 noise_offset;      // xyz = world offset of the noise (animation), w = displacement in index voxels
+    vec4 noise_amp;         // x = extinction amplitude, y = transport-colour amplitude
 };
 
 // The light passes' parameters (Schlegel 2011): the extinction SAT over the light grid and the
@@ -51,13 +63,36 @@ struct VxSatParams {
                             // z = floats per cache cell, w = unused
 };
 
+// One propagation sweep (Ropinski 2010, Sec. 4.1) over a grid of cells, slice by slice along an
+// axis. A light sweep carries light from the light through the grid (1 channel: direct luminance,
+// unblurred; 3: indirect RGB, blurred in a cone); the eye sweep carries the indirect light towards
+// the camera. Grid coordinates are cells: cell (i, j, k) spans [i, i+1) x [j, j+1) x [k, k+1).
+#define VX_MAX_TAPS 32
+struct VxPropParams {
+    mat4 grid_to_world;
+    mat4 world_to_grid;
+    ivec4 dims;             // xyz = cells, w = channels (1 or 3)
+    ivec4 slice;            // x = axis, y = +1 / -1 (the way slices advance), z = slice written, w = blur taps
+    vec4 source;            // xyz = grid position of the light (or camera), or for a directional light the
+                            // grid-space direction it travels; w = 1 for a position, 0 for a direction
+    vec4 flow;              // x = +1 light sweep (flow away from the source), -1 eye sweep (towards it);
+                            // y = tan(blur cone half-angle), z = weight this sweep adds, w = 1 for the eye sweep
+    vec4 atten;             // xyz = optical-depth multiplier per channel (1 direct, -ln(transport) indirect),
+                            // w = sigma multiplier of the grid values (perturbation of the light grid is
+                            // evaluated per cell)
+    VxLight light;          // the light (world), for the radiance that enters from outside the grid
+    vec4 taps[VX_MAX_TAPS]; // xy = offset in the unit disc, z = weight (the weights sum to 1)
+};
+
 // What one camera ray returns; the AOVs are kept separate so the EXR writer can lay them out.
 struct VxPixel {
     vec4 rgba;              // premultiplied scene-linear radiance, alpha = 1 - transmittance
     vec3 direct;            // single-scattered light from the scene lights
     vec3 ambient;           // scattered ambient light (occluded when ambient occlusion is on)
     vec3 emission;          // self-emitted light
+    vec3 indirect;          // multiply scattered light (propagation with effects.indirect)
     float transmittance;    // of the whole ray
     float depth;            // camera-space distance, opacity-weighted mean (0 where nothing was hit)
     float samples;          // samples the march evaluated (its cost; the benchmark counts these)
+    float pad;              // 20 floats: whole vec4s
 };

@@ -1,10 +1,12 @@
 // CPU backend: the shared kernel with TBB: the march over 16x16 pixel tiles, the SAT scan
-// (summed_volume.cpp) and the light passes (cpu_light_pass.cpp).
+// (summed_volume.cpp), the light passes (cpu_light_pass.cpp) and the propagation sweeps
+// (cpu_propagation.cpp).
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include "cpu_kernel.h"
 #include "cpu_light_pass.h"
+#include "cpu_propagation.h"
 #include "kernel_backend.h"
 #include "summed_volume.h"
 
@@ -33,6 +35,8 @@ public:
     void buildSat(const LightGrid& grid, SummedVolume& sat) override { buildSummedVolume(grid, sat); }
 
     void fillLightChannel(const LightPass& pass, LightCache& cache) override { fillLightChannelCpu(pass, cache); }
+
+    void propagate(const SweepJob& job, IlluminationVolume& volume) override { propagateCpu(job, volume); }
 };
 
 }  // namespace
@@ -47,6 +51,8 @@ kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
     k.lights = in.lights.data();
     k.tf_lut = in.tf_lut.data();
     k.cache = in.cache;
+    k.illum = in.illum;
+    k.noise = in.noise.data();
     return k;
 }
 

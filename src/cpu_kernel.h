@@ -18,6 +18,12 @@ struct CpuKernel {
     const float* cache = nullptr;          // light cache, P.cache_dims.w floats per cell
     VxSatParams S{};                       // light passes only
     const uint* sat = nullptr;
+    const float* illum = nullptr;          // illumination volume (march)
+    const vec4* noise = nullptr;           // perturbation table
+    VxPropParams Q{};                      // propagation sweeps only
+    const float* prop_sigma = nullptr;
+    const float* prop_prev = nullptr;
+    const float* prop_in = nullptr;
 
     float vx_atlas_density(int i) const { return density[i]; }
     float vx_atlas_emission(int i) const { return emission[i]; }
@@ -27,9 +33,15 @@ struct CpuKernel {
     vec4 vx_tf_lut(int i) const { return tf_lut[i]; }
     float vx_cache(int i) const { return cache[i]; }
     uint vx_sat_word(int i) const { return sat[i]; }
+    float vx_illum(int i) const { return illum[i]; }
+    vec4 vx_noise(int i) const { return noise[i]; }
+    float vx_prop_sigma(int i) const { return prop_sigma[i]; }
+    float vx_prop_prev(int i) const { return prop_prev[i]; }
+    float vx_prop_in(int i) const { return prop_in[i]; }
 
 #include "vx_march.h"
 #include "vx_sat.h"
+#include "vx_propagation.h"
 };
 
 }  // namespace voxlux::kernel

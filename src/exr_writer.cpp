@@ -97,6 +97,9 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
     if (wants("direct"))
         for (int k = 0; k < 3; ++k)
             add(std::string("direct.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.direct[k]; });
+    if (wants("indirect"))
+        for (int k = 0; k < 3; ++k)
+            add(std::string("indirect.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.indirect[k]; });
     if (wants("ambient"))
         for (int k = 0; k < 3; ++k)
             add(std::string("ambient.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.ambient[k]; });

@@ -1,6 +1,6 @@
-// GL backend: the shared kernel as compute shaders (march.comp, sat_scan.comp, light_cache.comp)
-// on the process's headless EGL context. Inputs are uploaded as buffers; the image comes back in
-// bands of rows, the SAT and each light-cache channel whole.
+// GL backend: the shared kernel as compute shaders (march.comp, sat_scan.comp, light_cache.comp,
+// propagate.comp) on the process's headless EGL context. Inputs are uploaded as buffers; the image
+// comes back in bands of rows, the SAT, each light-cache channel and each swept volume block whole.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -15,11 +15,12 @@
 namespace voxlux {
 namespace {
 
-// march.comp writes 16 floats per pixel in VxPixel's member order, so a band reads straight back.
-static_assert(sizeof(kernel::VxPixel) == 16 * sizeof(float));
+// march.comp writes 20 floats per pixel in VxPixel's member order, so a band reads straight back.
+static_assert(sizeof(kernel::VxPixel) == 20 * sizeof(float));
 static_assert(offsetof(kernel::VxPixel, direct) == 4 * sizeof(float));
 static_assert(offsetof(kernel::VxPixel, ambient) == 7 * sizeof(float));
-static_assert(offsetof(kernel::VxPixel, depth) == 14 * sizeof(float));
+static_assert(offsetof(kernel::VxPixel, indirect) == 13 * sizeof(float));
+static_assert(offsetof(kernel::VxPixel, depth) == 17 * sizeof(float));
 
 // Rows per dispatch: keeps each submission short whatever the image size (and the band buffer small).
 constexpr int kBandRows = 64;
@@ -76,6 +77,10 @@ GLuint satScanProgram() {
 }
 GLuint lightCacheProgram() {
     static const GLuint program = compileProgram("light_cache.comp");
+    return program;
+}
+GLuint propagateProgram() {
+    static const GLuint program = compileProgram("propagate.comp");
     return program;
 }
 
@@ -171,6 +176,8 @@ public:
             {lights_, "Lights", in.lights.data(), in.lights.size() * sizeof(kernel::VxLight)},
             {tf_lut_, "TransferLut", in.tf_lut.data(), in.tf_lut.size() * sizeof(glm::vec4)},
             {cache_, "LightCache", in.cache, in.cache_floats * sizeof(float)},
+            {illum_, "Illumination", in.illum, in.illum_floats * sizeof(float)},
+            {noise_, "Noise", in.noise.data(), in.noise.size() * sizeof(glm::vec4)},
         };
         for (const auto& a : arrays) {
             checkStorageSize(a.block, a.bytes);
@@ -259,6 +266,51 @@ public:
             if ((*pass.needed)[i]) cache.values[i * size_t(cache.channels) + size_t(channel)] = values[i];
     }
 
+    void propagate(const SweepJob& job, IlluminationVolume& volume) override {
+        ensureGlContext();
+        const GLuint program = propagateProgram();
+        const kernel::VxPropParams& Q = job.params;
+        const int axis = Q.slice.x, u = (axis + 1) % 3, v = (axis + 2) % 3;
+        const size_t slice_cells = size_t(Q.dims[u]) * Q.dims[v];
+        const size_t block = size_t(Q.dims.x) * Q.dims.y * Q.dims.z * size_t(Q.dims.w);
+        march_params_.upload(job.march, sizeof *job.march, GL_STREAM_DRAW, "Params");
+        march_params_.bind(program, GL_UNIFORM_BLOCK, "Params");
+        const struct {
+            Buffer& buffer;
+            const char* name;
+            const void* data;
+            size_t bytes;
+        } arrays[] = {
+            {prop_sigma_, "PropSigma", job.sigma->data(), job.sigma->size() * sizeof(float)},
+            {noise_, "Noise", job.noise->data(), job.noise->size() * sizeof(glm::vec4)},
+            {prop_in_, "EyeInput", job.input ? job.input->data() : nullptr, job.input ? job.input->size() * sizeof(float) : 0},
+            {volume_, "Volume", volume.values.data() + job.offset, block * sizeof(float)},
+        };
+        for (const auto& a : arrays) {
+            checkStorageSize(a.name, a.bytes);
+            a.buffer.upload(a.data, a.bytes, GL_DYNAMIC_COPY, a.name);
+            a.buffer.bind(program, GL_SHADER_STORAGE_BLOCK, a.name);
+        }
+        // Two slice buffers, swapped between slices: one read (SliceIn), one written (SliceOut).
+        Buffer* slices[2] = {&slice_a_, &slice_b_};
+        for (Buffer* b : slices) b->upload(nullptr, slice_cells * Q.dims.w * sizeof(float), GL_DYNAMIC_COPY, "slice");
+        glUseProgram(program);
+        kernel::VxPropParams params = Q;
+        const int count = Q.dims[axis];
+        for (int step = 0; step < count; ++step) {
+            params.slice.z = Q.slice.y > 0 ? step : count - 1 - step;
+            prop_params_.upload(&params, sizeof params, GL_STREAM_DRAW, "PropParams");
+            prop_params_.bind(program, GL_UNIFORM_BLOCK, "PropParams");
+            slices[step & 1]->bind(program, GL_SHADER_STORAGE_BLOCK, "SliceIn");
+            slices[(step + 1) & 1]->bind(program, GL_SHADER_STORAGE_BLOCK, "SliceOut");
+            glDispatchCompute(GLuint((slice_cells + kLinearGroup - 1) / kLinearGroup), 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+        }
+        glGetNamedBufferSubData(volume_.id(), 0, GLsizeiptr(block * sizeof(float)), volume.values.data() + job.offset);
+        if (GLenum error = glGetError(); error != GL_NO_ERROR)
+            throw std::runtime_error("GL backend: a propagation sweep failed with GL error " + std::to_string(error));
+    }
+
 private:
     // Atlases can outgrow what one shader storage block may address on this GL.
     void checkStorageSize(const char* block, size_t bytes) const {
@@ -275,6 +327,7 @@ private:
     GLint64 max_storage_block_ = 0;
     Buffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, cache_, band_;
     Buffer sat_params_, sat_, needed_, channel_;
+    Buffer illum_, noise_, march_params_, prop_params_, prop_sigma_, prop_in_, volume_, slice_a_, slice_b_;
     uint64_t sat_generation_ = 0;   // LightPass::sat_generation of the SAT in sat_, 0 = none
 };
 

@@ -1,10 +1,11 @@
-// Kernel backends: the SAT scan, the light passes and the march, each running the shared kernel
+// Kernel backends: the SAT scan, the light passes, the propagation sweeps and the march, each running the shared kernel
 // (shaders/vx_*.h) on the CPU (TBB) or as GL compute shaders.
 #pragma once
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "illumination_volume.h"
 #include "kernel_inputs.h"
 #include "light_cache.h"
 #include "light_grid.h"
@@ -26,6 +27,8 @@ public:
     virtual void buildSat(const LightGrid& grid, SummedVolume& sat) = 0;
     // One light-cache channel (see LightPass).
     virtual void fillLightChannel(const LightPass& pass, LightCache& cache) = 0;
+    // One propagation sweep (see SweepJob) into `volume`.
+    virtual void propagate(const SweepJob& job, IlluminationVolume& volume) = 0;
 };
 
 std::unique_ptr<KernelBackend> makeCpuBackend();

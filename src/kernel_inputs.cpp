@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "camera.h"
+#include "noise_table.h"
 #include "transfer_function.h"
 
 namespace voxlux {
@@ -26,7 +27,7 @@ kernel::VxLight packLight(const Light& l) {
 }  // namespace
 
 KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const BrickAtlas& atlas,
-                              const PageTable& pages) {
+                              const PageTable& pages, float frame) {
     KernelInputs in;
     in.atlas = &atlas;
     in.pages = &pages;
@@ -56,9 +57,10 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
         local_lights += l.type != LightType::Directional;
     }
     P.ambient = glm::vec4(ambient, glm::any(glm::greaterThan(ambient, glm::vec3(0.0f))) ? 1.0f : 0.0f);
-    const int shadows = scene.effects.shadows == ShadowMethod::Raymarch  ? VX_SHADOWS_RAYMARCH
-                        : scene.effects.shadows == ShadowMethod::SatCone ? VX_SHADOWS_SAT_CONE
-                                                                         : VX_SHADOWS_NONE;
+    const int shadows = scene.effects.shadows == ShadowMethod::Raymarch      ? VX_SHADOWS_RAYMARCH
+                        : scene.effects.shadows == ShadowMethod::SatCone     ? VX_SHADOWS_SAT_CONE
+                        : scene.effects.shadows == ShadowMethod::Propagation ? VX_SHADOWS_PROPAGATION
+                                                                             : VX_SHADOWS_NONE;
     P.bricks_min = glm::ivec4(pages.bricks_min, int(in.lights.size()));
     P.bricks_max = glm::ivec4(pages.bricks_max, shadows);
     // No light cache until the light stage attaches one (src/light_stage.cpp).
@@ -66,6 +68,23 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
     P.cache_map = glm::ivec4(-1, 1, -1, 0);
     P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, local_lights, 0);
     in.tf_lut = bakeTransfer(m.transfer);
+
+    // No illumination volume until the illumination stage attaches one; its indirect term and
+    // transport colour are known already.
+    P.illum_dims = glm::ivec4(0, 0, 0, 1);
+    if (const auto& ind = scene.effects.indirect; ind && scene.effects.shadows == ShadowMethod::Propagation)
+        P.indirect = glm::vec4(ind->transport_color, ind->strength / (4.0f * float(M_PI)));
+    if (const auto& sf = scene.effects.surface)
+        P.surface = glm::vec4(sf->gradient_low, 1.0f / (sf->gradient_high - sf->gradient_low), sf->specular, sf->shininess);
+    if (const auto& pt = scene.effects.perturbation) {
+        const glm::vec3 box((pages.bricks_max - pages.bricks_min + 1) * VX_BRICK);
+        const float longest = std::max({box.x, box.y, box.z}) * edge;
+        const float scale = pt->scale > 0.0f ? pt->scale : 0.25f * longest;
+        P.noise_scale = glm::vec4(float(VX_NOISE_SIZE) / scale, float(pt->octaves), pt->lacunarity, pt->gain);
+        P.noise_offset = glm::vec4(pt->velocity * (frame + pt->time), pt->displacement);
+        P.noise_amp = glm::vec4(pt->density, pt->transport, 0.0f, 0.0f);
+        in.noise = makeNoiseTable(pt->seed);
+    }
     return in;
 }
 

@@ -18,11 +18,15 @@ struct KernelInputs {
     const PageTable* pages = nullptr;
     const float* cache = nullptr;           // light cache (P.cache_dims), or none
     size_t cache_floats = 0;
+    const float* illum = nullptr;           // illumination volume (P.illum_dims), or none
+    size_t illum_floats = 0;
+    std::vector<glm::vec4> noise;           // perturbation table, empty without perturbation
 };
 
-// `camera` must be resolved (the scene's, or the default framing).
+// `camera` must be resolved (the scene's, or the default framing). `frame` (the sequence frame)
+// animates the perturbation.
 KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const BrickAtlas& atlas,
-                              const PageTable& pages);
+                              const PageTable& pages, float frame = 0.0f);
 
 // Smallest world length of one voxel edge: the march step unit.
 float voxelEdge(const glm::mat4& index_to_world);

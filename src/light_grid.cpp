@@ -82,25 +82,39 @@ bool lightGridIndexable(glm::ivec3 d, int planes, int cache_channels) {
     return sat_words < uint64_t(INT32_MAX) && cache_floats < uint64_t(INT32_MAX);
 }
 
-int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_channels, size_t budget,
-                       std::string& warning) {
+glm::vec3 occupiedExtent(const KernelInputs& in) {
+    return glm::vec3((in.pages->bricks_max - in.pages->bricks_min + 1) * VX_BRICK);
+}
+
+int cappedLightResolution(glm::vec3 extent, int requested) {
+    return std::min(requested, 4 * int(std::max({extent.x, extent.y, extent.z})));
+}
+
+int fitGridResolution(glm::vec3 extent, int requested, size_t budget, const GridCost& cost, const std::string& what,
+                      std::string& warning) {
     auto fits = [&](int r) {
         const glm::ivec3 d = lightGridDims(extent, r);
-        return lightGridBytes(d, planes, cache_channels) <= budget && lightGridIndexable(d, planes, cache_channels);
+        return cost.bytes(d) <= budget && cost.indexable(d);
     };
     int r = requested;
     while (r > 2 && !fits(r)) --r;
-    if (r != requested && !lightGridIndexable(lightGridDims(extent, requested), planes, cache_channels)) {
-        warning = "light grid of " + std::to_string(requested) +
-                  " cells is beyond the kernel's 32-bit indices (SAT or light cache over 2^31 values); using " +
-                  std::to_string(r) + " cells instead";
+    if (r != requested && !cost.indexable(lightGridDims(extent, requested))) {
+        warning = what + " of " + std::to_string(requested) + " cells is beyond the kernel's 32-bit indices (" +
+                  cost.index_limit + " over 2^31 values); using " + std::to_string(r) + " cells instead";
     } else if (r != requested) {
-        const size_t need = lightGridBytes(lightGridDims(extent, requested), planes, cache_channels);
-        warning = "light grid of " + std::to_string(requested) + " cells needs " + std::to_string(need >> 20) +
+        const size_t need = cost.bytes(lightGridDims(extent, requested));
+        warning = what + " of " + std::to_string(requested) + " cells needs " + std::to_string(need >> 20) +
                   " MiB, over effects.light_memory_mb = " + std::to_string(budget >> 20) + "; using " +
                   std::to_string(r) + " cells instead";
     }
     return r;
+}
+
+int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_channels, size_t budget,
+                       std::string& warning) {
+    GridCost cost{[&](glm::ivec3 d) { return lightGridBytes(d, planes, cache_channels); },
+                  [&](glm::ivec3 d) { return lightGridIndexable(d, planes, cache_channels); }, "SAT or light cache"};
+    return fitGridResolution(extent, requested, budget, cost, "light grid", warning);
 }
 
 LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding) {

@@ -5,6 +5,7 @@
 // memory budget, never by the data's bounding box.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,26 @@ glm::ivec3 lightGridDims(glm::vec3 extent, int resolution);
 
 // Whether the kernel's 32-bit indices reach every SAT word and light-cache float.
 bool lightGridIndexable(glm::ivec3 dims, int planes, int cache_channels);
+
+// Index-space size of the occupied bricks' box, which light grids cover.
+glm::vec3 occupiedExtent(const KernelInputs& inputs);
+
+// `requested` cells along the longest side, but no finer than a quarter voxel: finer cells would
+// only repeat voxels (a tiny volume at the default 128).
+int cappedLightResolution(glm::vec3 extent, int requested);
+
+// What a grid of given dimensions costs, for fitGridResolution.
+struct GridCost {
+    std::function<size_t(glm::ivec3)> bytes;
+    std::function<bool(glm::ivec3)> indexable;   // the kernel's 32-bit indices reach every value
+    std::string index_limit;                     // what would overflow them, for the warning
+};
+
+// The resolution (cells along the longest side) actually used for a grid over `extent` index
+// voxels: `requested`, or the largest below it whose cost fits `budget_bytes` and is indexable.
+// Sets `warning` (naming `what` and both resolutions) when it had to reduce.
+int fitGridResolution(glm::vec3 extent, int requested, size_t budget_bytes, const GridCost& cost,
+                      const std::string& what, std::string& warning);
 
 // The resolution actually used: `requested`, or the largest below it whose light grid, SAT and
 // cache fit in `budget_bytes` and are indexable. Sets `warning` (naming both resolutions) when it

@@ -41,9 +41,8 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     const int planes = fx.color_bleeding > 0.0f && layout.ambient_channel >= 0 ? 4 : 1;
     const float bleeding = planes == 4 ? fx.color_bleeding : 0.0f;
 
-    // Cells finer than a quarter voxel would only repeat voxels (a tiny volume at the default 128).
-    const glm::vec3 extent((inputs.pages->bricks_max - inputs.pages->bricks_min + 1) * VX_BRICK);
-    const int wanted = std::min(fx.light_resolution, 4 * int(std::max({extent.x, extent.y, extent.z})));
+    const glm::vec3 extent = occupiedExtent(inputs);
+    const int wanted = cappedLightResolution(extent, fx.light_resolution);
     std::string warning;
     const int resolution = fitLightResolution(extent, wanted, planes, layout.channels,
                                               size_t(fx.light_memory_mb) << 20, warning);

@@ -20,7 +20,7 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--density-scale", o.density_scale, "density to extinction (material.density_scale)");
     cmd.add_option("--light", o.lights,
                    "TYPE:key=value:... e.g. directional:dir=1,-1,0:intensity=3 (repeatable, replaces lights)");
-    cmd.add_option("--shadows", o.shadows, "none|raymarch|sat_cone (effects.shadows)");
+    cmd.add_option("--shadows", o.shadows, "none|raymarch|sat_cone|propagation (effects.shadows)");
     cmd.add_option("--set", o.sets, "KEY=VALUE: set any scene key, e.g. effects.cone.samples=50 (repeatable)");
     cmd.add_option("--backend", o.backend, "auto|cpu|gl (render.backend)");
     cmd.add_option("--frames", o.frames, "FIRST-LAST for a #### volume path (volume.frames)");

@@ -42,10 +42,39 @@ std::string lightCacheReason(const Scene& s) {
     return out;
 }
 
+// Why the illumination stage runs (which sweeps), or why it is skipped.
+std::string illuminationReason(const Scene& s) {
+    const Effects& fx = s.effects;
+    if (!needsPropagation(s)) {
+        std::string out = "skipped: no effect in the scene needs an illumination volume";
+        if (fx.shadows == ShadowMethod::Propagation) out += " (propagation shadows but no light to propagate)";
+        else if (fx.indirect) out += " (indirect light needs effects.shadows = propagation)";
+        return out;
+    }
+    size_t lights = 0;
+    for (const auto& l : s.lights) lights += l.type != LightType::Ambient;
+    std::string out = std::to_string(lights) + (lights == 1 ? " light" : " lights") + " swept through a " +
+                      std::to_string(fx.light_resolution) + "-cell illumination volume along " +
+                      (fx.propagation.blend_axes ? "the two closest axes, blended" : "the closest axis") +
+                      "; direct luminance";
+    if (const auto& in = fx.indirect) {
+        char blur[160];
+        std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, transport colour (%g, %g, %g)",
+                      double(in->angle), in->samples, double(in->transport_color.x), double(in->transport_color.y),
+                      double(in->transport_color.z));
+        out += blur;
+        if (fx.propagation.chroma_subsampling) out += ", chroma subsampled 2x";
+        if (fx.propagation.eye_pass) out += ", eye pass";
+    }
+    if (fx.perturbation) out += ", perturbed";
+    return out;
+}
+
 std::string shadowDescription(ShadowMethod m) {
     switch (m) {
         case ShadowMethod::Raymarch: return "ray-marched shadow rays per sample (reference)";
         case ShadowMethod::SatCone: return "SAT-cone shadows read from the light cache";
+        case ShadowMethod::Propagation: return "direct and indirect light read from the illumination volume";
         case ShadowMethod::None: break;
     }
     return "unshadowed (effects.shadows = none)";
@@ -55,6 +84,7 @@ std::string shadowDescription(ShadowMethod m) {
 
 bool needsAmbientOcclusion(const Scene& s) { return s.effects.ambient_occlusion && hasLight(s, true); }
 bool needsConeShadows(const Scene& s) { return s.effects.shadows == ShadowMethod::SatCone && hasLight(s, false); }
+bool needsPropagation(const Scene& s) { return s.effects.shadows == ShadowMethod::Propagation && hasLight(s, false); }
 
 std::vector<PlannedStage> planRender(const Scene& s) {
     std::vector<PlannedStage> plan;
@@ -68,6 +98,7 @@ std::vector<PlannedStage> planRender(const Scene& s) {
                                                 : "drops bricks the transfer function makes transparent"});
     plan.push_back({"light_cache", {"classify", "lights", "effects"}, needsAmbientOcclusion(s) || needsConeShadows(s),
                     lightCacheReason(s)});
+    plan.push_back({"illumination", {"classify", "lights", "effects", "camera"}, needsPropagation(s), illuminationReason(s)});
 
     std::string march;
     if (s.lights.empty()) {
@@ -77,8 +108,10 @@ std::vector<PlannedStage> planRender(const Scene& s) {
         march += hasLight(s, false) ? shadowDescription(s.effects.shadows) : "ambient only";
         if (hasLight(s, true)) march += needsAmbientOcclusion(s) ? ", occluded ambient" : ", unoccluded ambient";
     }
+    if (s.effects.surface) march += ", surface shading where the gradient is steep";
+    if (s.effects.perturbation) march += ", noise-perturbed";
     if (s.volume.emission) march += ", emission";
-    plan.push_back({"march", {"classify", "light_cache", "camera", "lights", "render"}, true, march});
+    plan.push_back({"march", {"classify", "light_cache", "illumination", "camera", "lights", "render"}, true, march});
     plan.push_back({"grade", {"march"}, false, "skipped: no colour transform in the scene (output is scene-linear)"});
     plan.push_back({"write", {"march", "grade", "output"}, true,
                     "EXR, " + std::string(s.output.pixel_type == PixelType::Half ? "half" : "float") + ", " +

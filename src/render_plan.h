@@ -22,6 +22,7 @@ std::vector<PlannedStage> planRender(const Scene& scene);
 // What the scene asks of the light cache.
 bool needsAmbientOcclusion(const Scene& scene);   // AO on and an ambient light to occlude
 bool needsConeShadows(const Scene& scene);        // sat_cone shadows and a light to shadow
+bool needsPropagation(const Scene& scene);        // propagation shadows and a light to propagate
 bool stageRuns(const std::vector<PlannedStage>& plan, const std::string& name);
 std::string explainPlan(const std::vector<PlannedStage>& plan);
 

@@ -98,9 +98,11 @@ FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     }
 
     r.camera = scene_.camera ? *scene_.camera : frameActiveVoxels(volume, scene_.render);
-    KernelInputs inputs = makeKernelInputs(scene_, r.camera, atlas, pages);
+    KernelInputs inputs = makeKernelInputs(scene_, r.camera, atlas, pages, frame ? float(*frame) : 0.0f);
     if (stageRuns(plan_, "light_cache") && !pages.empty())
         light_.update(scene_, key, inputs, *backend_, r.stage_seconds, r.reused, r.warnings);
+    if (stageRuns(plan_, "illumination") && !pages.empty())
+        illumination_.update(scene_, r.camera, key, inputs, *backend_, r.stage_seconds, r.reused, r.warnings);
     r.image = clock("march", [&] { return backend_->march(inputs); });
     return r;
 }

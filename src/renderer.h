@@ -1,4 +1,5 @@
-// Runs the render plan for one frame: load -> brick -> classify -> light cache -> march -> write,
+// Runs the render plan for one frame: load -> brick -> classify -> light cache / illumination ->
+// march -> write,
 // timing each stage and keeping what a later frame or scene edit can reuse. The CLI, the benchmark and the tests all render through this.
 #pragma once
 #include <optional>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "brick_atlas.h"
+#include "illumination_stage.h"
 #include "kernel_backend.h"
 #include "light_stage.h"
 #include "render_plan.h"
@@ -57,6 +59,7 @@ private:
     std::unique_ptr<LoadedVolume> volume_;
     std::unique_ptr<BrickAtlas> atlas_;
     LightStage light_;
+    IlluminationStage illumination_;
 };
 
 // FNV-1a of the scene as rendered (canonical JSON), hex; written into the EXR metadata.

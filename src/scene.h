@@ -77,8 +77,9 @@ struct RenderSettings {
 };
 
 // Raymarch: a shadow ray per sample and light (the reference). SatCone: Schlegel 2011 cones of
-// SAT cuboids, precomputed into the light cache.
-enum class ShadowMethod { None, Raymarch, SatCone };
+// SAT cuboids, precomputed into the light cache. Propagation: Ropinski 2010 illumination volume,
+// swept slice by slice from the lights.
+enum class ShadowMethod { None, Raymarch, SatCone, Propagation };
 
 struct AmbientOcclusion {
     int shells = 3;
@@ -91,13 +92,62 @@ struct ShadowCone {
     float growth = 0.05f;                  // each cuboid this much longer than the one before
 };
 
+// Knobs of the illumination volume (shadows "propagation"); its resolution and memory budget are
+// light_resolution and light_memory_mb, as for the SAT.
+struct Propagation {
+    bool blend_axes = true;                // sweep the two closest face axes and blend (no popping)
+    bool eye_pass = false;                 // a second sweep scattering light towards the camera
+    bool chroma_subsampling = false;       // indirect light at half the resolution per axis
+};
+
+// Kniss 2003 indirect light: forward-scattered light blurred within a cone as it propagates and
+// attenuated by the transport colour. Needs shadows "propagation".
+enum class BlurPhase { Phong, HenyeyGreenstein };
+
+struct Indirect {
+    float strength = 1.0f;                 // scale of the indirect term in Kniss Eq. 12
+    float angle = 30.0f;                   // blur cone apex angle, degrees (Kniss theta)
+    int samples = 9;                       // blur taps per cell
+    BlurPhase phase = BlurPhase::Phong;    // tap weights: Phong lobe cos^exponent, or Henyey-Greenstein g
+    float exponent = 4.0f;
+    float g = 0.5f;
+    glm::vec3 transport_color{1.0f};       // share of indirect light kept per unit optical depth
+};
+
+// Kniss 2003 Eq. 11: Blinn-Phong surface shading blended in where the density gradient is steep.
+struct SurfaceShading {
+    float gradient_low = 0.05f;            // |grad density| per voxel where surface shading starts
+    float gradient_high = 0.25f;           // ... and where it is complete
+    float specular = 0.5f;
+    float shininess = 32.0f;
+};
+
+// Kniss 2003 Sec. III.D: seeded multi-octave noise perturbing extinction, transport colour and
+// the data lookup, in the march and in the light propagation alike.
+struct Perturbation {
+    int seed = 1;
+    float scale = 0.0f;                    // world size of the first octave's tile; 0 = 1/4 of the volume
+    int octaves = 3;
+    float lacunarity = 2.0f;
+    float gain = 0.5f;
+    float density = 0.0f;                  // relative extinction amplitude
+    float transport = 0.0f;                // relative transport-colour amplitude
+    float displacement = 0.0f;             // lookup displacement amplitude, index voxels
+    glm::vec3 velocity{0.0f};              // noise drift per frame, world units
+    float time = 0.0f;                     // frames added to the sequence frame
+};
+
 struct Effects {
     ShadowMethod shadows = ShadowMethod::Raymarch;
     std::optional<AmbientOcclusion> ambient_occlusion;
     float color_bleeding = 0.0f;           // 0..1: how much the neighbourhood's albedo tints AO
     ShadowCone cone;
+    Propagation propagation;
+    std::optional<Indirect> indirect;
+    std::optional<SurfaceShading> surface;
+    std::optional<Perturbation> perturbation;
     int light_resolution = 128;            // light-grid cells along the volume's longest side
-    int light_memory_mb = 2048;            // budget for light grid, SAT and light cache
+    int light_memory_mb = 2048;            // budget for light grid, SAT, light cache and illumination volume
 };
 
 enum class PixelType { Half, Float };
@@ -106,7 +156,7 @@ struct OutputSpec {
     std::string path;                      // may contain #### for sequences
     PixelType pixel_type = PixelType::Half;
     std::string compression = "zip";
-    std::vector<std::string> aovs;         // subset of direct, emission, transmittance, depth
+    std::vector<std::string> aovs;         // subset of direct, ambient, indirect, emission, transmittance, depth
 };
 
 struct Scene {

@@ -1,5 +1,6 @@
 #include "scene_json.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -8,12 +9,13 @@
 
 #include "error.h"
 #include "json_reader.h"
+#include "kernel_types.h"
 
 namespace voxlux {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& knownAovs() {
-    static const std::vector<std::string> aovs{"direct", "ambient", "emission", "transmittance", "depth"};
+    static const std::vector<std::string> aovs{"direct", "ambient", "indirect", "emission", "transmittance", "depth"};
     return aovs;
 }
 
@@ -154,12 +156,16 @@ RenderSettings readRender(const JsonObject& o) {
     return r;
 }
 
-// `true` takes the defaults, `false` turns the effect off, an object sets knobs.
-std::optional<AmbientOcclusion> readAmbientOcclusion(const JsonObject& o) {
-    const auto& v = o.raw("ambient_occlusion");
-    if (v.is_boolean()) return v.get<bool>() ? std::optional<AmbientOcclusion>(AmbientOcclusion{}) : std::nullopt;
-    if (!v.is_object()) o.fail("ambient_occlusion", "expected true, false or an object");
-    JsonObject ao = o.object("ambient_occlusion");
+// Optional effects: `true` takes the defaults, `false` turns the effect off, an object sets knobs.
+template <class T>
+std::optional<T> readOptional(const JsonObject& o, const std::string& key, T (*read)(const JsonObject&)) {
+    const auto& v = o.raw(key);
+    if (v.is_boolean()) return v.get<bool>() ? std::optional<T>(read(JsonObject(nlohmann::json::object(), "", ""))) : std::nullopt;
+    if (!v.is_object()) o.fail(key, "expected true, false or an object");
+    return read(o.object(key));
+}
+
+AmbientOcclusion readAmbientOcclusion(const JsonObject& ao) {
     ao.rejectUnknown({"shells", "radius"});
     AmbientOcclusion a;
     a.shells = ao.integer("shells", a.shells);
@@ -181,12 +187,91 @@ ShadowCone readCone(const JsonObject& o) {
     return c;
 }
 
+Propagation readPropagation(const JsonObject& o) {
+    o.rejectUnknown({"blend_axes", "eye_pass", "chroma_subsampling"});
+    Propagation p;
+    p.blend_axes = o.boolean("blend_axes", p.blend_axes);
+    p.eye_pass = o.boolean("eye_pass", p.eye_pass);
+    p.chroma_subsampling = o.boolean("chroma_subsampling", p.chroma_subsampling);
+    return p;
+}
+
+Indirect readIndirect(const JsonObject& o) {
+    o.rejectUnknown({"strength", "angle", "samples", "phase", "exponent", "g", "transport_color"});
+    Indirect in;
+    in.strength = o.number("strength", in.strength);
+    if (!(in.strength >= 0) || !std::isfinite(in.strength)) o.fail("strength", "must be a finite value >= 0");
+    in.angle = o.number("angle", in.angle);
+    if (!(in.angle >= 0 && in.angle <= 90)) o.fail("angle", "must lie in [0, 90] degrees");
+    in.samples = o.integer("samples", in.samples);
+    if (in.samples < 1 || in.samples > VX_MAX_TAPS) o.fail("samples", "must lie in 1.." + std::to_string(VX_MAX_TAPS));
+    in.phase = o.choice("phase", {"phong", "henyey_greenstein"}, "phong") == "phong" ? BlurPhase::Phong
+                                                                                    : BlurPhase::HenyeyGreenstein;
+    in.exponent = o.number("exponent", in.exponent);
+    if (!(in.exponent >= 0 && in.exponent <= 1000)) o.fail("exponent", "must lie in [0, 1000]");
+    in.g = o.number("g", in.g);
+    if (!(in.g > -1 && in.g < 1)) o.fail("g", "must lie in (-1, 1)");
+    in.transport_color = o.vec3("transport_color", in.transport_color);
+    if (glm::any(glm::lessThanEqual(in.transport_color, glm::vec3(0))) ||
+        glm::any(glm::greaterThan(in.transport_color, glm::vec3(1))))
+        o.fail("transport_color", "each component must lie in (0, 1]");
+    return in;
+}
+
+SurfaceShading readSurface(const JsonObject& o) {
+    o.rejectUnknown({"gradient_low", "gradient_high", "specular", "shininess"});
+    SurfaceShading sf;
+    sf.gradient_low = o.number("gradient_low", sf.gradient_low);
+    sf.gradient_high = o.number("gradient_high", sf.gradient_high);
+    if (!(sf.gradient_low >= 0 && sf.gradient_high > sf.gradient_low && std::isfinite(sf.gradient_high)))
+        o.fail("gradient_high", "needs 0 <= gradient_low < gradient_high");
+    sf.specular = o.number("specular", sf.specular);
+    if (!(sf.specular >= 0 && std::isfinite(sf.specular))) o.fail("specular", "must be a finite value >= 0");
+    sf.shininess = o.number("shininess", sf.shininess);
+    if (!(sf.shininess >= 1 && sf.shininess <= 10000)) o.fail("shininess", "must lie in [1, 10000]");
+    return sf;
+}
+
+Perturbation readPerturbation(const JsonObject& o) {
+    o.rejectUnknown({"seed", "scale", "octaves", "lacunarity", "gain", "density", "transport", "displacement",
+                     "velocity", "time"});
+    Perturbation p;
+    p.seed = o.integer("seed", p.seed);
+    p.scale = o.number("scale", p.scale);
+    if (!(p.scale >= 0) || !std::isfinite(p.scale)) o.fail("scale", "must be a finite size >= 0 (0 = automatic)");
+    p.octaves = o.integer("octaves", p.octaves);
+    if (p.octaves < 1 || p.octaves > 8) o.fail("octaves", "must lie in 1..8");
+    p.lacunarity = o.number("lacunarity", p.lacunarity);
+    if (!(p.lacunarity >= 1 && p.lacunarity <= 8)) o.fail("lacunarity", "must lie in [1, 8]");
+    p.gain = o.number("gain", p.gain);
+    if (!(p.gain > 0 && p.gain <= 1)) o.fail("gain", "must lie in (0, 1]");
+    p.density = o.number("density", p.density);
+    if (!(p.density >= 0 && p.density <= 10)) o.fail("density", "must lie in [0, 10]");
+    p.transport = o.number("transport", p.transport);
+    if (!(p.transport >= 0 && p.transport <= 1)) o.fail("transport", "must lie in [0, 1]");
+    p.displacement = o.number("displacement", p.displacement);
+    if (!(p.displacement >= 0 && p.displacement <= 64)) o.fail("displacement", "must lie in [0, 64] voxels");
+    p.velocity = o.vec3("velocity", p.velocity);
+    if (!std::isfinite(p.velocity.x + p.velocity.y + p.velocity.z)) o.fail("velocity", "must be finite");
+    p.time = o.number("time", p.time);
+    if (!std::isfinite(p.time)) o.fail("time", "must be finite");
+    return p;
+}
+
 Effects readEffects(const JsonObject& o) {
-    o.rejectUnknown({"shadows", "ambient_occlusion", "color_bleeding", "cone", "light_resolution", "light_memory_mb"});
+    o.rejectUnknown({"shadows", "ambient_occlusion", "color_bleeding", "cone", "propagation", "indirect", "surface",
+                     "perturbation", "light_resolution", "light_memory_mb"});
     Effects e;
-    std::string shadows = o.choice("shadows", {"none", "raymarch", "sat_cone"}, "raymarch");
-    e.shadows = shadows == "none" ? ShadowMethod::None : shadows == "sat_cone" ? ShadowMethod::SatCone : ShadowMethod::Raymarch;
-    if (o.has("ambient_occlusion")) e.ambient_occlusion = readAmbientOcclusion(o);
+    std::string shadows = o.choice("shadows", {"none", "raymarch", "sat_cone", "propagation"}, "raymarch");
+    e.shadows = shadows == "none"         ? ShadowMethod::None
+                : shadows == "sat_cone"   ? ShadowMethod::SatCone
+                : shadows == "propagation" ? ShadowMethod::Propagation
+                                           : ShadowMethod::Raymarch;
+    if (o.has("propagation")) e.propagation = readPropagation(o.object("propagation"));
+    if (o.has("indirect")) e.indirect = readOptional(o, "indirect", readIndirect);
+    if (o.has("surface")) e.surface = readOptional(o, "surface", readSurface);
+    if (o.has("perturbation")) e.perturbation = readOptional(o, "perturbation", readPerturbation);
+    if (o.has("ambient_occlusion")) e.ambient_occlusion = readOptional(o, "ambient_occlusion", readAmbientOcclusion);
     if (o.has("color_bleeding")) {
         const auto& v = o.raw("color_bleeding");
         e.color_bleeding = v.is_boolean() ? (v.get<bool>() ? 1.0f : 0.0f) : o.number("color_bleeding");
@@ -214,7 +299,7 @@ OutputSpec readOutput(const JsonObject& o) {
             std::string name = a.is_string() ? a.get<std::string>() : "";
             if (std::find(knownAovs().begin(), knownAovs().end(), name) == knownAovs().end())
                 o.fail("aovs", "unknown AOV '" + (a.is_string() ? name : a.dump()) +
-                                   "' (expected direct, ambient, emission, transmittance or depth)");
+                                   "' (expected direct, ambient, indirect, emission, transmittance or depth)");
             out.aovs.push_back(name);
         }
     }
@@ -316,9 +401,10 @@ nlohmann::json sceneToJson(const Scene& s) {
     r["backend"] = s.render.backend == Backend::Cpu ? "cpu" : s.render.backend == Backend::Gl ? "gl" : "auto";
 
     auto& e = j["effects"];
-    e["shadows"] = s.effects.shadows == ShadowMethod::None      ? "none"
-                   : s.effects.shadows == ShadowMethod::SatCone ? "sat_cone"
-                                                                : "raymarch";
+    e["shadows"] = s.effects.shadows == ShadowMethod::None          ? "none"
+                   : s.effects.shadows == ShadowMethod::SatCone     ? "sat_cone"
+                   : s.effects.shadows == ShadowMethod::Propagation ? "propagation"
+                                                                    : "raymarch";
     if (s.effects.ambient_occlusion)
         e["ambient_occlusion"] = {{"shells", s.effects.ambient_occlusion->shells},
                                   {"radius", decimal(s.effects.ambient_occlusion->radius)}};
@@ -327,6 +413,28 @@ nlohmann::json sceneToJson(const Scene& s) {
     e["color_bleeding"] = decimal(s.effects.color_bleeding);
     e["cone"] = {{"angle", decimal(s.effects.cone.angle)}, {"samples", s.effects.cone.samples},
                  {"growth", decimal(s.effects.cone.growth)}};
+    const Propagation& pr = s.effects.propagation;
+    e["propagation"] = {{"blend_axes", pr.blend_axes}, {"eye_pass", pr.eye_pass}, {"chroma_subsampling", pr.chroma_subsampling}};
+    if (const auto& in = s.effects.indirect)
+        e["indirect"] = {{"strength", decimal(in->strength)}, {"angle", decimal(in->angle)}, {"samples", in->samples},
+                         {"phase", in->phase == BlurPhase::Phong ? "phong" : "henyey_greenstein"},
+                         {"exponent", decimal(in->exponent)}, {"g", decimal(in->g)},
+                         {"transport_color", vec(in->transport_color)}};
+    else
+        e["indirect"] = false;
+    if (const auto& sf = s.effects.surface)
+        e["surface"] = {{"gradient_low", decimal(sf->gradient_low)}, {"gradient_high", decimal(sf->gradient_high)},
+                        {"specular", decimal(sf->specular)}, {"shininess", decimal(sf->shininess)}};
+    else
+        e["surface"] = false;
+    if (const auto& p = s.effects.perturbation)
+        e["perturbation"] = {{"seed", p->seed}, {"scale", decimal(p->scale)}, {"octaves", p->octaves},
+                             {"lacunarity", decimal(p->lacunarity)}, {"gain", decimal(p->gain)},
+                             {"density", decimal(p->density)}, {"transport", decimal(p->transport)},
+                             {"displacement", decimal(p->displacement)}, {"velocity", vec(p->velocity)},
+                             {"time", decimal(p->time)}};
+    else
+        e["perturbation"] = false;
     e["light_resolution"] = s.effects.light_resolution;
     e["light_memory_mb"] = s.effects.light_memory_mb;
 

@@ -8,7 +8,8 @@ namespace voxlux {
 std::string assembleComputeShader(const std::string& entry) {
     // The GL bindings declare `P` and the data accessors, which the later headers call.
     static const char* kKernel[] = {"vx_prelude.h", "vx_types.h", "vx_gl_bindings.glsl", "vx_sample.h",
-                                    "vx_optics.h", "vx_cache.h", "vx_march.h", "vx_sat.h"};
+                                    "vx_optics.h", "vx_cache.h", "vx_illumination.h", "vx_noise.h",
+                                    "vx_march.h", "vx_sat.h", "vx_propagation.h"};
     const auto& files = embeddedShaders();
     std::string out = "#version 450 core\n#define VX_GLSL 1\n";
     auto append = [&](const std::string& name) {

@@ -1,0 +1,30 @@
+// GL entry point of one slice of a propagation sweep (vx_propagation.h): one invocation per cell
+// of slice Q.slice.z. The backend dispatches the slices in order, swapping the two slice buffers
+// between dispatches; a light sweep adds Q.flow.z times its light into the volume block, the eye
+// sweep replaces the block's light.
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 15) buffer Volume { float vx_volume[]; };   // the block this sweep writes
+layout(std430, binding = 16) writeonly buffer SliceOut { float vx_slice_out[]; };
+
+void main() {
+    int axis = Q.slice.x;
+    int u = (axis + 1) % 3;
+    int v = (axis + 2) % 3;
+    int n = int(gl_GlobalInvocationID.x);
+    if (n >= Q.dims[u] * Q.dims[v]) return;
+    int i = n % Q.dims[u];
+    int j = n / Q.dims[u];
+    vec3 value = vx_prop_cell(i, j);
+    ivec3 c;
+    c[axis] = Q.slice.z;
+    c[u] = i;
+    c[v] = j;
+    int channels = Q.dims.w;
+    int cell = ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x) * channels;
+    for (int ch = 0; ch < channels; ++ch) {
+        vx_slice_out[n * channels + ch] = value[ch];
+        vx_volume[cell + ch] = Q.flow.w > 0.5f ? value[ch] : vx_volume[cell + ch] + Q.flow.z * value[ch];
+    }
+}

@@ -1,0 +1,141 @@
+// Illumination propagation (Ropinski 2010, Sec. 4.1, with the Kniss 2003 optical model): one
+// cell of one slice of a sweep (VxPropParams Q). The slice's value is computed from the previous
+// slice where the ray from the light (or, for the eye sweep, towards the camera) crosses it:
+//  - direct sweep (1 channel): luminance, one bilinear read, no blur, so shadow edges stay hard;
+//  - indirect sweep (3 channels): RGB blurred over Q.slice.w taps in a cone (Kniss Eq. 9) and
+//    attenuated by the transport colour (Kniss Eq. 8);
+//  - eye sweep (3 channels): the indirect light blended with the blurred light behind the cell.
+// The optical depth of a step is the trapezoid of the extinction at both ends times the world
+// length of the step, so it is corrected for the slice distance and the propagation angle alike.
+// Accessors: vx_prop_sigma (the sweep grid's extinction per world unit, one float per cell),
+// vx_prop_prev (the previous slice, Q.dims.w floats per cell), vx_prop_in (the eye sweep's input,
+// 3 floats per cell of the whole grid), vx_noise (perturbation table).
+#pragma once
+#include "vx_noise.h"
+
+// Grid point with coordinate s along the sweep axis and (a, b) along the two others.
+VX_INLINE vec3 vx_prop_point(float s, float a, float b) {
+    vec3 q;
+    q[Q.slice.x] = s;
+    q[(Q.slice.x + 1) % 3] = a;
+    q[(Q.slice.x + 2) % 3] = b;
+    return q;
+}
+
+// Extinction per world unit of grid cell c (unperturbed), 0 outside the grid.
+VX_INLINE float vx_prop_sigma_cell(ivec3 c) {
+    if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= Q.dims.x || c.y >= Q.dims.y || c.z >= Q.dims.z) return 0.0f;
+    return vx_prop_sigma((c.z * Q.dims.y + c.y) * Q.dims.x + c.x);
+}
+
+// Extinction at grid point q, trilinear between cell centres (0 beyond the grid).
+float vx_prop_sigma_at(vec3 q) {
+    vec3 g = q - vec3(0.5f);
+    vec3 f = floor(g);
+    vec3 t = g - f;
+    ivec3 c = ivec3(f);
+    return mix(mix(mix(vx_prop_sigma_cell(c), vx_prop_sigma_cell(c + ivec3(1, 0, 0)), t.x),
+                   mix(vx_prop_sigma_cell(c + ivec3(0, 1, 0)), vx_prop_sigma_cell(c + ivec3(1, 1, 0)), t.x), t.y),
+               mix(mix(vx_prop_sigma_cell(c + ivec3(0, 0, 1)), vx_prop_sigma_cell(c + ivec3(1, 0, 1)), t.x),
+                   mix(vx_prop_sigma_cell(c + ivec3(0, 1, 1)), vx_prop_sigma_cell(c + ivec3(1, 1, 1)), t.x), t.y),
+               t.z);
+}
+
+// Extinction the sweep sees at grid point q: perturbed as the march perturbs it (the same world
+// noise), so shadows follow the added detail. `n` is the noise at q.
+float vx_prop_extinction(vec3 q, vec4 n) {
+    if (!vx_perturbed()) return vx_prop_sigma_at(q);
+    // Displacement is in index voxels; Q.atten.w converts to grid cells.
+    vec3 shifted = vx_displaced() ? q + vec3(n) * (P.noise_offset.w * Q.atten.w) : q;
+    return vx_perturb_extinction(vx_prop_sigma_at(shifted), n);
+}
+
+VX_INLINE vec4 vx_prop_noise(vec3 q) {
+    return vx_perturbed() ? vx_noise_fbm(vec3(Q.grid_to_world * vec4(q, 1.0f))) : vec4(0.0f);
+}
+
+// What enters from beyond the grid at grid point q: the light's unattenuated radiance (a light
+// sweep; luminance in x for the direct sweep), or the eye sweep's own input at the nearest cell.
+vec3 vx_prop_outside(vec3 q) {
+    if (Q.flow.w > 0.5f) {
+        ivec3 c = clamp(ivec3(floor(q)), ivec3(0), ivec3(Q.dims) - ivec3(1));
+        int i = 3 * ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x);
+        return vec3(vx_prop_in(i), vx_prop_in(i + 1), vx_prop_in(i + 2));
+    }
+    vec3 wi;
+    float dist;
+    // Falloff clamps at half a cell: a light inside a cell stays finite.
+    float r_min = 0.5f * length(vec3(Q.grid_to_world * vec4(1.0f, 0.0f, 0.0f, 0.0f)));
+    vec3 e = vx_light_radiance(Q.light, vec3(Q.grid_to_world * vec4(q, 1.0f)), r_min, wi, dist);
+    return Q.dims.w == 1 ? vec3(vx_luminance(e), 0.0f, 0.0f) : e;
+}
+
+// The previous slice's value at cell (i, j) of the slice; `prev` is that slice's index (-1: the
+// virtual slice before the grid, all outside).
+vec3 vx_prop_prev_cell(int i, int j, int prev) {
+    int u = (Q.slice.x + 1) % 3;
+    int v = (Q.slice.x + 2) % 3;
+    if (prev < 0 || prev >= Q.dims[Q.slice.x] || i < 0 || j < 0 || i >= Q.dims[u] || j >= Q.dims[v])
+        return vx_prop_outside(vx_prop_point(float(prev) + 0.5f, float(i) + 0.5f, float(j) + 0.5f));
+    int at = (j * Q.dims[u] + i) * Q.dims.w;
+    if (Q.dims.w == 1) return vec3(vx_prop_prev(at), 0.0f, 0.0f);
+    return vec3(vx_prop_prev(at), vx_prop_prev(at + 1), vx_prop_prev(at + 2));
+}
+
+// Bilinear read of the previous slice at in-slice coordinates (a, b).
+vec3 vx_prop_prev_at(float a, float b, int prev) {
+    float ga = a - 0.5f;
+    float gb = b - 0.5f;
+    float fa = floor(ga);
+    float fb = floor(gb);
+    int i = int(fa);
+    int j = int(fb);
+    float ta = ga - fa;
+    float tb = gb - fb;
+    return mix(mix(vx_prop_prev_cell(i, j, prev), vx_prop_prev_cell(i + 1, j, prev), ta),
+               mix(vx_prop_prev_cell(i, j + 1, prev), vx_prop_prev_cell(i + 1, j + 1, prev), ta), tb);
+}
+
+// The value of cell (i, j) of slice Q.slice.z.
+vec3 vx_prop_cell(int i, int j) {
+    int axis = Q.slice.x;
+    int u = (axis + 1) % 3;
+    int v = (axis + 2) % 3;
+    int s = Q.slice.z;
+    int prev = s - Q.slice.y;
+    vec3 x = vx_prop_point(float(s) + 0.5f, float(i) + 0.5f, float(j) + 0.5f);
+    // The direction light flows through x, in grid units, scaled to advance one slice.
+    vec3 flow = Q.source.w > 0.5f ? (x - vec3(Q.source)) * Q.flow.x : vec3(Q.source);
+    vec3 back = flow / max(abs(flow[axis]), 1e-6f);
+    vec3 p = x - back;
+    float step_world = length(mat3(Q.grid_to_world) * back);
+
+    vec4 nx = vx_prop_noise(x);
+    vec4 np = vx_prop_noise(p);
+    float tau = 0.5f * (vx_prop_extinction(x, nx) + vx_prop_extinction(p, np)) * step_world;
+
+    // Blur: taps on a disc around p in the previous slice, radius = step length * tan(half-angle).
+    float radius = length(back) * Q.flow.y;
+    vec3 incoming = vec3(0.0f);
+    for (int k = 0; k < Q.slice.w; ++k)
+        incoming += Q.taps[k].z * vx_prop_prev_at(p[u] + radius * Q.taps[k].x, p[v] + radius * Q.taps[k].y, prev);
+
+    if (Q.flow.w > 0.5f) {
+        // Eye sweep (Ropinski Sec. 4.1, last paragraphs): the cell keeps its own indirect light in
+        // proportion to its opacity and passes on the light from behind it for the rest.
+        float alpha = 1.0f - vx_exp(-tau);
+        return alpha * vx_prop_outside(x) + (1.0f - alpha) * incoming;
+    }
+    // Point and spot lights spread: the inverse-square ratio between p and x (1 for directional).
+    float spread = 1.0f;
+    if (Q.source.w > 0.5f) {
+        float r_min = 0.5f * length(vec3(Q.grid_to_world * vec4(1.0f, 0.0f, 0.0f, 0.0f)));
+        float rp = max(length(mat3(Q.grid_to_world) * (p - vec3(Q.source))), r_min);
+        float rx = max(length(mat3(Q.grid_to_world) * (x - vec3(Q.source))), r_min);
+        spread = (rp * rp) / (rx * rx);
+    }
+    vec3 k = vec3(Q.atten);
+    if (Q.dims.w == 3 && vx_perturbed() && P.noise_amp.y != 0.0f)
+        k = -log(vx_perturb_transport(vec3(P.indirect), nx));
+    return incoming * spread * vec3(vx_exp(-k.x * tau), vx_exp(-k.y * tau), vx_exp(-k.z * tau));
+}

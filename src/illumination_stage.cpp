@@ -1,0 +1,223 @@
+#include "illumination_stage.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <tbb/parallel_for.h>
+
+#include "light_sweeps.h"
+#include "render_plan.h"
+#include "scene_json.h"
+
+namespace voxlux {
+namespace {
+
+// A grid the sweeps run over: the light grid, or its chroma-subsampled coarsening.
+struct SweepGrid {
+    glm::mat4 grid_to_world{1.0f};
+    glm::mat4 world_to_grid{1.0f};
+    glm::ivec3 dims{0};
+    float cells_per_voxel = 1.0f;          // grid cells per index voxel (for displacement)
+    const std::vector<float>* sigma = nullptr;
+};
+
+glm::ivec3 coarserDims(glm::ivec3 d, int factor) { return (d + factor - 1) / factor; }
+
+// The light grid's extinction averaged over blocks of 2^3 cells; cells past an odd edge count as
+// empty space, which is what they are.
+std::vector<float> halveGrid(const LightGrid& g) {
+    const glm::ivec3 h = coarserDims(g.dims, 2);
+    std::vector<float> out(size_t(h.x) * h.y * h.z, 0.0f);
+    tbb::parallel_for(0, h.z, [&](int z) {
+        for (int y = 0; y < h.y; ++y)
+            for (int x = 0; x < h.x; ++x) {
+                float sum = 0.0f;
+                for (int k = 0; k < 8; ++k) {
+                    const glm::ivec3 c = 2 * glm::ivec3(x, y, z) + glm::ivec3(k & 1, (k >> 1) & 1, k >> 2);
+                    if (glm::all(glm::lessThan(c, g.dims))) sum += g.values[(size_t(c.z) * g.dims.y + c.y) * g.dims.x + c.x];
+                }
+                out[(size_t(z) * h.y + y) * h.x + x] = sum * 0.125f;
+            }
+    });
+    return out;
+}
+
+// What the sweeps of one light share on one grid.
+kernel::VxPropParams baseParams(const SweepGrid& g, int channels, const std::vector<glm::vec4>& taps, float tan_half,
+                                glm::vec3 atten) {
+    kernel::VxPropParams Q{};
+    Q.grid_to_world = g.grid_to_world;
+    Q.world_to_grid = g.world_to_grid;
+    Q.dims = glm::ivec4(g.dims, channels);
+    Q.slice.w = int(taps.size());
+    for (size_t k = 0; k < taps.size(); ++k) Q.taps[k] = taps[k];
+    Q.flow = glm::vec4(1.0f, tan_half, 1.0f, 0.0f);
+    Q.atten = glm::vec4(atten, g.cells_per_voxel);
+    return Q;
+}
+
+// Moves a source position onto or behind the face the sweep enters through, so that every cell's
+// flow points the way the slices advance (Ropinski: a light inside the volume is projected onto
+// F0).
+glm::vec3 behindEntryFace(glm::vec3 source, const Sweep& s, glm::ivec3 dims) {
+    if (s.sign > 0) source[s.axis] = std::min(source[s.axis], 0.0f);
+    else source[s.axis] = std::max(source[s.axis], float(dims[s.axis]));
+    return source;
+}
+
+}  // namespace
+
+size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool eye_pass) {
+    const size_t cells = size_t(d.x) * d.y * d.z;
+    size_t bytes = cells * (sizeof(float) + 1 + sizeof(float));   // light grid, its mask, luminance
+    if (indirect) {
+        const glm::ivec3 c = coarserDims(d, chroma);
+        const size_t cc = size_t(c.x) * c.y * c.z;
+        bytes += cc * 3 * sizeof(float) * (eye_pass ? 2 : 1) + (chroma > 1 ? cc * sizeof(float) : 0);
+    }
+    return bytes;
+}
+
+void IlluminationStage::update(const Scene& scene, const Camera& camera, const std::string& volume_key,
+                               KernelInputs& inputs, KernelBackend& backend, StageTimes& times,
+                               std::vector<std::string>& reused, std::vector<std::string>& warnings) {
+    const Effects& fx = scene.effects;
+    const bool indirect = fx.indirect.has_value();
+    const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
+    const bool eye = indirect && fx.propagation.eye_pass;
+
+    const glm::vec3 extent = occupiedExtent(inputs);
+    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, eye); },
+                        [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 4 < uint64_t(INT32_MAX); },
+                        "illumination volume"};
+    std::string warning;
+    const int resolution = fitGridResolution(extent, cappedLightResolution(extent, fx.light_resolution),
+                                             size_t(fx.light_memory_mb) << 20, cost, "illumination volume", warning);
+    if (!warning.empty()) warnings.push_back(warning);
+
+    const nlohmann::json sj = sceneToJson(scene);
+    const std::string grid_key = volume_key + "|" + sj["material"].dump() + "|" + std::to_string(resolution);
+    StageClock clock(times);
+    if (grid_key == grid_key_) {
+        reused.push_back("light_grid");
+    } else {
+        grid_key_.clear();  // both stay cleared if a pass throws
+        volume_key_.clear();
+        grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, 0.0f); });
+        if (grid_.clamped_cells)
+            warnings.push_back(std::to_string(grid_.clamped_cells) + " light-grid cells clamped to an optical depth of " +
+                               std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)");
+        chroma_sigma_.clear();
+        grid_key_ = grid_key;
+    }
+
+    SweepGrid fine;
+    fine.grid_to_world = inputs.atlas->index_to_world * grid_.lightToIndex();
+    fine.world_to_grid = glm::inverse(fine.grid_to_world);
+    fine.dims = grid_.dims;
+    fine.cells_per_voxel = 1.0f / grid_.cell;
+    fine.sigma = &grid_.values;
+    SweepGrid coarse = fine;
+    if (chroma > 1) {
+        if (chroma_sigma_.empty()) chroma_sigma_ = halveGrid(grid_);
+        coarse.grid_to_world = fine.grid_to_world * glm::scale(glm::mat4(1.0f), glm::vec3(float(chroma)));
+        coarse.world_to_grid = glm::inverse(coarse.grid_to_world);
+        coarse.dims = coarserDims(grid_.dims, chroma);
+        coarse.cells_per_voxel = fine.cells_per_voxel / float(chroma);
+        coarse.sigma = &chroma_sigma_;
+    }
+
+    const glm::vec3 eye_position(inputs.params.camera_to_world[3]);
+    const auto& P = inputs.params;
+    const std::string key = grid_key_ + "|" + sj["lights"].dump() + "|" + sj["effects"]["propagation"].dump() + "|" +
+                            sj["effects"]["indirect"].dump() + "|" + sj["effects"]["perturbation"].dump() + "|" +
+                            std::to_string(P.noise_offset.x) + "," + std::to_string(P.noise_offset.y) + "," +
+                            std::to_string(P.noise_offset.z) +
+                            (eye ? "|eye " + std::to_string(eye_position.x) + "," + std::to_string(eye_position.y) +
+                                       "," + std::to_string(eye_position.z)
+                                 : "");
+    if (key == volume_key_) {
+        reused.push_back("propagation");
+    } else {
+        volume_key_.clear();
+        clock("propagation", [&] {
+            volume_.dims = grid_.dims;
+            volume_.chroma = chroma;
+            volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
+            volume_.world_to_illum = fine.world_to_grid;
+            volume_.values.assign(volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
+
+            SweepJob job;
+            job.march = &inputs.params;
+            job.noise = &inputs.noise;
+            // Every sweep of one light on one grid: the principal axis, and with blending the second.
+            auto sweepLight = [&](const kernel::VxLight& light, const SweepGrid& g, kernel::VxPropParams Q) {
+                const bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;
+                const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
+                const glm::vec3 flow = directional ? glm::mat3(g.world_to_grid) * glm::vec3(light.dir_cos)
+                                                   : 0.5f * glm::vec3(g.dims) - at;
+                for (const Sweep& s : sweepsFor(flow, fx.propagation.blend_axes)) {
+                    Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
+                    Q.flow.z = s.weight;
+                    Q.light = light;
+                    if (directional) {
+                        Q.source = glm::vec4(flow, 0.0f);
+                    } else {
+                        const glm::vec3 source = behindEntryFace(at, s, g.dims);
+                        Q.source = glm::vec4(source, 1.0f);
+                        Q.light.pos_type = glm::vec4(glm::vec3(g.grid_to_world * glm::vec4(source, 1.0f)), light.pos_type.w);
+                    }
+                    job.params = Q;
+                    job.sigma = g.sigma;
+                    backend.propagate(job, volume_);
+                }
+            };
+            const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
+            std::vector<glm::vec4> taps;
+            float tan_half = 0.0f;
+            kernel::VxPropParams blurred{};
+            if (indirect) {
+                taps = blurTaps(*fx.indirect);
+                tan_half = std::tan(glm::radians(0.5f * fx.indirect->angle));
+                blurred = baseParams(coarse, 3, taps, tan_half, -glm::log(fx.indirect->transport_color));
+            }
+            for (const auto& light : inputs.lights) {
+                job.offset = 0;
+                sweepLight(light, fine, direct);
+                if (!indirect) continue;
+                job.offset = volume_.indirectOffset();
+                sweepLight(light, coarse, blurred);
+            }
+            if (eye) {
+                // The eye sweep flows towards the camera along the axis facing it.
+                const std::vector<float> before(volume_.values.begin() + long(volume_.indirectOffset()), volume_.values.end());
+                const glm::vec3 cam = glm::vec3(coarse.world_to_grid * glm::vec4(eye_position, 1.0f));
+                const Sweep s = sweepsFor(cam - 0.5f * glm::vec3(coarse.dims), false)[0];
+                kernel::VxPropParams Q = baseParams(coarse, 3, taps, tan_half, glm::vec3(1.0f));
+                glm::vec3 source = cam;
+                if (s.sign > 0) source[s.axis] = std::max(source[s.axis], float(coarse.dims[s.axis]));
+                else source[s.axis] = std::min(source[s.axis], 0.0f);
+                Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
+                Q.source = glm::vec4(source, 1.0f);
+                Q.flow = glm::vec4(-1.0f, tan_half, 1.0f, 1.0f);
+                job.params = Q;
+                job.sigma = coarse.sigma;
+                job.offset = volume_.indirectOffset();
+                job.input = &before;
+                backend.propagate(job, volume_);
+            }
+        });
+        volume_key_ = key;
+    }
+
+    auto& Pm = inputs.params;
+    Pm.world_to_illum = volume_.world_to_illum;
+    Pm.illum_dims = glm::ivec4(volume_.dims, volume_.chroma);
+    Pm.chroma_dims = glm::ivec4(volume_.chroma_dims, int(volume_.indirectOffset()));
+    inputs.illum = volume_.values.data();
+    inputs.illum_floats = volume_.values.size();
+}
+
+}  // namespace voxlux
