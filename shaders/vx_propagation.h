@@ -5,8 +5,8 @@
 //  - indirect sweep (3 channels): RGB blurred over Q.slice.w taps in a cone (Kniss Eq. 9) and
 //    attenuated by the transport colour (Kniss Eq. 8);
 //  - eye sweep (3 channels): the indirect light blended with the blurred light behind the cell.
-// The optical depth of a step is the trapezoid of the extinction at both ends times the world
-// length of the step, so it is corrected for the slice distance and the propagation angle alike.
+// The optical depth of a step is the trapezoid rule over the extinction along it times its world
+// length, so it is corrected for the slice distance and the propagation angle alike.
 // Accessors: vx_prop_sigma (the sweep grid's extinction per world unit, one float per cell),
 // vx_prop_prev (the previous slice, Q.dims.w floats per cell), vx_prop_in (the eye sweep's input,
 // 3 floats per cell of the whole grid), vx_noise (perturbation table).
@@ -110,9 +110,17 @@ vec3 vx_prop_cell(int i, int j) {
     vec3 p = x - back;
     float step_world = length(mat3(Q.grid_to_world) * back);
 
+    // Composite trapezoid over the step, one piece per cell it moves sideways: a step of the
+    // second blend axis can cross many cells, and the medium's edge, within one slice. (A step
+    // of the principal axis moves at most one cell sideways: the plain trapezoid.)
     vec4 nx = vx_prop_noise(x);
-    vec4 np = vx_prop_noise(p);
-    float tau = 0.5f * (vx_prop_extinction(x, nx) + vx_prop_extinction(p, np)) * step_world;
+    int pieces = max(int(ceil(max(abs(back[u]), abs(back[v])) - 1e-3f)), 1);
+    float sum = 0.5f * (vx_prop_extinction(x, nx) + vx_prop_extinction(p, vx_prop_noise(p)));
+    for (int k = 1; k < pieces; ++k) {
+        vec3 q = p + back * (float(k) / float(pieces));
+        sum += vx_prop_extinction(q, vx_prop_noise(q));
+    }
+    float tau = sum * step_world / float(pieces);
 
     // Blur: taps on a disc around p in the previous slice, radius = step length * tan(half-angle).
     float radius = length(back) * Q.flow.y;

@@ -76,7 +76,9 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
         P.indirect = glm::vec4(ind->transport_color, ind->strength / (4.0f * float(M_PI)));
     if (const auto& sf = scene.effects.surface)
         P.surface = glm::vec4(sf->gradient_low, 1.0f / (sf->gradient_high - sf->gradient_low), sf->specular, sf->shininess);
-    if (const auto& pt = scene.effects.perturbation) {
+    // A perturbation of zero amplitude is no perturbation: it stays off, so the render is exactly
+    // the unperturbed one and costs nothing.
+    if (const auto& pt = scene.effects.perturbation; pt && (pt->density > 0 || pt->transport > 0 || pt->displacement > 0)) {
         const glm::vec3 box((pages.bricks_max - pages.bricks_min + 1) * VX_BRICK);
         const float longest = std::max({box.x, box.y, box.z}) * edge;
         const float scale = pt->scale > 0.0f ? pt->scale : 0.25f * longest;

@@ -269,7 +269,7 @@ TEST(Cli, BadOptionsAreRefusedWithTheOptionNamed) {
                    "command line: /effects/cone/samples: must lie in 1..1024");
     expectRejected("render " + cloud + " --light point:intensity=5", "--light 'point:intensity=5': needs pos=x,y,z");
     expectRejected("render " + cloud + " --step 0", "command line: /render/step: must lie in [0.01, 64] voxels");
-    expectRejected("render " + cloud + " --shadows sat", "command line: /effects/shadows: 'sat' is not one of none, raymarch, sat_cone");
+    expectRejected("render " + cloud + " --shadows sat", "command line: /effects/shadows: 'sat' is not one of none, raymarch, sat_cone, propagation");
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb", "density": {"name": "d", "index": -1}}})"),
               "shot.json: /volume/density/index: must be 0 or more");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
-              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, emission, transmittance or depth)");
+              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, transmittance or depth)");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"cone": {"samples": 0}}})"),
               "shot.json: /effects/cone/samples: must lie in 1..1024");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": {"shells": 3, "radios": 2}}})"),
