@@ -11,21 +11,6 @@
 namespace voxlux::test {
 namespace {
 
-// A noisy ball written to a .vdb (the renderer keys its caches on the file).
-std::string writeBall(const std::string& dir) {
-    auto grid = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);  // empty, named density
-    auto acc = grid->getAccessor();
-    for (int z = -20; z <= 20; ++z)
-        for (int y = -20; y <= 20; ++y)
-            for (int x = -20; x <= 20; ++x) {
-                const float r = std::sqrt(float(x * x + y * y + z * z)) / 20.0f;
-                if (r <= 1.0f) acc.setValue({x, y, z}, (1.0f - r) * (1.2f + std::sin(0.5f * x) * std::cos(0.4f * y)));
-            }
-    const std::string path = dir + "/ball.vdb";
-    openvdb::io::File(path).write({grid});
-    return path;
-}
-
 // A CPU render of `vdb` at width x height with the given density scale, no lights yet.
 Scene cpuScene(const std::string& vdb, int width, int height, float density_scale) {
     Scene s;

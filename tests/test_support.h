@@ -39,6 +39,10 @@ LoadedVolume volumeFromGrid(openvdb::FloatGrid::Ptr density, openvdb::FloatGrid:
 // A constant-density box of `sigma` over index voxels [lo, hi] (inclusive), voxel size `voxel`.
 openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigma, double voxel = 1.0);
 
+// A noisy ball of radius 20 voxels (voxel 0.1) written to `dir`/ball.vdb; returns the path. A
+// file, since the renderer keys its caches on it.
+std::string writeBall(const std::string& dir);
+
 // Everything one render needs, kept alive together.
 struct Prepared {
     LoadedVolume volume;
