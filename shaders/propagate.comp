@@ -10,8 +10,8 @@ layout(std430, binding = 16) writeonly buffer SliceOut { float vx_slice_out[]; }
 
 void main() {
     int axis = Q.slice.x;
-    int u = (axis + 1) % 3;
-    int v = (axis + 2) % 3;
+    int u = vx_axis_u(axis);
+    int v = vx_axis_v(axis);
     int n = int(gl_GlobalInvocationID.x);
     if (n >= Q.dims[u] * Q.dims[v]) return;
     int i = n % Q.dims[u];

@@ -13,23 +13,32 @@
 #pragma once
 #include "vx_noise.h"
 
-// Grid point with coordinate s along the sweep axis and (a, b) along the two others.
+// The two in-slice axes of a sweep along `axis`: u, the lower one, runs fastest in a slice, so
+// that a slice of a y or z sweep is rows of x, contiguous in memory.
+VX_INLINE int vx_axis_u(int axis) { return axis == 0 ? 1 : 0; }
+VX_INLINE int vx_axis_v(int axis) { return axis == 2 ? 1 : 2; }
+
+// Grid point with coordinate s along the sweep axis and (a, b) along u and v.
 VX_INLINE vec3 vx_prop_point(float s, float a, float b) {
     vec3 q;
     q[Q.slice.x] = s;
-    q[(Q.slice.x + 1) % 3] = a;
-    q[(Q.slice.x + 2) % 3] = b;
+    q[vx_axis_u(Q.slice.x)] = a;
+    q[vx_axis_v(Q.slice.x)] = b;
     return q;
 }
+
+// Where cell c's values are in the sweep's extinction grid and eye input (Q.strides: the CPU lays
+// an x sweep's grid out slice by slice).
+VX_INLINE int vx_prop_index(ivec3 c) { return c.x * Q.strides.x + c.y * Q.strides.y + c.z * Q.strides.z; }
 
 // Extinction per world unit of grid cell c (unperturbed), 0 outside the grid.
 VX_INLINE float vx_prop_sigma_cell(ivec3 c) {
     if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= Q.dims.x || c.y >= Q.dims.y || c.z >= Q.dims.z) return 0.0f;
-    return vx_prop_sigma((c.z * Q.dims.y + c.y) * Q.dims.x + c.x);
+    return vx_prop_sigma(vx_prop_index(c));
 }
 
 // Extinction at grid point q, trilinear between cell centres (0 beyond the grid).
-float vx_prop_sigma_at(vec3 q) {
+VX_INLINE float vx_prop_sigma_at(vec3 q) {
     vec3 g = q - vec3(0.5f);
     vec3 f = floor(g);
     vec3 t = g - f;
@@ -41,9 +50,30 @@ float vx_prop_sigma_at(vec3 q) {
                t.z);
 }
 
+// Extinction at in-slice coordinates (a, b) of slice `slice`, bilinear between cell centres.
+VX_INLINE float vx_prop_sigma_slice(float a, float b, int slice) {
+    int u = vx_axis_u(Q.slice.x);
+    int v = vx_axis_v(Q.slice.x);
+    float ga = a - 0.5f;
+    float gb = b - 0.5f;
+    float fa = floor(ga);
+    float fb = floor(gb);
+    ivec3 c;
+    c[Q.slice.x] = slice;
+    c[u] = int(fa);
+    c[v] = int(fb);
+    ivec3 du = ivec3(0);
+    ivec3 dv = ivec3(0);
+    du[u] = 1;
+    dv[v] = 1;
+    float ta = ga - fa;
+    return mix(mix(vx_prop_sigma_cell(c), vx_prop_sigma_cell(c + du), ta),
+               mix(vx_prop_sigma_cell(c + dv), vx_prop_sigma_cell(c + du + dv), ta), gb - fb);
+}
+
 // Extinction the sweep sees at grid point q: perturbed as the march perturbs it (the same world
 // noise), so shadows follow the added detail. `n` is the noise at q.
-float vx_prop_extinction(vec3 q, vec4 n) {
+VX_INLINE float vx_prop_extinction(vec3 q, vec4 n) {
     if (!vx_perturbed()) return vx_prop_sigma_at(q);
     // Displacement is in index voxels; Q.atten.w converts to grid cells.
     vec3 shifted = vx_displaced() ? q + vec3(n) * (P.noise_offset.w * Q.atten.w) : q;
@@ -59,7 +89,7 @@ VX_INLINE vec4 vx_prop_noise(vec3 q) {
 vec3 vx_prop_outside(vec3 q) {
     if (Q.flow.w > 0.5f) {
         ivec3 c = clamp(ivec3(floor(q)), ivec3(0), ivec3(Q.dims) - ivec3(1));
-        int i = 3 * ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x);
+        int i = 3 * vx_prop_index(c);
         return vec3(vx_prop_in(i), vx_prop_in(i + 1), vx_prop_in(i + 2));
     }
     vec3 wi;
@@ -72,9 +102,9 @@ vec3 vx_prop_outside(vec3 q) {
 
 // The previous slice's value at cell (i, j) of the slice; `prev` is that slice's index (-1: the
 // virtual slice before the grid, all outside).
-vec3 vx_prop_prev_cell(int i, int j, int prev) {
-    int u = (Q.slice.x + 1) % 3;
-    int v = (Q.slice.x + 2) % 3;
+VX_INLINE vec3 vx_prop_prev_cell(int i, int j, int prev) {
+    int u = vx_axis_u(Q.slice.x);
+    int v = vx_axis_v(Q.slice.x);
     if (prev < 0 || prev >= Q.dims[Q.slice.x] || i < 0 || j < 0 || i >= Q.dims[u] || j >= Q.dims[v])
         return vx_prop_outside(vx_prop_point(float(prev) + 0.5f, float(i) + 0.5f, float(j) + 0.5f));
     int at = (j * Q.dims[u] + i) * Q.dims.w;
@@ -83,7 +113,7 @@ vec3 vx_prop_prev_cell(int i, int j, int prev) {
 }
 
 // Bilinear read of the previous slice at in-slice coordinates (a, b).
-vec3 vx_prop_prev_at(float a, float b, int prev) {
+VX_INLINE vec3 vx_prop_prev_at(float a, float b, int prev) {
     float ga = a - 0.5f;
     float gb = b - 0.5f;
     float fa = floor(ga);
@@ -97,10 +127,10 @@ vec3 vx_prop_prev_at(float a, float b, int prev) {
 }
 
 // The value of cell (i, j) of slice Q.slice.z.
-vec3 vx_prop_cell(int i, int j) {
+VX_INLINE vec3 vx_prop_cell(int i, int j) {
     int axis = Q.slice.x;
-    int u = (axis + 1) % 3;
-    int v = (axis + 2) % 3;
+    int u = vx_axis_u(axis);
+    int v = vx_axis_v(axis);
     int s = Q.slice.z;
     int prev = s - Q.slice.y;
     vec3 x = vx_prop_point(float(s) + 0.5f, float(i) + 0.5f, float(j) + 0.5f);
@@ -115,7 +145,18 @@ vec3 vx_prop_cell(int i, int j) {
     // of the principal axis moves at most one cell sideways: the plain trapezoid.)
     vec4 nx = vx_prop_noise(x);
     int pieces = max(int(ceil(max(abs(back[u]), abs(back[v])) - 1e-3f)), 1);
-    float sum = 0.5f * (vx_prop_extinction(x, nx) + vx_prop_extinction(p, vx_prop_noise(p)));
+    float ends;
+    if (vx_perturbed()) {
+        ends = vx_prop_extinction(x, nx) + vx_prop_extinction(p, vx_prop_noise(p));
+    } else {
+        // Unperturbed, x is a cell centre and p lies on the previous slice's centre plane.
+        ivec3 cx;
+        cx[axis] = s;
+        cx[u] = i;
+        cx[v] = j;
+        ends = vx_prop_sigma_cell(cx) + vx_prop_sigma_slice(p[u], p[v], prev);
+    }
+    float sum = 0.5f * ends;
     for (int k = 1; k < pieces; ++k) {
         vec3 q = p + back * (float(k) / float(pieces));
         sum += vx_prop_extinction(q, vx_prop_noise(q));

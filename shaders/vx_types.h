@@ -73,6 +73,7 @@ struct VxPropParams {
     mat4 world_to_grid;
     ivec4 dims;             // xyz = cells, w = channels (1 or 3)
     ivec4 slice;            // x = axis, y = +1 / -1 (the way slices advance), z = slice written, w = blur taps
+    ivec4 strides;          // xyz = index step per cell along x, y, z of the extinction grid and eye input
     vec4 source;            // xyz = grid position of the light (or camera), or for a directional light the
                             // grid-space direction it travels; w = 1 for a position, 0 for a direction
     vec4 flow;              // x = +1 light sweep (flow away from the source), -1 eye sweep (towards it);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cpu_kernel.h"
 #include "gl_context.h"
 #include "kernel_backend.h"
 #include "shader_source.h"
@@ -269,8 +270,10 @@ public:
     void propagate(const SweepJob& job, IlluminationVolume& volume) override {
         ensureGlContext();
         const GLuint program = propagateProgram();
-        const kernel::VxPropParams& Q = job.params;
-        const int axis = Q.slice.x, u = (axis + 1) % 3, v = (axis + 2) % 3;
+        kernel::VxPropParams Q = job.params;
+        Q.strides = glm::ivec4(1, Q.dims.x, Q.dims.x * Q.dims.y, 0);   // the volume's own layout
+        kernel::CpuKernel axes;
+        const int axis = Q.slice.x, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
         const size_t slice_cells = size_t(Q.dims[u]) * Q.dims[v];
         const size_t block = size_t(Q.dims.x) * Q.dims.y * Q.dims.z * size_t(Q.dims.w);
         march_params_.upload(job.march, sizeof *job.march, GL_STREAM_DRAW, "Params");

@@ -25,7 +25,7 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--backend", o.backend, "auto|cpu|gl (render.backend)");
     cmd.add_option("--frames", o.frames, "FIRST-LAST for a #### volume path (volume.frames)");
     cmd.add_option("--pixel-type", o.pixel_type, "half|float (output.pixel_type)");
-    cmd.add_option("--aovs", o.aovs, "direct,ambient,emission,transmittance,depth (output.aovs)")->delimiter(',');
+    cmd.add_option("--aovs", o.aovs, "direct,ambient,indirect,emission,transmittance,depth (output.aovs)")->delimiter(',');
 }
 
 }  // namespace
