@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "camera.h"
+#include "illumination_stage.h"
 #include "light_stage.h"
 #include "render_plan.h"
 #include "test_support.h"
@@ -101,8 +102,6 @@ struct Renders {
     RenderImage cpu, gl;
 };
 
-// Both backends on the same inputs. The camera is the default framing moved in, so the volume
-// reaches the image's edges and every dispatch band has something to get wrong.
 // The light stage on `backend`, as a render runs it; points `inputs` at the stage's cache.
 void buildLightCache(LightStage& stage, const Scene& scene, KernelInputs& inputs, KernelBackend& backend) {
     StageTimes times;
@@ -110,6 +109,8 @@ void buildLightCache(LightStage& stage, const Scene& scene, KernelInputs& inputs
     stage.update(scene, "test volume", inputs, backend, times, reused, warnings);
 }
 
+// Both backends on the same inputs. The camera is the default framing moved in, so the volume
+// reaches the image's edges and every dispatch band has something to get wrong.
 Renders renderBoth(LoadedVolume volume, const Scene& scene, KernelBackend& gl) {
     const CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
     glm::vec3 lo, hi;
@@ -119,14 +120,20 @@ Renders renderBoth(LoadedVolume volume, const Scene& scene, KernelBackend& gl) {
     camera.position = glm::mix(camera.look_at, camera.position, 0.45f);
     auto prepared = prepare(std::move(volume), scene, camera);
     auto cpu = makeCpuBackend();
-    if (!needsAmbientOcclusion(scene) && !needsConeShadows(scene))
-        return {cpu->march(prepared->inputs), gl.march(prepared->inputs)};
-    // Each backend builds its own light cache, as a render on it would.
+    const bool cache = needsAmbientOcclusion(scene) || needsConeShadows(scene);
+    if (!cache && !needsPropagation(scene)) return {cpu->march(prepared->inputs), gl.march(prepared->inputs)};
+    // Each backend builds its own light cache and illumination volume, as a render on it would.
     Renders r;
     for (KernelBackend* backend : {static_cast<KernelBackend*>(cpu.get()), &gl}) {
         LightStage stage;
+        IlluminationStage illumination;
         KernelInputs inputs = prepared->inputs;
-        buildLightCache(stage, scene, inputs, *backend);
+        if (cache) buildLightCache(stage, scene, inputs, *backend);
+        if (needsPropagation(scene)) {
+            StageTimes times;
+            std::vector<std::string> reused, warnings;
+            illumination.update(scene, camera, "test volume", inputs, *backend, times, reused, warnings);
+        }
         (backend == &gl ? r.gl : r.cpu) = backend->march(inputs);
     }
     return r;
@@ -149,8 +156,8 @@ Scene satScene() {
     return s;
 }
 
-// AOV channels as float ranges of VxPixel (rgba, direct, ambient, emission, transmittance, depth; the
-// trailing sample count is a cost, not an image, and is not compared).
+// AOV channels as float ranges of VxPixel (rgba, direct, ambient, emission, indirect, transmittance,
+// depth; the trailing sample count is a cost, not an image, and is not compared).
 // Depth is an opacity-weighted mean, a ratio of two tiny numbers where alpha is tiny (alpha 4e-6
 // turns a 1-ulp difference in T into 3e-3 of depth), so it is compared where alpha >= 1e-3 only.
 struct Channel {
@@ -158,13 +165,17 @@ struct Channel {
     int first, count;
     float min_alpha;
 };
-enum ChannelId { kRgba, kDirect, kAmbient, kEmission, kTransmittance, kDepth, kChannelCount };
+enum ChannelId { kRgba, kDirect, kAmbient, kEmission, kIndirect, kTransmittance, kDepth, kChannelCount };
 constexpr Channel kChannels[kChannelCount] = {{"rgba", 0, 4, 0.0f},
                                               {"direct", 4, 3, 0.0f},
                                               {"ambient", 7, 3, 0.0f},
                                               {"emission", 10, 3, 0.0f},
-                                              {"transmittance", 13, 1, 0.0f},
-                                              {"depth", 14, 1, 1e-3f}};
+                                              {"indirect", 13, 3, 0.0f},
+                                              {"transmittance", 16, 1, 0.0f},
+                                              {"depth", 17, 1, 1e-3f}};
+static_assert(offsetof(kernel::VxPixel, indirect) == 13 * sizeof(float) &&
+              offsetof(kernel::VxPixel, transmittance) == 16 * sizeof(float) &&
+              offsetof(kernel::VxPixel, depth) == 17 * sizeof(float));
 
 // Tolerances, relative to the CPU channel's scale. The backends differ only by float rounding
 // (log/sqrt implementations, FMA contraction). Measured on llvmpipe: RMSE <= 1.5e-6 of the mean,
@@ -299,6 +310,30 @@ TEST(GlBackend, MatchesCpuWithSatLighting) {
     const auto stats = expectMatch(renderBoth(makeVolume(true), satScene(), *gl));
     EXPECT_GT(stats[kDirect].peak, 0.0);
     EXPECT_GT(stats[kAmbient].peak, 0.0);
+}
+
+// Propagation shadows with indirect light, the eye pass, chroma subsampling, perturbation and
+// surface shading: the illumination volume is swept by each backend, then marched.
+TEST(GlBackend, MatchesCpuWithPropagation) {
+    VOXLUX_REQUIRE_GL(gl);
+    Scene s = baseScene();
+    s.effects.shadows = ShadowMethod::Propagation;
+    s.effects.light_resolution = 24;
+    Indirect in;
+    in.transport_color = glm::vec3(1.0f, 0.6f, 0.35f);
+    s.effects.indirect = in;
+    s.effects.propagation.eye_pass = true;
+    s.effects.propagation.chroma_subsampling = true;
+    Perturbation p;
+    p.density = 0.6f;
+    p.transport = 0.3f;
+    p.displacement = 1.0f;
+    s.effects.perturbation = p;
+    s.effects.surface = SurfaceShading{};
+    s.lights = {directionalLight(), pointLight(), spotLight()};
+    const auto stats = expectMatch(renderBoth(makeVolume(true), s, *gl));
+    EXPECT_GT(stats[kDirect].peak, 0.0);
+    EXPECT_GT(stats[kIndirect].peak, 0.0);
 }
 
 TEST(GlBackend, MatchesCpuWithoutLights) {
