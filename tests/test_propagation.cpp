@@ -583,3 +583,112 @@ TEST(Propagation, EditsRecomputeOnlyWhatTheyInvalidate) {
 
 }  // namespace
 }  // namespace voxlux::test
+
+namespace voxlux::test {
+namespace {
+
+// Ropinski's eye sweep blends each cell's indirect light with the blurred light behind it: a
+// convex mix, so a uniform field stays exactly uniform and no value leaves the input's range.
+TEST(Propagation, EyeSweepIsAConvexBlend) {
+    auto cpu = makeCpuBackend();
+    Scene scene = slabScene({0.2f, -1, 0.1f}, true);
+    Indirect in;
+    in.transport_color = glm::vec3(0.8f, 0.5f, 0.3f);
+    scene.effects.indirect = in;
+    auto before = illuminate(slab(0.1f), scene, *cpu);
+    scene.effects.propagation.eye_pass = true;
+    auto after = illuminate(slab(0.1f), scene, *cpu);
+    const IlluminationVolume& a = before->stage.volume();
+    const IlluminationVolume& b = after->stage.volume();
+    for (int c = 0; c < 3; ++c) {
+        float lo = 1e30f, hi = -1e30f;
+        for (size_t i = a.indirectOffset() + size_t(c); i < a.values.size(); i += 3) {
+            lo = std::min(lo, a.values[i]);
+            hi = std::max(hi, a.values[i]);
+        }
+        float moved = 0.0f;
+        for (size_t i = b.indirectOffset() + size_t(c); i < b.values.size(); i += 3) {
+            EXPECT_GE(b.values[i], lo * (1.0f - 1e-6f));
+            EXPECT_LE(b.values[i], hi * (1.0f + 1e-6f));
+            moved = std::max(moved, std::abs(b.values[i] - a.values[i]));
+        }
+        EXPECT_GT(moved, 1e-3f) << c;
+    }
+    // The luminance is the light sweeps' alone.
+    for (size_t i = 0; i < a.indirectOffset(); ++i) ASSERT_EQ(a.values[i], b.values[i]);
+
+    // A uniform field: a transparent medium passes the light unchanged.
+    Scene empty_air = slabScene({0.2f, -1, 0.1f}, true);
+    empty_air.effects.indirect = Indirect{};
+    empty_air.effects.propagation.eye_pass = true;
+    auto air = illuminate(slab(1e-9f), empty_air, *cpu);
+    const IlluminationVolume& u = air->stage.volume();
+    for (size_t i = u.indirectOffset(); i < u.values.size(); ++i) ASSERT_NEAR(u.values[i], 1.0f, 1e-5f) << i;
+}
+
+// Chroma subsampling (Ropinski Sec. 4.1) keeps the luminance at full resolution and sweeps the
+// indirect light on cells 2^3 times larger, with the opacity of the longer step (g_cs) taken
+// from the step length itself: the slab's indirect light matches the full-resolution one.
+TEST(Propagation, ChromaSubsamplingHalvesTheIndirectGrid) {
+    auto cpu = makeCpuBackend();
+    Scene scene = slabScene({0, -1, 0}, false);
+    Indirect in;
+    in.transport_color = glm::vec3(0.9f, 0.6f, 0.4f);
+    scene.effects.indirect = in;
+    auto full = illuminate(slab(0.1f), scene, *cpu);
+    scene.effects.propagation.chroma_subsampling = true;
+    auto half = illuminate(slab(0.1f), scene, *cpu);
+    const IlluminationVolume& f = full->stage.volume();
+    const IlluminationVolume& h = half->stage.volume();
+    EXPECT_EQ(h.dims, f.dims);
+    EXPECT_EQ(h.chroma_dims, (f.dims + 1) / 2);
+    EXPECT_LT(h.values.size(), f.values.size() / 2);
+    // Compare at coarse cell centres in the cube (each is a corner shared by 2^3 fine cells: the
+    // mean of those).
+    for (int y = 0; y < h.chroma_dims.y; ++y) {
+        const glm::ivec3 hc(10, y, 10);
+        const glm::vec3 centre = cellCentre(f, 2 * hc) + 0.5f;
+        if (!insideCube(centre, 1.5f)) continue;
+        for (int c = 0; c < 3; ++c) {
+            float mean = 0.0f;
+            for (int k = 0; k < 8; ++k) {
+                const glm::ivec3 fc = 2 * hc + glm::ivec3(k & 1, (k >> 1) & 1, k >> 2);
+                mean += f.values[f.indirectOffset() + ((size_t(fc.z) * f.dims.y + fc.y) * f.dims.x + fc.x) * 3 + c] / 8.0f;
+            }
+            const float got = h.values[h.indirectOffset() + ((size_t(hc.z) * h.chroma_dims.y + hc.y) * h.chroma_dims.x + hc.x) * 3 + c];
+            EXPECT_NEAR(got, mean, 0.01f * mean) << "y " << y << " channel " << c;
+        }
+    }
+}
+
+// Kniss Eq. 11: where the density gradient is steep a sample is lit as a Blinn-Phong surface,
+// in homogeneous regions as a volume. Inside the slab the factor is 1; on its top face (normal
+// +y) it is (1 - S) + S (n.l + specular (n.h)^shininess).
+TEST(Propagation, SurfaceShadingFollowsTheGradient) {
+    Scene scene = slabScene({0, -1, 0}, false);
+    SurfaceShading sf;
+    sf.gradient_low = 0.0f;
+    sf.gradient_high = 0.1f;
+    sf.specular = 0.0f;
+    scene.effects.surface = sf;
+    Camera camera;
+    auto prepared = prepare(volumeFromGrid(slab(1.0f)), scene, camera);
+    kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
+    const glm::vec4 inside = k.vx_surface(glm::vec3(16.0f, 16.0f, 16.0f));
+    EXPECT_EQ(inside.w, 0.0f);
+    const glm::vec4 top = k.vx_surface(glm::vec3(16.0f, 31.5f, 16.0f));
+    EXPECT_EQ(top.w, 1.0f);
+    EXPECT_NEAR(top.y, 1.0f, 1e-6f);
+    const glm::vec3 wi = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f));   // light from 45 degrees
+    EXPECT_NEAR(k.vx_surface_factor(top, wi, glm::vec3(0, -1, 0)), std::sqrt(0.5f), 1e-6f);
+    EXPECT_EQ(k.vx_surface_factor(inside, wi, glm::vec3(0, -1, 0)), 1.0f);
+    // Half way between the thresholds the surface and volume terms are mixed half and half.
+    prepared->inputs.params.surface.y = 1.0f / 1.0f;   // gradient_high = 1: the top face's 0.5 is half way
+    k = bindCpuKernel(prepared->inputs);
+    const glm::vec4 half = k.vx_surface(glm::vec3(16.0f, 31.5f, 16.0f));
+    EXPECT_NEAR(half.w, 0.5f, 1e-6f);
+    EXPECT_NEAR(k.vx_surface_factor(half, wi, glm::vec3(0, -1, 0)), 0.5f + 0.5f * std::sqrt(0.5f), 1e-6f);
+}
+
+}  // namespace
+}  // namespace voxlux::test
