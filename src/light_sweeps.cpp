@@ -27,21 +27,24 @@ std::vector<Sweep> sweepsFor(glm::vec3 flow, bool blend) {
 }
 
 std::vector<glm::vec4> blurTaps(const Indirect& in) {
-    const int n = in.samples;
     const float tan_half = std::tan(glm::radians(0.5f * in.angle));
-    const float golden = 2.39996323f;  // radians
-    std::vector<glm::vec4> taps;
-    for (int k = 0; k < n; ++k) {
-        const float r = n == 1 ? 0.0f : std::sqrt(float(k) / float(n - 1));
+    auto weight = [&](float r) {
         const float cos_a = 1.0f / std::sqrt(1.0f + r * r * tan_half * tan_half);
-        float w;
-        if (in.phase == BlurPhase::Phong) {
-            w = std::pow(cos_a, in.exponent);
-        } else {
-            const float g = in.g, denom = 1.0f + g * g - 2.0f * g * cos_a;
-            w = (1.0f - g * g) / (denom * std::sqrt(denom));
-        }
-        taps.push_back({r * std::cos(golden * float(k)), r * std::sin(golden * float(k)), w, 0.0f});
+        if (in.phase == BlurPhase::Phong) return std::pow(cos_a, in.exponent);
+        const float g = in.g, denom = 1.0f + g * g - 2.0f * g * cos_a;
+        return (1.0f - g * g) / (denom * std::sqrt(denom));
+    };
+    std::vector<glm::vec4> taps;
+    if (in.samples % 2 == 1) taps.push_back({0.0f, 0.0f, weight(0.0f), 0.0f});
+    // Opposite pairs on a Vogel spiral: even coverage of the disc, and a weighted centre exactly at
+    // the light's own direction, so the blur never drifts the light sideways.
+    const int pairs = in.samples / 2;
+    const float golden = 2.39996323f;  // radians
+    for (int k = 0; k < pairs; ++k) {
+        const float r = std::sqrt(float(k + 1) / float(pairs));
+        const glm::vec2 at = r * glm::vec2(std::cos(golden * float(k)), std::sin(golden * float(k)));
+        taps.push_back({at.x, at.y, weight(r), 0.0f});
+        taps.push_back({-at.x, -at.y, weight(r), 0.0f});
     }
     const float total = std::accumulate(taps.begin(), taps.end(), 0.0f, [](float s, const glm::vec4& t) { return s + t.z; });
     for (auto& t : taps) t.z /= total;

@@ -26,9 +26,10 @@ struct Sweep {
 // would jump. Sweeps of zero weight are left out, so an axis-aligned light costs one sweep.
 std::vector<Sweep> sweepsFor(glm::vec3 flow, bool blend);
 
-// Blur taps on the unit disc (xy) with weights (z) summing to 1: a Vogel spiral from the centre,
-// weighted by the Phong lobe cos^exponent or the Henyey-Greenstein phase of the angle between the
-// light and the tap, for a cone of apex angle `angle_deg`.
+// Blur taps on the unit disc (xy) with weights (z) summing to 1: the centre (odd counts) and
+// opposite pairs on a Vogel spiral, weighted by the Phong lobe cos^exponent or the
+// Henyey-Greenstein phase of the angle between the light and the tap, for a cone of apex angle
+// indirect.angle.
 std::vector<glm::vec4> blurTaps(const Indirect& indirect);
 std::vector<glm::vec4> directTaps();   // the direct sweep's single tap: no blur
 

@@ -128,7 +128,7 @@ std::string explainPlan(const std::vector<PlannedStage>& plan) {
     std::ostringstream out;
     for (const auto& st : plan) {
         out << (st.runs ? "run   " : "skip  ") << st.name;
-        for (size_t pad = st.name.size(); pad < 12; ++pad) out << ' ';
+        for (size_t pad = st.name.size(); pad < 12 || pad == st.name.size(); ++pad) out << ' ';
         out << st.reason << "  [in:";
         for (const auto& i : st.inputs) out << ' ' << i;
         out << "]\n";

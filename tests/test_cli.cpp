@@ -159,6 +159,22 @@ TEST(Cli, ExplainShowsThePlan) {
                "/grids/cloud_sat.json --explain --light directional:dir=0,-1,0 --set effects.color_bleeding=1");
     EXPECT_NE(r.out.find("ambient_occlusion is on but no ambient light is in the scene"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("color_bleeding needs ambient occlusion"), std::string::npos) << r.out;
+
+    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_propagation.json --explain");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("run   illumination 1 light swept through a 128-cell illumination volume along the two closest "
+                         "axes, blended; direct luminance, indirect RGB blurred in a 30 deg cone over 9 taps, transport "
+                         "colour (1, 0.75, 0.5), perturbed"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("run   march       1 light, direct and indirect light read from the illumination volume, noise-perturbed"),
+              std::string::npos)
+        << r.out;
+    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --explain --set effects.indirect=true");
+    EXPECT_NE(r.out.find("skip  illumination skipped: no effect in the scene needs an illumination volume (indirect light "
+                         "needs effects.shadows = propagation)"),
+              std::string::npos)
+        << r.out;
 }
 
 // The SAT scene end to end through the CLI: the light passes run, the ambient AOV is written.

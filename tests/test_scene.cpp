@@ -102,5 +102,54 @@ TEST(Scene, AmbientOcclusionAndLightsDefaults) {
                      .effects.ambient_occlusion.has_value());
 }
 
+TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
+    Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "effects": {"shadows": "propagation",
+        "propagation": {"eye_pass": true, "chroma_subsampling": true},
+        "indirect": {"angle": 40, "samples": 13, "phase": "henyey_greenstein", "g": 0.7, "transport_color": [1, 0.5, 0.25]},
+        "surface": {"gradient_low": 0.1, "gradient_high": 0.3},
+        "perturbation": {"seed": 7, "scale": 2, "octaves": 4, "density": 0.5, "displacement": 1.5, "velocity": [0.1, 0, 0]}}})",
+                         "shot.json", "");
+    Scene again = parseScene(sceneToJson(s).dump(), "again.json", "");
+    EXPECT_EQ(sceneToJson(again), sceneToJson(s));
+    EXPECT_EQ(again.effects.shadows, ShadowMethod::Propagation);
+    EXPECT_TRUE(again.effects.propagation.blend_axes);
+    EXPECT_TRUE(again.effects.propagation.eye_pass);
+    ASSERT_TRUE(again.effects.indirect.has_value());
+    EXPECT_EQ(again.effects.indirect->phase, BlurPhase::HenyeyGreenstein);
+    EXPECT_EQ(again.effects.indirect->samples, 13);
+    EXPECT_FLOAT_EQ(again.effects.indirect->transport_color.z, 0.25f);
+    EXPECT_FLOAT_EQ(again.effects.indirect->strength, 1.0f);
+    EXPECT_FLOAT_EQ(again.effects.surface->gradient_high, 0.3f);
+    EXPECT_EQ(again.effects.perturbation->seed, 7);
+    EXPECT_EQ(again.effects.perturbation->octaves, 4);
+    EXPECT_FLOAT_EQ(again.effects.perturbation->velocity.x, 0.1f);
+    // `true` takes every default; absent or `false` is off.
+    Scene d = parseScene(R"({"volume": {"path": "a.vdb"}, "effects": {"indirect": true, "perturbation": false}})",
+                         "shot.json", "");
+    EXPECT_EQ(d.effects.indirect->samples, 9);
+    EXPECT_EQ(d.effects.indirect->transport_color, glm::vec3(0.6f));
+    EXPECT_FALSE(d.effects.perturbation.has_value());
+    EXPECT_FALSE(d.effects.surface.has_value());
+}
+
+TEST(Scene, PropagationEffectsAreValidated) {
+    const std::string v = R"({"volume": {"path": "a.vdb"}, "effects": )";
+    EXPECT_EQ(errorOf(v + R"({"indirect": {"transport_color": [1, 0, 0.5]}}})"),
+              "shot.json: /effects/indirect/transport_color: each component must lie in (0, 1]");
+    EXPECT_EQ(errorOf(v + R"({"indirect": {"samples": 33}}})"),
+              "shot.json: /effects/indirect/samples: must lie in 1..32");
+    EXPECT_EQ(errorOf(v + R"({"indirect": {"phase": "mie"}}})"),
+              "shot.json: /effects/indirect/phase: 'mie' is not one of phong, henyey_greenstein");
+    EXPECT_EQ(errorOf(v + R"({"indirect": 3}})"), "shot.json: /effects/indirect: expected true, false or an object");
+    EXPECT_EQ(errorOf(v + R"({"surface": {"gradient_low": 0.5, "gradient_high": 0.2}}})"),
+              "shot.json: /effects/surface/gradient_high: needs 0 <= gradient_low < gradient_high");
+    EXPECT_EQ(errorOf(v + R"({"perturbation": {"octaves": 0}}})"),
+              "shot.json: /effects/perturbation/octaves: must lie in 1..8");
+    EXPECT_EQ(errorOf(v + R"({"perturbation": {"displacement": -1}}})"),
+              "shot.json: /effects/perturbation/displacement: must lie in [0, 64] voxels");
+    EXPECT_EQ(errorOf(v + R"({"propagation": {"eye": true}}})"),
+              "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling)");
+}
+
 }  // namespace
 }  // namespace voxlux::test
