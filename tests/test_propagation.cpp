@@ -700,3 +700,103 @@ TEST(Propagation, SurfaceShadingFollowsTheGradient) {
 
 }  // namespace
 }  // namespace voxlux::test
+
+namespace voxlux::test {
+namespace {
+
+double directRmse(const RenderImage& a, const RenderImage& ref) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) sum += std::pow(double(a.pixels[i].direct[c] - ref.pixels[i].direct[c]), 2.0);
+    return std::sqrt(sum / (3.0 * a.pixels.size()));
+}
+
+// On real smoke the propagated direct light converges on the ray-marched shadows as the
+// illumination volume gets finer.
+TEST(Propagation, ConvergesOnRayMarchedShadowsOnSmoke) {
+    VOXLUX_REQUIRE_SHARED(smoke, "arnold-usd/smoke.vdb");
+    Scene s;
+    s.volume.path = smoke;
+    s.render.width = 96;
+    s.render.height = 128;
+    s.render.backend = Backend::Cpu;
+    s.material.density_scale = 2.0f;
+    Light key;
+    key.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.3f));
+    key.intensity = 6.0f;
+    s.lights = {key};
+    s.render.shadow_step = 0.5f;
+    const RenderImage ref = renderScene(s).image;
+    s.effects.shadows = ShadowMethod::None;
+    const double unshadowed = directRmse(renderScene(s).image, ref);
+    s.effects.shadows = ShadowMethod::Propagation;
+    double last = unshadowed;
+    for (int res : {32, 64, 128}) {
+        s.effects.light_resolution = res;
+        const double e = directRmse(renderScene(s).image, ref);
+        std::printf("  %d cells: direct rmse %.4g (unshadowed %.4g)\n", res, e, unshadowed);
+        EXPECT_LT(e, 0.8 * last) << res << " cells";
+        last = e;
+    }
+    EXPECT_LT(last, 0.15 * unshadowed);
+}
+
+// A Blender fire frame with every propagation feature: finite, lit and scattering.
+TEST(Propagation, BlenderFireWithEveryFeatureStaysFinite) {
+    VOXLUX_REQUIRE_SHARED(fire, "blender/fire/fluid_data_0040.vdb");
+    Scene s;
+    s.volume.path = fire;
+    s.volume.emission = GridRef{"flame", 0};
+    s.render.width = 48;
+    s.render.height = 64;
+    s.render.backend = Backend::Cpu;
+    s.material.density_scale = 20.0f;
+    s.effects.shadows = ShadowMethod::Propagation;
+    s.effects.light_resolution = 48;
+    s.effects.indirect = Indirect{};
+    s.effects.propagation.eye_pass = true;
+    s.effects.propagation.chroma_subsampling = true;
+    Perturbation p;
+    p.density = 0.5f;
+    p.displacement = 1.0f;
+    s.effects.perturbation = p;
+    Light key;
+    key.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
+    key.intensity = 5.0f;
+    Light inside;
+    inside.type = LightType::Point;
+    inside.position = glm::vec3(1.5f, 1.5f, 1.0f);
+    inside.intensity = 10.0f;
+    s.lights = {key, inside};
+    const FrameResult r = renderScene(s);
+    double direct = 0.0, indirect = 0.0;
+    for (const auto& px : r.image.pixels) {
+        ASSERT_TRUE(std::isfinite(px.rgba.x + px.rgba.y + px.rgba.z + px.rgba.w));
+        direct += px.direct.x;
+        indirect += px.indirect.x;
+    }
+    EXPECT_GT(direct, 0.0);
+    EXPECT_GT(indirect, 0.0);
+}
+
+// The illumination volume keeps to effects.light_memory_mb: a resolution that does not fit is
+// lowered, and the warning names both resolutions.
+TEST(Propagation, MemoryBudgetLowersTheResolutionAndSaysSo) {
+    auto cpu = makeCpuBackend();
+    Scene scene = slabScene({0, -1, 0}, false);
+    scene.effects.indirect = Indirect{};
+    scene.effects.light_resolution = 160;   // 4 cells per voxel: the finest allowed
+    scene.effects.light_memory_mb = 8;
+    auto lit = illuminate(slab(0.1f), scene, *cpu);
+    const glm::ivec3 dims = lit->stage.volume().dims;
+    EXPECT_LE(illuminationBytes(dims, true, 1, false), size_t(8) << 20);
+    EXPECT_GT(illuminationBytes(dims + 1, true, 1, false), size_t(8) << 20);
+    ASSERT_EQ(lit->warnings.size(), 1u);
+    EXPECT_EQ(lit->warnings[0], "illumination volume of 160 cells needs " +
+                                    std::to_string(illuminationBytes(glm::ivec3(160), true, 1, false) >> 20) +
+                                    " MiB, over effects.light_memory_mb = 8; using " + std::to_string(dims.x) +
+                                    " cells instead");
+}
+
+}  // namespace
+}  // namespace voxlux::test
