@@ -164,7 +164,7 @@ TEST(Cli, ExplainShowsThePlan) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("run   illumination 1 light swept through a 128-cell illumination volume along the two closest "
                          "axes, blended; direct luminance, indirect RGB blurred in a 30 deg cone over 9 taps, transport "
-                         "colour (1, 0.75, 0.5), perturbed"),
+                         "colour (0.8, 0.6, 0.45), perturbed"),
               std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("run   march       1 light, direct and indirect light read from the illumination volume, noise-perturbed"),
