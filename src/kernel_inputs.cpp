@@ -79,9 +79,9 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
     // A perturbation of zero amplitude is no perturbation: it stays off, so the render is exactly
     // the unperturbed one and costs nothing.
     if (const auto& pt = scene.effects.perturbation; pt && (pt->density > 0 || pt->transport > 0 || pt->displacement > 0)) {
-        const glm::vec3 box((pages.bricks_max - pages.bricks_min + 1) * VX_BRICK);
-        const float longest = std::max({box.x, box.y, box.z}) * edge;
-        const float scale = pt->scale > 0.0f ? pt->scale : 0.25f * longest;
+        // Automatic: two voxels per texel of the first octave. It follows the voxel size, not the
+        // data's extent, so a sequence whose extent changes frame to frame keeps its noise.
+        const float scale = pt->scale > 0.0f ? pt->scale : 2.0f * float(VX_NOISE_SIZE) * edge;
         P.noise_scale = glm::vec4(float(VX_NOISE_SIZE) / scale, float(pt->octaves), pt->lacunarity, pt->gain);
         P.noise_offset = glm::vec4(pt->velocity * (frame + pt->time), pt->displacement);
         P.noise_amp = glm::vec4(pt->density, pt->transport, 0.0f, 0.0f);

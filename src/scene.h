@@ -127,7 +127,7 @@ struct SurfaceShading {
 // the data lookup, in the march and in the light propagation alike.
 struct Perturbation {
     int seed = 1;
-    float scale = 0.0f;                    // world size of the first octave's tile; 0 = 1/4 of the volume
+    float scale = 0.0f;                    // world size of the first octave's tile; 0 = 64 voxels
     int octaves = 3;
     float lacunarity = 2.0f;
     float gain = 0.5f;

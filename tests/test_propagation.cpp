@@ -35,6 +35,15 @@ Scene slabScene(glm::vec3 dir, bool blend) {
     return s;
 }
 
+// The same with Kniss indirect light of transport colour `transport`.
+Scene indirectSlabScene(glm::vec3 dir, bool blend, glm::vec3 transport) {
+    Scene s = slabScene(dir, blend);
+    Indirect in;
+    in.transport_color = transport;
+    s.effects.indirect = in;
+    return s;
+}
+
 struct Lit {
     std::unique_ptr<Prepared> prepared;
     IlluminationStage stage;
@@ -317,10 +326,7 @@ TEST(Propagation, IndirectEnergyPerSliceIsConserved) {
 // with depth: the red / blue ratio grows monotonically down the slab.
 TEST(Propagation, TransportColourShiftsIndirectLightWithDepth) {
     auto cpu = makeCpuBackend();
-    Scene scene = slabScene({0, -1, 0}, false);
-    Indirect in;
-    in.transport_color = glm::vec3(1.0f, 0.6f, 0.3f);
-    scene.effects.indirect = in;
+    Scene scene = indirectSlabScene({0, -1, 0}, false, glm::vec3(1.0f, 0.6f, 0.3f));
     auto lit = illuminate(slab(0.1f), scene, *cpu);
     const IlluminationVolume& v = lit->stage.volume();
     ASSERT_EQ(v.chroma_dims, v.dims);
@@ -608,10 +614,7 @@ namespace {
 // convex mix, so a uniform field stays exactly uniform and no value leaves the input's range.
 TEST(Propagation, EyeSweepIsAConvexBlend) {
     auto cpu = makeCpuBackend();
-    Scene scene = slabScene({0.2f, -1, 0.1f}, true);
-    Indirect in;
-    in.transport_color = glm::vec3(0.8f, 0.5f, 0.3f);
-    scene.effects.indirect = in;
+    Scene scene = indirectSlabScene({0.2f, -1, 0.1f}, true, glm::vec3(0.8f, 0.5f, 0.3f));
     auto before = illuminate(slab(0.1f), scene, *cpu);
     scene.effects.propagation.eye_pass = true;
     auto after = illuminate(slab(0.1f), scene, *cpu);
@@ -648,10 +651,7 @@ TEST(Propagation, EyeSweepIsAConvexBlend) {
 // from the step length itself: the slab's indirect light matches the full-resolution one.
 TEST(Propagation, ChromaSubsamplingHalvesTheIndirectGrid) {
     auto cpu = makeCpuBackend();
-    Scene scene = slabScene({0, -1, 0}, false);
-    Indirect in;
-    in.transport_color = glm::vec3(0.9f, 0.6f, 0.4f);
-    scene.effects.indirect = in;
+    Scene scene = indirectSlabScene({0, -1, 0}, false, glm::vec3(0.9f, 0.6f, 0.4f));
     auto full = illuminate(slab(0.1f), scene, *cpu);
     scene.effects.propagation.chroma_subsampling = true;
     auto half = illuminate(slab(0.1f), scene, *cpu);
