@@ -195,7 +195,8 @@ void propagateCpu(const SweepJob& job, IlluminationVolume& volume) {
                     const glm::vec3 value = k.vx_prop_cell(i, j);
                     for (int ch = 0; ch < channels; ++ch) slot[ch] = value[ch];
                 }
-                float* cell = out + size_t(glm::dot(glm::vec3(c), glm::vec3(stride))) * channels;
+                // Integer offsets: a float dot product is exact only below 2^24 cells.
+                float* cell = out + (size_t(c.x) * stride.x + size_t(c.y) * stride.y + size_t(c.z) * stride.z) * channels;
                 for (int ch = 0; ch < channels; ++ch) cell[ch] = x_major || eye ? slot[ch] : cell[ch] + weight * slot[ch];
             }
         });

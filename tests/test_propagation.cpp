@@ -809,3 +809,37 @@ TEST(Propagation, MemoryBudgetLowersTheResolutionAndSaysSo) {
 
 }  // namespace
 }  // namespace voxlux::test
+
+namespace voxlux::test {
+namespace {
+
+// A volume of more than 2^24 cells (float offsets would stop being exact there): the cube of 72
+// voxels at 260 cells gives 260^3 = 17.6 M; the cells past 2^24, in the last slices, still get
+// exp(-sigma d), for a y sweep (the volume's own layout) and an x sweep (slice-major copies).
+TEST(Propagation, VolumesBeyond2To24CellsStayExact) {
+    auto cpu = makeCpuBackend();
+    const float sigma = 0.05f;
+    const int side = 72;
+    for (glm::vec3 dir : {glm::vec3(0, -1, 0), glm::vec3(1, 0, 0)}) {
+        Scene scene = slabScene(dir, false);
+        scene.effects.light_resolution = 260;
+        auto lit = illuminate(boxGrid({0, 0, 0}, {side - 1, side - 1, side - 1}, sigma), scene, *cpu);
+        const IlluminationVolume& v = lit->stage.volume();
+        ASSERT_GT(v.cells(), size_t(1) << 24);
+        int checked = 0;
+        for (int z = v.dims.z - 1; z >= 0 && (size_t(z) * v.dims.y * v.dims.x) >= (size_t(1) << 24); --z)
+            for (int y = 0; y < v.dims.y; y += 7)
+                for (int x = 0; x < v.dims.x; x += 7) {
+                    const glm::vec3 c = cellCentre(v, {x, y, z});
+                    if (glm::any(glm::lessThan(c, glm::vec3(-0.5f))) || glm::any(glm::greaterThan(c, glm::vec3(side - 0.5f))))
+                        continue;
+                    const float d = dir.y < 0.0f ? side - 0.5f - c.y : c.x + 0.5f;
+                    ASSERT_NEAR(luminanceAt(v, {x, y, z}), std::exp(-sigma * d), 2e-5f) << x << " " << y << " " << z;
+                    ++checked;
+                }
+        EXPECT_GT(checked, 100);
+    }
+}
+
+}  // namespace
+}  // namespace voxlux::test
