@@ -95,7 +95,7 @@ struct ShadowCone {
 // Knobs of the illumination volume (shadows "propagation"); its resolution and memory budget are
 // light_resolution and light_memory_mb, as for the SAT.
 struct Propagation {
-    bool blend_axes = true;                // sweep the two closest face axes and blend (no popping)
+    bool blend_axes = false;               // also sweep the second closest face axis and blend
     bool eye_pass = false;                 // a second sweep scattering light towards the camera
     bool chroma_subsampling = false;       // indirect light at half the resolution per axis
 };

@@ -112,7 +112,7 @@ TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
     Scene again = parseScene(sceneToJson(s).dump(), "again.json", "");
     EXPECT_EQ(sceneToJson(again), sceneToJson(s));
     EXPECT_EQ(again.effects.shadows, ShadowMethod::Propagation);
-    EXPECT_TRUE(again.effects.propagation.blend_axes);
+    EXPECT_FALSE(again.effects.propagation.blend_axes);
     EXPECT_TRUE(again.effects.propagation.eye_pass);
     ASSERT_TRUE(again.effects.indirect.has_value());
     EXPECT_EQ(again.effects.indirect->phase, BlurPhase::HenyeyGreenstein);
