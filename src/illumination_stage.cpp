@@ -67,6 +67,77 @@ glm::vec3 behindEntryFace(glm::vec3 source, const Sweep& s, glm::ivec3 dims) {
     return source;
 }
 
+// Every sweep of one light on one grid: the principal axis, and with blending the second.
+void sweepLight(const kernel::VxLight& light, const SweepGrid& g, kernel::VxPropParams Q, bool blend, SweepJob job,
+                KernelBackend& backend, IlluminationVolume& volume) {
+    const bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;
+    const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
+    const glm::vec3 flow =
+        directional ? glm::mat3(g.world_to_grid) * glm::vec3(light.dir_cos) : 0.5f * glm::vec3(g.dims) - at;
+    for (const Sweep& s : sweepsFor(flow, blend)) {
+        Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
+        Q.flow.z = s.weight;
+        Q.light = light;
+        if (directional) {
+            Q.source = glm::vec4(flow, 0.0f);
+        } else {
+            const glm::vec3 source = behindEntryFace(at, s, g.dims);
+            Q.source = glm::vec4(source, 1.0f);
+            Q.light.pos_type = glm::vec4(glm::vec3(g.grid_to_world * glm::vec4(source, 1.0f)), light.pos_type.w);
+        }
+        job.params = Q;
+        job.sigma = g.sigma;
+        backend.propagate(job, volume);
+    }
+}
+
+// The light sweeps of every light: direct luminance on the fine grid, indirect RGB on the
+// coarse one (the same grid unless chroma subsampled).
+void propagateLights(const Effects& fx, const KernelInputs& inputs, const SweepGrid& fine, const SweepGrid& coarse,
+                     KernelBackend& backend, IlluminationVolume& volume) {
+    SweepJob job;
+    job.march = &inputs.params;
+    job.noise = &inputs.noise;
+    const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
+    kernel::VxPropParams blurred{};
+    if (fx.indirect)
+        blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)),
+                             -glm::log(fx.indirect->transport_color));
+    for (const auto& light : inputs.lights) {
+        job.offset = 0;
+        sweepLight(light, fine, direct, fx.propagation.blend_axes, job, backend, volume);
+        if (!fx.indirect) continue;
+        job.offset = volume.indirectOffset();
+        sweepLight(light, coarse, blurred, fx.propagation.blend_axes, job, backend, volume);
+    }
+}
+
+// The eye sweep (Ropinski Sec. 4.1): the indirect light flows towards the camera along the axis
+// facing it, reading a copy of the light sweeps' result.
+void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const SweepGrid& coarse, glm::vec3 eye_position,
+                     KernelBackend& backend, IlluminationVolume& volume) {
+    const std::vector<float> before(volume.values.begin() + long(volume.indirectOffset()), volume.values.end());
+    const glm::vec3 cam = glm::vec3(coarse.world_to_grid * glm::vec4(eye_position, 1.0f));
+    const Sweep s = sweepsFor(cam - 0.5f * glm::vec3(coarse.dims), false)[0];
+    const float tan_half = std::tan(glm::radians(0.5f * in.angle));
+    kernel::VxPropParams Q = baseParams(coarse, 3, blurTaps(in), tan_half, glm::vec3(1.0f));
+    // The camera must be beyond the face the sweep leaves through.
+    glm::vec3 source = cam;
+    if (s.sign > 0) source[s.axis] = std::max(source[s.axis], float(coarse.dims[s.axis]));
+    else source[s.axis] = std::min(source[s.axis], 0.0f);
+    Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
+    Q.source = glm::vec4(source, 1.0f);
+    Q.flow = glm::vec4(-1.0f, tan_half, 1.0f, 1.0f);
+    SweepJob job;
+    job.params = Q;
+    job.march = &inputs.params;
+    job.noise = &inputs.noise;
+    job.sigma = coarse.sigma;
+    job.offset = volume.indirectOffset();
+    job.input = &before;
+    backend.propagate(job, volume);
+}
+
 }  // namespace
 
 size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool eye_pass) {
@@ -106,9 +177,7 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
         grid_key_.clear();  // both stay cleared if a pass throws
         volume_key_.clear();
         grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, 0.0f); });
-        if (grid_.clamped_cells)
-            warnings.push_back(std::to_string(grid_.clamped_cells) + " light-grid cells clamped to an optical depth of " +
-                               std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)");
+        if (grid_.clamped_cells) warnings.push_back(clampedCellsWarning(grid_));
         chroma_sigma_.clear();
         grid_key_ = grid_key;
     }
@@ -148,66 +217,8 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
             volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
             volume_.world_to_illum = fine.world_to_grid;
             volume_.values.assign(volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
-
-            SweepJob job;
-            job.march = &inputs.params;
-            job.noise = &inputs.noise;
-            // Every sweep of one light on one grid: the principal axis, and with blending the second.
-            auto sweepLight = [&](const kernel::VxLight& light, const SweepGrid& g, kernel::VxPropParams Q) {
-                const bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;
-                const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
-                const glm::vec3 flow = directional ? glm::mat3(g.world_to_grid) * glm::vec3(light.dir_cos)
-                                                   : 0.5f * glm::vec3(g.dims) - at;
-                for (const Sweep& s : sweepsFor(flow, fx.propagation.blend_axes)) {
-                    Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
-                    Q.flow.z = s.weight;
-                    Q.light = light;
-                    if (directional) {
-                        Q.source = glm::vec4(flow, 0.0f);
-                    } else {
-                        const glm::vec3 source = behindEntryFace(at, s, g.dims);
-                        Q.source = glm::vec4(source, 1.0f);
-                        Q.light.pos_type = glm::vec4(glm::vec3(g.grid_to_world * glm::vec4(source, 1.0f)), light.pos_type.w);
-                    }
-                    job.params = Q;
-                    job.sigma = g.sigma;
-                    backend.propagate(job, volume_);
-                }
-            };
-            const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
-            std::vector<glm::vec4> taps;
-            float tan_half = 0.0f;
-            kernel::VxPropParams blurred{};
-            if (indirect) {
-                taps = blurTaps(*fx.indirect);
-                tan_half = std::tan(glm::radians(0.5f * fx.indirect->angle));
-                blurred = baseParams(coarse, 3, taps, tan_half, -glm::log(fx.indirect->transport_color));
-            }
-            for (const auto& light : inputs.lights) {
-                job.offset = 0;
-                sweepLight(light, fine, direct);
-                if (!indirect) continue;
-                job.offset = volume_.indirectOffset();
-                sweepLight(light, coarse, blurred);
-            }
-            if (eye) {
-                // The eye sweep flows towards the camera along the axis facing it.
-                const std::vector<float> before(volume_.values.begin() + long(volume_.indirectOffset()), volume_.values.end());
-                const glm::vec3 cam = glm::vec3(coarse.world_to_grid * glm::vec4(eye_position, 1.0f));
-                const Sweep s = sweepsFor(cam - 0.5f * glm::vec3(coarse.dims), false)[0];
-                kernel::VxPropParams Q = baseParams(coarse, 3, taps, tan_half, glm::vec3(1.0f));
-                glm::vec3 source = cam;
-                if (s.sign > 0) source[s.axis] = std::max(source[s.axis], float(coarse.dims[s.axis]));
-                else source[s.axis] = std::min(source[s.axis], 0.0f);
-                Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
-                Q.source = glm::vec4(source, 1.0f);
-                Q.flow = glm::vec4(-1.0f, tan_half, 1.0f, 1.0f);
-                job.params = Q;
-                job.sigma = coarse.sigma;
-                job.offset = volume_.indirectOffset();
-                job.input = &before;
-                backend.propagate(job, volume_);
-            }
+            propagateLights(fx, inputs, fine, coarse, backend, volume_);
+            if (eye) sweepTowardsEye(*fx.indirect, inputs, coarse, eye_position, backend, volume_);
         });
         volume_key_ = key;
     }

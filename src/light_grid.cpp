@@ -82,6 +82,11 @@ bool lightGridIndexable(glm::ivec3 d, int planes, int cache_channels) {
     return sat_words < uint64_t(INT32_MAX) && cache_floats < uint64_t(INT32_MAX);
 }
 
+std::string clampedCellsWarning(const LightGrid& g) {
+    return std::to_string(g.clamped_cells) + " light-grid cells clamped to an optical depth of " +
+           std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)";
+}
+
 glm::vec3 occupiedExtent(const KernelInputs& in) {
     return glm::vec3((in.pages->bricks_max - in.pages->bricks_min + 1) * VX_BRICK);
 }

@@ -46,6 +46,9 @@ glm::ivec3 lightGridDims(glm::vec3 extent, int resolution);
 // Whether the kernel's 32-bit indices reach every SAT word and light-cache float.
 bool lightGridIndexable(glm::ivec3 dims, int planes, int cache_channels);
 
+// The warning for a grid with clamped cells.
+std::string clampedCellsWarning(const LightGrid& grid);
+
 // Index-space size of the occupied bricks' box, which light grids cover.
 glm::vec3 occupiedExtent(const KernelInputs& inputs);
 

@@ -141,9 +141,7 @@ void LightStage::rebuildGrid(const KernelInputs& inputs, int resolution, float b
     grid_key_.clear();  // stays cleared if a pass throws
     channel_keys_.clear();
     grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, bleeding); });
-    if (grid_.clamped_cells)
-        warnings.push_back(std::to_string(grid_.clamped_cells) + " light-grid cells clamped to an optical depth of " +
-                           std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)");
+    if (grid_.clamped_cells) warnings.push_back(clampedCellsWarning(grid_));
     clock("sat", [&] { backend.buildSat(grid_, sat_); });
     sat_generation_ = nextSatGeneration();
 }
