@@ -7,20 +7,18 @@
 // Prints figures and writes an error-against-time plot; it asserts nothing.
 //
 //   build/voxlux_bench_sat [--data DIR] [--svg docs/accuracy-sat.svg] [--quick] [--paper-only | --sweeps-only]
-#include <tbb/parallel_for.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 #include <map>
 #include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench_timing.h"
 #include "camera.h"
 #include "cpu_light_pass.h"
 #include "kernel_backend.h"
@@ -32,30 +30,9 @@ namespace {
 
 using namespace voxlux;
 
-double seconds(const std::function<void()>& work) {
-    const auto start = std::chrono::steady_clock::now();
-    work();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double best(int repeats, const std::function<void()>& work) {
-    double t = 1e30;
-    for (int i = 0; i < repeats; ++i) t = std::min(t, seconds(work));
-    return t;
-}
-
-// STREAM "copy": a[i] = b[i] over arrays far larger than the caches, all threads; bytes moved
-// per second counting the read and the write.
-double copyBandwidth() {
-    const size_t n = size_t(64) << 20;  // 256 MB per array
-    std::vector<float> a(n, 1.0f), b(n, 2.0f);
-    const double t = best(5, [&] {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
-            std::copy(b.begin() + r.begin(), b.begin() + r.end(), a.begin() + r.begin());
-        });
-    });
-    return 2.0 * n * sizeof(float) / t;
-}
+using bench::best;
+using bench::copyBandwidth;
+using bench::seconds;
 
 // A full light grid of n^3 cells of smooth noise, every cell needed (the paper computes all).
 LightGrid syntheticGrid(int n, int planes) {

@@ -12,7 +12,9 @@ std::vector<Sweep> sweepsFor(glm::vec3 flow, bool blend) {
     const glm::vec3 f = len > 0.0f ? flow / len : glm::vec3(0.0f, 0.0f, 1.0f);
     std::array<float, 3> theta;
     for (int a = 0; a < 3; ++a) theta[size_t(a)] = std::acos(std::min(std::abs(f[a]), 1.0f));
-    std::array<int, 3> order{0, 1, 2};
+    // Ties (a light on a face diagonal) go to z, then y: their slices are rows of x, contiguous in
+    // memory, where an x sweep has to work on a transposed copy.
+    std::array<int, 3> order{2, 1, 0};
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return theta[size_t(a)] < theta[size_t(b)]; });
     auto sweep = [&](int axis, float weight) { return Sweep{axis, f[axis] < 0.0f ? -1 : 1, weight}; };
     if (!blend) return {sweep(order[0], 1.0f)};
