@@ -21,7 +21,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <thread>
 #include <unistd.h>
@@ -306,19 +305,10 @@ struct Render {
     double total() const { return light_grid + propagation + march; }
 };
 
-// Renders `scene` `runs` times on fresh renderers (nothing reused), the faster time per stage.
+// `scene`, best of `runs` renders on fresh renderers.
 Render render(const Scene& scene, int runs) {
-    Render r;
-    for (int run = 0; run < runs; ++run) {
-        FrameResult f = Renderer(scene).render(std::nullopt, false);
-        std::map<std::string, double> t(f.stage_seconds.begin(), f.stage_seconds.end());
-        auto keep = [&](double& slot, const char* stage) { slot = run ? std::min(slot, t[stage]) : t[stage]; };
-        keep(r.light_grid, "light_grid");
-        keep(r.propagation, "propagation");
-        keep(r.march, "march");
-        r.image = std::move(f.image);
-    }
-    return r;
+    bench::TimedRender t = bench::renderFresh(scene, runs);
+    return {t("light_grid"), t("propagation"), t("march"), std::move(t.image)};
 }
 
 // Over the reference's footprint (pixels with alpha > 0.01), on the three channels of one AOV:
@@ -517,21 +507,11 @@ void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, c
 
 int main(int argc, char** argv) {
     std::setvbuf(stdout, nullptr, _IOLBF, 0);   // progress shows when redirected (a full run takes minutes)
-    std::string data = std::string(VOXLUX_SOURCE_DIR) + "/../shared/data";
-    std::string svg;
-    bool quick = false, paper = true, sweeps = true;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
-        else if (!std::strcmp(argv[i], "--paper-only")) sweeps = false;
-        else if (!std::strcmp(argv[i], "--sweeps-only")) paper = false;
-        else if (!std::strcmp(argv[i], "--svg") && i + 1 < argc) svg = argv[++i];
-        else if (!std::strcmp(argv[i], "--quick")) quick = true;
-        else {
-            std::fprintf(stderr, "usage: voxlux_bench_propagation [--data DIR] [--svg FILE] [--quick] "
-                                 "[--paper-only | --sweeps-only]\n");
-            return 2;
-        }
-    }
+    bench::Options options;
+    if (!bench::parseOptions(argc, argv, "voxlux_bench_propagation", std::string(VOXLUX_SOURCE_DIR) + "/../shared/data", options)) return 2;
+    const std::string& data = options.data;
+    const std::string& svg = options.svg;
+    const bool quick = options.quick, paper = options.paper, sweeps = options.sweeps;
     if (paper) paperComparison(quick);
     if (!sweeps) return 0;
 

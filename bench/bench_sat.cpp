@@ -125,21 +125,10 @@ struct Render {
     double light() const { return light_grid + sat + ambient + shadows; }
 };
 
-// Renders `scene` twice on fresh renderers (nothing reused) and keeps the faster time per stage.
+// `scene`, best of two renders on fresh renderers.
 Render render(const Scene& scene) {
-    Render r;
-    for (int run = 0; run < 2; ++run) {
-        FrameResult f = Renderer(scene).render(std::nullopt, false);
-        std::map<std::string, double> t(f.stage_seconds.begin(), f.stage_seconds.end());
-        auto keep = [&](double& slot, const char* stage) { slot = run ? std::min(slot, t[stage]) : t[stage]; };
-        keep(r.light_grid, "light_grid");
-        keep(r.sat, "sat");
-        keep(r.ambient, "ambient");
-        keep(r.shadows, "shadows");
-        keep(r.march, "march");
-        r.image = std::move(f.image);
-    }
-    return r;
+    bench::TimedRender t = bench::renderFresh(scene, 2);
+    return {t("sat"), t("light_grid"), t("ambient"), t("shadows"), t("march"), std::move(t.image)};
 }
 
 struct Error {
@@ -255,21 +244,11 @@ void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, c
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string data = std::string(VOXLUX_SOURCE_DIR) + "/../shared/data";
-    std::string svg;
-    bool quick = false, paper = true, sweeps = true;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
-        else if (!std::strcmp(argv[i], "--paper-only")) sweeps = false;
-        else if (!std::strcmp(argv[i], "--sweeps-only")) paper = false;
-        else if (!std::strcmp(argv[i], "--svg") && i + 1 < argc) svg = argv[++i];
-        else if (!std::strcmp(argv[i], "--quick")) quick = true;
-        else {
-            std::fprintf(stderr,
-                         "usage: voxlux_bench_sat [--data DIR] [--svg FILE] [--quick] [--paper-only | --sweeps-only]\n");
-            return 2;
-        }
-    }
+    bench::Options options;
+    if (!bench::parseOptions(argc, argv, "voxlux_bench_sat", std::string(VOXLUX_SOURCE_DIR) + "/../shared/data", options)) return 2;
+    const std::string& data = options.data;
+    const std::string& svg = options.svg;
+    const bool quick = options.quick, paper = options.paper, sweeps = options.sweeps;
     if (paper) paperComparison(quick ? 1 : 3);
     if (!sweeps) return 0;
 

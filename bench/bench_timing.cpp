@@ -5,7 +5,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <vector>
+
+#include "renderer.h"
 
 namespace voxlux::bench {
 
@@ -30,6 +34,40 @@ double copyBandwidth() {
         });
     });
     return 2.0 * double(n) * sizeof(float) / t;
+}
+
+double TimedRender::operator()(const std::string& stage) const {
+    auto it = seconds.find(stage);
+    return it == seconds.end() ? 0.0 : it->second;
+}
+
+TimedRender renderFresh(const Scene& scene, int runs) {
+    TimedRender r;
+    for (int run = 0; run < runs; ++run) {
+        FrameResult f = Renderer(scene).render(std::nullopt, false);
+        for (const auto& [stage, t] : f.stage_seconds) {
+            auto [it, first] = r.seconds.emplace(stage, t);
+            if (!first) it->second = std::min(it->second, t);
+        }
+        r.image = std::move(f.image);
+    }
+    return r;
+}
+
+bool parseOptions(int argc, char** argv, const char* program, const std::string& default_data, Options& o) {
+    o.data = default_data;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--data") && i + 1 < argc) o.data = argv[++i];
+        else if (!std::strcmp(argv[i], "--paper-only")) o.sweeps = false;
+        else if (!std::strcmp(argv[i], "--sweeps-only")) o.paper = false;
+        else if (!std::strcmp(argv[i], "--svg") && i + 1 < argc) o.svg = argv[++i];
+        else if (!std::strcmp(argv[i], "--quick")) o.quick = true;
+        else {
+            std::fprintf(stderr, "usage: %s [--data DIR] [--svg FILE] [--quick] [--paper-only | --sweeps-only]\n", program);
+            return false;
+        }
+    }
+    return true;
 }
 
 }  // namespace voxlux::bench
