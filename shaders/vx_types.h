@@ -79,8 +79,7 @@ struct VxPropParams {
     vec4 flow;              // x = +1 light sweep (flow away from the source), -1 eye sweep (towards it);
                             // y = tan(blur cone half-angle), z = weight this sweep adds, w = 1 for the eye sweep
     vec4 atten;             // xyz = optical-depth multiplier per channel (1 direct, -ln(transport) indirect),
-                            // w = sigma multiplier of the grid values (perturbation of the light grid is
-                            // evaluated per cell)
+                            // w = grid cells per index voxel (the perturbation's displacement is in voxels)
     VxLight light;          // the light (world), for the radiance that enters from outside the grid
     vec4 taps[VX_MAX_TAPS]; // xy = offset in the unit disc, z = weight (the weights sum to 1)
 };

@@ -8,7 +8,6 @@
 #include <tbb/parallel_for.h>
 
 #include "light_sweeps.h"
-#include "render_plan.h"
 #include "scene_json.h"
 
 namespace voxlux {
