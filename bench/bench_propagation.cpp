@@ -308,7 +308,8 @@ struct Render {
 // `scene`, best of `runs` renders on fresh renderers.
 Render render(const Scene& scene, int runs) {
     bench::TimedRender t = bench::renderFresh(scene, runs);
-    return {t("light_grid"), t("propagation"), t("march"), std::move(t.image)};
+    // The eye sweep is its own stage (a camera move re-runs it alone); here it counts as propagation.
+    return {t("light_grid"), t("propagation") + t("eye_pass"), t("march"), std::move(t.image)};
 }
 
 // Over the reference's footprint (pixels with alpha > 0.01), on the three channels of one AOV:

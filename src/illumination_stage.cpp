@@ -112,10 +112,9 @@ void propagateLights(const Effects& fx, const KernelInputs& inputs, const SweepG
 }
 
 // The eye sweep (Ropinski Sec. 4.1): the indirect light flows towards the camera along the axis
-// facing it, reading a copy of the light sweeps' result.
+// facing it. It reads `before`, the light sweeps' indirect block, and replaces the volume's.
 void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const SweepGrid& coarse, glm::vec3 eye_position,
-                     KernelBackend& backend, IlluminationVolume& volume) {
-    const std::vector<float> before(volume.values.begin() + long(volume.indirectOffset()), volume.values.end());
+                     const std::vector<float>& before, KernelBackend& backend, IlluminationVolume& volume) {
     const glm::vec3 cam = glm::vec3(coarse.world_to_grid * glm::vec4(eye_position, 1.0f));
     const Sweep s = sweepsFor(cam - 0.5f * glm::vec3(coarse.dims), false)[0];
     const float tan_half = std::tan(glm::radians(0.5f * in.angle));
@@ -173,8 +172,9 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
     if (grid_key == grid_key_) {
         reused.push_back("light_grid");
     } else {
-        grid_key_.clear();  // both stay cleared if a pass throws
-        volume_key_.clear();
+        grid_key_.clear();  // all stay cleared if a pass throws
+        light_key_.clear();
+        eye_key_.clear();
         grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, 0.0f); });
         if (grid_.clamped_cells) warnings.push_back(clampedCellsWarning(grid_));
         chroma_sigma_.clear();
@@ -197,19 +197,23 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
         coarse.sigma = &chroma_sigma_;
     }
 
-    const glm::vec3 eye_position(inputs.params.camera_to_world[3]);
+    // The light sweeps depend on the lights and knobs, the eye sweep on the camera as well: a camera
+    // move re-runs only the eye sweep, from the light sweeps' indirect block kept for it.
     const auto& P = inputs.params;
-    const std::string key = grid_key_ + "|" + sj["lights"].dump() + "|" + sj["effects"]["propagation"].dump() + "|" +
-                            sj["effects"]["indirect"].dump() + "|" + sj["effects"]["perturbation"].dump() + "|" +
-                            std::to_string(P.noise_offset.x) + "," + std::to_string(P.noise_offset.y) + "," +
-                            std::to_string(P.noise_offset.z) +
-                            (eye ? "|eye " + std::to_string(eye_position.x) + "," + std::to_string(eye_position.y) +
-                                       "," + std::to_string(eye_position.z)
-                                 : "");
-    if (key == volume_key_) {
+    nlohmann::json knobs = sj["effects"]["propagation"];
+    knobs.erase("eye_pass");
+    const std::string light_key = grid_key_ + "|" + sj["lights"].dump() + "|" + knobs.dump() + "|" +
+                                  sj["effects"]["indirect"].dump() + "|" + sj["effects"]["perturbation"].dump() + "|" +
+                                  std::to_string(P.noise_offset.x) + "," + std::to_string(P.noise_offset.y) + "," +
+                                  std::to_string(P.noise_offset.z);
+    const glm::vec3 eye_position(P.camera_to_world[3]);
+    const std::string eye_key = !eye ? "" : light_key + "|eye " + std::to_string(eye_position.x) + "," +
+                                                std::to_string(eye_position.y) + "," + std::to_string(eye_position.z);
+    if (light_key == light_key_) {
         reused.push_back("propagation");
     } else {
-        volume_key_.clear();
+        light_key_.clear();  // stays cleared if a pass throws
+        eye_key_.clear();
         clock("propagation", [&] {
             volume_.dims = grid_.dims;
             volume_.chroma = chroma;
@@ -217,9 +221,19 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
             volume_.world_to_illum = fine.world_to_grid;
             volume_.values.assign(volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
             propagateLights(fx, inputs, fine, coarse, backend, volume_);
-            if (eye) sweepTowardsEye(*fx.indirect, inputs, coarse, eye_position, backend, volume_);
         });
-        volume_key_ = key;
+        before_eye_.clear();
+        light_key_ = light_key;
+    }
+    if (eye_key != eye_key_) {
+        const auto indirect_block = volume_.values.begin() + long(volume_.indirectOffset());
+        if (before_eye_.empty()) before_eye_.assign(indirect_block, volume_.values.end());
+        eye_key_.clear();
+        if (eye) clock("eye_pass", [&] { sweepTowardsEye(*fx.indirect, inputs, coarse, eye_position, before_eye_, backend, volume_); });
+        else std::copy(before_eye_.begin(), before_eye_.end(), indirect_block);   // the eye pass turned off
+        eye_key_ = eye_key;
+    } else if (eye) {
+        reused.push_back("eye_pass");
     }
 
     auto& Pm = inputs.params;

@@ -1,8 +1,8 @@
 // Illumination stage (Ropinski 2010 with the Kniss 2003 optical model): light grid -> sweeps that
 // carry each light's direct luminance and indirect RGB through the illumination volume ->
 // optionally the eye sweep. It keeps the light grid while the volume, material and resolution
-// stay, and the whole volume while the lights, the propagation knobs and (for the eye sweep) the
-// camera stay too.
+// stay, the light sweeps' result while the lights and propagation knobs stay too, and the eye
+// sweep's while the camera stays as well.
 #pragma once
 #include <string>
 #include <vector>
@@ -35,7 +35,9 @@ private:
     std::string grid_key_;
     LightGrid grid_;
     std::vector<float> chroma_sigma_;   // the light grid averaged over 2^3 cells (chroma subsampling)
-    std::string volume_key_;
+    std::string light_key_;             // what the light sweeps were computed from
+    std::string eye_key_;               // and the eye sweep ("" = not applied)
+    std::vector<float> before_eye_;     // the light sweeps' indirect block, while the eye sweep replaces it
     IlluminationVolume volume_;
 };
 

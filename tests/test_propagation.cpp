@@ -596,8 +596,18 @@ TEST(Propagation, EditsRecomputeOnlyWhatTheyInvalidate) {
     s.camera = moved;
     r.setScene(s);
     f = r.render(std::nullopt, false);
-    EXPECT_FALSE(ran(f, "light_grid"));
-    EXPECT_TRUE(ran(f, "propagation"));   // the eye pass follows the camera
+    EXPECT_FALSE(ran(f, "light_grid") || ran(f, "propagation"));
+    EXPECT_TRUE(ran(f, "eye_pass"));   // only the eye pass follows the camera
+    // ... and from the light sweeps' result, not its own: the same as a fresh render.
+    EXPECT_TRUE(identical(f.image, renderScene(s).image));
+    const RenderImage with_eye = f.image;
+    // Turning the eye pass off restores the light sweeps' result exactly.
+    s.effects.propagation.eye_pass = false;
+    r.setScene(s);
+    f = r.render(std::nullopt, false);
+    EXPECT_FALSE(ran(f, "propagation") || ran(f, "eye_pass"));
+    EXPECT_TRUE(identical(f.image, renderScene(s).image));
+    EXPECT_FALSE(identical(f.image, with_eye));
     s.material.density_scale = 5.0f;
     r.setScene(s);
     f = r.render(std::nullopt, false);
