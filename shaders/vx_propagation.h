@@ -84,6 +84,9 @@ VX_INLINE vec4 vx_prop_noise(vec3 q) {
     return vx_perturbed() ? vx_noise_fbm(vec3(Q.grid_to_world * vec4(q, 1.0f))) : vec4(0.0f);
 }
 
+// Point-light falloff clamps at half a cell: a light inside a cell stays finite.
+VX_INLINE float vx_prop_r_min() { return 0.5f * length(vec3(Q.grid_to_world * vec4(1.0f, 0.0f, 0.0f, 0.0f))); }
+
 // What enters from beyond the grid at grid point q: the light's unattenuated radiance (a light
 // sweep; luminance in x for the direct sweep), or the eye sweep's own input at the nearest cell.
 vec3 vx_prop_outside(vec3 q) {
@@ -94,9 +97,7 @@ vec3 vx_prop_outside(vec3 q) {
     }
     vec3 wi;
     float dist;
-    // Falloff clamps at half a cell: a light inside a cell stays finite.
-    float r_min = 0.5f * length(vec3(Q.grid_to_world * vec4(1.0f, 0.0f, 0.0f, 0.0f)));
-    vec3 e = vx_light_radiance(Q.light, vec3(Q.grid_to_world * vec4(q, 1.0f)), r_min, wi, dist);
+    vec3 e = vx_light_radiance(Q.light, vec3(Q.grid_to_world * vec4(q, 1.0f)), vx_prop_r_min(), wi, dist);
     return Q.dims.w == 1 ? vec3(vx_luminance(e), 0.0f, 0.0f) : e;
 }
 
@@ -178,9 +179,8 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     // Point and spot lights spread: the inverse-square ratio between p and x (1 for directional).
     float spread = 1.0f;
     if (Q.source.w > 0.5f) {
-        float r_min = 0.5f * length(vec3(Q.grid_to_world * vec4(1.0f, 0.0f, 0.0f, 0.0f)));
-        float rp = max(length(mat3(Q.grid_to_world) * (p - vec3(Q.source))), r_min);
-        float rx = max(length(mat3(Q.grid_to_world) * (x - vec3(Q.source))), r_min);
+        float rp = max(length(mat3(Q.grid_to_world) * (p - vec3(Q.source))), vx_prop_r_min());
+        float rx = max(length(mat3(Q.grid_to_world) * (x - vec3(Q.source))), vx_prop_r_min());
         spread = (rp * rp) / (rx * rx);
     }
     vec3 k = vec3(Q.atten);
