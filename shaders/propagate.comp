@@ -1,11 +1,11 @@
 // GL entry point of one slice of a propagation sweep (vx_propagation.h): one invocation per cell
 // of slice Q.slice.z. The backend dispatches the slices in order, swapping the two slice buffers
-// between dispatches; a light sweep adds Q.flow.z times its light into the volume block, the eye
-// sweep replaces the block's light.
+// between dispatches; a light sweep adds vx_prop_weight times its tinted light into the volume's
+// RGB block, the eye sweep replaces the block's light.
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 15) buffer Volume { float vx_volume[]; };   // the block this sweep writes
+layout(std430, binding = 15) buffer Volume { float vx_volume[]; };   // the RGB block this sweep writes
 layout(std430, binding = 16) writeonly buffer SliceOut { float vx_slice_out[]; };
 
 void main() {
@@ -17,14 +17,14 @@ void main() {
     int i = n % Q.dims[u];
     int j = n / Q.dims[u];
     vec3 value = vx_prop_cell(i, j);
+    for (int ch = 0; ch < Q.dims.w; ++ch) vx_slice_out[n * Q.dims.w + ch] = value[ch];
     ivec3 c;
     c[axis] = Q.slice.z;
     c[u] = i;
     c[v] = j;
-    int channels = Q.dims.w;
-    int cell = ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x) * channels;
-    for (int ch = 0; ch < channels; ++ch) {
-        vx_slice_out[n * channels + ch] = value[ch];
-        vx_volume[cell + ch] = Q.flow.w > 0.5f ? value[ch] : vx_volume[cell + ch] + Q.flow.z * value[ch];
-    }
+    int cell = ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x) * 3;
+    vec3 rgb = (Q.dims.w == 1 ? vec3(value.x) : value) * vec3(Q.tint);
+    float weight = vx_prop_weight(i, j);
+    for (int ch = 0; ch < 3; ++ch)
+        vx_volume[cell + ch] = Q.flow.w > 0.5f ? rgb[ch] : vx_volume[cell + ch] + weight * rgb[ch];
 }

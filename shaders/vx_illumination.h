@@ -1,13 +1,15 @@
-// The illumination volume as the march reads it (propagation shadows): direct luminance and
-// indirect RGB radiance, trilinear between cell centres; the indirect block may be coarser
+// The illumination volume as the march reads it (propagation shadows): direct and indirect RGB
+// radiance, trilinear between cell centres; the indirect block may be coarser
 // (chroma subsampling, Ropinski 2010 Sec. 4.1). Accessor: vx_illum(index), one float array.
 #pragma once
 #include "vx_cache.h"
 
-// Direct luminance arriving at world point x through the medium.
-float vx_illum_direct(vec3 x) {
-    VxCacheCell c = vx_grid_cell(vec3(P.world_to_illum * vec4(x, 1.0f)), ivec3(P.illum_dims), 1);
-    return VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.illum_dims), 1, 0);
+// Direct radiance of all lights arriving at world point x through the medium.
+vec3 vx_illum_direct(vec3 x) {
+    VxCacheCell c = vx_grid_cell(vec3(P.world_to_illum * vec4(x, 1.0f)), ivec3(P.illum_dims), 3);
+    return vec3(VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.illum_dims), 3, 0),
+                VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.illum_dims), 3, 1),
+                VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.illum_dims), 3, 2));
 }
 
 // Indirect radiance at x (0 when the scene has no indirect light).
@@ -16,7 +18,9 @@ vec3 vx_illum_indirect(vec3 x) {
     vec3 q = vec3(P.world_to_illum * vec4(x, 1.0f)) / float(P.illum_dims.w);
     VxCacheCell c = vx_grid_cell(q, ivec3(P.chroma_dims), 3);
     c.base += P.chroma_dims.w;
-    return vec3(VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.chroma_dims), 3, 0),
-                VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.chroma_dims), 3, 1),
-                VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.chroma_dims), 3, 2));
+    // Slightly negative values (float residue of subtracted lights) count as none.
+    return max(vec3(VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.chroma_dims), 3, 0),
+                    VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.chroma_dims), 3, 1),
+                    VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.chroma_dims), 3, 2)),
+               vec3(0.0f));
 }

@@ -147,7 +147,7 @@ VX_INLINE float vx_surface_factor(vec4 surface, vec3 wi, vec3 dir) {
 // `cell` locates x in the light cache (read only for SAT-cone shadows); `surface` is vx_surface.
 vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell, vec4 surface) {
     vec3 sum = vec3(0.0f);
-    float unshadowed = 0.0f;   // luminance the lights would bring unshadowed (propagation)
+    vec3 unshadowed = vec3(0.0f);   // what the lights would bring unshadowed (propagation)
     bool propagated = P.bricks_max.w == VX_SHADOWS_PROPAGATION;
     for (int i = 0; i < P.bricks_min.w; ++i) {
         VxLight light = vx_light(i);
@@ -160,12 +160,18 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell, vec4 surface
         float shadow = 1.0f;
         if (P.bricks_max.w == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
         if (P.bricks_max.w == VX_SHADOWS_SAT_CONE && P.cache_map.z >= 0) shadow = vx_exp(-vx_cache_value(cell, P.cache_map.z + i));
-        unshadowed += vx_luminance(e);
+        unshadowed += e;
         sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.march.w) * vx_surface_factor(surface, wi, dir));
     }
-    // The illumination volume holds the lights' attenuated luminance together: each light keeps
-    // its colour and phase, scaled by the fraction of their unshadowed luminance that arrives.
-    if (propagated) sum *= unshadowed > 0.0f ? vx_illum_direct(x) / unshadowed : 0.0f;
+    // The illumination volume holds the lights' attenuated RGB together: each light keeps its
+    // phase, scaled per channel by the fraction of the lights' unshadowed radiance that arrives.
+    // Exact for one light, and for any number when the phase is isotropic. Slightly negative
+    // values (float residue of subtracted lights) count as none.
+    if (propagated) {
+        vec3 arrived = max(vx_illum_direct(x), vec3(0.0f));
+        sum *= vec3(unshadowed.x > 0.0f ? arrived.x / unshadowed.x : 0.0f, unshadowed.y > 0.0f ? arrived.y / unshadowed.y : 0.0f,
+                    unshadowed.z > 0.0f ? arrived.z / unshadowed.z : 0.0f);
+    }
     return sum;
 }
 

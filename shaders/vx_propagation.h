@@ -7,6 +7,8 @@
 //  - eye sweep (3 channels): the indirect light blended with the blurred light behind the cell.
 // The optical depth of a step is the trapezoid rule over the extinction along it times its world
 // length, so it is corrected for the slice distance and the propagation angle alike.
+// Several lights share the volume (Sunden 2015): each sweep adds vx_prop_weight times its value,
+// tinted by Q.tint, so a negative weight takes a light out again.
 // Accessors: vx_prop_sigma (the sweep grid's extinction per world unit, one float per cell),
 // vx_prop_prev (the previous slice, Q.dims.w floats per cell), vx_prop_in (the eye sweep's input,
 // 3 floats per cell of the whole grid), vx_noise (perturbation table).
@@ -17,6 +19,37 @@
 // that a slice of a y or z sweep is rows of x, contiguous in memory.
 VX_INLINE int vx_axis_u(int axis) { return axis == 0 ? 1 : 0; }
 VX_INLINE int vx_axis_v(int axis) { return axis == 2 ? 1 : 2; }
+
+// The share of light flowing along f (grid space) that the sweep along `axis` in direction `sign`
+// carries: 1 on the principal axis, the one f is closest to (ties go to z, then y), else 0. With
+// `blend`, the light is split between its two closest axes by the angles theta_i to them:
+// w0 ~ theta_2 - theta_0, w1 ~ theta_2 - theta_1, which in the plane of the two axes is Sunden's
+// Eq. 5a/5b (w0 = 1 - 2 theta_0 / pi) and off it stays continuous where the second and third axes
+// swap. The second axis fades out between slopes VX_PROP_MAX_SLOPE / 2 and VX_PROP_MAX_SLOPE (it
+// carries under 8% there), so no sweep steps further sideways than that.
+VX_INLINE float vx_sweep_weight(vec3 f, int axis, int sign, bool blend) {
+    if (float(sign) * f[axis] <= 0.0f) return 0.0f;
+    vec3 a = abs(f);
+    int p = a.z >= a.y && a.z >= a.x ? 2 : (a.y >= a.x ? 1 : 0);
+    if (!blend) return axis == p ? 1.0f : 0.0f;
+    int lo = p == 0 ? 1 : 0;
+    int hi = p == 2 ? 1 : 2;
+    int s = a[hi] >= a[lo] ? hi : lo;
+    int t = s == hi ? lo : hi;
+    float len = length(f);
+    float t0 = acos(min(a[p] / len, 1.0f));
+    float t1 = acos(min(a[s] / len, 1.0f));
+    float t2 = acos(min(a[t] / len, 1.0f));
+    float w0 = t2 - t0;
+    float w1 = t2 - t1;
+    // On a body diagonal all three angles are equal: any split of two axes is as good as another.
+    if (w0 + w1 <= 1e-7f) {
+        w0 = 0.5f;
+        w1 = 0.5f;
+    }
+    w1 *= clamp(VX_PROP_MAX_SLOPE * a[s] / a[p] - 1.0f, 0.0f, 1.0f);
+    return (axis == p ? w0 : (axis == s ? w1 : 0.0f)) / (w0 + w1);
+}
 
 // Grid point with coordinate s along the sweep axis and (a, b) along u and v.
 VX_INLINE vec3 vx_prop_point(float s, float a, float b) {
@@ -127,6 +160,26 @@ VX_INLINE vec3 vx_prop_prev_at(float a, float b, int prev) {
                mix(vx_prop_prev_cell(i, j + 1, prev), vx_prop_prev_cell(i + 1, j + 1, prev), ta), tb);
 }
 
+// Grid point of cell (i, j) of slice Q.slice.z.
+VX_INLINE vec3 vx_prop_cell_point(int i, int j) {
+    return vx_prop_point(float(Q.slice.z) + 0.5f, float(i) + 0.5f, float(j) + 0.5f);
+}
+
+// A point or spot light's flow through grid point x (a light exactly at x flows along +z).
+VX_INLINE vec3 vx_prop_light_flow(vec3 x) {
+    vec3 f = x - vec3(Q.source);
+    return f == vec3(0.0f) ? vec3(0.0f, 0.0f, 1e-6f) : f;
+}
+
+// What cell (i, j) adds of its value: the sweep's weight, for a point or spot light times the
+// share of the cell's own flow that this sweep carries (Q.mode.x), so that a light inside or
+// beside the volume lights each cell from the sweeps facing it.
+VX_INLINE float vx_prop_weight(int i, int j) {
+    if (Q.mode.x == 0) return Q.flow.z;
+    vec3 f = vx_prop_light_flow(vx_prop_cell_point(i, j));
+    return Q.flow.z * vx_sweep_weight(f, Q.slice.x, Q.slice.y, Q.mode.y != 0);
+}
+
 // The value of cell (i, j) of slice Q.slice.z.
 VX_INLINE vec3 vx_prop_cell(int i, int j) {
     int axis = Q.slice.x;
@@ -134,11 +187,25 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     int v = vx_axis_v(axis);
     int s = Q.slice.z;
     int prev = s - Q.slice.y;
-    vec3 x = vx_prop_point(float(s) + 0.5f, float(i) + 0.5f, float(j) + 0.5f);
+    vec3 x = vx_prop_cell_point(i, j);
     // The direction light flows through x, in grid units, scaled to advance one slice.
     vec3 flow = Q.source.w > 0.5f ? (x - vec3(Q.source)) * Q.flow.x : vec3(Q.source);
     vec3 back = flow / max(abs(flow[axis]), 1e-6f);
     vec3 p = x - back;
+    // A point or spot light's sweep starts at the light's own plane (Sunden 2015, Fig. 5): cells
+    // before it, and cells too far sideways for any cell this sweep weights to read, stay dark;
+    // the first slice past the plane takes the light straight from its source.
+    bool first = false;
+    if (Q.mode.x != 0) {
+        vec3 f = vx_prop_light_flow(x);
+        if (float(Q.slice.y) * f[axis] <= 0.0f || max(abs(f[u]), abs(f[v])) > VX_PROP_MAX_SLOPE * abs(f[axis]))
+            return vec3(0.0f);
+        first = float(Q.slice.y) * (float(prev) + 0.5f - Q.source[axis]) <= 0.0f;
+        if (first) {
+            back = f;
+            p = vec3(Q.source);
+        }
+    }
     float step_world = length(mat3(Q.grid_to_world) * back);
 
     // Composite trapezoid over the step, one piece per cell it moves sideways: a step of the
@@ -147,7 +214,7 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     vec4 nx = vx_prop_noise(x);
     int pieces = max(int(ceil(max(abs(back[u]), abs(back[v])) - 1e-3f)), 1);
     float ends;
-    if (vx_perturbed()) {
+    if (vx_perturbed() || first) {
         ends = vx_prop_extinction(x, nx) + vx_prop_extinction(p, vx_prop_noise(p));
     } else {
         // Unperturbed, x is a cell centre and p lies on the previous slice's centre plane.
@@ -164,11 +231,17 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     }
     float tau = sum * step_world / float(pieces);
 
+    // Transmittance of the step per channel (the transport colour's, Kniss Eq. 8, for indirect light).
+    vec3 k = vec3(Q.atten);
+    if (Q.dims.w == 3 && vx_perturbed() && P.noise_amp.y != 0.0f)
+        k = -log(vx_perturb_transport(vec3(P.indirect), nx));
+    vec3 transmitted = vec3(vx_exp(-k.x * tau), vx_exp(-k.y * tau), vx_exp(-k.z * tau));
+    if (first) return vx_prop_outside(x) * transmitted;
     // Blur: taps on a disc around p in the previous slice, radius = step length * tan(half-angle).
     float radius = length(back) * Q.flow.y;
     vec3 incoming = vec3(0.0f);
-    for (int k = 0; k < Q.slice.w; ++k)
-        incoming += Q.taps[k].z * vx_prop_prev_at(p[u] + radius * Q.taps[k].x, p[v] + radius * Q.taps[k].y, prev);
+    for (int t = 0; t < Q.slice.w; ++t)
+        incoming += Q.taps[t].z * vx_prop_prev_at(p[u] + radius * Q.taps[t].x, p[v] + radius * Q.taps[t].y, prev);
 
     if (Q.flow.w > 0.5f) {
         // Eye sweep (Ropinski Sec. 4.1, last paragraphs): the cell keeps its own indirect light in
@@ -183,8 +256,5 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
         float rx = max(length(mat3(Q.grid_to_world) * (x - vec3(Q.source))), vx_prop_r_min());
         spread = (rp * rp) / (rx * rx);
     }
-    vec3 k = vec3(Q.atten);
-    if (Q.dims.w == 3 && vx_perturbed() && P.noise_amp.y != 0.0f)
-        k = -log(vx_perturb_transport(vec3(P.indirect), nx));
-    return incoming * spread * vec3(vx_exp(-k.x * tau), vx_exp(-k.y * tau), vx_exp(-k.z * tau));
+    return incoming * spread * transmitted;
 }

@@ -64,22 +64,31 @@ struct VxSatParams {
 };
 
 // One propagation sweep (Ropinski 2010, Sec. 4.1) over a grid of cells, slice by slice along an
-// axis. A light sweep carries light from the light through the grid (1 channel: direct luminance,
-// unblurred; 3: indirect RGB, blurred in a cone); the eye sweep carries the indirect light towards
-// the camera. Grid coordinates are cells: cell (i, j, k) spans [i, i+1) x [j, j+1) x [k, k+1).
+// axis. A light sweep carries one light through the grid (1 channel: direct luminance, unblurred;
+// 3: indirect RGB, blurred in a cone) and adds it, tinted and weighted, to the RGB block of the
+// illumination volume; the eye sweep carries the indirect light towards the camera. Grid
+// coordinates are cells: cell (i, j, k) spans [i, i+1) x [j, j+1) x [k, k+1).
 #define VX_MAX_TAPS 32
+// A point light's sweep computes only cells whose step moves at most this many cells sideways per
+// slice: no cell it weights reads further out, and the second blend axis fades out before it.
+#define VX_PROP_MAX_SLOPE 16.0f
 struct VxPropParams {
     mat4 grid_to_world;
     mat4 world_to_grid;
-    ivec4 dims;             // xyz = cells, w = channels (1 or 3)
+    ivec4 dims;             // xyz = cells, w = channels propagated (1 or 3)
     ivec4 slice;            // x = axis, y = +1 / -1 (the way slices advance), z = slice written, w = blur taps
     ivec4 strides;          // xyz = index step per cell along x, y, z of the extinction grid and eye input
+    ivec4 mode;             // x = 1: weight each cell by its own flow (point and spot lights),
+                            // y = 1: blend the two closest axes (Sunden 2015, Eq. 5), zw = unused
     vec4 source;            // xyz = grid position of the light (or camera), or for a directional light the
                             // grid-space direction it travels; w = 1 for a position, 0 for a direction
     vec4 flow;              // x = +1 light sweep (flow away from the source), -1 eye sweep (towards it);
-                            // y = tan(blur cone half-angle), z = weight this sweep adds, w = 1 for the eye sweep
+                            // y = tan(blur cone half-angle), z = weight this sweep adds (negative:
+                            // subtracts), w = 1 for the eye sweep
     vec4 atten;             // xyz = optical-depth multiplier per channel (1 direct, -ln(transport) indirect),
                             // w = grid cells per index voxel (the perturbation's displacement is in voxels)
+    vec4 tint;              // xyz = RGB added per unit propagated (direct: the light's colour over its
+                            // luminance; indirect and eye: 1), w = unused
     VxLight light;          // the light (world), for the radiance that enters from outside the grid
     vec4 taps[VX_MAX_TAPS]; // xy = offset in the unit disc, z = weight (the weights sum to 1)
 };

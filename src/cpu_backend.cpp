@@ -36,7 +36,7 @@ public:
 
     void fillLightChannel(const LightPass& pass, LightCache& cache) override { fillLightChannelCpu(pass, cache); }
 
-    void propagate(const SweepJob& job, IlluminationVolume& volume) override { propagateCpu(job, volume); }
+    void propagate(const PropagationPass& pass, IlluminationVolume& volume) override { propagateCpu(pass, volume); }
 };
 
 }  // namespace

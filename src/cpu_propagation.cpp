@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "cpu_kernel.h"
@@ -155,70 +156,99 @@ private:
 
 }  // namespace
 
-void propagateCpu(const SweepJob& job, IlluminationVolume& volume) {
-    kernel::CpuKernel k;
-    k.P = *job.march;
-    k.Q = job.params;
-    k.noise = job.noise ? job.noise->data() : nullptr;
-    const glm::ivec3 dims(k.Q.dims);
-    const int channels = k.Q.dims.w;
-    const int axis = k.Q.slice.x, u = k.vx_axis_u(axis), v = k.vx_axis_v(axis);
+void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
+    const kernel::VxPropParams& first = pass.sweeps.front();
+    const glm::ivec3 dims(first.dims);
+    const int channels = first.dims.w;
+    kernel::CpuKernel axes;
+    const int axis = first.slice.x, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
     const int nu = dims[u], nv = dims[v], slices = dims[axis];
-    const bool eye = k.Q.flow.w > 0.5f;
-    const float weight = k.Q.flow.z;
-    float* block = volume.values.data() + job.offset;
+    const bool eye = first.flow.w > 0.5f;
+    float* block = volume.values.data() + pass.offset;   // RGB per cell
 
+    // The pass reads the extinction (and the eye input) once for all its lights: for an x sweep,
+    // one slice-major copy shared by every light, and one result added back at the end.
     const SliceMajor layout{dims};
     const bool x_major = axis == 0;
     std::vector<float> sigma, input;
     std::unique_ptr<float[]> result;   // every cell is written: no need to clear it first
     if (x_major) {
-        sigma = layout.toSlices(job.sigma->data(), 1);
-        if (job.input) input = layout.toSlices(job.input->data(), 3);
-        result.reset(new float[sigma.size() * channels]);
-        k.Q.strides = glm::ivec4(dims.z * dims.y, 1, dims.y, 0);
-    } else {
-        k.Q.strides = glm::ivec4(1, dims.x, dims.x * dims.y, 0);
+        sigma = layout.toSlices(pass.sigma->data(), 1);
+        if (pass.input) input = layout.toSlices(pass.input->data(), 3);
+        result.reset(new float[sigma.size() * 3]);
     }
-    k.prop_sigma = x_major ? sigma.data() : job.sigma->data();
-    k.prop_in = !job.input ? nullptr : x_major ? input.data() : job.input->data();
-    // Where a cell's values go: the x-major result (added back below) or the block itself.
+    const glm::ivec3 stride = x_major ? glm::ivec3(dims.z * dims.y, 1, dims.y) : glm::ivec3(1, dims.x, dims.x * dims.y);
+    // Where a cell's RGB goes: the x-major result or the block itself.
     float* out = x_major ? result.get() : block;
-    const glm::ivec3 stride(k.Q.strides);
 
-    std::vector<float> prev(size_t(nu) * nv * channels), cur(prev.size());
-    const RowBatch batch(k, nu, nv);
+    // One lane per light: its own kernel parameters and its own pair of 2D slice buffers.
+    struct Lane {
+        kernel::CpuKernel k;
+        std::vector<float> prev, cur;
+        std::unique_ptr<RowBatch> batch;
+    };
+    std::vector<std::unique_ptr<Lane>> lanes;
+    for (const kernel::VxPropParams& Q : pass.sweeps) {
+        auto lane = std::make_unique<Lane>();
+        lane->k.P = *pass.march;
+        lane->k.Q = Q;
+        lane->k.Q.strides = glm::ivec4(stride, 0);
+        lane->k.noise = pass.noise ? pass.noise->data() : nullptr;
+        lane->k.prop_sigma = x_major ? sigma.data() : pass.sigma->data();
+        lane->k.prop_in = !pass.input ? nullptr : x_major ? input.data() : pass.input->data();
+        lane->prev.assign(size_t(nu) * nv * channels, 0.0f);
+        lane->cur.assign(lane->prev.size(), 0.0f);
+        lane->batch = std::make_unique<RowBatch>(lane->k, nu, nv);
+        lanes.push_back(std::move(lane));
+    }
+
     for (int step = 0; step < slices; ++step) {
-        k.Q.slice.z = k.Q.slice.y > 0 ? step : slices - 1 - step;
-        k.prop_prev = prev.data();
-        const int previous = k.Q.slice.z - k.Q.slice.y;
-        tbb::parallel_for(0, nv, [&](int j) {
-            float* row = &cur[size_t(j) * nu * channels];
-            int first = 0, last = 0;
-            batch.row(j, previous, row, first, last);
-            glm::ivec3 c;
-            c[axis] = k.Q.slice.z;
-            c[v] = j;
-            for (int i = 0; i < nu; ++i) {
-                c[u] = i;
-                float* slot = row + size_t(i) * channels;
-                if (i < first || i >= last) {
-                    const glm::vec3 value = k.vx_prop_cell(i, j);
-                    for (int ch = 0; ch < channels; ++ch) slot[ch] = value[ch];
+        const int slice = first.slice.y > 0 ? step : slices - 1 - step;
+        for (auto& lane : lanes) {
+            lane->k.Q.slice.z = slice;
+            lane->k.prop_prev = lane->prev.data();
+        }
+        const int previous = slice - first.slice.y;
+        tbb::parallel_for(tbb::blocked_range<int>(0, nv), [&](const tbb::blocked_range<int>& rows) {
+            std::vector<float> rgb(size_t(nu) * 3);   // the row's light from every lane of the pass
+            for (int j = rows.begin(); j < rows.end(); ++j) {
+                std::fill(rgb.begin(), rgb.end(), 0.0f);
+                for (auto& lane : lanes) {
+                    kernel::CpuKernel& k = lane->k;
+                    float* row = &lane->cur[size_t(j) * nu * channels];
+                    int first_batched = 0, last_batched = 0;
+                    lane->batch->row(j, previous, row, first_batched, last_batched);
+                    const bool per_cell_weight = k.Q.mode.x != 0;
+                    const glm::vec3 tint(k.Q.tint);
+                    for (int i = 0; i < nu; ++i) {
+                        float* slot = row + size_t(i) * channels;
+                        if (i < first_batched || i >= last_batched) {
+                            const glm::vec3 value = k.vx_prop_cell(i, j);
+                            for (int ch = 0; ch < channels; ++ch) slot[ch] = value[ch];
+                        }
+                        const float w = eye ? 1.0f : per_cell_weight ? k.vx_prop_weight(i, j) : k.Q.flow.z;
+                        for (int ch = 0; ch < 3; ++ch) rgb[size_t(i) * 3 + ch] += w * tint[ch] * slot[channels == 1 ? 0 : ch];
+                    }
                 }
-                // Integer offsets: a float dot product is exact only below 2^24 cells.
-                float* cell = out + (size_t(c.x) * stride.x + size_t(c.y) * stride.y + size_t(c.z) * stride.z) * channels;
-                for (int ch = 0; ch < channels; ++ch) cell[ch] = x_major || eye ? slot[ch] : cell[ch] + weight * slot[ch];
+                glm::ivec3 c;
+                c[axis] = slice;
+                c[v] = j;
+                for (int i = 0; i < nu; ++i) {
+                    c[u] = i;
+                    // Integer offsets: a float dot product is exact only below 2^24 cells.
+                    float* cell = out + (size_t(c.x) * stride.x + size_t(c.y) * stride.y + size_t(c.z) * stride.z) * 3;
+                    for (int ch = 0; ch < 3; ++ch)
+                        cell[ch] = x_major || eye ? rgb[size_t(i) * 3 + ch] : cell[ch] + rgb[size_t(i) * 3 + ch];
+                }
             }
         });
-        std::swap(prev, cur);
+        for (auto& lane : lanes) std::swap(lane->prev, lane->cur);
     }
     if (!x_major) return;
     layout.forEachCell([&](size_t n, size_t s) {
-        for (int ch = 0; ch < channels; ++ch) {
-            float& cell = block[n * channels + ch];
-            const float value = result[s * channels + ch];
-            cell = eye ? value : cell + weight * value;
+        for (int ch = 0; ch < 3; ++ch) {
+            float& cell = block[n * 3 + ch];
+            cell = eye ? result[s * 3 + ch] : cell + result[s * 3 + ch];
         }
     });
 }

@@ -267,16 +267,17 @@ public:
             if ((*pass.needed)[i]) cache.values[i * size_t(cache.channels) + size_t(channel)] = values[i];
     }
 
-    void propagate(const SweepJob& job, IlluminationVolume& volume) override {
+    // The pass's lights run one after another over buffers uploaded once: each light's sweep is a
+    // dispatch per slice with its own two slice buffers, adding into the volume block on the GPU.
+    void propagate(const PropagationPass& pass, IlluminationVolume& volume) override {
         ensureGlContext();
         const GLuint program = propagateProgram();
-        kernel::VxPropParams Q = job.params;
-        Q.strides = glm::ivec4(1, Q.dims.x, Q.dims.x * Q.dims.y, 0);   // the volume's own layout
+        const kernel::VxPropParams& first = pass.sweeps.front();
         kernel::CpuKernel axes;
-        const int axis = Q.slice.x, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
-        const size_t slice_cells = size_t(Q.dims[u]) * Q.dims[v];
-        const size_t block = size_t(Q.dims.x) * Q.dims.y * Q.dims.z * size_t(Q.dims.w);
-        march_params_.upload(job.march, sizeof *job.march, GL_STREAM_DRAW, "Params");
+        const int axis = first.slice.x, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
+        const size_t slice_cells = size_t(first.dims[u]) * first.dims[v];
+        const size_t block = size_t(first.dims.x) * first.dims.y * first.dims.z * 3;
+        march_params_.upload(pass.march, sizeof *pass.march, GL_STREAM_DRAW, "Params");
         march_params_.bind(program, GL_UNIFORM_BLOCK, "Params");
         const struct {
             Buffer& buffer;
@@ -284,34 +285,37 @@ public:
             const void* data;
             size_t bytes;
         } arrays[] = {
-            {prop_sigma_, "PropSigma", job.sigma->data(), job.sigma->size() * sizeof(float)},
-            {noise_, "Noise", job.noise->data(), job.noise->size() * sizeof(glm::vec4)},
-            {prop_in_, "EyeInput", job.input ? job.input->data() : nullptr, job.input ? job.input->size() * sizeof(float) : 0},
-            {volume_, "Volume", volume.values.data() + job.offset, block * sizeof(float)},
+            {prop_sigma_, "PropSigma", pass.sigma->data(), pass.sigma->size() * sizeof(float)},
+            {noise_, "Noise", pass.noise->data(), pass.noise->size() * sizeof(glm::vec4)},
+            {prop_in_, "EyeInput", pass.input ? pass.input->data() : nullptr, pass.input ? pass.input->size() * sizeof(float) : 0},
+            {volume_, "Volume", volume.values.data() + pass.offset, block * sizeof(float)},
         };
         for (const auto& a : arrays) {
             checkStorageSize(a.name, a.bytes);
             a.buffer.upload(a.data, a.bytes, GL_DYNAMIC_COPY, a.name);
             a.buffer.bind(program, GL_SHADER_STORAGE_BLOCK, a.name);
         }
+        glUseProgram(program);
         // Two slice buffers, swapped between slices: one read (SliceIn), one written (SliceOut).
         Buffer* slices[2] = {&slice_a_, &slice_b_};
-        for (Buffer* b : slices) b->upload(nullptr, slice_cells * Q.dims.w * sizeof(float), GL_DYNAMIC_COPY, "slice");
-        glUseProgram(program);
-        kernel::VxPropParams params = Q;
-        const int count = Q.dims[axis];
-        for (int step = 0; step < count; ++step) {
-            params.slice.z = Q.slice.y > 0 ? step : count - 1 - step;
-            prop_params_.upload(&params, sizeof params, GL_STREAM_DRAW, "PropParams");
-            prop_params_.bind(program, GL_UNIFORM_BLOCK, "PropParams");
-            slices[step & 1]->bind(program, GL_SHADER_STORAGE_BLOCK, "SliceIn");
-            slices[(step + 1) & 1]->bind(program, GL_SHADER_STORAGE_BLOCK, "SliceOut");
-            glDispatchCompute(GLuint((slice_cells + kLinearGroup - 1) / kLinearGroup), 1, 1);
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+        for (const kernel::VxPropParams& Q : pass.sweeps) {
+            for (Buffer* b : slices) b->upload(nullptr, slice_cells * Q.dims.w * sizeof(float), GL_DYNAMIC_COPY, "slice");
+            kernel::VxPropParams params = Q;
+            params.strides = glm::ivec4(1, Q.dims.x, Q.dims.x * Q.dims.y, 0);   // the volume's own layout
+            const int count = Q.dims[axis];
+            for (int step = 0; step < count; ++step) {
+                params.slice.z = Q.slice.y > 0 ? step : count - 1 - step;
+                prop_params_.upload(&params, sizeof params, GL_STREAM_DRAW, "PropParams");
+                prop_params_.bind(program, GL_UNIFORM_BLOCK, "PropParams");
+                slices[step & 1]->bind(program, GL_SHADER_STORAGE_BLOCK, "SliceIn");
+                slices[(step + 1) & 1]->bind(program, GL_SHADER_STORAGE_BLOCK, "SliceOut");
+                glDispatchCompute(GLuint((slice_cells + kLinearGroup - 1) / kLinearGroup), 1, 1);
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+            }
         }
-        glGetNamedBufferSubData(volume_.id(), 0, GLsizeiptr(block * sizeof(float)), volume.values.data() + job.offset);
+        glGetNamedBufferSubData(volume_.id(), 0, GLsizeiptr(block * sizeof(float)), volume.values.data() + pass.offset);
         if (GLenum error = glGetError(); error != GL_NO_ERROR)
-            throw std::runtime_error("GL backend: a propagation sweep failed with GL error " + std::to_string(error));
+            throw std::runtime_error("GL backend: a propagation pass failed with GL error " + std::to_string(error));
     }
 
 private:

@@ -1,8 +1,11 @@
 #include "illumination_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/parallel_for.h>
@@ -43,7 +46,7 @@ std::vector<float> halveGrid(const LightGrid& g) {
     return out;
 }
 
-// What the sweeps of one light share on one grid.
+// What the sweeps of every light share on one grid.
 kernel::VxPropParams baseParams(const SweepGrid& g, int channels, const std::vector<glm::vec4>& taps, float tan_half,
                                 glm::vec3 atten) {
     kernel::VxPropParams Q{};
@@ -54,60 +57,91 @@ kernel::VxPropParams baseParams(const SweepGrid& g, int channels, const std::vec
     for (size_t k = 0; k < taps.size(); ++k) Q.taps[k] = taps[k];
     Q.flow = glm::vec4(1.0f, tan_half, 1.0f, 0.0f);
     Q.atten = glm::vec4(atten, g.cells_per_voxel);
+    Q.tint = glm::vec4(1.0f);
     return Q;
 }
 
-// Moves a source position onto or behind the face the sweep enters through, so that every cell's
-// flow points the way the slices advance (Ropinski: a light inside the volume is projected onto
-// F0).
-glm::vec3 behindEntryFace(glm::vec3 source, const Sweep& s, glm::ivec3 dims) {
-    if (s.sign > 0) source[s.axis] = std::min(source[s.axis], 0.0f);
-    else source[s.axis] = std::max(source[s.axis], float(dims[s.axis]));
-    return source;
-}
+// The sweeps of a set of lights, grouped by the pass that carries them: index 2 * axis + (sign > 0).
+using PassSweeps = std::array<std::vector<kernel::VxPropParams>, 6>;
 
-// Every sweep of one light on one grid: the principal axis, and with blending the second.
-void sweepLight(const kernel::VxLight& light, const SweepGrid& g, kernel::VxPropParams Q, bool blend, SweepJob job,
-                KernelBackend& backend, IlluminationVolume& volume) {
+// Adds the sweeps of `light` on grid g to `passes`, weighted by `sign` (+1 adds the light, -1
+// takes it out). Direct sweeps carry luminance and are tinted back to the light's colour.
+void addLightSweeps(const kernel::VxLight& light, float sign, const SweepGrid& g, kernel::VxPropParams Q, bool blend,
+                    PassSweeps& passes) {
+    const glm::vec3 color(light.color);
+    if (Q.dims.w == 1) {
+        const float luminance = glm::dot(color, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+        if (!(luminance > 0.0f)) return;   // a black light adds nothing
+        Q.tint = glm::vec4(color / luminance, 0.0f);
+    } else if (color == glm::vec3(0.0f)) {
+        return;
+    }
+    Q.light = light;
     const bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;
-    const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
-    const glm::vec3 flow =
-        directional ? glm::mat3(g.world_to_grid) * glm::vec3(light.dir_cos) : 0.5f * glm::vec3(g.dims) - at;
-    for (const Sweep& s : sweepsFor(flow, blend)) {
+    std::vector<Sweep> sweeps;
+    if (directional) {
+        const glm::vec3 flow = glm::mat3(g.world_to_grid) * glm::vec3(light.dir_cos);
+        Q.source = glm::vec4(flow, 0.0f);
+        sweeps = sweepsFor(flow, blend);
+    } else {
+        const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
+        Q.source = glm::vec4(at, 1.0f);
+        Q.mode = glm::ivec4(1, blend ? 1 : 0, 0, 0);
+        sweeps = pointLightSweeps(at, g.dims, blend);
+    }
+    for (const Sweep& s : sweeps) {
         Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
-        Q.flow.z = s.weight;
-        Q.light = light;
-        if (directional) {
-            Q.source = glm::vec4(flow, 0.0f);
-        } else {
-            const glm::vec3 source = behindEntryFace(at, s, g.dims);
-            Q.source = glm::vec4(source, 1.0f);
-            Q.light.pos_type = glm::vec4(glm::vec3(g.grid_to_world * glm::vec4(source, 1.0f)), light.pos_type.w);
-        }
-        job.params = Q;
-        job.sigma = g.sigma;
-        backend.propagate(job, volume);
+        Q.flow.z = sign * s.weight;
+        passes[size_t(2 * s.axis + (s.sign > 0))].push_back(Q);
     }
 }
 
-// The light sweeps of every light: direct luminance on the fine grid, indirect RGB on the
-// coarse one (the same grid unless chroma subsampled).
-void propagateLights(const Effects& fx, const KernelInputs& inputs, const SweepGrid& fine, const SweepGrid& coarse,
-                     KernelBackend& backend, IlluminationVolume& volume) {
-    SweepJob job;
-    job.march = &inputs.params;
-    job.noise = &inputs.noise;
-    const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
-    kernel::VxPropParams blurred{};
-    if (fx.indirect)
-        blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)),
-                             -glm::log(fx.indirect->transport_color));
-    for (const auto& light : inputs.lights) {
-        job.offset = 0;
-        sweepLight(light, fine, direct, fx.propagation.blend_axes, job, backend, volume);
-        if (!fx.indirect) continue;
-        job.offset = volume.indirectOffset();
-        sweepLight(light, coarse, blurred, fx.propagation.blend_axes, job, backend, volume);
+// What one pass costs, in units of one directional direct sweep of the same grid: the walk over
+// the extinction and the volume, plus each sweep's own cells (point lights run the per-cell
+// kernel, indirect sweeps blur). Rough CPU figures from voxlux_bench_multilight; they only have to
+// order a selective update against an entire one.
+constexpr double kPassCost = 0.5;
+constexpr double kPointSweepCost = 3.0;
+constexpr double kIndirectSweepCost = 4.0;
+
+double passesCost(const PassSweeps& passes, const SweepGrid& g, bool coherent) {
+    const double cells = double(g.dims.x) * g.dims.y * g.dims.z;
+    double cost = 0.0;
+    for (const auto& sweeps : passes) {
+        if (sweeps.empty()) continue;
+        cost += kPassCost * double(coherent ? 1 : sweeps.size());
+        for (const kernel::VxPropParams& Q : sweeps)
+            cost += (Q.mode.x != 0 ? kPointSweepCost : 1.0) * (Q.dims.w == 3 ? kIndirectSweepCost : 1.0);
+    }
+    return cost * cells;
+}
+
+// Runs `passes` on grid g into the block at `offset`: one pass per direction with every light in
+// it (coherent), or one pass per light sweep. Counts what ran into `report`.
+void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool coherent, const KernelInputs& inputs,
+               KernelBackend& backend, IlluminationVolume& volume, LightUpdate& report) {
+    PropagationPass pass;
+    pass.march = &inputs.params;
+    pass.noise = &inputs.noise;
+    pass.sigma = g.sigma;
+    pass.offset = offset;
+    for (const auto& sweeps : passes) {
+        if (sweeps.empty()) continue;
+        const int slices = g.dims[sweeps.front().slice.x];
+        report.sweeps += int(sweeps.size());
+        if (coherent) {
+            pass.sweeps = sweeps;
+            backend.propagate(pass, volume);
+            report.passes += 1;
+            report.slices += slices;
+            continue;
+        }
+        for (const kernel::VxPropParams& Q : sweeps) {
+            pass.sweeps = {Q};
+            backend.propagate(pass, volume);
+            report.passes += 1;
+            report.slices += slices;
+        }
     }
 }
 
@@ -126,21 +160,49 @@ void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const Sweep
     Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
     Q.source = glm::vec4(source, 1.0f);
     Q.flow = glm::vec4(-1.0f, tan_half, 1.0f, 1.0f);
-    SweepJob job;
-    job.params = Q;
-    job.march = &inputs.params;
-    job.noise = &inputs.noise;
-    job.sigma = coarse.sigma;
-    job.offset = volume.indirectOffset();
-    job.input = &before;
-    backend.propagate(job, volume);
+    PropagationPass pass;
+    pass.sweeps = {Q};
+    pass.march = &inputs.params;
+    pass.noise = &inputs.noise;
+    pass.sigma = coarse.sigma;
+    pass.offset = volume.indirectOffset();
+    pass.input = &before;
+    backend.propagate(pass, volume);
+}
+
+// The brightest radiance a light brings into the grid (luminance): what its sweeps add at most,
+// and so what adding and later subtracting it can leave behind as float residue.
+double peakRadiance(const kernel::VxLight& light, const SweepGrid& g) {
+    const double luminance = glm::dot(glm::vec3(light.color), glm::vec3(0.2126f, 0.7152f, 0.0722f));
+    if (int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL) return luminance;
+    const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
+    const glm::vec3 nearest = glm::clamp(at, glm::vec3(0.0f), glm::vec3(g.dims));
+    const double d = glm::length(glm::mat3(g.grid_to_world) * (at - nearest));
+    const double r_min = 0.5 * glm::length(glm::vec3(g.grid_to_world[0]));
+    return luminance / std::max(d * d, r_min * r_min);
+}
+
+bool sameLight(const kernel::VxLight& a, const kernel::VxLight& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The lights of `from` that `to` lacks, as a multiset: an unchanged light cancels however the list
+// was reordered.
+std::vector<kernel::VxLight> missingFrom(const std::vector<kernel::VxLight>& from, const std::vector<kernel::VxLight>& to) {
+    std::vector<bool> used(to.size(), false);
+    std::vector<kernel::VxLight> out;
+    for (const auto& l : from) {
+        size_t k = 0;
+        while (k < to.size() && (used[k] || !sameLight(l, to[k]))) ++k;
+        if (k < to.size()) used[k] = true;
+        else out.push_back(l);
+    }
+    return out;
 }
 
 }  // namespace
 
 size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool eye_pass) {
     const size_t cells = size_t(d.x) * d.y * d.z;
-    size_t bytes = cells * (sizeof(float) + 1 + sizeof(float));   // light grid, its mask, luminance
+    size_t bytes = cells * (sizeof(float) + 1 + 3 * sizeof(float));   // light grid, its mask, direct RGB
     if (indirect) {
         const glm::ivec3 c = coarserDims(d, chroma);
         const size_t cc = size_t(c.x) * c.y * c.z;
@@ -173,7 +235,7 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
         reused.push_back("light_grid");
     } else {
         grid_key_.clear();  // all stay cleared if a pass throws
-        light_key_.clear();
+        setup_key_.clear();
         eye_key_.clear();
         grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, 0.0f); });
         if (grid_.clamped_cells) warnings.push_back(clampedCellsWarning(grid_));
@@ -197,34 +259,114 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
         coarse.sigma = &chroma_sigma_;
     }
 
-    // The light sweeps depend on the lights and knobs, the eye sweep on the camera as well: a camera
+    // The light sweeps depend on the knobs and lights, the eye sweep on the camera as well: a camera
     // move re-runs only the eye sweep, from the light sweeps' indirect block kept for it.
     const auto& P = inputs.params;
     nlohmann::json knobs = sj["effects"]["propagation"];
     knobs.erase("eye_pass");
-    const std::string light_key = grid_key_ + "|" + sj["lights"].dump() + "|" + knobs.dump() + "|" +
-                                  sj["effects"]["indirect"].dump() + "|" + sj["effects"]["perturbation"].dump() + "|" +
-                                  std::to_string(P.noise_offset.x) + "," + std::to_string(P.noise_offset.y) + "," +
-                                  std::to_string(P.noise_offset.z);
-    const glm::vec3 eye_position(P.camera_to_world[3]);
-    const std::string eye_key = !eye ? "" : light_key + "|eye " + std::to_string(eye_position.x) + "," +
-                                                std::to_string(eye_position.y) + "," + std::to_string(eye_position.z);
-    if (light_key == light_key_) {
+    knobs.erase("coherent");
+    const std::string setup_key = grid_key_ + "|" + knobs.dump() + "|" + sj["effects"]["indirect"].dump() + "|" +
+                                  sj["effects"]["perturbation"].dump() + "|" + std::to_string(P.noise_offset.x) + "," +
+                                  std::to_string(P.noise_offset.y) + "," + std::to_string(P.noise_offset.z);
+    const bool coherent = fx.propagation.coherent;
+    const bool blend = fx.propagation.blend_axes;
+    const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
+    kernel::VxPropParams blurred{};
+    if (indirect)
+        blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)),
+                             -glm::log(fx.indirect->transport_color));
+    // The sweeps of `lights`, weighted by `sign`, on both blocks.
+    auto sweepsOf = [&](const std::vector<kernel::VxLight>& lights, float sign, PassSweeps& fine_passes, PassSweeps& coarse_passes) {
+        for (const auto& l : lights) {
+            addLightSweeps(l, sign, fine, direct, blend, fine_passes);
+            if (indirect) addLightSweeps(l, sign, coarse, blurred, blend, coarse_passes);
+        }
+    };
+    auto estimate = [&](const PassSweeps& f, const PassSweeps& c) {
+        return passesCost(f, fine, coherent) + passesCost(c, coarse, coherent);
+    };
+    auto peak = [&](const std::vector<kernel::VxLight>& lights) {
+        double sum = 0.0;
+        for (const auto& l : lights) sum += peakRadiance(l, fine);
+        return sum;
+    };
+
+    LightUpdate report;
+    report.lights = int(inputs.lights.size());
+    PassSweeps all_fine, all_coarse;
+    sweepsOf(inputs.lights, 1.0f, all_fine, all_coarse);
+    report.entire_cost = estimate(all_fine, all_coarse);
+    bool selective = false;
+    PassSweeps sel_fine, sel_coarse;
+    std::vector<kernel::VxLight> removed, added;
+    if (setup_key != setup_key_) {
+        report.reason = setup_key_.empty() ? "first update" : "the grid or the propagation settings changed";
+    } else {
+        removed = missingFrom(applied_, inputs.lights);
+        added = missingFrom(inputs.lights, applied_);
+        sweepsOf(removed, -1.0f, sel_fine, sel_coarse);
+        sweepsOf(added, 1.0f, sel_fine, sel_coarse);
+        report.selective_cost = estimate(sel_fine, sel_coarse);
+        const double swept = drift_ + peak(removed) + peak(added);
+        const double present = peak(inputs.lights);
+        char why[200];
+        if (removed.empty() && added.empty()) {
+            report.mode = LightUpdate::Mode::Kept;
+        } else if (swept > kDriftBudget * present) {
+            std::snprintf(why, sizeof why, "re-base: light swept in and out since the last entire update (%.3g) exceeds %g x the light present (%.3g)",
+                          swept, kDriftBudget, present);
+            report.reason = why;
+        } else if (report.selective_cost < report.entire_cost) {
+            selective = true;
+            std::snprintf(why, sizeof why, "%zu light%s changed: selective cost %.3g < entire %.3g", removed.size() + added.size(),
+                          removed.size() + added.size() == 1 ? "" : "s", report.selective_cost, report.entire_cost);
+            report.reason = why;
+        } else {
+            std::snprintf(why, sizeof why, "%zu light%s changed: selective cost %.3g >= entire %.3g", removed.size() + added.size(),
+                          removed.size() + added.size() == 1 ? "" : "s", report.selective_cost, report.entire_cost);
+            report.reason = why;
+        }
+    }
+
+    if (report.mode == LightUpdate::Mode::Kept) {
         reused.push_back("propagation");
     } else {
-        light_key_.clear();  // stays cleared if a pass throws
+        setup_key_.clear();  // stays cleared if a pass throws: the volume is then half updated
         eye_key_.clear();
+        const auto indirect_block = volume_.values.begin() + long(volume_.indirectOffset());
         clock("propagation", [&] {
-            volume_.dims = grid_.dims;
-            volume_.chroma = chroma;
-            volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
-            volume_.world_to_illum = fine.world_to_grid;
-            volume_.values.assign(volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
-            propagateLights(fx, inputs, fine, coarse, backend, volume_);
+            if (selective) {
+                // The eye sweep replaced the light sweeps' indirect block: update that block instead.
+                if (!before_eye_.empty()) std::copy(before_eye_.begin(), before_eye_.end(), indirect_block);
+                report.mode = LightUpdate::Mode::Selective;
+                report.lights_touched = int(removed.size() + added.size());
+                runPasses(sel_fine, fine, 0, coherent, inputs, backend, volume_, report);
+                if (indirect) runPasses(sel_coarse, coarse, volume_.indirectOffset(), coherent, inputs, backend, volume_, report);
+                drift_ += peak(removed) + peak(added);
+            } else {
+                volume_.dims = grid_.dims;
+                volume_.chroma = chroma;
+                volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
+                volume_.world_to_illum = fine.world_to_grid;
+                volume_.values.assign(3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
+                report.mode = LightUpdate::Mode::Entire;
+                report.lights_touched = int(inputs.lights.size());
+                runPasses(all_fine, fine, 0, coherent, inputs, backend, volume_, report);
+                if (indirect) runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, backend, volume_, report);
+                drift_ = 0.0;
+            }
         });
         before_eye_.clear();
-        light_key_ = light_key;
+        applied_ = inputs.lights;
+        ++lights_version_;
+        setup_key_ = setup_key;
     }
+    last_update_ = report;
+
+    const glm::vec3 eye_position(P.camera_to_world[3]);
+    const std::string eye_key = !eye ? "" : setup_key_ + "|" + std::to_string(lights_version_) + "|eye " +
+                                                std::to_string(eye_position.x) + "," + std::to_string(eye_position.y) +
+                                                "," + std::to_string(eye_position.z);
     if (eye_key != eye_key_) {
         const auto indirect_block = volume_.values.begin() + long(volume_.indirectOffset());
         if (before_eye_.empty()) before_eye_.assign(indirect_block, volume_.values.end());

@@ -1,8 +1,10 @@
-// Illumination stage (Ropinski 2010 with the Kniss 2003 optical model): light grid -> sweeps that
-// carry each light's direct luminance and indirect RGB through the illumination volume ->
-// optionally the eye sweep. It keeps the light grid while the volume, material and resolution
-// stay, the light sweeps' result while the lights and propagation knobs stay too, and the eye
-// sweep's while the camera stays as well.
+// Illumination stage (Ropinski 2010 with the Kniss 2003 optical model, Sunden 2015 for many
+// lights): light grid -> sweeps that carry each light's direct and indirect light through the
+// illumination volume, grouped into at most six passes -> optionally the eye sweep. It keeps the
+// light grid while the volume, material and resolution stay. When only lights change it takes the
+// changed lights out and puts their new state in (a selective update), unless recomputing every
+// light (an entire update) is estimated to cost less or the float residue of past updates needs
+// a re-base. The eye sweep is kept while the lights and camera stay.
 #pragma once
 #include <string>
 #include <vector>
@@ -20,6 +22,26 @@ namespace voxlux {
 // subsampled, an input copy for the eye sweep).
 size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool eye_pass);
 
+// What one update of the light sweeps did, for logs, the light-edit report and tests.
+struct LightUpdate {
+    enum class Mode { Kept, Entire, Selective };
+    Mode mode = Mode::Entire;
+    std::string reason;          // why this mode (empty when kept)
+    int lights = 0;              // lights in the volume afterwards
+    int lights_touched = 0;      // lights swept: the changed ones subtracted and added, or all
+    int sweeps = 0;              // light sweeps run, over both blocks (a light in two passes counts twice)
+    int passes = 0;              // passes over the volume
+    long long slices = 0;        // slices walked, over all passes
+    double selective_cost = 0;   // the estimates compared (units: cells times a directional sweep's work)
+    double entire_cost = 0;
+};
+
+// The volume is re-based (an entire update) before the light swept in and out since the last
+// entire update exceeds this many times the light present, as peak radiance: adding and later
+// subtracting a light of peak m leaves a float residue of about m * 2^-24 per cell, so the residue
+// stays under ~4e-6 of the light present (tests measure it).
+constexpr double kDriftBudget = 64.0;
+
 class IlluminationStage {
 public:
     // Brings the volume up to date for `scene` (camera `camera`, whose volume content `volume_key`
@@ -30,13 +52,18 @@ public:
                 std::vector<std::string>& warnings);
 
     const IlluminationVolume& volume() const { return volume_; }
+    const LightUpdate& lastUpdate() const { return last_update_; }
 
 private:
     std::string grid_key_;
     LightGrid grid_;
     std::vector<float> chroma_sigma_;   // the light grid averaged over 2^3 cells (chroma subsampling)
-    std::string light_key_;             // what the light sweeps were computed from
-    std::string eye_key_;               // and the eye sweep ("" = not applied)
+    std::string setup_key_;             // the grid and knobs the light sweeps were computed with
+    std::vector<kernel::VxLight> applied_;   // the lights the volume holds
+    double drift_ = 0.0;                // peak radiance swept in and out since the last entire update
+    long long lights_version_ = 0;      // counts updates of the light sweeps
+    LightUpdate last_update_;
+    std::string eye_key_;               // what the eye sweep was computed from ("" = not applied)
     std::vector<float> before_eye_;     // the light sweeps' indirect block, while the eye sweep replaces it
     IlluminationVolume volume_;
 };

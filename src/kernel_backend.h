@@ -27,8 +27,8 @@ public:
     virtual void buildSat(const LightGrid& grid, SummedVolume& sat) = 0;
     // One light-cache channel (see LightPass).
     virtual void fillLightChannel(const LightPass& pass, LightCache& cache) = 0;
-    // One propagation sweep (see SweepJob) into `volume`.
-    virtual void propagate(const SweepJob& job, IlluminationVolume& volume) = 0;
+    // One propagation pass (see PropagationPass) into `volume`.
+    virtual void propagate(const PropagationPass& pass, IlluminationVolume& volume) = 0;
 };
 
 std::unique_ptr<KernelBackend> makeCpuBackend();

@@ -49,6 +49,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
     glm::vec3 ambient(0.0f);
     int local_lights = 0;
     for (const auto& l : scene.lights) {
+        if (!l.enabled) continue;
         if (l.type == LightType::Ambient) {
             ambient += l.color * l.intensity;
             continue;

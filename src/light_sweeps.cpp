@@ -5,26 +5,44 @@
 #include <cmath>
 #include <numeric>
 
+#include "cpu_kernel.h"
+
 namespace voxlux {
 
 std::vector<Sweep> sweepsFor(glm::vec3 flow, bool blend) {
-    const float len = glm::length(flow);
-    const glm::vec3 f = len > 0.0f ? flow / len : glm::vec3(0.0f, 0.0f, 1.0f);
-    std::array<float, 3> theta;
-    for (int a = 0; a < 3; ++a) theta[size_t(a)] = std::acos(std::min(std::abs(f[a]), 1.0f));
-    // Ties (a light on a face diagonal) go to z, then y: their slices are rows of x, contiguous in
-    // memory, where an x sweep has to work on a transposed copy.
-    std::array<int, 3> order{2, 1, 0};
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return theta[size_t(a)] < theta[size_t(b)]; });
-    auto sweep = [&](int axis, float weight) { return Sweep{axis, f[axis] < 0.0f ? -1 : 1, weight}; };
-    if (!blend) return {sweep(order[0], 1.0f)};
-    const float t0 = theta[size_t(order[0])], t1 = theta[size_t(order[1])], t2 = theta[size_t(order[2])];
-    float w0 = t2 - t0, w1 = t2 - t1;
-    // On a body diagonal all three angles are equal: any split of two axes is as good as another.
-    if (w0 + w1 <= 1e-7f) w0 = w1 = 0.5f;
-    const float sum = w0 + w1;
-    std::vector<Sweep> out{sweep(order[0], w0 / sum)};
-    if (w1 > 0.0f) out.push_back(sweep(order[1], w1 / sum));
+    const glm::vec3 f = flow == glm::vec3(0.0f) ? glm::vec3(0.0f, 0.0f, 1.0f) : flow;
+    kernel::CpuKernel k;
+    std::vector<Sweep> out;
+    for (int axis = 0; axis < 3; ++axis) {
+        const int sign = f[axis] < 0.0f ? -1 : 1;
+        const float w = k.vx_sweep_weight(f, axis, sign, blend);
+        if (w > 0.0f) out.push_back({axis, sign, w});
+    }
+    // Principal first: the larger weight, and on a body diagonal's equal split the higher axis.
+    std::sort(out.begin(), out.end(), [](const Sweep& a, const Sweep& b) {
+        return a.weight != b.weight ? a.weight > b.weight : a.axis > b.axis;
+    });
+    return out;
+}
+
+std::vector<Sweep> pointLightSweeps(glm::vec3 at, glm::ivec3 dims, bool blend) {
+    // A cell is weighted by a sweep only where its flow is within the sweep's pyramid: slope 1 to
+    // the side for the principal axis, VX_PROP_MAX_SLOPE for a blended second axis. The pyramid
+    // widens away from the light, so it meets the grid's cell centres if it meets them on the
+    // farthest slice.
+    const float slope = blend ? VX_PROP_MAX_SLOPE : 1.0f;
+    std::vector<Sweep> out;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int sign : {1, -1}) {
+            const float reach = sign > 0 ? float(dims[axis]) - 0.5f - at[axis] : at[axis] - 0.5f;
+            if (reach <= 0.0f) continue;
+            bool meets = true;
+            for (int side = 0; side < 3; ++side) {
+                if (side == axis) continue;
+                meets = meets && at[side] - slope * reach <= float(dims[side]) - 0.5f && at[side] + slope * reach >= 0.5f;
+            }
+            if (meets) out.push_back({axis, sign, 1.0f});
+        }
     return out;
 }
 

@@ -17,14 +17,19 @@ struct Sweep {
     float weight = 1.0f;
 };
 
-// The sweeps for light flowing along `flow` (grid space, any length). The principal axis is the
-// one the flow is closest to (the face with the largest projection). With `blend`, the second
-// closest axis is swept too and the two are weighted by the angles to them, theta_i:
-//   w0 ~ theta_2 - theta_0,  w1 ~ theta_2 - theta_1,  w0 + w1 = 1.
-// In the plane of two axes (theta_2 = 90 deg) this is Ropinski's alpha_0 = 1 - 2 theta_0 / pi; out of
-// it the weights still change continuously when the second and third axes swap, where Ropinski's
-// would jump. Sweeps of zero weight are left out, so an axis-aligned light costs one sweep.
+// The sweeps for light flowing along `flow` (grid space, any length; zero counts as +z). The
+// principal axis is the one the flow is closest to (the face with the largest projection). With
+// `blend`, the second closest axis is swept too, with the weights of vx_sweep_weight
+// (shaders/vx_propagation.h): Sunden 2015's Eq. 5a/5b in the plane of two axes, continuous off it.
+// Sweeps of zero weight are left out, so an axis-aligned light costs one sweep; the principal
+// axis comes first.
 std::vector<Sweep> sweepsFor(glm::vec3 flow, bool blend);
+
+// The sweeps a point or spot light at grid position `at` needs over a grid of `dims` cells: every
+// axis and direction for which some cell centre's own flow gives it a non-zero weight. A light
+// far outside needs one or two, a light beside the volume or near a corner up to five, a light
+// inside all six (Sunden 2015, Sec. 7.3). Their weight is 1: the kernel weights each cell.
+std::vector<Sweep> pointLightSweeps(glm::vec3 at, glm::ivec3 dims, bool blend);
 
 // Blur taps on the unit disc (xy) with weights (z) summing to 1: the centre (odd counts) and
 // opposite pairs on a Vogel spiral, weighted by the Phong lobe cos^exponent or the

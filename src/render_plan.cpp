@@ -10,7 +10,7 @@ namespace {
 
 bool hasLight(const Scene& s, bool ambient) {
     return std::any_of(s.lights.begin(), s.lights.end(),
-                       [&](const Light& l) { return (l.type == LightType::Ambient) == ambient; });
+                       [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; });
 }
 
 // Why the light-cache stage runs (which passes), or why it is skipped.
@@ -24,7 +24,7 @@ std::string lightCacheReason(const Scene& s) {
         idle.push_back("ambient_occlusion is on but no ambient light is in the scene");
     if (needsConeShadows(s)) {
         size_t lights = 0;
-        for (const auto& l : s.lights) lights += l.type != LightType::Ambient;
+        for (const auto& l : s.lights) lights += l.enabled && l.type != LightType::Ambient;
         char cone[96];
         std::snprintf(cone, sizeof cone, "%zu shadow cone%s of %d cuboids (%g deg)", lights, lights == 1 ? "" : "s",
                       fx.cone.samples, double(fx.cone.angle));
@@ -52,7 +52,7 @@ std::string illuminationReason(const Scene& s) {
         return out;
     }
     size_t lights = 0;
-    for (const auto& l : s.lights) lights += l.type != LightType::Ambient;
+    for (const auto& l : s.lights) lights += l.enabled && l.type != LightType::Ambient;
     std::string out = std::to_string(lights) + (lights == 1 ? " light" : " lights") + " swept through a " +
                       std::to_string(fx.light_resolution) + "-cell illumination volume along " +
                       (fx.propagation.blend_axes ? "the two closest axes, blended" : "the closest axis") +

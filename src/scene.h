@@ -48,6 +48,8 @@ struct Material {
 enum class LightType { Directional, Point, Spot, Ambient };
 
 struct Light {
+    std::string name;                      // optional; light edits may address the light by it
+    bool enabled = true;                   // a disabled light is kept in the scene but casts no light
     LightType type = LightType::Directional;
     glm::vec3 position{0.0f};
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels
@@ -98,6 +100,8 @@ struct Propagation {
     bool blend_axes = false;               // also sweep the second closest face axis and blend
     bool eye_pass = false;                 // a second sweep scattering light towards the camera
     bool chroma_subsampling = false;       // indirect light at half the resolution per axis
+    bool coherent = true;                  // all lights of a propagation direction in one pass (Sunden
+                                           // 2015); false: one pass per light. Same result, for timing
 };
 
 // Kniss 2003 indirect light: forward-scattered light blurred within a cone as it propagates and

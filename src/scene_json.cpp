@@ -92,9 +92,12 @@ Light readLight(const JsonObject& o) {
              : type == "ambient" ? LightType::Ambient
                                  : LightType::Directional;
     if (l.type == LightType::Ambient)
-        o.rejectUnknown({"type", "color", "intensity"});
+        o.rejectUnknown({"name", "enabled", "type", "color", "intensity"});
     else
-        o.rejectUnknown({"type", "position", "direction", "color", "intensity", "cone_angle", "cone_softness"});
+        o.rejectUnknown({"name", "enabled", "type", "position", "direction", "color", "intensity", "cone_angle",
+                         "cone_softness"});
+    l.name = o.string("name", "");
+    l.enabled = o.boolean("enabled", true);
     if (l.type == LightType::Point || l.type == LightType::Spot) l.position = o.vec3("position");
     if (l.type == LightType::Directional || l.type == LightType::Spot) {
         l.direction = o.vec3("direction");
@@ -102,6 +105,8 @@ Light readLight(const JsonObject& o) {
         l.direction = glm::normalize(l.direction);
     }
     l.color = o.vec3("color", l.color);
+    if (!(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && std::isfinite(l.color.x + l.color.y + l.color.z)))
+        o.fail("color", "must be finite and >= 0");
     l.intensity = o.number("intensity", l.intensity);
     if (!(l.intensity >= 0) || !std::isfinite(l.intensity)) o.fail("intensity", "must be a finite number >= 0");
     l.cone_angle = o.number("cone_angle", l.cone_angle);
@@ -188,8 +193,9 @@ ShadowCone readCone(const JsonObject& o) {
 }
 
 Propagation readPropagation(const JsonObject& o) {
-    o.rejectUnknown({"blend_axes", "eye_pass", "chroma_subsampling"});
+    o.rejectUnknown({"blend_axes", "eye_pass", "chroma_subsampling", "coherent"});
     Propagation p;
+    p.coherent = o.boolean("coherent", p.coherent);
     p.blend_axes = o.boolean("blend_axes", p.blend_axes);
     p.eye_pass = o.boolean("eye_pass", p.eye_pass);
     p.chroma_subsampling = o.boolean("chroma_subsampling", p.chroma_subsampling);
@@ -366,6 +372,8 @@ nlohmann::json sceneToJson(const Scene& s) {
     j["lights"] = nlohmann::json::array();
     for (const auto& l : s.lights) {
         nlohmann::json lj;
+        if (!l.name.empty()) lj["name"] = l.name;
+        if (!l.enabled) lj["enabled"] = false;
         lj["type"] = l.type == LightType::Point     ? "point"
                      : l.type == LightType::Spot    ? "spot"
                      : l.type == LightType::Ambient ? "ambient"
@@ -414,7 +422,7 @@ nlohmann::json sceneToJson(const Scene& s) {
     e["cone"] = {{"angle", decimal(s.effects.cone.angle)}, {"samples", s.effects.cone.samples},
                  {"growth", decimal(s.effects.cone.growth)}};
     const Propagation& pr = s.effects.propagation;
-    e["propagation"] = {{"blend_axes", pr.blend_axes}, {"eye_pass", pr.eye_pass}, {"chroma_subsampling", pr.chroma_subsampling}};
+    e["propagation"] = {{"blend_axes", pr.blend_axes}, {"eye_pass", pr.eye_pass}, {"chroma_subsampling", pr.chroma_subsampling}, {"coherent", pr.coherent}};
     if (const auto& in = s.effects.indirect)
         e["indirect"] = {{"strength", decimal(in->strength)}, {"angle", decimal(in->angle)}, {"samples", in->samples},
                          {"phase", in->phase == BlurPhase::Phong ? "phong" : "henyey_greenstein"},
