@@ -25,6 +25,7 @@ struct RenderCommand {
     SceneOverrides overrides;
     bool explain = false;
     std::optional<std::string> stats;
+    std::optional<std::string> light_edits;     // replay these light edits, then write the final frame
 };
 
 int runRender(const RenderCommand& cmd);

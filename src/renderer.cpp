@@ -68,6 +68,19 @@ std::string Renderer::volumeKey(const std::string& file) const {
 
 FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     FrameResult r;
+    KernelInputs inputs = runStages(frame, allow_empty, r);
+    StageClock clock(r.stage_seconds);
+    r.image = clock("march", [&] { return backend_->march(inputs); });
+    return r;
+}
+
+FrameResult Renderer::prepare(std::optional<int> frame, bool allow_empty) {
+    FrameResult r;
+    runStages(frame, allow_empty, r);
+    return r;
+}
+
+KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, FrameResult& r) {
     StageClock clock(r.stage_seconds);
     const std::string file = frame ? expandFramePattern(scene_.volume.path, *frame) : scene_.volume.path;
 
@@ -101,10 +114,11 @@ FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     KernelInputs inputs = makeKernelInputs(scene_, r.camera, atlas, pages, frame ? float(*frame) : 0.0f);
     if (stageRuns(plan_, "light_cache") && !pages.empty())
         light_.update(scene_, key, inputs, *backend_, r.stage_seconds, r.reused, r.warnings);
-    if (stageRuns(plan_, "illumination") && !pages.empty())
+    if (stageRuns(plan_, "illumination") && !pages.empty()) {
         illumination_.update(scene_, r.camera, key, inputs, *backend_, r.stage_seconds, r.reused, r.warnings);
-    r.image = clock("march", [&] { return backend_->march(inputs); });
-    return r;
+        r.light_update = illumination_.lastUpdate();
+    }
+    return inputs;
 }
 
 FrameResult Renderer::renderToFile(std::optional<int> frame, bool allow_empty) {

@@ -27,6 +27,7 @@ struct FrameResult {
     size_t bricks = 0;
     std::string path;                                       // the EXR written (renderToFile)
     std::vector<std::string> reused;                        // stages and passes kept from before
+    std::optional<LightUpdate> light_update;                // what the illumination stage did, if it ran
 };
 
 // Camera framing the active voxels of the density grid: what a scene without a camera renders
@@ -46,11 +47,16 @@ public:
     // unless `allow_empty`, in which case it renders transparent and says so in the warnings.
     FrameResult render(std::optional<int> frame, bool allow_empty);
 
+    // Runs every stage but the march (no image): brings the cached stages up to date after an
+    // edit, as a light-edit replay does between frames.
+    FrameResult prepare(std::optional<int> frame, bool allow_empty);
+
     // Renders and writes the EXR for `frame` to the scene's output path (#### expanded).
     FrameResult renderToFile(std::optional<int> frame, bool allow_empty);
 
 private:
     std::string volumeKey(const std::string& file) const;
+    KernelInputs runStages(std::optional<int> frame, bool allow_empty, FrameResult& r);
 
     Scene scene_;
     std::vector<PlannedStage> plan_;

@@ -84,39 +84,6 @@ Material readMaterial(const JsonObject& o) {
     return m;
 }
 
-Light readLight(const JsonObject& o) {
-    Light l;
-    std::string type = o.choice("type", {"directional", "point", "spot", "ambient"}, "directional");
-    l.type = type == "point"     ? LightType::Point
-             : type == "spot"    ? LightType::Spot
-             : type == "ambient" ? LightType::Ambient
-                                 : LightType::Directional;
-    if (l.type == LightType::Ambient)
-        o.rejectUnknown({"name", "enabled", "type", "color", "intensity"});
-    else
-        o.rejectUnknown({"name", "enabled", "type", "position", "direction", "color", "intensity", "cone_angle",
-                         "cone_softness"});
-    l.name = o.string("name", "");
-    l.enabled = o.boolean("enabled", true);
-    if (l.type == LightType::Point || l.type == LightType::Spot) l.position = o.vec3("position");
-    if (l.type == LightType::Directional || l.type == LightType::Spot) {
-        l.direction = o.vec3("direction");
-        if (glm::length(l.direction) == 0) o.fail("direction", "must not be zero");
-        l.direction = glm::normalize(l.direction);
-    }
-    l.color = o.vec3("color", l.color);
-    if (!(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && std::isfinite(l.color.x + l.color.y + l.color.z)))
-        o.fail("color", "must be finite and >= 0");
-    l.intensity = o.number("intensity", l.intensity);
-    if (!(l.intensity >= 0) || !std::isfinite(l.intensity)) o.fail("intensity", "must be a finite number >= 0");
-    l.cone_angle = o.number("cone_angle", l.cone_angle);
-    if (!(l.cone_angle > 0 && l.cone_angle < 90)) o.fail("cone_angle", "must lie in (0, 90) degrees");
-    l.cone_softness = o.number("cone_softness", l.cone_softness);
-    if (!(l.cone_softness >= 0 && l.cone_softness <= l.cone_angle))
-        o.fail("cone_softness", "must lie in [0, cone_angle]");
-    return l;
-}
-
 Camera readCamera(const JsonObject& o) {
     o.rejectUnknown({"position", "look_at", "up", "matrix", "fov"});
     Camera c;
@@ -326,6 +293,39 @@ nlohmann::json vec(glm::vec3 v) { return {decimal(v.x), decimal(v.y), decimal(v.
 
 }  // namespace
 
+Light readLight(const JsonObject& o) {
+    Light l;
+    std::string type = o.choice("type", {"directional", "point", "spot", "ambient"}, "directional");
+    l.type = type == "point"     ? LightType::Point
+             : type == "spot"    ? LightType::Spot
+             : type == "ambient" ? LightType::Ambient
+                                 : LightType::Directional;
+    if (l.type == LightType::Ambient)
+        o.rejectUnknown({"name", "enabled", "type", "color", "intensity"});
+    else
+        o.rejectUnknown({"name", "enabled", "type", "position", "direction", "color", "intensity", "cone_angle",
+                         "cone_softness"});
+    l.name = o.string("name", "");
+    l.enabled = o.boolean("enabled", true);
+    if (l.type == LightType::Point || l.type == LightType::Spot) l.position = o.vec3("position");
+    if (l.type == LightType::Directional || l.type == LightType::Spot) {
+        l.direction = o.vec3("direction");
+        if (glm::length(l.direction) == 0) o.fail("direction", "must not be zero");
+        l.direction = glm::normalize(l.direction);
+    }
+    l.color = o.vec3("color", l.color);
+    if (!(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && std::isfinite(l.color.x + l.color.y + l.color.z)))
+        o.fail("color", "must be finite and >= 0");
+    l.intensity = o.number("intensity", l.intensity);
+    if (!(l.intensity >= 0) || !std::isfinite(l.intensity)) o.fail("intensity", "must be a finite number >= 0");
+    l.cone_angle = o.number("cone_angle", l.cone_angle);
+    if (!(l.cone_angle > 0 && l.cone_angle < 90)) o.fail("cone_angle", "must lie in (0, 90) degrees");
+    l.cone_softness = o.number("cone_softness", l.cone_softness);
+    if (!(l.cone_softness >= 0 && l.cone_softness <= l.cone_angle))
+        o.fail("cone_softness", "must lie in [0, cone_angle]");
+    return l;
+}
+
 Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir) {
     const nlohmann::json json = parseJson(text, file);
     JsonObject root(json, file, "");
@@ -350,6 +350,25 @@ Scene loadSceneFile(const std::string& path) {
     return parseScene(text.str(), path, fs::path(path).parent_path().string());
 }
 
+nlohmann::json lightToJson(const Light& l) {
+    nlohmann::json lj;
+    if (!l.name.empty()) lj["name"] = l.name;
+    if (!l.enabled) lj["enabled"] = false;
+    lj["type"] = l.type == LightType::Point     ? "point"
+                 : l.type == LightType::Spot    ? "spot"
+                 : l.type == LightType::Ambient ? "ambient"
+                                                : "directional";
+    if (l.type == LightType::Point || l.type == LightType::Spot) lj["position"] = vec(l.position);
+    if (l.type == LightType::Directional || l.type == LightType::Spot) lj["direction"] = vec(l.direction);
+    lj["color"] = vec(l.color);
+    lj["intensity"] = decimal(l.intensity);
+    if (l.type == LightType::Spot) {
+        lj["cone_angle"] = decimal(l.cone_angle);
+        lj["cone_softness"] = decimal(l.cone_softness);
+    }
+    return lj;
+}
+
 nlohmann::json sceneToJson(const Scene& s) {
     nlohmann::json j;
     auto& v = j["volume"];
@@ -370,24 +389,7 @@ nlohmann::json sceneToJson(const Scene& s) {
         m["transfer_function"].push_back({{"value", decimal(p.value)}, {"extinction", decimal(p.extinction)}, {"albedo", vec(p.albedo)}});
 
     j["lights"] = nlohmann::json::array();
-    for (const auto& l : s.lights) {
-        nlohmann::json lj;
-        if (!l.name.empty()) lj["name"] = l.name;
-        if (!l.enabled) lj["enabled"] = false;
-        lj["type"] = l.type == LightType::Point     ? "point"
-                     : l.type == LightType::Spot    ? "spot"
-                     : l.type == LightType::Ambient ? "ambient"
-                                                    : "directional";
-        if (l.type == LightType::Point || l.type == LightType::Spot) lj["position"] = vec(l.position);
-        if (l.type == LightType::Directional || l.type == LightType::Spot) lj["direction"] = vec(l.direction);
-        lj["color"] = vec(l.color);
-        lj["intensity"] = decimal(l.intensity);
-        if (l.type == LightType::Spot) {
-            lj["cone_angle"] = decimal(l.cone_angle);
-            lj["cone_softness"] = decimal(l.cone_softness);
-        }
-        j["lights"].push_back(lj);
-    }
+    for (const auto& l : s.lights) j["lights"].push_back(lightToJson(l));
 
     if (s.camera) {
         auto& c = j["camera"];

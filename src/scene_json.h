@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_reader.h"
 #include "scene.h"
 
 namespace voxlux {
@@ -12,6 +13,10 @@ namespace voxlux {
 // file's folder. Throws InputError naming the file and the JSON pointer of the bad key.
 Scene loadSceneFile(const std::string& path);
 Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir);
+
+// One light of a scene's "lights" array, and back.
+Light readLight(const JsonObject& o);
+nlohmann::json lightToJson(const Light& light);
 
 // The JSON a scene file would need to reproduce `scene` (used by `voxlux scene`).
 nlohmann::json sceneToJson(const Scene& scene);

@@ -56,7 +56,7 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"light_resolution": 1}})"),
               "shot.json: /effects/light_resolution: must lie in 2..1024 cells");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "position": [0, 0, 0]}]})"),
-              "shot.json: /lights/0/position: unknown key (expected one of type, color, intensity)");
+              "shot.json: /lights/0/position: unknown key (expected one of name, enabled, type, color, intensity)");
 }
 
 TEST(Scene, MalformedJsonGivesLineAndColumn) {
@@ -148,7 +148,7 @@ TEST(Scene, PropagationEffectsAreValidated) {
     EXPECT_EQ(errorOf(v + R"({"perturbation": {"displacement": -1}}})"),
               "shot.json: /effects/perturbation/displacement: must lie in [0, 64] voxels");
     EXPECT_EQ(errorOf(v + R"({"propagation": {"eye": true}}})"),
-              "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling)");
+              "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling, coherent)");
 }
 
 }  // namespace
