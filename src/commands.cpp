@@ -218,8 +218,10 @@ int runLightEdits(const Scene& scene, const std::string& edits_file, std::option
         log.push_back(describeUpdate(u, what));
     };
     report("initial", rig.apply(frame));
-    for (size_t k = 0; k < edits.size(); ++k)
-        report(std::to_string(k + 1) + ": " + applyLightEdit(rig, edits[k]), rig.apply(frame));
+    for (size_t k = 0; k < edits.size(); ++k) {
+        const std::string what = std::to_string(k + 1) + ": " + applyLightEdit(rig, edits[k]);
+        report(what, rig.apply(frame));
+    }
     FrameResult r = renderer.renderToFile(frame, false);
     for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
     std::cout << "wrote " << r.path << " (" << renderer.backendName() << ", " << edits.size() << " light edits)\n";

@@ -96,6 +96,45 @@ void addLightSweeps(const kernel::VxLight& light, float sign, const SweepGrid& g
     }
 }
 
+// Lights whose sweeps differ only in colour and weight (directional lights along one direction,
+// point lights at one place with one cone) see the same transmittance: each carries its colour
+// times one propagated field. The sweep is linear in the light that enters, so they run as one
+// sweep of a white light tinted by their weighted colours, exactly. This also makes a colour or
+// intensity edit one sweep (old and new merge into their difference).
+std::vector<kernel::VxPropParams> mergeSharedGeometry(const std::vector<kernel::VxPropParams>& sweeps) {
+    auto geometry = [](kernel::VxPropParams Q) {
+        Q.light.color = glm::vec4(0.0f, 0.0f, 0.0f, Q.light.color.w);   // w: the spot cone, geometry
+        Q.tint = glm::vec4(0.0f);
+        Q.flow.z = 0.0f;
+        return Q;
+    };
+    std::vector<kernel::VxPropParams> shapes;   // one per geometry
+    std::vector<std::vector<size_t>> members;
+    for (size_t n = 0; n < sweeps.size(); ++n) {
+        const kernel::VxPropParams g = geometry(sweeps[n]);
+        size_t k = 0;
+        while (k < shapes.size() && std::memcmp(&g, &shapes[k], sizeof g) != 0) ++k;
+        if (k == shapes.size()) {
+            shapes.push_back(g);
+            members.emplace_back();
+        }
+        members[k].push_back(n);
+    }
+    std::vector<kernel::VxPropParams> out;
+    for (size_t k = 0; k < shapes.size(); ++k) {
+        if (members[k].size() == 1) {   // a lone sweep keeps its own form
+            out.push_back(sweeps[members[k][0]]);
+            continue;
+        }
+        kernel::VxPropParams Q = shapes[k];
+        Q.light.color = glm::vec4(1.0f, 1.0f, 1.0f, Q.light.color.w);   // luminance 1
+        Q.flow.z = 1.0f;
+        for (size_t n : members[k]) Q.tint += glm::vec4(sweeps[n].flow.z * glm::vec3(sweeps[n].light.color), 0.0f);
+        out.push_back(Q);
+    }
+    return out;
+}
+
 // What one pass costs, in units of one directional direct sweep of the same grid: the walk over
 // the extinction and the volume, plus each sweep's own cells (point lights run the per-cell
 // kernel, indirect sweeps blur). Rough CPU figures from voxlux_bench_multilight; they only have to
@@ -107,8 +146,9 @@ constexpr double kIndirectSweepCost = 4.0;
 double passesCost(const PassSweeps& passes, const SweepGrid& g, bool coherent) {
     const double cells = double(g.dims.x) * g.dims.y * g.dims.z;
     double cost = 0.0;
-    for (const auto& sweeps : passes) {
-        if (sweeps.empty()) continue;
+    for (const auto& pass : passes) {
+        if (pass.empty()) continue;
+        const std::vector<kernel::VxPropParams> sweeps = coherent ? mergeSharedGeometry(pass) : pass;
         cost += kPassCost * double(coherent ? 1 : sweeps.size());
         for (const kernel::VxPropParams& Q : sweeps)
             cost += (Q.mode.x != 0 ? kPointSweepCost : 1.0) * (Q.dims.w == 3 ? kIndirectSweepCost : 1.0);
@@ -128,14 +168,15 @@ void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool
     for (const auto& sweeps : passes) {
         if (sweeps.empty()) continue;
         const int slices = g.dims[sweeps.front().slice.x];
-        report.sweeps += int(sweeps.size());
         if (coherent) {
-            pass.sweeps = sweeps;
+            pass.sweeps = mergeSharedGeometry(sweeps);
+            report.sweeps += int(pass.sweeps.size());
             backend.propagate(pass, volume);
             report.passes += 1;
             report.slices += slices;
             continue;
         }
+        report.sweeps += int(sweeps.size());
         for (const kernel::VxPropParams& Q : sweeps) {
             pass.sweeps = {Q};
             backend.propagate(pass, volume);

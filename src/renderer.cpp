@@ -99,9 +99,10 @@ KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, Fra
     const BrickAtlas& atlas = *atlas_;
     r.warnings = volume.warnings;
     for (auto& line : sanitizeReport(atlas, volume)) r.warnings.push_back(line);
-    PageTable pages = clock("classify", [&] {
+    pages_ = clock("classify", [&] {
         return buildPageTable(atlas.coords, classifyBricks(atlas, scene_.material));
     });
+    const PageTable& pages = pages_;
     r.bricks = pages.occupied;
     r.atlas_bytes = atlas.bytes();
     if (pages.empty()) {

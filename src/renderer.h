@@ -64,6 +64,7 @@ private:
     std::string volume_key_;                                // of the volume below; "" = none
     std::unique_ptr<LoadedVolume> volume_;
     std::unique_ptr<BrickAtlas> atlas_;
+    PageTable pages_;                                       // this frame's classified bricks (the inputs point here)
     LightStage light_;
     IlluminationStage illumination_;
 };
