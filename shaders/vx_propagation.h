@@ -120,8 +120,18 @@ VX_INLINE vec4 vx_prop_noise(vec3 q) {
 // Point-light falloff clamps at half a cell: a light inside a cell stays finite.
 VX_INLINE float vx_prop_r_min() { return 0.5f * length(vec3(Q.grid_to_world * vec4(1.0f, 0.0f, 0.0f, 0.0f))); }
 
+// A point or spot light's sweep carries radiance times the squared distance to the light (its
+// intensity times the transmittance so far): smooth where the radiance itself is singular, so
+// the bilinear reads stay accurate next to the light. This is the factor between the two.
+VX_INLINE float vx_prop_distance2(vec3 q) {
+    vec3 r = mat3(Q.grid_to_world) * (q - vec3(Q.source));
+    float r_min = vx_prop_r_min();
+    return max(dot(r, r), r_min * r_min);
+}
+
 // What enters from beyond the grid at grid point q: the light's unattenuated radiance (a light
-// sweep; luminance in x for the direct sweep), or the eye sweep's own input at the nearest cell.
+// sweep; luminance in x for the direct sweep; for a point or spot light times vx_prop_distance2),
+// or the eye sweep's own input at the nearest cell.
 vec3 vx_prop_outside(vec3 q) {
     if (Q.flow.w > 0.5f) {
         ivec3 c = clamp(ivec3(floor(q)), ivec3(0), ivec3(Q.dims) - ivec3(1));
@@ -131,6 +141,7 @@ vec3 vx_prop_outside(vec3 q) {
     vec3 wi;
     float dist;
     vec3 e = vx_light_radiance(Q.light, vec3(Q.grid_to_world * vec4(q, 1.0f)), vx_prop_r_min(), wi, dist);
+    if (Q.mode.x != 0) e *= vx_prop_distance2(q);
     return Q.dims.w == 1 ? vec3(vx_luminance(e), 0.0f, 0.0f) : e;
 }
 
@@ -171,13 +182,14 @@ VX_INLINE vec3 vx_prop_light_flow(vec3 x) {
     return f == vec3(0.0f) ? vec3(0.0f, 0.0f, 1e-6f) : f;
 }
 
-// What cell (i, j) adds of its value: the sweep's weight, for a point or spot light times the
-// share of the cell's own flow that this sweep carries (Q.mode.x), so that a light inside or
-// beside the volume lights each cell from the sweeps facing it.
+// What cell (i, j) adds of its value: the sweep's weight; for a point or spot light (Q.mode.x)
+// times the share of the cell's own flow that this sweep carries, so that a light inside or
+// beside the volume lights each cell from the sweeps facing it, and over vx_prop_distance2, back
+// to radiance.
 VX_INLINE float vx_prop_weight(int i, int j) {
     if (Q.mode.x == 0) return Q.flow.z;
-    vec3 f = vx_prop_light_flow(vx_prop_cell_point(i, j));
-    return Q.flow.z * vx_sweep_weight(f, Q.slice.x, Q.slice.y, Q.mode.y != 0);
+    vec3 x = vx_prop_cell_point(i, j);
+    return Q.flow.z * vx_sweep_weight(vx_prop_light_flow(x), Q.slice.x, Q.slice.y, Q.mode.y != 0) / vx_prop_distance2(x);
 }
 
 // The value of cell (i, j) of slice Q.slice.z.
@@ -249,12 +261,5 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
         float alpha = 1.0f - vx_exp(-tau);
         return alpha * vx_prop_outside(x) + (1.0f - alpha) * incoming;
     }
-    // Point and spot lights spread: the inverse-square ratio between p and x (1 for directional).
-    float spread = 1.0f;
-    if (Q.source.w > 0.5f) {
-        float rp = max(length(mat3(Q.grid_to_world) * (p - vec3(Q.source))), vx_prop_r_min());
-        float rx = max(length(mat3(Q.grid_to_world) * (x - vec3(Q.source))), vx_prop_r_min());
-        spread = (rp * rp) / (rx * rx);
-    }
-    return incoming * spread * transmitted;
+    return incoming * transmitted;
 }

@@ -42,6 +42,8 @@ public:
     void setScene(Scene scene);
     const std::vector<PlannedStage>& plan() const { return plan_; }
     std::string backendName() const { return backend_->name(); }
+    // The illumination volume as the last frame left it (for the viewer's display and tests).
+    const IlluminationStage& illumination() const { return illumination_; }
 
     // Renders one frame (`frame` expands a #### volume path). An empty frame throws InputError
     // unless `allow_empty`, in which case it renders transparent and says so in the warnings.
