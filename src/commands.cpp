@@ -185,7 +185,8 @@ nlohmann::json describeUpdate(const LightRigUpdate& u, const std::string& what) 
         j["mode"] = modeName(l->mode);
         j["reason"] = l->reason;
         j["lights"] = l->lights;
-        j["lights_touched"] = l->lights_touched;
+        j["lights_out"] = l->lights_out;
+        j["lights_in"] = l->lights_in;
         j["sweeps"] = l->sweeps;
         j["passes"] = l->passes;
         j["slices"] = l->slices;
@@ -210,8 +211,8 @@ int runLightEdits(const Scene& scene, const std::string& edits_file, std::option
         std::snprintf(line, sizeof line, "%-28s %8.4f s", what.c_str(), u.seconds);
         std::cout << line;
         if (const auto& l = u.lighting) {
-            std::snprintf(line, sizeof line, "  %-9s %2d/%d lights %3d sweeps %2d passes %6lld slices", modeName(l->mode),
-                          l->lights_touched, l->lights, l->sweeps, l->passes, l->slices);
+            std::snprintf(line, sizeof line, "  %-9s -%d +%d of %2d lights %3d sweeps %2d passes %6lld slices", modeName(l->mode),
+                          l->lights_out, l->lights_in, l->lights, l->sweeps, l->passes, l->slices);
             std::cout << line << (l->reason.empty() ? "" : "  (" + l->reason + ")");
         }
         std::cout << "\n";

@@ -359,12 +359,12 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
             report.reason = why;
         } else if (report.selective_cost < report.entire_cost) {
             selective = true;
-            std::snprintf(why, sizeof why, "%zu light%s changed: selective cost %.3g < entire %.3g", removed.size() + added.size(),
-                          removed.size() + added.size() == 1 ? "" : "s", report.selective_cost, report.entire_cost);
+            std::snprintf(why, sizeof why, "%zu out, %zu in: estimated cost %.3g selective < %.3g entire", removed.size(),
+                          added.size(), report.selective_cost, report.entire_cost);
             report.reason = why;
         } else {
-            std::snprintf(why, sizeof why, "%zu light%s changed: selective cost %.3g >= entire %.3g", removed.size() + added.size(),
-                          removed.size() + added.size() == 1 ? "" : "s", report.selective_cost, report.entire_cost);
+            std::snprintf(why, sizeof why, "%zu out, %zu in: estimated cost %.3g selective >= %.3g entire", removed.size(),
+                          added.size(), report.selective_cost, report.entire_cost);
             report.reason = why;
         }
     }
@@ -380,7 +380,8 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
                 // The eye sweep replaced the light sweeps' indirect block: update that block instead.
                 if (!before_eye_.empty()) std::copy(before_eye_.begin(), before_eye_.end(), indirect_block);
                 report.mode = LightUpdate::Mode::Selective;
-                report.lights_touched = int(removed.size() + added.size());
+                report.lights_out = int(removed.size());
+                report.lights_in = int(added.size());
                 runPasses(sel_fine, fine, 0, coherent, inputs, backend, volume_, report);
                 if (indirect) runPasses(sel_coarse, coarse, volume_.indirectOffset(), coherent, inputs, backend, volume_, report);
                 drift_ += peak(removed) + peak(added);
@@ -391,7 +392,7 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
                 volume_.world_to_illum = fine.world_to_grid;
                 volume_.values.assign(3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
                 report.mode = LightUpdate::Mode::Entire;
-                report.lights_touched = int(inputs.lights.size());
+                report.lights_in = int(inputs.lights.size());
                 runPasses(all_fine, fine, 0, coherent, inputs, backend, volume_, report);
                 if (indirect) runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, backend, volume_, report);
                 drift_ = 0.0;

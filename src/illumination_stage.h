@@ -28,7 +28,8 @@ struct LightUpdate {
     Mode mode = Mode::Entire;
     std::string reason;          // why this mode (empty when kept)
     int lights = 0;              // lights in the volume afterwards
-    int lights_touched = 0;      // lights swept: the changed ones subtracted and added, or all
+    int lights_out = 0;          // light states taken out (selective: the changed lights' old states)
+    int lights_in = 0;           // light states put in (selective: their new states; entire: all lights)
     int sweeps = 0;              // light sweeps run, over both blocks (a light in two passes counts twice)
     int passes = 0;              // passes over the volume
     long long slices = 0;        // slices walked, over all passes

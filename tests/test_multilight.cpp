@@ -384,7 +384,8 @@ TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
     const LightRigUpdate off = rig.apply();
     ASSERT_TRUE(off.lighting);
     EXPECT_EQ(off.lighting->mode, LightUpdate::Mode::Selective);
-    EXPECT_EQ(off.lighting->lights_touched, 1);
+    EXPECT_EQ(off.lighting->lights_out, 1);
+    EXPECT_EQ(off.lighting->lights_in, 0);
     EXPECT_EQ(off.dirty, std::vector<int>{2});
     EXPECT_GT(relativeL2(renderer.illumination().volume().values, before), 0.01f);
     rig.toggle(2, true);
@@ -443,7 +444,8 @@ TEST(LightRig, TracksIdsAndDirtyLightsAndRefusesUnknownOnes) {
     const LightRigUpdate u = rig.apply();
     EXPECT_TRUE(rig.dirty().empty());
     EXPECT_EQ(u.lighting->lights, 2);
-    EXPECT_EQ(u.lighting->lights_touched, 2);
+    EXPECT_EQ(u.lighting->lights_out, 1);
+    EXPECT_EQ(u.lighting->lights_in, 1);
     EXPECT_GT(u.lighting->slices, 0);
     const LightRigUpdate none = rig.apply();
     EXPECT_EQ(none.lighting->mode, LightUpdate::Mode::Kept);
