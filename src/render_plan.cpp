@@ -56,7 +56,8 @@ std::string illuminationReason(const Scene& s) {
     std::string out = std::to_string(lights) + (lights == 1 ? " light" : " lights") + " swept through a " +
                       std::to_string(fx.light_resolution) + "-cell illumination volume along " +
                       (fx.propagation.blend_axes ? "the two closest axes, blended" : "the closest axis") +
-                      "; direct luminance";
+                      (lights > 1 ? (fx.propagation.coherent ? ", one pass per direction" : ", one pass per light") : "") +
+                      "; direct RGB";
     if (const auto& in = fx.indirect) {
         char blur[160];
         std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, transport colour (%g, %g, %g)",

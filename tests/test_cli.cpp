@@ -163,7 +163,7 @@ TEST(Cli, ExplainShowsThePlan) {
     r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_propagation.json --explain");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("run   illumination 1 light swept through a 128-cell illumination volume along the closest axis; "
-                         "direct luminance, indirect RGB blurred in a 30 deg cone over 9 taps, transport colour "
+                         "direct RGB, indirect RGB blurred in a 30 deg cone over 9 taps, transport colour "
                          "(0.8, 0.6, 0.45), perturbed"),
               std::string::npos)
         << r.out;

@@ -434,14 +434,16 @@ TEST(LightRig, TracksIdsAndDirtyLightsAndRefusesUnknownOnes) {
     EXPECT_EQ(rig.ids(), (std::vector<int>{0, 1}));
     EXPECT_EQ(rig.find("key"), 0);
     EXPECT_FALSE(rig.find("rim"));
+    EXPECT_EQ(rig.light(1).type, LightType::Point);
     const LightRigUpdate first = rig.apply();
     EXPECT_EQ(first.lighting->mode, LightUpdate::Mode::Entire);
     EXPECT_EQ(first.lighting->reason, "first update");
     const int added = rig.add(directionalLight({1, -1, 0}, glm::vec3(0.5f), 1.0f));
     EXPECT_EQ(added, 2);
-    rig.remove(1);
-    EXPECT_EQ(rig.dirty(), (std::vector<int>{1, 2}));
+    rig.remove(0);
+    EXPECT_EQ(rig.dirty(), (std::vector<int>{0, 2}));
     const LightRigUpdate u = rig.apply();
+    EXPECT_EQ(u.lighting->mode, LightUpdate::Mode::Selective) << u.lighting->reason;
     EXPECT_TRUE(rig.dirty().empty());
     EXPECT_EQ(u.lighting->lights, 2);
     EXPECT_EQ(u.lighting->lights_out, 1);
