@@ -125,23 +125,6 @@ Light directionalLight(glm::vec3 dir, glm::vec3 color, float intensity) {
     return l;
 }
 
-struct Lit {
-    std::unique_ptr<Prepared> prepared;
-    IlluminationStage stage;
-    StageTimes times;
-    std::vector<std::string> reused, warnings;
-};
-
-std::unique_ptr<Lit> illuminate(openvdb::FloatGrid::Ptr grid, const Scene& scene, KernelBackend& backend) {
-    auto lit = std::make_unique<Lit>();
-    Camera camera;
-    camera.position = glm::vec3(12, 40, 80);
-    camera.look_at = glm::vec3(12, 12, 12);
-    lit->prepared = prepare(volumeFromGrid(grid), scene, camera);
-    lit->stage.update(scene, camera, "test", lit->prepared->inputs, backend, lit->times, lit->reused, lit->warnings);
-    return lit;
-}
-
 const float* directAt(const IlluminationVolume& v, glm::ivec3 c) {
     return &v.values[((size_t(c.z) * v.dims.y + c.y) * v.dims.x + c.x) * 3];
 }
@@ -159,7 +142,7 @@ void expectPointLightInsideCube(KernelBackend& backend) {
     const float sigma = 0.1f, intensity = 50.0f;
     auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, sigma);
     Lit* probe = nullptr;
-    auto lit = illuminate(grid, cubeScene({pointLight(glm::vec3(12.0f), glm::vec3(1.0f), intensity)}, false), backend);
+    auto lit = illuminate(grid, cubeScene({pointLight(glm::vec3(12.0f), glm::vec3(1.0f), intensity)}, false), backend, Camera{});
     probe = lit.get();
     const IlluminationVolume& v = probe->stage.volume();
     const glm::ivec3 light_cell = glm::ivec3(glm::floor(glm::vec3(v.world_to_illum * glm::vec4(12.0f, 12.0f, 12.0f, 1.0f))));
@@ -226,17 +209,17 @@ TEST(MultiLight, LightsAddUpAndCoherentPassesMatchSequentialOnes) {
     auto cpu = makeCpuBackend();
     auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, 0.08f);
     const std::vector<Light> rig = mixedRig();
-    auto all = illuminate(grid, cubeScene(rig, true), *cpu);
+    auto all = illuminate(grid, cubeScene(rig, true), *cpu, Camera{});
     std::vector<float> sum(all->stage.volume().values.size(), 0.0f);
     for (const Light& l : rig) {
-        auto one = illuminate(grid, cubeScene({l}, true), *cpu);
+        auto one = illuminate(grid, cubeScene({l}, true), *cpu, Camera{});
         ASSERT_EQ(one->stage.volume().values.size(), sum.size());
         for (size_t i = 0; i < sum.size(); ++i) sum[i] += one->stage.volume().values[i];
     }
     const float additivity = relativeL2(all->stage.volume().values, sum);
     Scene sequential = cubeScene(rig, true);
     sequential.effects.propagation.coherent = false;
-    auto seq = illuminate(grid, sequential, *cpu);
+    auto seq = illuminate(grid, sequential, *cpu, Camera{});
     const float coherence = relativeL2(all->stage.volume().values, seq->stage.volume().values);
     std::printf("  A+B against A plus B: %.2g; coherent against sequential: %.2g (relative L2)\n", additivity, coherence);
     EXPECT_LT(additivity, 1e-6f);
@@ -253,8 +236,8 @@ TEST(MultiLight, CpuAndGlAgreeOnAMixedRig) {
     auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, 0.08f);
     Scene scene = cubeScene(mixedRig(), true);
     scene.effects.propagation.blend_axes = true;
-    auto a = illuminate(grid, scene, *cpu);
-    auto b = illuminate(grid, scene, *gl);
+    auto a = illuminate(grid, scene, *cpu, Camera{});
+    auto b = illuminate(grid, scene, *gl, Camera{});
     const auto& va = a->stage.volume().values;
     const auto& vb = b->stage.volume().values;
     ASSERT_EQ(va.size(), vb.size());
@@ -403,8 +386,8 @@ TEST(MultiLight, HdrExtremesStayFiniteAndKeepTheirRatio) {
     auto cpu = makeCpuBackend();
     auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, 0.05f);
     const Light strong = directionalLight({0, -1, 0}, {1, 0, 0}, 1e6f), weak = directionalLight({0, -1, 0.3f}, {0, 0, 1}, 1e-3f);
-    auto both = illuminate(grid, cubeScene({strong, weak}, true), *cpu);
-    auto alone = illuminate(grid, cubeScene({weak}, true), *cpu);
+    auto both = illuminate(grid, cubeScene({strong, weak}, true), *cpu, Camera{});
+    auto alone = illuminate(grid, cubeScene({weak}, true), *cpu, Camera{});
     const IlluminationVolume& v = both->stage.volume();
     float red = 0.0f, blue = 0.0f;
     for (size_t i = 0; i < v.values.size(); ++i) ASSERT_TRUE(std::isfinite(v.values[i])) << i;

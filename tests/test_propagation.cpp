@@ -44,22 +44,12 @@ Scene indirectSlabScene(glm::vec3 dir, bool blend, glm::vec3 transport) {
     return s;
 }
 
-struct Lit {
-    std::unique_ptr<Prepared> prepared;
-    IlluminationStage stage;
-    StageTimes times;
-    std::vector<std::string> reused, warnings;
-};
-
-// Runs the illumination stage for `scene` over `grid` on `backend`.
+// Runs the illumination stage for `scene` over `grid` on `backend`, seen from above the cube.
 std::unique_ptr<Lit> illuminate(openvdb::FloatGrid::Ptr grid, const Scene& scene, KernelBackend& backend) {
-    auto lit = std::make_unique<Lit>();
     Camera camera;
     camera.position = glm::vec3(16, 60, 90);
     camera.look_at = glm::vec3(16, 16, 16);
-    lit->prepared = prepare(volumeFromGrid(grid), scene, camera);
-    lit->stage.update(scene, camera, "test", lit->prepared->inputs, backend, lit->times, lit->reused, lit->warnings);
-    return lit;
+    return test::illuminate(grid, scene, backend, camera);
 }
 
 // Length of the ray from cell centre c (index space; the cube spans [-0.5, kSlab - 0.5]) back

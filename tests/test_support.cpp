@@ -104,6 +104,14 @@ std::string tempDir(const std::string& name) {
     return p.string();
 }
 
+std::unique_ptr<Lit> illuminate(openvdb::FloatGrid::Ptr grid, const Scene& scene, KernelBackend& backend,
+                                const Camera& camera) {
+    auto lit = std::make_unique<Lit>();
+    lit->prepared = prepare(volumeFromGrid(grid), scene, camera);
+    lit->stage.update(scene, camera, "test", lit->prepared->inputs, backend, lit->times, lit->reused, lit->warnings);
+    return lit;
+}
+
 std::string writeBall(const std::string& dir) {
     auto grid = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);  // empty, named density
     auto acc = grid->getAccessor();

@@ -12,6 +12,7 @@
 
 #include "brick_atlas.h"
 #include "kernel_inputs.h"
+#include "illumination_stage.h"
 #include "kernel_backend.h"
 #include "page_table.h"
 #include "scene.h"
@@ -51,6 +52,17 @@ struct Prepared {
     KernelInputs inputs;
 };
 std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const Camera& camera);
+
+// The illumination stage run once over a grid, with what it reported.
+struct Lit {
+    std::unique_ptr<Prepared> prepared;
+    IlluminationStage stage;
+    StageTimes times;
+    std::vector<std::string> reused, warnings;
+};
+// Runs the illumination stage for `scene` over `grid` on `backend`, seen from `camera`.
+std::unique_ptr<Lit> illuminate(openvdb::FloatGrid::Ptr grid, const Scene& scene, KernelBackend& backend,
+                                const Camera& camera);
 
 struct CliResult {
     int exit_code = -1;
