@@ -141,10 +141,8 @@ glm::vec3 cellCentre(const IlluminationVolume& v, glm::ivec3 c) {
 void expectPointLightInsideCube(KernelBackend& backend) {
     const float sigma = 0.1f, intensity = 50.0f;
     auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, sigma);
-    Lit* probe = nullptr;
     auto lit = illuminate(grid, cubeScene({pointLight(glm::vec3(12.0f), glm::vec3(1.0f), intensity)}, false), backend, Camera{});
-    probe = lit.get();
-    const IlluminationVolume& v = probe->stage.volume();
+    const IlluminationVolume& v = lit->stage.volume();
     const glm::ivec3 light_cell = glm::ivec3(glm::floor(glm::vec3(v.world_to_illum * glm::vec4(12.0f, 12.0f, 12.0f, 1.0f))));
     ASSERT_EQ(cellCentre(v, light_cell), glm::vec3(12.0f)) << "the light sits on a cell centre";
     EXPECT_TRUE(std::isfinite(directAt(v, light_cell)[0]));
