@@ -88,6 +88,8 @@ void addLightSweeps(const kernel::VxLight& light, float sign, const SweepGrid& g
         Q.source = glm::vec4(at, 1.0f);
         Q.mode = glm::ivec4(1, blend ? 1 : 0, 0, 0);
         sweeps = pointLightSweeps(at, g.dims, blend);
+        if (int(light.pos_type.w) == VX_LIGHT_SPOT && !blend)
+            sweeps = spotLightSweeps(sweeps, glm::vec3(light.dir_cos), light.dir_cos.w, glm::mat3(g.world_to_grid));
     }
     for (const Sweep& s : sweeps) {
         Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);

@@ -18,9 +18,12 @@ namespace {
 kernel::VxLight packLight(const Light& l) {
     kernel::VxLight k{};
     int type = l.type == LightType::Point ? VX_LIGHT_POINT : l.type == LightType::Spot ? VX_LIGHT_SPOT : VX_LIGHT_DIRECTIONAL;
-    k.pos_type = glm::vec4(l.position, float(type));
-    k.dir_cos = glm::vec4(glm::normalize(l.direction), std::cos(glm::radians(l.cone_angle)));
-    k.color = glm::vec4(l.color * l.intensity, std::cos(glm::radians(std::max(0.0f, l.cone_angle - l.cone_softness))));
+    // Keys a type does not use stay zero, so equal lights pack to equal bytes (selective updates
+    // compare them).
+    const bool directional = type == VX_LIGHT_DIRECTIONAL, point = type == VX_LIGHT_POINT;
+    k.pos_type = glm::vec4(directional ? glm::vec3(0.0f) : l.position, float(type));
+    k.dir_cos = point ? glm::vec4(0.0f, -1.0f, 0.0f, 1.0f) : glm::vec4(glm::normalize(l.direction), std::cos(glm::radians(l.cone_angle)));
+    k.color = glm::vec4(l.color * l.intensity, point ? 1.0f : std::cos(glm::radians(std::max(0.0f, l.cone_angle - l.cone_softness))));
     return k;
 }
 

@@ -46,6 +46,41 @@ std::vector<Sweep> pointLightSweeps(glm::vec3 at, glm::ivec3 dims, bool blend) {
     return out;
 }
 
+std::vector<Sweep> spotLightSweeps(const std::vector<Sweep>& sweeps, glm::vec3 direction, float cos_outer,
+                                   const glm::mat3& world_to_grid) {
+    const glm::mat3 grid_to_world = glm::inverse(world_to_grid);
+    const glm::vec3 d = glm::normalize(direction);
+    auto inCone = [&](glm::vec3 grid_dir) { return glm::dot(glm::normalize(grid_to_world * grid_dir), d) > cos_outer - 1e-4f; };
+    // Directions on the cone's rim, in grid space.
+    const glm::vec3 side = glm::normalize(glm::cross(d, std::abs(d.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+    const glm::vec3 up = glm::cross(d, side);
+    const float sin_outer = std::sqrt(std::max(0.0f, 1.0f - cos_outer * cos_outer));
+    std::vector<glm::vec3> rim;
+    for (int k = 0; k < 64; ++k) {
+        const float a = 2.0f * float(M_PI) * float(k) / 64.0f;
+        rim.push_back(world_to_grid * (cos_outer * d + sin_outer * (std::cos(a) * side + std::sin(a) * up)));
+    }
+    kernel::CpuKernel k;
+    std::vector<Sweep> out;
+    for (const Sweep& s : sweeps) {
+        // The cone meets the sweep's pyramid if the pyramid's axis or one of its edges lies in the
+        // cone, or a rim direction lies in the pyramid (the cone is convex, and so is the pyramid).
+        bool meets = false;
+        for (int corner = 0; corner < 5 && !meets; ++corner) {
+            glm::vec3 g(0.0f);
+            g[s.axis] = float(s.sign);
+            if (corner > 0) {
+                g[k.vx_axis_u(s.axis)] = corner & 1 ? 1.0f : -1.0f;
+                g[k.vx_axis_v(s.axis)] = corner & 2 ? 1.0f : -1.0f;
+            }
+            meets = inCone(g);
+        }
+        for (size_t r = 0; r < rim.size() && !meets; ++r) meets = k.vx_sweep_weight(rim[r], s.axis, s.sign, false) > 0.0f;
+        if (meets) out.push_back(s);
+    }
+    return out;
+}
+
 std::vector<glm::vec4> blurTaps(const Indirect& in) {
     const float tan_half = std::tan(glm::radians(0.5f * in.angle));
     auto weight = [&](float r) {

@@ -31,6 +31,13 @@ std::vector<Sweep> sweepsFor(glm::vec3 flow, bool blend);
 // inside all six (Sunden 2015, Sec. 7.3). Their weight is 1: the kernel weights each cell.
 std::vector<Sweep> pointLightSweeps(glm::vec3 at, glm::ivec3 dims, bool blend);
 
+// Of `sweeps` (from pointLightSweeps, one axis: blend false), those a spot light can reach: its
+// cone (world direction `direction`, outer half-angle whose cosine is `cos_outer`) meets the
+// pyramid of flows the sweep weights. `world_to_grid` maps directions into the grid. A spot
+// inside the volume pointing down needs one pass instead of six (Sunden 2015, Sec. 7.3).
+std::vector<Sweep> spotLightSweeps(const std::vector<Sweep>& sweeps, glm::vec3 direction, float cos_outer,
+                                   const glm::mat3& world_to_grid);
+
 // Blur taps on the unit disc (xy) with weights (z) summing to 1: the centre (odd counts) and
 // opposite pairs on a Vogel spiral, weighted by the Phong lobe cos^exponent or the
 // Henyey-Greenstein phase of the angle between the light and the tap, for a cone of apex angle

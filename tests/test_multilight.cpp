@@ -73,6 +73,23 @@ TEST(LightGroups, PointLightsGoToEveryFaceTheirCellsSee) {
         EXPECT_EQ(pointLightSweeps(inside, dims, false).size(), 6u);
 }
 
+// A spot inside the volume needs only the passes its cone reaches (Sunden 2015, Sec. 7.3).
+TEST(LightGroups, SpotLightsInsideNeedOnlyThePassesTheirConeReaches) {
+    const glm::ivec3 dims(20, 16, 12);
+    const auto all = pointLightSweeps({10, 8, 6}, dims, false);
+    ASSERT_EQ(all.size(), 6u);
+    const glm::mat3 identity(1.0f);
+    const auto down = spotLightSweeps(all, {0, -1, 0}, std::cos(glm::radians(35.0f)), identity);
+    ASSERT_EQ(down.size(), 1u);
+    EXPECT_EQ(down[0].axis, 1);
+    EXPECT_EQ(down[0].sign, -1);
+    EXPECT_EQ(spotLightSweeps(all, {0, -1, 0}, std::cos(glm::radians(80.0f)), identity).size(), 5u);
+    EXPECT_EQ(spotLightSweeps(all, {1, -1, 0}, std::cos(glm::radians(10.0f)), identity).size(), 2u);   // on the x/y edge
+    // A stretched grid (cells twice as long in x): a 40 deg cone along x reaches y and z too.
+    const glm::mat3 stretched(glm::vec3(0.5f, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1));
+    EXPECT_EQ(spotLightSweeps(all, {1, 0, 0}, std::cos(glm::radians(40.0f)), stretched).size(), 5u);
+}
+
 // Every cell's flow is carried in full: the weights of the six sweeps sum to 1, with and without
 // blending, including flows on diagonals and along axes.
 TEST(LightGroups, PerCellWeightsSumToOne) {
