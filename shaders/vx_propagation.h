@@ -205,12 +205,12 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     vec3 back = flow / max(abs(flow[axis]), 1e-6f);
     vec3 p = x - back;
     // A point or spot light's sweep starts at the light's own plane (Sunden 2015, Fig. 5): cells
-    // before it, and cells too far sideways for any cell this sweep weights to read, stay dark;
-    // the first slice past the plane takes the light straight from its source.
+    // before it, and cells too far sideways (Q.mode.z) for any cell this sweep weights to read,
+    // stay dark; the first slice past the plane takes the light straight from its source.
     bool first = false;
     if (Q.mode.x != 0) {
         vec3 f = vx_prop_light_flow(x);
-        if (float(Q.slice.y) * f[axis] <= 0.0f || max(abs(f[u]), abs(f[v])) > VX_PROP_MAX_SLOPE * abs(f[axis]))
+        if (float(Q.slice.y) * f[axis] <= 0.0f || max(abs(f[u]), abs(f[v])) > float(Q.mode.z) * abs(f[axis]))
             return vec3(0.0f);
         first = float(Q.slice.y) * (float(prev) + 0.5f - Q.source[axis]) <= 0.0f;
         if (first) {

@@ -69,8 +69,7 @@ struct VxSatParams {
 // illumination volume; the eye sweep carries the indirect light towards the camera. Grid
 // coordinates are cells: cell (i, j, k) spans [i, i+1) x [j, j+1) x [k, k+1).
 #define VX_MAX_TAPS 32
-// A point light's sweep computes only cells whose step moves at most this many cells sideways per
-// slice: no cell it weights reads further out, and the second blend axis fades out before it.
+// The second blend axis fades out before its steps move this many cells sideways per slice.
 #define VX_PROP_MAX_SLOPE 16.0f
 struct VxPropParams {
     mat4 grid_to_world;
@@ -79,7 +78,8 @@ struct VxPropParams {
     ivec4 slice;            // x = axis, y = +1 / -1 (the way slices advance), z = slice written, w = blur taps
     ivec4 strides;          // xyz = index step per cell along x, y, z of the extinction grid and eye input
     ivec4 mode;             // x = 1: weight each cell by its own flow (point and spot lights),
-                            // y = 1: blend the two closest axes (Sunden 2015, Eq. 5), zw = unused
+                            // y = 1: blend the two closest axes (Sunden 2015, Eq. 5), z = the
+                            // steepest slope (cells sideways per slice) a point sweep computes, w = unused
     vec4 source;            // xyz = grid position of the light (or camera), or for a directional light the
                             // grid-space direction it travels; w = 1 for a position, 0 for a direction
     vec4 flow;              // x = +1 light sweep (flow away from the source), -1 eye sweep (towards it);

@@ -86,7 +86,13 @@ void addLightSweeps(const kernel::VxLight& light, float sign, const SweepGrid& g
     } else {
         const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
         Q.source = glm::vec4(at, 1.0f);
-        Q.mode = glm::ivec4(1, blend ? 1 : 0, 0, 0);
+        // The cells a sweep weights lie within slope 1 of the light (16 for a blended second
+        // axis). A cell reads the previous slice up to 1 + r cells beside its own ray (bilinear
+        // reads, blur radius r per slice, at most sqrt(3) tan(angle / 2)), so dark cells beyond
+        // slope s creep inwards by at most 1 + r cells per slice while the weighted region grows
+        // by 1: computing up to slope 2 + r keeps every weighted cell exact (3 + r, with margin).
+        const int reach = blend ? int(VX_PROP_MAX_SLOPE) : 3 + int(std::ceil(std::sqrt(3.0f) * Q.flow.y));
+        Q.mode = glm::ivec4(1, blend ? 1 : 0, reach, 0);
         sweeps = pointLightSweeps(at, g.dims, blend);
         if (int(light.pos_type.w) == VX_LIGHT_SPOT && !blend)
             sweeps = spotLightSweeps(sweeps, glm::vec3(light.dir_cos), light.dir_cos.w, glm::mat3(g.world_to_grid));
