@@ -16,19 +16,23 @@
 //      effects.propagation.coherent = false) and coherent (one pass per propagation direction):
 //      the "propagation" stage, best of 3 (the point rig at 1x: best of 2); then the per-light
 //      cost of each (least-squares slope of time against N) and their ratio;
-//   2. on the coherent renderer, moving one light 3 degrees (best of 3 moves: there and back) and
+//   2. on the coherent renderer, moving one light 3 degrees (best of 3 moves, to +3, -3, +3) and
 //   3. toggling one light off (best of 3; toggled back on between runs, timed apart),
 //      with what the illumination stage chose to run (mode, sweeps, passes, slices): the stage
-//      decides between selective and entire by its cost estimate, nothing is forced.
+//      decides between selective and entire by its cost estimate, nothing is forced. With 8
+//      lights, also an entire update on that live renderer (no allocation), forced by a settings
+//      change the image does not see, to set the edits against like for like.
 // Then, at 1x, calibration figures for that estimate: ns per cell of one pass with one
 // directional light, of each further directional light in a coherent pass and of each further
 // pass, of a point-light sweep, and of a directional light with indirect light on.
-// Prints markdown tables on stdout and progress on stderr; it asserts nothing. About 3 minutes;
-// --quick (one run per figure, N = 1, 2, 8, no point rig at 1x) about half a minute.
+// Prints markdown tables on stdout and progress on stderr; it asserts nothing. About 2.5 minutes
+// on the 2-core machine when it is quiet, 3.5-4 with other work running; --quick (one run per
+// figure, N = 1, 2, 8, no point rig at 1x) 13-25 s.
 //
 //   build/voxlux_bench_multilight [--data DIR] [--quick]
 #include <algorithm>
 #include <chrono>
+#include <cstdarg>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -51,14 +55,16 @@ using namespace voxlux;
 const auto kStart = std::chrono::steady_clock::now();
 
 // A progress line on stderr, with the seconds since the start.
-template <class... Args>
-void progress(const char* format, Args... args) {
+__attribute__((format(printf, 1, 2))) void progress(const char* format, ...) {
     std::fprintf(stderr, "[%5.1f s] ", std::chrono::duration<double>(std::chrono::steady_clock::now() - kStart).count());
-    std::fprintf(stderr, format, args...);
+    va_list args;
+    va_start(args, format);
+    std::vfprintf(stderr, format, args);
+    va_end(args);
     std::fprintf(stderr, "\n");
 }
 
-// The volume's world-space bounding box (of its active voxels) and the resolutions measured.
+// The volume's world-space bounding box (of its active voxels) and its longest side in voxels.
 struct Volume {
     std::string file;
     glm::vec3 lo{0.0f}, hi{0.0f};
@@ -97,8 +103,8 @@ glm::vec3 hue(float h) {
 // nearest tie with another axis.
 const glm::vec3 kOblique = glm::normalize(glm::vec3(-0.45f, -0.8f, -0.4f));
 
-// n points evenly over the unit sphere (Fibonacci), turned by a fixed rotation so that none lies
-// on an axis or a tie between two axes by construction.
+// n points evenly over the unit sphere (Fibonacci), turned by a fixed rotation: unturned, the
+// lone point of n = 1 would lie on the x axis.
 std::vector<glm::vec3> fibonacciSphere(int n) {
     const glm::mat3 turn(glm::rotate(glm::mat4(1.0f), 0.37f, glm::normalize(glm::vec3(1.0f, 2.0f, 3.0f))));
     const float golden = 2.39996323f;
@@ -245,7 +251,7 @@ std::string ratio(double a, double b) {
 struct RigResult {
     std::string rig, res;
     double per_light_seq = 0, per_light_coh = 0;
-    double move8 = 0, toggle8 = 0, entire8_coh = 0, entire8_seq = 0;
+    double move8 = 0, toggle8 = 0, entire8_coh = 0, entire8_seq = 0, entire8_live = 0;
     std::string move8_mode, toggle8_mode;
     bool have8 = false;
 };
@@ -256,11 +262,12 @@ RigResult measureRig(Rig rig, const Volume& vol, int resolution, const std::stri
     struct Row {
         int n;
         Run seq, coh, move, toggle, toggle_on;
+        Run live_entire;   // N = 8 only
     };
     std::vector<Row> rows;
     for (int n : counts) {
         progress("%s, %s, N = %d: entire updates", rigName(rig), res_name.c_str(), n);
-        Row row{n, {}, {}, {}, {}, {}};
+        Row row{n, {}, {}, {}, {}, {}, {}};
         Scene scene = baseScene(vol, resolution, false);
         scene.lights = rigLights(rig, n, vol);
         row.seq = entire(scene, repeats, nullptr);
@@ -272,13 +279,12 @@ RigResult measureRig(Rig rig, const Volume& vol, int resolution, const std::stri
         const int id = live.rig->ids().front();
         const Light original = live.rig->light(id);
         for (int r = 0; r < repeats; ++r) {
-            // 3 degrees one way, then back: every run is a one-light change.
-            live.rig->update(id, r % 2 == 0 ? moved(original, 3.0f, vol) : original);
+            // 3 degrees one way, then the other: every run changes one light, and every run leaves
+            // it off its starting place (in the "same direction" rig: off the others' direction).
+            live.rig->update(id, moved(original, r % 2 == 0 ? 3.0f : -3.0f, vol));
             const Run run = runOf(live.rig->apply());
             if (run.seconds < row.move.seconds) row.move = run;
         }
-        live.rig->update(id, original);
-        live.rig->apply();
         for (int r = 0; r < repeats; ++r) {
             live.rig->toggle(id, false);
             const Run off = runOf(live.rig->apply());
@@ -286,6 +292,25 @@ RigResult measureRig(Rig rig, const Volume& vol, int resolution, const std::stri
             live.rig->toggle(id, true);
             const Run on = runOf(live.rig->apply());
             if (on.seconds < row.toggle_on.seconds) row.toggle_on = on;
+        }
+        if (n == 8) {
+            // An entire update on this live renderer, into the memory it holds: flipping
+            // propagation.chroma_subsampling (inert without indirect light) changes the stage's
+            // settings, which it answers with an entire update. The renderer is not used after.
+            progress("%s, %s, N = %d: entire update on the live renderer", rigName(rig), res_name.c_str(), n);
+            Scene s = live.rig->scene();
+            s.lights.front() = original;   // back where the fresh renderer had it (the moves leave it turned)
+            for (int r = 0; r < repeats; ++r) {
+                s.effects.propagation.chroma_subsampling = r % 2 == 0;
+                live.renderer->setScene(s);
+                const FrameResult f = live.renderer->prepare(std::nullopt, true);
+                Run run;
+                run.seconds = 0.0;
+                for (const auto& [stage, t] : f.stage_seconds)
+                    if (stage == "propagation") run.seconds = t;
+                if (f.light_update) run.ran = true, run.update = *f.light_update;
+                if (run.seconds < row.live_entire.seconds) row.live_entire = run;
+            }
         }
         rows.push_back(row);
     }
@@ -311,13 +336,14 @@ RigResult measureRig(Rig rig, const Volume& vol, int resolution, const std::stri
     out.per_light_seq = slope(xs, seq);
     out.per_light_coh = slope(xs, coh);
     std::printf("\nPer-light cost (least-squares slope over N = %d..%d): sequential %.2f ms, coherent %.2f ms; "
-                "coherent / sequential = %s (goal <= 0.1).\n\n",
+                "coherent / sequential = %s (goal <= 0.1)%s.\n\n",
                 counts.front(), counts.back(), 1e3 * out.per_light_seq, 1e3 * out.per_light_coh,
-                ratio(out.per_light_coh, out.per_light_seq).c_str());
+                ratio(out.per_light_coh, out.per_light_seq).c_str(),
+                out.per_light_coh < 0 ? " (a negative slope: no cost per light measurable above the noise)" : "");
 
-    std::printf("Edits on the coherent renderer, best of %d: move light 0 by 3 degrees (%s), toggle it off (and "
-                "back on, timed apart). Mode, sweeps, passes, slices: what the stage chose and ran; est. = "
-                "its selective / entire cost estimate for the move.\n\n",
+    std::printf("Edits on the coherent renderer, best of %d: move light 0 by 3 degrees (%s; to +3, -3, +3 "
+                "degrees from the start), toggle it off (and back on, timed apart). Mode, sweeps, passes, slices: "
+                "what the stage chose and ran; est. = its selective / entire cost estimate for the move.\n\n",
                 repeats, rig == Rig::Point ? "round the volume's centre" : "its direction");
     std::printf("| N | entire (ms) | move (ms) | move / entire | mode | sweeps | passes | slices | est. | "
                 "toggle off (ms) | off / entire | mode | sweeps | passes | slices | toggle on (ms) |\n");
@@ -335,11 +361,19 @@ RigResult measureRig(Rig rig, const Volume& vol, int resolution, const std::stri
             out.toggle8 = r.toggle.seconds;
             out.entire8_coh = r.coh.seconds;
             out.entire8_seq = r.seq.seconds;
+            out.entire8_live = r.live_entire.seconds;
             out.move8_mode = modeName(r.move.update.mode);
             out.toggle8_mode = modeName(r.toggle.update.mode);
         }
     }
     std::printf("\n");
+    for (const Row& r : rows)
+        if (r.n == 8)
+            std::printf("N = 8, an entire update on the live renderer (forced by a settings change): %s ms (%s, %d "
+                        "sweeps, %d passes); move / that = %s, toggle off / that = %s.\n",
+                        ms(r.live_entire.seconds).c_str(), modeName(r.live_entire.update.mode), r.live_entire.update.sweeps,
+                        r.live_entire.update.passes, ratio(r.move.seconds, r.live_entire.seconds).c_str(),
+                        r.toggle.ran ? ratio(r.toggle.seconds, r.live_entire.seconds).c_str() : "-");
     for (const Row& r : rows)
         if (r.n == 8 || r.n == counts.back())
             std::printf("N = %d: move: %s; toggle off: %s.\n", r.n, r.move.update.reason.c_str(),
@@ -513,8 +547,8 @@ int main(int argc, char** argv) {
         std::printf("## %s: light_resolution %d\n\n", name.c_str(), res);
         results.push_back(measureRig(Rig::SameDirection, vol, res, name, counts, repeats));
         results.push_back(measureRig(Rig::Spread, vol, res, name, counts, repeats));
-        // The point rig at 1x costs seconds per update: best of 2 there keeps the run near 3
-        // minutes, and --quick leaves it out.
+        // The point rig at 1x costs seconds per update: best of 2 there keeps the run under 4
+        // minutes on a busy machine, and --quick leaves it out.
         if (res == full && quick) {
             std::printf("### point, 1x: left out with --quick\n\n");
             continue;
@@ -523,16 +557,22 @@ int main(int argc, char** argv) {
     }
 
     std::printf("## Summary against the goals\n\n");
+    std::printf("Per light: least-squares slope of the entire update's time against N. 8 lights: entire updates "
+                "coherent, on a fresh renderer (as in the tables) and on the live one (forced by a settings change, "
+                "no allocation); the move and toggle-off times are on the live renderer.\n\n");
     std::printf("| rig | res | per light, sequential (ms) | per light, coherent (ms) | coherent / sequential (goal <= 0.1) | "
-                "8 lights: entire coherent (ms) | move one (ms) | move / entire (goal <= 0.25) | chosen | toggle off (ms) | "
-                "off / entire | chosen |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "8 lights: entire, fresh (ms) | entire, live (ms) | move one (ms) | move / entire fresh (goal <= 0.25) | "
+                "move / entire live | chosen | toggle off (ms) | off / entire fresh | off / entire live | chosen |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const RigResult& r : results) {
-        std::printf("| %s | %s | %.2f | %.2f | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.rig.c_str(), r.res.c_str(),
-                    1e3 * r.per_light_seq, 1e3 * r.per_light_coh, ratio(r.per_light_coh, r.per_light_seq).c_str(),
-                    r.have8 ? ms(r.entire8_coh).c_str() : "-", r.have8 ? ms(r.move8).c_str() : "-",
-                    r.have8 ? ratio(r.move8, r.entire8_coh).c_str() : "-", r.have8 ? r.move8_mode.c_str() : "-",
-                    r.have8 ? ms(r.toggle8).c_str() : "-", r.have8 ? ratio(r.toggle8, r.entire8_coh).c_str() : "-",
-                    r.have8 ? r.toggle8_mode.c_str() : "-");
+        auto cell = [&](const std::string& text) { return r.have8 ? text : std::string("-"); };
+        std::printf("| %s | %s | %.2f | %.2f | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.rig.c_str(),
+                    r.res.c_str(), 1e3 * r.per_light_seq, 1e3 * r.per_light_coh,
+                    ratio(r.per_light_coh, r.per_light_seq).c_str(), cell(ms(r.entire8_coh)).c_str(),
+                    cell(ms(r.entire8_live)).c_str(), cell(ms(r.move8)).c_str(), cell(ratio(r.move8, r.entire8_coh)).c_str(),
+                    cell(ratio(r.move8, r.entire8_live)).c_str(), cell(r.move8_mode).c_str(), cell(ms(r.toggle8)).c_str(),
+                    cell(ratio(r.toggle8, r.entire8_coh)).c_str(), cell(ratio(r.toggle8, r.entire8_live)).c_str(),
+                    cell(r.toggle8_mode).c_str());
     }
     std::printf("\n");
 
