@@ -210,7 +210,9 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     bool first = false;
     if (Q.mode.x != 0) {
         vec3 f = vx_prop_light_flow(x);
-        if (float(Q.slice.y) * f[axis] <= 0.0f || max(abs(f[u]), abs(f[v])) > float(Q.mode.z) * abs(f[axis]))
+        // (Slope from one slice behind the light: the first slice past it may be much closer
+        // than a cell, and its steep neighbours are read by the next slice.)
+        if (float(Q.slice.y) * f[axis] <= 0.0f || max(abs(f[u]), abs(f[v])) > float(Q.mode.z) * (abs(f[axis]) + 1.0f))
             return vec3(0.0f);
         first = float(Q.slice.y) * (float(prev) + 0.5f - Q.source[axis]) <= 0.0f;
         if (first) {

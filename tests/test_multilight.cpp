@@ -150,41 +150,50 @@ glm::vec3 cellCentre(const IlluminationVolume& v, glm::ivec3 c) {
     return glm::vec3(glm::inverse(v.world_to_illum) * glm::vec4(glm::vec3(c) + 0.5f, 1.0f));
 }
 
-// Inside the medium a point light's direct light is I exp(-sigma r) / r^2. Along the axes and the
-// face and body diagonals every step of every sweep lands on cell centres, so the sweeps give it
-// to float precision. Elsewhere the bilinear reads of the (smooth) intensity-times-transmittance
-// the sweeps carry are off by under 4% (measured 3.6%; carrying the radiance itself, singular at
-// the light, gave 15%).
+// Inside the medium a point light's direct light is I exp(-sigma r) / r^2. With a light on a cell
+// centre, every step along the axes and the face and body diagonals lands on cell centres, so the
+// sweeps give it to float precision. Elsewhere each bilinear read mixes a ray's transmittance with
+// its neighbours', whose paths differ, so the optical depth is off by a share of itself plus a
+// near-field part: under 0.07 sigma r + 0.7 sigma (measured: within 0.07 sigma r on a centre,
+// 0.45 sigma beyond it between centres, mostly within 4 cells of the light). Carrying the
+// radiance itself, singular at the light, instead of intensity times transmittance was 4x worse. In a
+// near-vacuum (sigma 1e-6) only the geometry is left: the inverse-square falloff, the sweeps'
+// weights and the first slices past a light between centres (closer than a cell, so their
+// neighbours are steep and must still be swept) must be exact everywhere.
 void expectPointLightInsideCube(KernelBackend& backend) {
-    const float sigma = 0.1f, intensity = 50.0f;
-    auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, sigma);
-    auto lit = illuminate(grid, cubeScene({pointLight(glm::vec3(12.0f), glm::vec3(1.0f), intensity)}, false), backend, Camera{});
-    const IlluminationVolume& v = lit->stage.volume();
-    const glm::ivec3 light_cell = glm::ivec3(glm::floor(glm::vec3(v.world_to_illum * glm::vec4(12.0f, 12.0f, 12.0f, 1.0f))));
-    ASSERT_EQ(cellCentre(v, light_cell), glm::vec3(12.0f)) << "the light sits on a cell centre";
-    EXPECT_TRUE(std::isfinite(directAt(v, light_cell)[0]));
-    float worst_exact = 0.0f, worst_other = 0.0f;
-    for (int z = 0; z < v.dims.z; ++z)
-        for (int y = 0; y < v.dims.y; ++y)
-            for (int x = 0; x < v.dims.x; ++x) {
-                const glm::ivec3 c(x, y, z), d = c - light_cell;
-                const glm::vec3 p = cellCentre(v, c);
-                if (d == glm::ivec3(0) || glm::any(glm::lessThan(p, glm::vec3(0.0f))) ||
-                    glm::any(glm::greaterThan(p, glm::vec3(kCube - 1.0f))))
-                    continue;
-                const float r = glm::length(glm::vec3(d));
-                const float exact = intensity * std::exp(-sigma * r) / (r * r);
-                const float got = directAt(v, c)[0];
-                const glm::ivec3 a = glm::abs(d);
-                const int nonzero = (a.x > 0) + (a.y > 0) + (a.z > 0);
-                const int top = glm::max(a.x, glm::max(a.y, a.z));
-                const bool on_ray = (a.x == 0 || a.x == top) && (a.y == 0 || a.y == top) && (a.z == 0 || a.z == top) && nonzero > 0;
-                const float err = std::abs(got - exact) / exact;
-                (on_ray ? worst_exact : worst_other) = std::max(on_ray ? worst_exact : worst_other, err);
-            }
-    std::printf("  point light inside: axes and diagonals %.2g relative, elsewhere %.2g\n", worst_exact, worst_other);
-    EXPECT_LT(worst_exact, 2e-5f);
-    EXPECT_LT(worst_other, 0.04f);
+    const float intensity = 50.0f;
+    for (float sigma : {1e-6f, 0.1f}) {
+        auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, sigma);
+        for (glm::vec3 at : {glm::vec3(12.0f), glm::vec3(11.7f, 12.2f, 12.45f)}) {
+            auto lit = illuminate(grid, cubeScene({pointLight(at, glm::vec3(1.0f), intensity)}, false), backend, Camera{});
+            const IlluminationVolume& v = lit->stage.volume();
+            const bool centred = at == glm::vec3(12.0f);
+            float exact_cells = 0.0f;   // relative error where the answer is exact
+            float excess = 0.0f;        // optical-depth error beyond 0.07 sigma r, per sigma
+            for (int z = 0; z < v.dims.z; ++z)
+                for (int y = 0; y < v.dims.y; ++y)
+                    for (int x = 0; x < v.dims.x; ++x) {
+                        const glm::vec3 p = cellCentre(v, {x, y, z}), d = p - at;
+                        const float r = glm::length(d);
+                        if (glm::any(glm::lessThan(p, glm::vec3(0.0f))) || glm::any(glm::greaterThan(p, glm::vec3(kCube - 1.0f))))
+                            continue;
+                        const float got = directAt(v, {x, y, z})[0];
+                        ASSERT_TRUE(std::isfinite(got) && got > 0.0f) << x << " " << y << " " << z;
+                        if (r < 0.5f) continue;
+                        const float exact = intensity * std::exp(-sigma * r) / (r * r);
+                        const glm::vec3 a = glm::abs(d);
+                        const float top = glm::max(a.x, glm::max(a.y, a.z));
+                        const bool on_ray = centred && (a.x == 0 || a.x == top) && (a.y == 0 || a.y == top) && (a.z == 0 || a.z == top);
+                        const float depth_error = std::abs(std::log(got / exact));
+                        if (on_ray || sigma < 1e-3f) exact_cells = std::max(exact_cells, std::abs(got - exact) / exact);
+                        else excess = std::max(excess, depth_error / sigma - 0.07f * r);
+                    }
+            std::printf("  sigma %g, light at (%g, %g, %g): exact cells %.2g relative; optical depth within 0.07 sigma r "
+                        "+ %.2g sigma\n", sigma, at.x, at.y, at.z, exact_cells, excess);
+            EXPECT_LT(exact_cells, 2e-5f);
+            EXPECT_LT(excess, 0.7f);
+        }
+    }
 }
 
 TEST(MultiLight, PointLightInsideTheMediumIsAnalyticOnCpu) {
