@@ -383,8 +383,8 @@ RigResult measureRig(Rig rig, const Volume& vol, int resolution, const std::stri
 }
 
 // ---------------------------------------------------------------------------------------------
-// Calibration of the cost estimate (src/illumination_stage.cpp: kPassCost, kPointSweepCost,
-// kIndirectSweepCost, in units of one directional direct sweep).
+// Calibration of the cost estimate (SweepCost in src/illumination_stage.h, in units of one
+// directional direct sweep).
 
 void calibration(const Volume& vol, int resolution, int repeats) {
     std::printf("## Calibration of the cost estimate, 1x (light_resolution %d), entire updates, best of %d\n\n",
@@ -501,17 +501,16 @@ void calibration(const Volume& vol, int resolution, int repeats) {
                 ns(sweep), ns(per_pass), ns(fixed));
     std::printf("| in units of a directional sweep (%.2f ns/cell) | measured | estimate's constant |\n|---|---|---|\n",
                 ns(sweep));
-    std::printf("| a further pass (its own cost) | %.2f | kPassCost = 0.5 |\n", per_pass / sweep);
-    std::printf("| one-light update on a live renderer (pass + sweep) | %.2f | kPassCost + 1 = 1.5 |\n",
-                warm.seconds / sweep);
+    std::printf("| a further pass (its own cost) | %.2f | SweepCost::kPass = %g |\n", per_pass / sweep, SweepCost::kPass);
+    std::printf("| one-light update on a live renderer (pass + sweep) | %.2f | kPass + 1 = %g |\n", warm.seconds / sweep,
+                SweepCost::kPass + 1.0);
     std::printf("| allocating the volume (fresh renderer only) | %.2f | 0 (not modelled) |\n", fixed / sweep);
-    std::printf("| point-light sweep (1 + (point stage - one-light stage) / sweep) | %.2f | kPointSweepCost = 3.0 |\n",
-                1.0 + (p.seconds - one_light) / sweep);
-    std::printf("| indirect pass ((stage with indirect - without) / sweep) | %.2f | kPassCost + kIndirectSweepCost = "
-                "4.5 |\n",
-                (ind.seconds - one_light) / sweep);
-    std::printf("| x sweep / y sweep (axis lights, whole stages) | %.2f | 1 (not modelled) |\n\n",
-                axis_seconds[1] > 0 ? axis_seconds[0] / axis_seconds[1] : 0.0);
+    std::printf("| point-light sweep (1 + (point stage - one-light stage) / sweep) | %.2f | kPointSweep = %g |\n",
+                1.0 + (p.seconds - one_light) / sweep, SweepCost::kPointSweep);
+    std::printf("| indirect pass ((stage with indirect - without) / sweep) | %.2f | kPass + kIndirect = %g |\n",
+                (ind.seconds - one_light) / sweep, SweepCost::kPass + SweepCost::kIndirect);
+    std::printf("| x sweep / y sweep (axis lights, whole stages) | %.2f | kXAxis = %g |\n\n",
+                axis_seconds[1] > 0 ? axis_seconds[0] / axis_seconds[1] : 0.0, SweepCost::kXAxis);
 }
 
 }  // namespace

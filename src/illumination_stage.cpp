@@ -143,23 +143,18 @@ std::vector<kernel::VxPropParams> mergeSharedGeometry(const std::vector<kernel::
     return out;
 }
 
-// What one pass costs, in units of one directional direct sweep of the same grid: the walk over
-// the extinction and the volume, plus each sweep's own cells (point lights run the per-cell
-// kernel, indirect sweeps blur). Rough CPU figures from voxlux_bench_multilight; they only have to
-// order a selective update against an entire one.
-constexpr double kPassCost = 0.5;
-constexpr double kPointSweepCost = 3.0;
-constexpr double kIndirectSweepCost = 4.0;
-
+// What `passes` cost on grid g, in cells times the work of one directional direct sweep (the
+// weights of SweepCost).
 double passesCost(const PassSweeps& passes, const SweepGrid& g, bool coherent) {
     const double cells = double(g.dims.x) * g.dims.y * g.dims.z;
     double cost = 0.0;
     for (const auto& pass : passes) {
         if (pass.empty()) continue;
         const std::vector<kernel::VxPropParams> sweeps = coherent ? mergeSharedGeometry(pass) : pass;
-        cost += kPassCost * double(coherent ? 1 : sweeps.size());
+        double own = SweepCost::kPass * double(coherent ? 1 : sweeps.size());
         for (const kernel::VxPropParams& Q : sweeps)
-            cost += (Q.mode.x != 0 ? kPointSweepCost : 1.0) * (Q.dims.w == 3 ? kIndirectSweepCost : 1.0);
+            own += (Q.mode.x != 0 ? SweepCost::kPointSweep : 1.0) * (Q.dims.w == 3 ? SweepCost::kIndirect : 1.0);
+        cost += own * (sweeps.front().slice.x == 0 ? SweepCost::kXAxis : 1.0);
     }
     return cost * cells;
 }

@@ -37,6 +37,16 @@ struct LightUpdate {
     double entire_cost = 0;
 };
 
+// The weights of the estimate that picks a selective or an entire update, in units of one
+// directional direct sweep over the same cells: CPU figures measured by voxlux_bench_multilight
+// (docs/performance-multilight.md). They only have to order the two choices.
+struct SweepCost {
+    static constexpr double kPass = 0.7;        // a pass's own walk over the extinction and the volume
+    static constexpr double kPointSweep = 8.0;  // a point or spot light's sweep (the per-cell kernel)
+    static constexpr double kIndirect = 6.0;    // times this for an indirect sweep (RGB, blurred)
+    static constexpr double kXAxis = 1.5;       // times this for an x pass (slice-major copies)
+};
+
 // The volume is re-based (an entire update) before the light swept in and out since the last
 // entire update exceeds this many times the light present, as peak radiance: adding and later
 // subtracting a light of peak m leaves a float residue of about m * 2^-24 per cell, so the residue
