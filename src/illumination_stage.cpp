@@ -246,7 +246,9 @@ std::vector<kernel::VxLight> missingFrom(const std::vector<kernel::VxLight>& fro
 
 size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool eye_pass) {
     const size_t cells = size_t(d.x) * d.y * d.z;
-    size_t bytes = cells * (sizeof(float) + 1 + 3 * sizeof(float));   // light grid, its mask, direct RGB
+    // The light grid, its mask, the direct RGB, and an x pass's slice-major copies of the
+    // extinction and of its RGB result (CPU).
+    size_t bytes = cells * (sizeof(float) + 1 + 3 * sizeof(float) + 4 * sizeof(float));
     if (indirect) {
         const glm::ivec3 c = coarserDims(d, chroma);
         const size_t cc = size_t(c.x) * c.y * c.z;

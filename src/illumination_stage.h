@@ -17,9 +17,10 @@
 
 namespace voxlux {
 
-// Bytes the illumination stage needs at light-grid dimensions `dims`: the light grid, the
-// luminance, and with indirect light the indirect cells (their own extinction grid when chroma
-// subsampled, an input copy for the eye sweep).
+// Bytes the illumination stage needs at light-grid dimensions `dims`: the light grid, the direct
+// RGB, an x pass's slice-major copies, and with indirect light the indirect cells (their own
+// extinction grid when chroma subsampled, an input copy for the eye sweep). The lights' 2D slice
+// buffers are left out: two slices per light.
 size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool eye_pass);
 
 // What one update of the light sweeps did, for logs, the light-edit report and tests.
