@@ -141,11 +141,11 @@ std::string sweepList(const std::vector<Sweep>& sweeps) {
 }
 
 // Bytes a sweep moves at least, per cell: the extinction grid read once (4 B) and the volume's
-// block read and written once (1 float direct, 3 floats indirect). x sweeps move more: they also
-// copy the extinction to a slice-major layout (a zero-filled vector: read 4, zero 4, write 4) and
-// write their result to an uncleared slice-major buffer that is added back (write + read): 32 B
-// direct, 64 B indirect.
-constexpr double kDirectSweepBytes = 4.0 + 2.0 * 4.0, kIndirectSweepBytes = 4.0 + 2.0 * 12.0;
+// RGB block read and written once (3 floats, direct and indirect alike). x sweeps move more: they
+// also copy the extinction to a slice-major layout (a zero-filled vector: read 4, zero 4, write 4)
+// and write their result to an uncleared slice-major buffer that is added back (write + read):
+// 64 B.
+constexpr double kSweepBytes = 4.0 + 2.0 * 12.0;
 
 void paperComparison(bool quick) {
     const int n = quick ? 128 : 256, repeats = quick ? 1 : 2;
@@ -176,11 +176,11 @@ void paperComparison(bool quick) {
                 "pixels (load %.2f s, brick %.2f s, light_grid %.2f s, once). Each row: the \"propagation\" stage "
                 "(zeroing the volume, then every sweep), best of %d, the light's intensity nudged so that only the "
                 "propagation reruns. blend_axes as in its column (off is the default; an axis-aligned light has "
-                "one sweep either way).\nBytes per sweep and cell, at least: direct %.0f (extinction read 4, volume "
-                "read + write 4 + 4), indirect %.0f (4 + 12 + 12).\nThe stage with indirect light runs the direct "
+                "one sweep either way).\nBytes per sweep and cell, at least: %.0f (extinction read 4, RGB volume "
+                "read + write 12 + 12), direct and indirect alike.\nThe stage with indirect light runs the direct "
                 "sweeps as well: its indirect sweep is (stage - direct-only stage) / sweeps.\n\n",
                 n, n, scene.render.width, scene.render.height, stage(first, "load"), stage(first, "brick"),
-                stage(first, "light_grid"), repeats, kDirectSweepBytes, kIndirectSweepBytes);
+                stage(first, "light_grid"), repeats, kSweepBytes);
 
     struct PaperLight {
         const char* name;
@@ -231,8 +231,8 @@ void paperComparison(bool quick) {
                         blendName(l.blend), sweepList(sweeps).c_str(), indirect, stage_s, per_sweep, per_sweep / double(cells) * 1e9, bytes,
                         bytes * double(cells) / per_sweep / 1e9, 100.0 * bytes * double(cells) / per_sweep / copy);
         };
-        row("none", direct, direct / k, kDirectSweepBytes);
-        row("9 taps", both, (both - direct) / k, kIndirectSweepBytes);
+        row("none", direct, direct / k, kSweepBytes);
+        row("9 taps", both, (both - direct) / k, kSweepBytes);
         with_indirect[li] = both;
     }
     std::printf("\n");
