@@ -267,7 +267,8 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
 
     const glm::vec3 extent = occupiedExtent(inputs);
     const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, eye); },
-                        [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 4 < uint64_t(INT32_MAX); },
+                        // The kernels index the volume (3 + 3 floats per cell at most) with ints.
+                        [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 < uint64_t(INT32_MAX); },
                         "illumination volume"};
     std::string warning;
     const int resolution = fitGridResolution(extent, cappedLightResolution(extent, fx.light_resolution),
@@ -362,14 +363,10 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
             std::snprintf(why, sizeof why, "re-base: light swept in and out since the last entire update (%.3g) exceeds %g x the light present (%.3g)",
                           swept, kDriftBudget, present);
             report.reason = why;
-        } else if (report.selective_cost < report.entire_cost) {
-            selective = true;
-            std::snprintf(why, sizeof why, "%zu out, %zu in: estimated cost %.3g selective < %.3g entire", removed.size(),
-                          added.size(), report.selective_cost, report.entire_cost);
-            report.reason = why;
         } else {
-            std::snprintf(why, sizeof why, "%zu out, %zu in: estimated cost %.3g selective >= %.3g entire", removed.size(),
-                          added.size(), report.selective_cost, report.entire_cost);
+            selective = report.selective_cost < report.entire_cost;
+            std::snprintf(why, sizeof why, "%zu out, %zu in: estimated cost %.3g selective %s %.3g entire", removed.size(),
+                          added.size(), report.selective_cost, selective ? "<" : ">=", report.entire_cost);
             report.reason = why;
         }
     }
