@@ -274,6 +274,19 @@ TEST(MultiLight, CpuAndGlAgreeOnAMixedRig) {
     EXPECT_LT(worst, 1e-4f * peak);
 }
 
+// The noisy ball (test_support's writeBall, written to a folder of its own), shadowed by
+// propagation with indirect light, on `backend`, at `light_resolution` cells.
+Scene ballScene(const std::string& folder, int light_resolution, Backend backend = Backend::Cpu) {
+    Scene scene;
+    scene.volume.path = writeBall(tempDir(folder));
+    scene.material.density_scale = 8.0f;
+    scene.render.backend = backend;
+    scene.effects.shadows = ShadowMethod::Propagation;
+    scene.effects.light_resolution = light_resolution;
+    scene.effects.indirect = Indirect{};
+    return scene;
+}
+
 // A random edit of one light: move, recolour, re-intensify, toggle or change its type.
 void randomEdit(LightRig& rig, std::mt19937& rng, float extent) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -323,15 +336,7 @@ void randomEdit(LightRig& rig, std::mt19937& rng, float extent) {
 // volume equals one computed from scratch for the final lights. Norm: L2 over every value of
 // both blocks, relative to the from-scratch volume's L2.
 void expectEditsMatchFromScratch(Backend backend, int light_resolution) {
-    const std::string dir = tempDir("multilight_edits");
-    const std::string ball = writeBall(dir);
-    Scene scene;
-    scene.volume.path = ball;
-    scene.material.density_scale = 8.0f;
-    scene.render.backend = backend;
-    scene.effects.shadows = ShadowMethod::Propagation;
-    scene.effects.light_resolution = light_resolution;
-    scene.effects.indirect = Indirect{};
+    Scene scene = ballScene("multilight_edits", light_resolution, backend);
     scene.lights = {directionalLight({0.3f, -1, 0.2f}, {1, 0.9f, 0.8f}, 3.0f), pointLight({0.2f, -0.3f, 0.1f}, {1, 0.5f, 0.2f}, 2.0f),
                     pointLight({3, 1, -2}, {0.3f, 0.6f, 1.0f}, 20.0f), directionalLight({-1, 0.2f, 0.5f}, {0.5f, 0.5f, 1}, 1.0f)};
     Renderer renderer(scene);
@@ -373,14 +378,7 @@ TEST(MultiLight, ThousandRandomEditsMatchFromScratchOnGl) {
 
 // Off then on takes the light out and puts it back selectively, restoring the volume.
 TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
-    const std::string ball = writeBall(tempDir("multilight_toggle"));
-    Scene scene;
-    scene.volume.path = ball;
-    scene.material.density_scale = 8.0f;
-    scene.render.backend = Backend::Cpu;
-    scene.effects.shadows = ShadowMethod::Propagation;
-    scene.effects.light_resolution = 32;
-    scene.effects.indirect = Indirect{};
+    Scene scene = ballScene("multilight_toggle", 32);
     for (int k = 0; k < 6; ++k)
         scene.lights.push_back(directionalLight({std::cos(float(k)), -1.0f, std::sin(float(k))}, {1, 0.2f * float(k), 0.5f}, 2.0f));
     Renderer renderer(scene);
@@ -407,14 +405,7 @@ TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
 // With the eye pass on, a selective update goes to the light sweeps' indirect block kept for the
 // eye pass, and the eye pass re-runs from it: the same as a fresh volume.
 TEST(MultiLight, SelectiveUpdatesUnderTheEyePassMatchFromScratch) {
-    const std::string ball = writeBall(tempDir("multilight_eye"));
-    Scene scene;
-    scene.volume.path = ball;
-    scene.material.density_scale = 8.0f;
-    scene.render.backend = Backend::Cpu;
-    scene.effects.shadows = ShadowMethod::Propagation;
-    scene.effects.light_resolution = 24;
-    scene.effects.indirect = Indirect{};
+    Scene scene = ballScene("multilight_eye", 24);
     scene.effects.propagation.eye_pass = true;
     scene.lights = {directionalLight({0.3f, -1, 0.2f}, {1, 0.9f, 0.8f}, 3.0f), directionalLight({-1, -0.2f, 0.4f}, {0.4f, 0.5f, 1}, 2.0f),
                     directionalLight({0.1f, 0.3f, -1}, {1, 0.3f, 0.3f}, 1.0f)};
@@ -456,12 +447,7 @@ TEST(MultiLight, HdrExtremesStayFiniteAndKeepTheirRatio) {
 }
 
 TEST(LightRig, TracksIdsAndDirtyLightsAndRefusesUnknownOnes) {
-    const std::string ball = writeBall(tempDir("multilight_rig"));
-    Scene scene;
-    scene.volume.path = ball;
-    scene.render.backend = Backend::Cpu;
-    scene.effects.shadows = ShadowMethod::Propagation;
-    scene.effects.light_resolution = 16;
+    Scene scene = ballScene("multilight_rig", 16);
     Light key = directionalLight({0, -1, 0}, glm::vec3(1), 2.0f);
     key.name = "key";
     scene.lights = {key, pointLight({3, 0, 0}, glm::vec3(1), 10.0f)};
