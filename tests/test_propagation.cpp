@@ -338,12 +338,6 @@ TEST(Propagation, TransportColourShiftsIndirectLightWithDepth) {
     }
 }
 
-}  // namespace
-}  // namespace voxlux::test
-
-namespace voxlux::test {
-namespace {
-
 // The noisy ball (radius 2 world units) on the CPU, lit by one directional light travelling at
 // `degrees` from -z towards +x, a little downwards; propagation shadows on a 32-cell grid.
 Scene ballScene(const std::string& vdb, float degrees) {
@@ -611,12 +605,6 @@ TEST(Propagation, EditsRecomputeOnlyWhatTheyInvalidate) {
     EXPECT_TRUE(ran(f, "light_grid"));
 }
 
-}  // namespace
-}  // namespace voxlux::test
-
-namespace voxlux::test {
-namespace {
-
 // Ropinski's eye sweep blends each cell's indirect light with the blurred light behind it: a
 // convex mix, so a uniform field stays exactly uniform and no value leaves the input's range.
 TEST(Propagation, EyeSweepIsAConvexBlend) {
@@ -653,7 +641,7 @@ TEST(Propagation, EyeSweepIsAConvexBlend) {
     for (size_t i = u.indirectOffset(); i < u.values.size(); ++i) ASSERT_NEAR(u.values[i], 1.0f, 1e-5f) << i;
 }
 
-// Chroma subsampling (Ropinski Sec. 4.1) keeps the luminance at full resolution and sweeps the
+// Chroma subsampling (Ropinski Sec. 4.1) keeps the direct light at full resolution and sweeps the
 // indirect light on cells 2^3 times larger, with the opacity of the longer step (g_cs) taken
 // from the step length itself: the slab's indirect light matches the full-resolution one.
 TEST(Propagation, ChromaSubsamplingHalvesTheIndirectGrid) {
@@ -714,12 +702,6 @@ TEST(Propagation, SurfaceShadingFollowsTheGradient) {
     EXPECT_NEAR(half.w, 0.5f, 1e-6f);
     EXPECT_NEAR(k.vx_surface_factor(half, wi, glm::vec3(0, -1, 0)), 0.5f + 0.5f * std::sqrt(0.5f), 1e-6f);
 }
-
-}  // namespace
-}  // namespace voxlux::test
-
-namespace voxlux::test {
-namespace {
 
 double directRmse(const RenderImage& a, const RenderImage& ref) {
     double sum = 0.0;
@@ -814,12 +796,6 @@ TEST(Propagation, MemoryBudgetLowersTheResolutionAndSaysSo) {
                                     " MiB, over effects.light_memory_mb = 8; using " + std::to_string(dims.x) +
                                     " cells instead");
 }
-
-}  // namespace
-}  // namespace voxlux::test
-
-namespace voxlux::test {
-namespace {
 
 // A volume of more than 2^24 cells (float offsets would stop being exact there): the cube of 72
 // voxels at 260 cells gives 260^3 = 17.6 M; the cells past 2^24, in the last slices, still get
