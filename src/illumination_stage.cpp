@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/parallel_for.h>
 
+#include "cpu_kernel.h"
 #include "light_sweeps.h"
 #include "scene_json.h"
 
@@ -46,6 +47,9 @@ std::vector<float> halveGrid(const LightGrid& g) {
     return out;
 }
 
+// Rec. 709 luminance, as the kernel weighs it.
+float luminance(glm::vec3 c) { return kernel::CpuKernel().vx_luminance(c); }
+
 // What the sweeps of every light share on one grid.
 kernel::VxPropParams baseParams(const SweepGrid& g, int channels, const std::vector<glm::vec4>& taps, float tan_half,
                                 glm::vec3 atten) {
@@ -70,9 +74,9 @@ void addLightSweeps(const kernel::VxLight& light, float sign, const SweepGrid& g
                     PassSweeps& passes) {
     const glm::vec3 color(light.color);
     if (Q.dims.w == 1) {
-        const float luminance = glm::dot(color, glm::vec3(0.2126f, 0.7152f, 0.0722f));
-        if (!(luminance > 0.0f)) return;   // a black light adds nothing
-        Q.tint = glm::vec4(color / luminance, 0.0f);
+        const float y = luminance(color);
+        if (!(y > 0.0f)) return;   // a black light adds nothing
+        Q.tint = glm::vec4(color / y, 0.0f);
     } else if (color == glm::vec3(0.0f)) {
         return;
     }
@@ -217,13 +221,13 @@ void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const Sweep
 // The brightest radiance a light brings into the grid (luminance): what its sweeps add at most,
 // and so what adding and later subtracting it can leave behind as float residue.
 double peakRadiance(const kernel::VxLight& light, const SweepGrid& g) {
-    const double luminance = glm::dot(glm::vec3(light.color), glm::vec3(0.2126f, 0.7152f, 0.0722f));
-    if (int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL) return luminance;
+    const double y = luminance(glm::vec3(light.color));
+    if (int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL) return y;
     const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
     const glm::vec3 nearest = glm::clamp(at, glm::vec3(0.0f), glm::vec3(g.dims));
     const double d = glm::length(glm::mat3(g.grid_to_world) * (at - nearest));
     const double r_min = 0.5 * glm::length(glm::vec3(g.grid_to_world[0]));
-    return luminance / std::max(d * d, r_min * r_min);
+    return y / std::max(d * d, r_min * r_min);
 }
 
 bool sameLight(const kernel::VxLight& a, const kernel::VxLight& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
