@@ -9,6 +9,7 @@
 #include <random>
 
 #include "cpu_kernel.h"
+#include "cpu_propagation.h"
 #include "error.h"
 #include "illumination_stage.h"
 #include "light_rig.h"
@@ -194,6 +195,53 @@ void expectPointLightInsideCube(KernelBackend& backend) {
             EXPECT_LT(excess, 0.7f);
         }
     }
+}
+
+// A point sweep computes cells only up to slope 3 + blur radius per slice (counted from one slice
+// behind the light) and leaves the rest dark. The cells it weights must not notice: all six
+// sweeps of a light between cell centres inside a 64^3 medium, and of one beside it, direct and
+// blurred indirect, give volumes bit-identical to sweeps that compute up to slope 40.
+TEST(MultiLight, PointSweepsComputeFarEnoughSideways) {
+    const glm::ivec3 dims(64);
+    const std::vector<float> sigma(size_t(dims.x) * dims.y * dims.z, 0.03f);
+    const kernel::VxParams march{};
+    const Indirect blur;
+    const float tan_half = std::tan(glm::radians(0.5f * blur.angle));
+    for (glm::vec3 at : {glm::vec3(31.7f, 32.2f, 32.45f), glm::vec3(-3.0f, 32.0f, 32.0f)})
+        for (bool indirect : {false, true}) {
+            auto sweep = [&](int reach) {
+                IlluminationVolume v;
+                v.dims = dims;
+                v.values.assign(3 * v.cells(), 0.0f);
+                kernel::VxPropParams Q{};
+                Q.grid_to_world = Q.world_to_grid = glm::mat4(1.0f);
+                Q.dims = glm::ivec4(dims, indirect ? 3 : 1);
+                const auto taps = indirect ? blurTaps(blur) : directTaps();
+                for (size_t k = 0; k < taps.size(); ++k) Q.taps[k] = taps[k];
+                Q.source = glm::vec4(at, 1.0f);
+                Q.flow = glm::vec4(1.0f, indirect ? tan_half : 0.0f, 1.0f, 0.0f);
+                Q.mode = glm::ivec4(1, 0, reach, 0);
+                Q.atten = glm::vec4(indirect ? -glm::log(blur.transport_color) : glm::vec3(1.0f), 1.0f);
+                Q.tint = glm::vec4(1.0f);
+                Q.light.pos_type = glm::vec4(at, float(VX_LIGHT_POINT));
+                Q.light.color = glm::vec4(100.0f);
+                PropagationPass pass;
+                pass.march = &march;
+                pass.sigma = &sigma;
+                for (int axis = 0; axis < 3; ++axis)
+                    for (int sign : {-1, 1}) {
+                        Q.slice = glm::ivec4(axis, sign, 0, int(taps.size()));
+                        pass.sweeps = {Q};
+                        propagateCpu(pass, v);
+                    }
+                return v.values;
+            };
+            const int reach = 3 + int(std::ceil(std::sqrt(3.0f) * (indirect ? tan_half : 0.0f)));   // as the stage sets it
+            const std::vector<float> near = sweep(reach), far = sweep(40);
+            size_t differ = 0;
+            for (size_t i = 0; i < far.size(); ++i) differ += near[i] != far[i];
+            EXPECT_EQ(differ, 0u) << "light at " << at.x << " " << at.y << " " << at.z << (indirect ? ", indirect" : "");
+        }
 }
 
 TEST(MultiLight, PointLightInsideTheMediumIsAnalyticOnCpu) {
