@@ -156,9 +156,7 @@ glm::vec3 cellCentre(const IlluminationVolume& v, glm::ivec3 c) {
 // sweeps give it to float precision. Elsewhere each bilinear read mixes a ray's transmittance with
 // its neighbours', whose paths differ, so the optical depth is off by a share of itself plus a
 // near-field part: under 0.07 sigma r + 0.7 sigma (measured: within 0.07 sigma r on a centre,
-// 0.45 sigma beyond it between centres, mostly within 4 cells of the light). Carrying the
-// radiance itself, singular at the light, instead of intensity times transmittance was 4x worse. In a
-// near-vacuum (sigma 1e-6) only the geometry is left: the inverse-square falloff, the sweeps'
+// 0.45 sigma beyond it between centres, mostly within 4 cells of the light). In a near-vacuum (sigma 1e-6) only the geometry is left: the inverse-square falloff, the sweeps'
 // weights and the first slices past a light between centres (closer than a cell, so their
 // neighbours are steep and must still be swept) must be exact everywhere.
 void expectPointLightInsideCube(KernelBackend& backend) {
