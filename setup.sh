@@ -9,6 +9,7 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev libopenvdb-tools
   libopenexr-dev openexr libtbb-dev libglm-dev nlohmann-json3-dev libcli11-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
+  libopencolorio-dev opencolorio-tools libpng-dev
   libgtest-dev
 )
 missing=()

@@ -23,8 +23,8 @@ struct VolumeSpec {
     std::string path;                      // may contain a #### frame pattern
     std::optional<std::array<int, 2>> frames;  // inclusive range for a #### pattern
     GridRef density{"density", 0};
-    std::optional<GridRef> emission;       // temperature / heat / flame
     std::optional<GridRef> color;          // Cd, vec3
+    std::optional<GridRef> emission;       // temperature / heat / flame
     LevelSetPolicy level_set = LevelSetPolicy::Reject;
 };
 
@@ -155,13 +155,73 @@ struct Effects {
     int light_memory_mb = 2048;            // budget for light grid, SAT, light cache and illumination volume
 };
 
+// Light a grid emits (fire, explosions). Each source maps its grid's value to radiance per
+// world unit in the working space; the sources add. Their grids may have any topology: the
+// bricks are the union of all grids' bricks.
+enum class EmissionKind { Constant, Blackbody, Ramp };
+// Blackbody brightness: Luminance gives every temperature the same luminance (intensity),
+// only the colour changes; Physical scales it with the Planck radiance's luminance, 1 at
+// reference_temperature.
+enum class BlackbodyNormalization { Luminance, Physical };
+
+struct RampPoint {
+    float value = 0.0f;
+    glm::vec3 color{0.0f};
+};
+
+struct EmissionSource {
+    GridRef grid;
+    EmissionKind kind = EmissionKind::Constant;
+    float intensity = 1.0f;
+    glm::vec3 color{1.0f};                 // Constant: radiance = value * color * intensity
+    float temperature_scale = 1.0f;        // Blackbody: kelvin = value * scale + offset
+    float temperature_offset = 0.0f;
+    float cutoff = 0.0f;                   // Blackbody: kelvin below which nothing is emitted
+    BlackbodyNormalization normalization = BlackbodyNormalization::Luminance;
+    float reference_temperature = 1500.0f; // Physical: the kelvin at which luminance = intensity
+    std::vector<RampPoint> ramp;           // Ramp: colour by grid value, linear between points
+};
+
 enum class PixelType { Half, Float };
+
+// One AOV layer of the EXR; pixel_type unset: the output's pixel_type (depth: always float).
+struct AovSpec {
+    std::string name;                      // one of knownAovs()
+    std::optional<PixelType> pixel_type;
+    bool operator==(const AovSpec&) const = default;
+};
 
 struct OutputSpec {
     std::string path;                      // may contain #### for sequences
     PixelType pixel_type = PixelType::Half;
-    std::string compression = "zip";
+    std::string compression = "zip";       // none, zip, zips, piz, dwaa
     std::vector<std::string> aovs;         // subset of direct, ambient, indirect, emission, transmittance, depth
+};
+
+// One grading step, applied in order to the beauty in the working space.
+enum class GradeKind { Look, Cdl, CdlFile, Lut };
+
+struct GradeStep {
+    GradeKind kind = GradeKind::Cdl;
+    std::string look;                      // Look: an OCIO look name, or several as "a, +b"
+    std::string file;                      // CdlFile (.cc, .ccc, .cdl) and Lut (.cube, .clf, .spi3d, ...)
+    std::string cccid;                     // CdlFile: which correction ("" = the first)
+    glm::vec3 slope{1.0f}, offset{0.0f}, power{1.0f};  // Cdl: ASC CDL v1.2
+    float saturation = 1.0f;
+    std::string interpolation = "best";    // Lut: nearest, linear, tetrahedral, best
+    std::string space;                     // Cdl, CdlFile, Lut: the colour space it works in ("" = working)
+    bool inverse = false;
+};
+
+// OpenColorIO colour management (docs/color.md).
+struct ColorSettings {
+    std::string config;                    // OCIO config file; "" = $OCIO, else voxlux's own config
+    std::string working_space;             // lights, albedo, transport colours; "" = the scene_linear role
+    std::string output_space;              // of the EXR; "" = the working space
+    std::vector<GradeStep> grade;
+    bool unpremultiply = true;             // grade colour divided by alpha (where alpha > 0), then premultiplied
+    std::string display;                   // preview: "" = the config's default display
+    std::string view;                      // preview: "" = the display's default view
 };
 
 struct Scene {
@@ -171,6 +231,8 @@ struct Scene {
     std::optional<Camera> camera;          // absent: framed from the volume's bounding box
     RenderSettings render;
     Effects effects;
+    std::vector<EmissionSource> emission;
+    ColorSettings color;
     OutputSpec output;
 };
 
