@@ -25,23 +25,25 @@ struct ColorPipeline {
     std::string working_space;
     std::string output_space;
     std::string display, view;             // the preview's, resolved
-    bool unpremultiply = true;
-    OCIO::ConstProcessorRcPtr beauty;      // the grade steps, then working -> output space
-    OCIO::ConstProcessorRcPtr aovs;        // working -> output space (AOVs stay ungraded)
-    OCIO::ConstProcessorRcPtr preview;     // the grade steps, then working -> display/view
-    bool beauty_is_identity = true;        // nothing to do for the beauty (no grade, output = working)
-    bool aovs_are_identity = true;
+    bool unpremultiply = true;             // of the beauty, around the grade and the output conversion
+    // The beauty goes through `grade` then `output`; the colour AOVs only through `output` (they
+    // stay ungraded, as compositors expect); the preview applies `preview` to the graded beauty.
+    OCIO::ConstProcessorRcPtr grade;       // the grade steps, working -> working (may be a no-op)
+    OCIO::ConstProcessorRcPtr output;      // working -> output space (a no-op when they are one)
+    OCIO::ConstProcessorRcPtr preview;     // working -> display/view; null unless asked for
     std::optional<Chromaticities> output_chromaticities;  // set when the output space is linear RGB
-    glm::mat3 xyz_to_working{1.0f};        // CIE XYZ (D65 white) -> working space, for blackbody emission
+    std::optional<glm::mat3> xyz_to_working;  // CIE XYZ (D65 white) -> working; unset when the config
+                                              // has no cie_xyz_d65_interchange role
 };
 
 // The config a scene uses: color.config (resolved against the scene folder when parsed), else
 // $OCIO, else the config built into voxlux (ocio/voxlux.ocio). Throws InputError naming the file.
 OCIO::ConstConfigRcPtr loadColorConfig(const ColorSettings& color, std::string& source);
 
-// Resolves spaces, looks and files and builds the processors. Throws InputError with a one-line
-// message naming what is missing and what exists ("color.output_space: no colour space 'X' in
-// <config> (it has: A, B, ...)").
-ColorPipeline buildColorPipeline(const ColorSettings& color);
+// Resolves spaces, looks and files and builds the processors (the preview's only when
+// `with_preview` or the scene names a display). Throws InputError with a one-line message naming
+// what is missing and what exists ("color.output_space: no colour space 'X' in <config> (it has:
+// A, B, ...)").
+ColorPipeline buildColorPipeline(const ColorSettings& color, bool with_preview);
 
 }  // namespace voxlux

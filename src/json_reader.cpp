@@ -30,6 +30,10 @@ void JsonObject::fail(const std::string& key, const std::string& problem) const 
     throw InputError(file_ + ": " + pointer(key) + ": " + problem);
 }
 
+void JsonObject::fail(const std::string& problem) const {
+    throw InputError(file_ + ": " + (pointer_.empty() ? "/" : pointer_) + ": " + problem);
+}
+
 bool JsonObject::has(const std::string& key) const {
     return value_.contains(key) && !value_.at(key).is_null();
 }

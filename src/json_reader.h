@@ -37,6 +37,8 @@ public:
     void rejectUnknown(const std::vector<std::string>& known) const;
 
     [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+    // About the object itself rather than one of its keys.
+    [[noreturn]] void fail(const std::string& problem) const;
 
 private:
     const nlohmann::json& value_;

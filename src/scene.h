@@ -208,6 +208,7 @@ struct GradeStep {
     std::string cccid;                     // CdlFile: which correction ("" = the first)
     glm::vec3 slope{1.0f}, offset{0.0f}, power{1.0f};  // Cdl: ASC CDL v1.2
     float saturation = 1.0f;
+    bool clamp = false;                    // Cdl, CdlFile: the ASC v1.2 clamp to [0, 1] (off: HDR-safe)
     std::string interpolation = "best";    // Lut: nearest, linear, tetrahedral, best
     std::string space;                     // Cdl, CdlFile, Lut: the colour space it works in ("" = working)
     bool inverse = false;

@@ -36,12 +36,17 @@ nlohmann::json gridRefToJson(const GridRef& g) {
     return {{"name", g.name}, {"index", g.index}};
 }
 
+// Paths in a scene file are relative to its folder.
+std::string resolvePath(const std::string& path, const std::string& base_dir) {
+    if (fs::path(path).is_relative() && !base_dir.empty()) return (fs::path(base_dir) / path).lexically_normal().string();
+    return path;
+}
+
 VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
     o.rejectUnknown({"path", "frames", "density", "emission", "color", "level_set"});
     VolumeSpec v;
     v.path = o.string("path");
-    if (fs::path(v.path).is_relative() && !base_dir.empty())
-        v.path = (fs::path(base_dir) / v.path).lexically_normal().string();
+    v.path = resolvePath(v.path, base_dir);
     if (o.has("frames")) {
         auto f = o.numbers("frames", 2);
         if (f[0] > f[1] || f[0] != int(f[0]) || f[1] != int(f[1]))
@@ -291,6 +296,95 @@ double decimal(float f) {
 
 nlohmann::json vec(glm::vec3 v) { return {decimal(v.x), decimal(v.y), decimal(v.z)}; }
 
+// One grading step: exactly one of look, cdl, cdl_file or lut, with the keys that kind takes.
+GradeStep readGradeStep(const JsonObject& o, const std::string& base_dir) {
+    const std::vector<std::string> kinds{"look", "cdl", "cdl_file", "lut"};
+    std::vector<std::string> present;
+    for (const auto& k : kinds)
+        if (o.has(k)) present.push_back(k);
+    if (present.size() != 1) o.fail("expected exactly one of look, cdl, cdl_file or lut");
+    GradeStep g;
+    const std::string& kind = present[0];
+    if (kind == "look") {
+        o.rejectUnknown({"look", "inverse"});
+        g.kind = GradeKind::Look;
+        g.look = o.string("look");
+    } else if (kind == "cdl") {
+        o.rejectUnknown({"cdl", "space", "inverse", "clamp"});
+        g.kind = GradeKind::Cdl;
+        JsonObject c = o.object("cdl");
+        c.rejectUnknown({"slope", "offset", "power", "saturation"});
+        g.slope = c.vec3("slope", g.slope);
+        g.offset = c.vec3("offset", g.offset);
+        g.power = c.vec3("power", g.power);
+        g.saturation = c.number("saturation", g.saturation);
+        if (glm::any(glm::lessThan(g.slope, glm::vec3(0.0f)))) c.fail("slope", "must be 0 or more");
+        if (glm::any(glm::lessThanEqual(g.power, glm::vec3(0.0f)))) c.fail("power", "must be more than 0");
+        if (!(g.saturation >= 0.0f)) c.fail("saturation", "must be 0 or more");
+    } else if (kind == "cdl_file") {
+        o.rejectUnknown({"cdl_file", "cccid", "space", "inverse", "clamp"});
+        g.kind = GradeKind::CdlFile;
+        g.file = resolvePath(o.string("cdl_file"), base_dir);
+        g.cccid = o.string("cccid", "");
+    } else {
+        o.rejectUnknown({"lut", "interpolation", "space", "inverse"});
+        g.kind = GradeKind::Lut;
+        g.file = resolvePath(o.string("lut"), base_dir);
+        g.interpolation = o.choice("interpolation", {"nearest", "linear", "tetrahedral", "best"}, "best");
+    }
+    g.space = o.string("space", "");
+    g.inverse = o.boolean("inverse", false);
+    g.clamp = o.boolean("clamp", false);
+    return g;
+}
+
+ColorSettings readColor(const JsonObject& o, const std::string& base_dir) {
+    o.rejectUnknown({"config", "working_space", "output_space", "grade", "unpremultiply", "display", "view"});
+    ColorSettings c;
+    if (o.has("config")) c.config = resolvePath(o.string("config"), base_dir);
+    c.working_space = o.string("working_space", "");
+    c.output_space = o.string("output_space", "");
+    if (o.has("grade"))
+        for (const auto& step : o.objects("grade")) c.grade.push_back(readGradeStep(step, base_dir));
+    c.unpremultiply = o.boolean("unpremultiply", c.unpremultiply);
+    c.display = o.string("display", "");
+    c.view = o.string("view", "");
+    return c;
+}
+
+nlohmann::json colorToJson(const ColorSettings& c) {
+    nlohmann::json j = nlohmann::json::object();
+    if (!c.config.empty()) j["config"] = c.config;
+    if (!c.working_space.empty()) j["working_space"] = c.working_space;
+    if (!c.output_space.empty()) j["output_space"] = c.output_space;
+    for (const auto& g : c.grade) {
+        nlohmann::json step;
+        switch (g.kind) {
+            case GradeKind::Look: step["look"] = g.look; break;
+            case GradeKind::Cdl:
+                step["cdl"] = {{"slope", vec(g.slope)}, {"offset", vec(g.offset)}, {"power", vec(g.power)},
+                               {"saturation", decimal(g.saturation)}};
+                break;
+            case GradeKind::CdlFile:
+                step["cdl_file"] = g.file;
+                if (!g.cccid.empty()) step["cccid"] = g.cccid;
+                break;
+            case GradeKind::Lut:
+                step["lut"] = g.file;
+                step["interpolation"] = g.interpolation;
+                break;
+        }
+        if (!g.space.empty()) step["space"] = g.space;
+        if (g.inverse) step["inverse"] = true;
+        if (g.clamp) step["clamp"] = true;
+        j["grade"].push_back(step);
+    }
+    if (!c.unpremultiply) j["unpremultiply"] = false;
+    if (!c.display.empty()) j["display"] = c.display;
+    if (!c.view.empty()) j["view"] = c.view;
+    return j;
+}
+
 }  // namespace
 
 Light readLight(const JsonObject& o) {
@@ -329,7 +423,7 @@ Light readLight(const JsonObject& o) {
 Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir) {
     const nlohmann::json json = parseJson(text, file);
     JsonObject root(json, file, "");
-    root.rejectUnknown({"volume", "material", "lights", "camera", "render", "effects", "output"});
+    root.rejectUnknown({"volume", "material", "lights", "camera", "render", "effects", "color", "output"});
     Scene s;
     s.volume = readVolume(root.object("volume"), base_dir);
     if (root.has("material")) s.material = readMaterial(root.object("material"));
@@ -338,6 +432,7 @@ Scene parseScene(const std::string& text, const std::string& file, const std::st
     if (root.has("camera")) s.camera = readCamera(root.object("camera"));
     if (root.has("render")) s.render = readRender(root.object("render"));
     if (root.has("effects")) s.effects = readEffects(root.object("effects"));
+    if (root.has("color")) s.color = readColor(root.object("color"), base_dir);
     if (root.has("output")) s.output = readOutput(root.object("output"));
     return s;
 }
@@ -447,6 +542,8 @@ nlohmann::json sceneToJson(const Scene& s) {
         e["perturbation"] = false;
     e["light_resolution"] = s.effects.light_resolution;
     e["light_memory_mb"] = s.effects.light_memory_mb;
+
+    j["color"] = colorToJson(s.color);
 
     auto& o = j["output"];
     if (!s.output.path.empty()) o["path"] = s.output.path;
