@@ -10,6 +10,7 @@
 
 #include "cpu_kernel.h"
 #include "gl_context.h"
+#include "gl_program.h"
 #include "kernel_backend.h"
 #include "shader_source.h"
 
@@ -31,41 +32,7 @@ std::string describeBytes(size_t bytes) {
     return std::to_string(bytes) + " bytes (" + std::to_string(bytes >> 20) + " MiB)";
 }
 
-std::string infoLog(GLuint object, bool program) {
-    GLint length = 0;
-    (program ? glGetProgramiv : glGetShaderiv)(object, GL_INFO_LOG_LENGTH, &length);
-    std::string log(size_t(std::max(length, 1)), '\0');
-    GLsizei written = 0;
-    (program ? glGetProgramInfoLog : glGetShaderInfoLog)(object, GLsizei(log.size()), &written, log.data());
-    log.resize(size_t(written));
-    return log;
-}
-
-GLuint compileProgram(const std::string& entry) {
-    const std::string source = assembleComputeShader(entry);
-    const char* text = source.c_str();
-    GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        std::string log = infoLog(shader, false);
-        glDeleteShader(shader);
-        throw std::runtime_error("GL compute shader " + entry + " does not compile:\n" + log);
-    }
-    GLuint program = glCreateProgram();
-    glAttachShader(program, shader);
-    glLinkProgram(program);
-    glDeleteShader(shader);  // only flagged: the program keeps it while attached
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        std::string log = infoLog(program, true);
-        glDeleteProgram(program);
-        throw std::runtime_error("GL compute shader " + entry + " does not link:\n" + log);
-    }
-    return program;
-}
+GLuint compileProgram(const std::string& entry) { return compileComputeProgram(assembleComputeShader(entry), entry); }
 
 // One program per entry point and process, like the context they belong to.
 GLuint marchProgram() {
