@@ -1,6 +1,7 @@
 // GL backend: the shared kernel as compute shaders (march.comp, sat_scan.comp, light_cache.comp,
 // propagate.comp) on the process's headless EGL context. Inputs are uploaded as buffers; the image
 // comes back in bands of rows, the SAT, each light-cache channel and each swept volume block whole.
+// The grade stage's colour transforms run in gl_color_transform.cpp.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "cpu_kernel.h"
+#include "gl_color_transform.h"
 #include "gl_context.h"
 #include "gl_program.h"
 #include "kernel_backend.h"
@@ -285,6 +287,12 @@ public:
             throw std::runtime_error("GL backend: a propagation pass failed with GL error " + std::to_string(error));
     }
 
+    void transformColors(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
+                         bool unpremultiply) override {
+        ensureGlContext();
+        grade_.apply(processor, rgba, unpremultiply);
+    }
+
 private:
     // Atlases can outgrow what one shader storage block may address on this GL.
     void checkStorageSize(const char* block, size_t bytes) const {
@@ -303,6 +311,7 @@ private:
     Buffer sat_params_, sat_, needed_, channel_;
     Buffer illum_, noise_, march_params_, prop_params_, prop_sigma_, prop_in_, volume_, slice_a_, slice_b_;
     uint64_t sat_generation_ = 0;   // LightPass::sat_generation of the SAT in sat_, 0 = none
+    GlColorTransform grade_;
 };
 
 }  // namespace
