@@ -249,6 +249,27 @@ TEST(ColorTransform, PremultipliedAlphaRules) {
         }
 }
 
+// Images longer than the GL backend's block of 1 << 20 pixels run in several dispatches, the
+// last one partial: every pixel must still come back in its place.
+TEST(ColorTransform, LargeImagesRunInBlocks) {
+    VOXLUX_REQUIRE_GL(gl);
+    OCIO::CDLTransformRcPtr cdl = OCIO::CDLTransform::Create();
+    const double slope[3] = {1.5, 0.5, 2.0}, offset[3] = {0.1, 0.2, -0.1};
+    cdl->setSlope(slope);
+    cdl->setOffset(offset);
+    const OCIO::ConstProcessorRcPtr processor = OCIO::Config::CreateRaw()->getProcessor(cdl);
+    std::vector<glm::vec4> pixels((size_t(1) << 21) + 1000);  // two whole blocks and a partial one
+    auto input = [](size_t i) { return glm::vec3(float(i) * 1e-6f, float(i % 1000) * 1e-3f, 0.5f); };
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = glm::vec4(input(i), 1.0f);
+    gl->transformColors(processor, pixels, true);
+    size_t misplaced = 0;
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const glm::vec3 expected = glm::vec3(1.5f, 0.5f, 2.0f) * input(i) + glm::vec3(0.1f, 0.2f, -0.1f);
+        misplaced += glm::any(glm::greaterThan(glm::abs(glm::vec3(pixels[i]) - expected), glm::vec3(1e-5f)));
+    }
+    EXPECT_EQ(misplaced, 0u) << "of " << pixels.size() << " pixels";
+}
+
 // A no-op processor returns at once: not even the unpremultiply round trip touches the pixels.
 TEST(ColorTransform, NoOpLeavesPixelsUntouched) {
     VOXLUX_REQUIRE_GL(gl);
