@@ -81,6 +81,14 @@ void expectBackendsAgree(const std::vector<Case>& cases, KernelBackend& gl) {
     }
 }
 
+// The cpu backend, and the gl one unless VOXLUX_SKIP_GL=1.
+std::vector<std::unique_ptr<KernelBackend>> bothBackends() {
+    std::vector<std::unique_ptr<KernelBackend>> out;
+    out.push_back(makeCpuBackend());
+    if (auto gl = glBackendOrSkip()) out.push_back(std::move(gl));
+    return out;
+}
+
 OCIO::ConstProcessorRcPtr fileProcessor(const std::string& path, OCIO::Interpolation interpolation,
                                         const char* cccid = "") {
     OCIO::FileTransformRcPtr file = OCIO::FileTransform::Create();
@@ -222,7 +230,6 @@ TEST(ColorTransform, CdlMatchesTheAscFormula) {
 // partial alpha is unpremultiplied and premultiplied back, colour at alpha 0 (thin emission) is
 // transformed as it is, alpha never changes.
 TEST(ColorTransform, PremultipliedAlphaRules) {
-    VOXLUX_REQUIRE_GL(gl);
     OCIO::CDLTransformRcPtr cdl = OCIO::CDLTransform::Create();
     cdl->setStyle(OCIO::CDL_NO_CLAMP);
     const double slope[3] = {1.5, 1.5, 1.5}, offset[3] = {0.1, 0.1, 0.1};
@@ -235,8 +242,7 @@ TEST(ColorTransform, PremultipliedAlphaRules) {
         {0.0f, 0.0f, 0.0f, 0.0f}, {0.35f, 0.2f, 0.5f, 0.5f}, {0.4f, 0.25f, 0.55f, 0.0f}, {0.4f, 0.25f, 0.55f, 1.0f}};
     const std::vector<glm::vec4> straight = {
         {0.1f, 0.1f, 0.1f, 0.0f}, {0.4f, 0.25f, 0.55f, 0.5f}, {0.4f, 0.25f, 0.55f, 0.0f}, {0.4f, 0.25f, 0.55f, 1.0f}};
-    std::unique_ptr<KernelBackend> cpu = makeCpuBackend();
-    for (KernelBackend* backend : {cpu.get(), gl.get()})
+    for (const auto& backend : bothBackends())
         for (bool unpremultiply : {true, false}) {
             std::vector<glm::vec4> pixels = input;
             backend->transformColors(processor, pixels, unpremultiply);
@@ -272,13 +278,11 @@ TEST(ColorTransform, LargeImagesRunInBlocks) {
 
 // A no-op processor returns at once: not even the unpremultiply round trip touches the pixels.
 TEST(ColorTransform, NoOpLeavesPixelsUntouched) {
-    VOXLUX_REQUIRE_GL(gl);
     const OCIO::ConstProcessorRcPtr processor = OCIO::Config::CreateRaw()->getProcessor("raw", "raw");
     ASSERT_TRUE(processor->isNoOp());
     const std::vector<glm::vec4> input = {
         {0.3f, 0.7f, 0.1f, 0.3f}, {std::nanf(""), 1.0f, 2.0f, 0.0f}, {1e-30f, 5.0f, 0.0f, 0.7f}};
-    std::unique_ptr<KernelBackend> cpu = makeCpuBackend();
-    for (KernelBackend* backend : {cpu.get(), gl.get()}) {
+    for (const auto& backend : bothBackends()) {
         std::vector<glm::vec4> pixels = input;
         backend->transformColors(processor, pixels, true);
         EXPECT_EQ(std::memcmp(pixels.data(), input.data(), input.size() * sizeof(glm::vec4)), 0) << backend->name();
