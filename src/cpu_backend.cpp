@@ -1,9 +1,10 @@
 // CPU backend: the shared kernel with TBB: the march over 16x16 pixel tiles, the SAT scan
-// (summed_volume.cpp), the light passes (cpu_light_pass.cpp) and the propagation sweeps
-// (cpu_propagation.cpp).
+// (summed_volume.cpp), the light passes (cpu_light_pass.cpp), the propagation sweeps
+// (cpu_propagation.cpp) and the grade stage's colour transforms (cpu_color_transform.cpp).
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include "cpu_color_transform.h"
 #include "cpu_kernel.h"
 #include "cpu_light_pass.h"
 #include "cpu_propagation.h"
@@ -37,6 +38,11 @@ public:
     void fillLightChannel(const LightPass& pass, LightCache& cache) override { fillLightChannelCpu(pass, cache); }
 
     void propagate(const PropagationPass& pass, IlluminationVolume& volume) override { propagateCpu(pass, volume); }
+
+    void transformColors(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
+                         bool unpremultiply) override {
+        transformColorsCpu(processor, rgba, unpremultiply);
+    }
 };
 
 }  // namespace

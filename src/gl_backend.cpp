@@ -1,6 +1,7 @@
 // GL backend: the shared kernel as compute shaders (march.comp, sat_scan.comp, light_cache.comp,
 // propagate.comp) on the process's headless EGL context. Inputs are uploaded as buffers; the image
 // comes back in bands of rows, the SAT, each light-cache channel and each swept volume block whole.
+// The grade stage's colour transforms run in gl_color_transform.cpp.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -9,7 +10,9 @@
 #include <string>
 
 #include "cpu_kernel.h"
+#include "gl_color_transform.h"
 #include "gl_context.h"
+#include "gl_program.h"
 #include "kernel_backend.h"
 #include "shader_source.h"
 
@@ -31,41 +34,7 @@ std::string describeBytes(size_t bytes) {
     return std::to_string(bytes) + " bytes (" + std::to_string(bytes >> 20) + " MiB)";
 }
 
-std::string infoLog(GLuint object, bool program) {
-    GLint length = 0;
-    (program ? glGetProgramiv : glGetShaderiv)(object, GL_INFO_LOG_LENGTH, &length);
-    std::string log(size_t(std::max(length, 1)), '\0');
-    GLsizei written = 0;
-    (program ? glGetProgramInfoLog : glGetShaderInfoLog)(object, GLsizei(log.size()), &written, log.data());
-    log.resize(size_t(written));
-    return log;
-}
-
-GLuint compileProgram(const std::string& entry) {
-    const std::string source = assembleComputeShader(entry);
-    const char* text = source.c_str();
-    GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        std::string log = infoLog(shader, false);
-        glDeleteShader(shader);
-        throw std::runtime_error("GL compute shader " + entry + " does not compile:\n" + log);
-    }
-    GLuint program = glCreateProgram();
-    glAttachShader(program, shader);
-    glLinkProgram(program);
-    glDeleteShader(shader);  // only flagged: the program keeps it while attached
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        std::string log = infoLog(program, true);
-        glDeleteProgram(program);
-        throw std::runtime_error("GL compute shader " + entry + " does not link:\n" + log);
-    }
-    return program;
-}
+GLuint compileProgram(const std::string& entry) { return compileComputeProgram(assembleComputeShader(entry), entry); }
 
 // One program per entry point and process, like the context they belong to.
 GLuint marchProgram() {
@@ -318,6 +287,12 @@ public:
             throw std::runtime_error("GL backend: a propagation pass failed with GL error " + std::to_string(error));
     }
 
+    void transformColors(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
+                         bool unpremultiply) override {
+        ensureGlContext();
+        grade_.apply(processor, rgba, unpremultiply);
+    }
+
 private:
     // Atlases can outgrow what one shader storage block may address on this GL.
     void checkStorageSize(const char* block, size_t bytes) const {
@@ -336,6 +311,7 @@ private:
     Buffer sat_params_, sat_, needed_, channel_;
     Buffer illum_, noise_, march_params_, prop_params_, prop_sigma_, prop_in_, volume_, slice_a_, slice_b_;
     uint64_t sat_generation_ = 0;   // LightPass::sat_generation of the SAT in sat_, 0 = none
+    GlColorTransform grade_;
 };
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include "light_cache.h"
 #include "light_grid.h"
 
+#include <OpenColorIO/OpenColorIO.h>
+
 namespace voxlux {
 
 struct RenderImage {
@@ -29,6 +31,12 @@ public:
     virtual void fillLightChannel(const LightPass& pass, LightCache& cache) = 0;
     // One propagation pass (see PropagationPass) into `volume`.
     virtual void propagate(const PropagationPass& pass, IlluminationVolume& volume) = 0;
+    // Applies an OCIO processor in place to premultiplied RGBA pixels (grade stage). With
+    // `unpremultiply`, colour is divided by alpha where alpha > 0 and multiplied back after
+    // (shaders/vx_grade.h); alpha is never changed. cpu: OCIO's CPU processor; gl: the
+    // processor's generated GLSL and LUT textures.
+    virtual void transformColors(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
+                                 bool unpremultiply) = 0;
 };
 
 std::unique_ptr<KernelBackend> makeCpuBackend();

@@ -12,4 +12,8 @@ const std::map<std::string, std::string>& embeddedShaders();  // generated at bu
 // the C++-only #include / #pragma once lines removed.
 std::string assembleComputeShader(const std::string& entry);
 
+// The grade stage's program: the same header + vx_prelude.h + vx_grade.h + `ocio_shader` (an OCIO
+// processor's generated GLSL, declaring ocio_transform) + grade.comp.
+std::string assembleGradeShader(const std::string& ocio_shader);
+
 }  // namespace voxlux
