@@ -141,6 +141,15 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         header.insert("voxlux/seconds/" + stage, Imf::FloatAttribute(float(seconds)));
     Imf::addWorldToCamera(header, toImath(meta.world_to_camera));
     Imf::addWorldToNDC(header, toImath(meta.world_to_ndc));
+    if (!meta.color_space.empty()) {
+        header.insert("oiio:ColorSpace", Imf::StringAttribute(meta.color_space));
+        header.insert("voxlux/colorSpace", Imf::StringAttribute(meta.color_space));
+    }
+    if (!meta.color_config.empty()) header.insert("voxlux/config", Imf::StringAttribute(meta.color_config));
+    if (const auto& c = meta.chromaticities) {
+        auto xy = [](glm::vec2 v) { return Imath::V2f(v.x, v.y); };
+        Imf::addChromaticities(header, Imf::Chromaticities(xy((*c)[0]), xy((*c)[1]), xy((*c)[2]), xy((*c)[3])));
+    }
     Imf::FrameBuffer fb;
     for (auto& c : channels) {
         header.channels().insert(c.name, Imf::Channel(c.type));
