@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <stdexcept>
 
 #include <unistd.h>
 
@@ -24,12 +26,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The names of knownCompressions(). DWA is lossy only for channels OpenEXR classifies as colour
+// (R, G, B, Y with any layer prefix); it keeps A, depth.Z and the rest lossless.
 Imf::Compression compressionOf(const std::string& name) {
-    if (name == "none") return Imf::NO_COMPRESSION;
-    if (name == "zips") return Imf::ZIPS_COMPRESSION;
-    if (name == "piz") return Imf::PIZ_COMPRESSION;
-    if (name == "dwaa") return Imf::DWAA_COMPRESSION;
-    return Imf::ZIP_COMPRESSION;
+    static const std::map<std::string, Imf::Compression> compressions{
+        {"none", Imf::NO_COMPRESSION}, {"zip", Imf::ZIP_COMPRESSION},   {"zips", Imf::ZIPS_COMPRESSION},
+        {"piz", Imf::PIZ_COMPRESSION}, {"dwaa", Imf::DWAA_COMPRESSION}, {"dwab", Imf::DWAB_COMPRESSION},
+        {"rle", Imf::RLE_COMPRESSION}};
+    auto found = compressions.find(name);
+    if (found == compressions.end()) throw std::invalid_argument("unknown EXR compression '" + name + "'");
+    return found->second;
+}
+
+Imf::PixelType imfType(PixelType t) { return t == PixelType::Half ? Imf::HALF : Imf::FLOAT; }
+
+// Depth keeps full float precision unless its AOV asks otherwise; other layers follow the output.
+Imf::PixelType layerType(const OutputSpec& spec, const AovSpec& aov) {
+    if (aov.pixel_type) return imfType(*aov.pixel_type);
+    return aov.name == "depth" ? Imf::FLOAT : imfType(spec.pixel_type);
 }
 
 Imath::M44f toImath(const glm::mat4& m) {
@@ -80,11 +94,6 @@ void writeFileAtomically(const std::string& path, const std::string& bytes) {
 ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const OutputSpec& spec,
                         const ExrMetadata& meta) {
     const size_t n = img.pixels.size();
-    const Imf::PixelType colorType = spec.pixel_type == PixelType::Half ? Imf::HALF : Imf::FLOAT;
-    auto wants = [&](const std::string& aov) {
-        return std::find(spec.aovs.begin(), spec.aovs.end(), aov) != spec.aovs.end();
-    };
-
     std::vector<Channel> channels;
     auto add = [&](const std::string& name, Imf::PixelType type, auto get) {
         Channel c{name, type, std::vector<float>(n), {}};
@@ -92,24 +101,22 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         channels.push_back(std::move(c));
     };
     const char* rgb[] = {"R", "G", "B"};
-    for (int k = 0; k < 3; ++k) add(rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.rgba[k]; });
+    auto addRgb = [&](const std::string& prefix, Imf::PixelType type, auto member) {
+        for (int k = 0; k < 3; ++k) add(prefix + rgb[k], type, [=](const kernel::VxPixel& p) { return (p.*member)[k]; });
+    };
+    const Imf::PixelType colorType = imfType(spec.pixel_type);
+    addRgb("", colorType, &kernel::VxPixel::rgba);
     add("A", colorType, [](const kernel::VxPixel& p) { return p.rgba.w; });
-    if (wants("direct"))
-        for (int k = 0; k < 3; ++k)
-            add(std::string("direct.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.direct[k]; });
-    if (wants("indirect"))
-        for (int k = 0; k < 3; ++k)
-            add(std::string("indirect.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.indirect[k]; });
-    if (wants("ambient"))
-        for (int k = 0; k < 3; ++k)
-            add(std::string("ambient.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.ambient[k]; });
-    if (wants("emission"))
-        for (int k = 0; k < 3; ++k)
-            add(std::string("emission.") + rgb[k], colorType, [k](const kernel::VxPixel& p) { return p.emission[k]; });
-    if (wants("transmittance"))
-        add("transmittance.Y", colorType, [](const kernel::VxPixel& p) { return p.transmittance; });
-    if (wants("depth"))  // depth keeps full float precision whatever the colour type
-        add("depth.Z", Imf::FLOAT, [](const kernel::VxPixel& p) { return p.depth; });
+    for (const AovSpec& aov : spec.aovs) {
+        const Imf::PixelType type = layerType(spec, aov);
+        if (aov.name == "direct") addRgb("direct.", type, &kernel::VxPixel::direct);
+        if (aov.name == "indirect") addRgb("indirect.", type, &kernel::VxPixel::indirect);
+        if (aov.name == "ambient") addRgb("ambient.", type, &kernel::VxPixel::ambient);
+        if (aov.name == "emission") addRgb("emission.", type, &kernel::VxPixel::emission);
+        // OpenEXR names a lone grey channel Y (luminance): viewers show the layer as grey.
+        if (aov.name == "transmittance") add("transmittance.Y", type, [](const kernel::VxPixel& p) { return p.transmittance; });
+        if (aov.name == "depth") add("depth.Z", type, [](const kernel::VxPixel& p) { return p.depth; });
+    }
 
     // No NaN or Inf reaches a file; half channels saturate instead of overflowing to Inf.
     ExrWriteReport report;
@@ -134,6 +141,15 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         header.insert("voxlux/seconds/" + stage, Imf::FloatAttribute(float(seconds)));
     Imf::addWorldToCamera(header, toImath(meta.world_to_camera));
     Imf::addWorldToNDC(header, toImath(meta.world_to_ndc));
+    if (!meta.color_space.empty()) {
+        header.insert("oiio:ColorSpace", Imf::StringAttribute(meta.color_space));
+        header.insert("voxlux/colorSpace", Imf::StringAttribute(meta.color_space));
+    }
+    if (!meta.color_config.empty()) header.insert("voxlux/config", Imf::StringAttribute(meta.color_config));
+    if (const auto& c = meta.chromaticities) {
+        auto xy = [](glm::vec2 v) { return Imath::V2f(v.x, v.y); };
+        Imf::addChromaticities(header, Imf::Chromaticities(xy((*c)[0]), xy((*c)[1]), xy((*c)[2]), xy((*c)[3])));
+    }
     Imf::FrameBuffer fb;
     for (auto& c : channels) {
         header.channels().insert(c.name, Imf::Channel(c.type));

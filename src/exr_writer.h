@@ -1,6 +1,7 @@
 // Write stage: scene-linear, premultiplied RGBA plus the requested AOV layers to OpenEXR, via a
 // temporary file renamed into place, so a failed or interrupted render never leaves a partial file.
 #pragma once
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -20,6 +21,11 @@ struct ExrMetadata {
     std::string scene_hash;
     std::optional<int> frame;
     std::vector<std::pair<std::string, double>> stage_seconds;
+    // OpenEXR has no standard colour-space attribute: the name goes to oiio:ColorSpace (read by
+    // OpenImageIO-based tools) and voxlux/colorSpace; "" writes neither.
+    std::string color_space;
+    std::string color_config;              // the OCIO config's name or path, as voxlux/config; "" = none
+    std::optional<std::array<glm::vec2, 4>> chromaticities;  // CIE xy of red, green, blue, white
 };
 
 struct ExrWriteReport {

@@ -119,6 +119,10 @@ std::vector<JsonObject> JsonObject::objects(const std::string& key) const {
     return out;
 }
 
+JsonObject JsonObject::element(const std::string& key, size_t index) const {
+    return JsonObject(raw(key).at(index), file_, pointer(key) + "/" + std::to_string(index));
+}
+
 void JsonObject::rejectUnknown(const std::vector<std::string>& known) const {
     for (const auto& [key, _] : value_.items())
         if (std::find(known.begin(), known.end(), key) == known.end())

@@ -30,6 +30,8 @@ public:
     std::vector<float> numbers(const std::string& key, size_t count) const;
     JsonObject object(const std::string& key) const;
     std::vector<JsonObject> objects(const std::string& key) const;
+    // Element `index` of the array at `key`, which must be an object (arrays mixing kinds).
+    JsonObject element(const std::string& key, size_t index) const;
     const nlohmann::json& raw(const std::string& key) const;
     std::string pointer(const std::string& key) const;
 

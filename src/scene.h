@@ -194,8 +194,8 @@ struct AovSpec {
 struct OutputSpec {
     std::string path;                      // may contain #### for sequences
     PixelType pixel_type = PixelType::Half;
-    std::string compression = "zip";       // none, zip, zips, piz, dwaa
-    std::vector<std::string> aovs;         // subset of direct, ambient, indirect, emission, transmittance, depth
+    std::string compression = "zip";       // one of knownCompressions()
+    std::vector<AovSpec> aovs;             // each of knownAovs() at most once
 };
 
 // One grading step, applied in order to the beauty in the working space.
@@ -238,5 +238,6 @@ struct Scene {
 };
 
 const std::vector<std::string>& knownAovs();
+const std::vector<std::string>& knownCompressions();  // EXR compressions by their OpenEXR names
 
 }  // namespace voxlux

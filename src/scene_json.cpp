@@ -19,6 +19,11 @@ const std::vector<std::string>& knownAovs() {
     return aovs;
 }
 
+const std::vector<std::string>& knownCompressions() {
+    static const std::vector<std::string> names{"none", "zip", "zips", "piz", "dwaa", "dwab", "rle"};
+    return names;
+}
+
 namespace {
 
 GridRef readGridRef(const JsonObject& parent, const std::string& key) {
@@ -264,21 +269,48 @@ Effects readEffects(const JsonObject& o) {
     return e;
 }
 
+PixelType readPixelType(const JsonObject& o) {
+    return o.choice("pixel_type", {"half", "float"}, "half") == "float" ? PixelType::Float : PixelType::Half;
+}
+
+const char* pixelTypeName(PixelType t) { return t == PixelType::Float ? "float" : "half"; }
+
+// An AOV is a name, or {"name": ..., "pixel_type": ...} to give its layer its own pixel type.
+AovSpec readAov(const JsonObject& output, size_t index) {
+    auto known = [](const std::string& name) {
+        return std::find(knownAovs().begin(), knownAovs().end(), name) != knownAovs().end();
+    };
+    const std::string expected = " (expected direct, ambient, indirect, emission, transmittance or depth)";
+    const auto& a = output.raw("aovs")[index];
+    if (!a.is_object()) {
+        const std::string name = a.is_string() ? a.get<std::string>() : a.dump();
+        if (!known(name)) output.fail("aovs", "unknown AOV '" + name + "'" + expected);
+        return {name, std::nullopt};
+    }
+    JsonObject o = output.element("aovs", index);
+    o.rejectUnknown({"name", "pixel_type"});
+    AovSpec aov{o.string("name"), std::nullopt};
+    if (!known(aov.name)) o.fail("name", "unknown AOV '" + aov.name + "'" + expected);
+    if (o.has("pixel_type")) aov.pixel_type = readPixelType(o);
+    return aov;
+}
+
 OutputSpec readOutput(const JsonObject& o) {
     o.rejectUnknown({"path", "pixel_type", "compression", "aovs"});
     OutputSpec out;
     out.path = o.string("path", "");
-    out.pixel_type = o.choice("pixel_type", {"half", "float"}, "half") == "float" ? PixelType::Float : PixelType::Half;
-    out.compression = o.choice("compression", {"none", "zip", "zips", "piz", "dwaa"}, "zip");
+    out.pixel_type = readPixelType(o);
+    out.compression = o.choice("compression", knownCompressions(), "zip");
     if (o.has("aovs")) {
         const auto& list = o.raw("aovs");
-        if (!list.is_array()) o.fail("aovs", "expected an array of AOV names");
-        for (const auto& a : list) {
-            std::string name = a.is_string() ? a.get<std::string>() : "";
-            if (std::find(knownAovs().begin(), knownAovs().end(), name) == knownAovs().end())
-                o.fail("aovs", "unknown AOV '" + (a.is_string() ? name : a.dump()) +
-                                   "' (expected direct, ambient, indirect, emission, transmittance or depth)");
-            out.aovs.push_back(name);
+        if (!list.is_array()) o.fail("aovs", "expected an array of AOV names or objects");
+        for (size_t i = 0; i < list.size(); ++i) {
+            AovSpec aov = readAov(o, i);
+            for (size_t j = 0; j < out.aovs.size(); ++j)
+                if (out.aovs[j].name == aov.name)
+                    o.fail("aovs/" + std::to_string(i),
+                           "duplicate AOV '" + aov.name + "' (first at " + o.pointer("aovs/" + std::to_string(j)) + ")");
+            out.aovs.push_back(aov);
         }
     }
     return out;
@@ -547,9 +579,12 @@ nlohmann::json sceneToJson(const Scene& s) {
 
     auto& o = j["output"];
     if (!s.output.path.empty()) o["path"] = s.output.path;
-    o["pixel_type"] = s.output.pixel_type == PixelType::Float ? "float" : "half";
+    o["pixel_type"] = pixelTypeName(s.output.pixel_type);
     o["compression"] = s.output.compression;
-    o["aovs"] = s.output.aovs;
+    o["aovs"] = nlohmann::json::array();
+    for (const AovSpec& a : s.output.aovs)
+        o["aovs"].push_back(a.pixel_type ? nlohmann::json{{"name", a.name}, {"pixel_type", pixelTypeName(*a.pixel_type)}}
+                                         : nlohmann::json(a.name));
     return j;
 }
 

@@ -286,6 +286,8 @@ TEST(Cli, BadOptionsAreRefusedWithTheOptionNamed) {
     expectRejected("render " + cloud + " --light point:intensity=5", "--light 'point:intensity=5': needs pos=x,y,z");
     expectRejected("render " + cloud + " --step 0", "command line: /render/step: must lie in [0.01, 64] voxels");
     expectRejected("render " + cloud + " --shadows sat", "command line: /effects/shadows: 'sat' is not one of none, raymarch, sat_cone, propagation");
+    expectRejected("render " + cloud + " --aovs direct,depth,direct",
+                   "command line: /output/aovs/2: duplicate AOV 'direct' (first at /output/aovs/0)");
 }
 
 }  // namespace

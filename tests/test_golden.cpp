@@ -21,7 +21,7 @@ TEST(Golden, DefaultCloudMatchesTheCommittedImage) {
     scene.render.height = 50;
     scene.render.backend = Backend::Cpu;
     scene.output.pixel_type = PixelType::Float;
-    scene.output.aovs = {"transmittance"};
+    scene.output.aovs = {AovSpec{"transmittance", std::nullopt}};
     const bool update = std::getenv("VOXLUX_UPDATE_GOLDEN") != nullptr;
     scene.output.path = update ? kGolden : tempDir("golden") + "/default.exr";
     Renderer(scene).renderToFile(std::nullopt, false);

@@ -89,6 +89,43 @@ TEST(Scene, RoundTripThroughJson) {
     EXPECT_EQ(again.effects.light_resolution, 96);
 }
 
+// AOVs are names or {"name", "pixel_type"} objects; JSON keeps the short form where it can.
+TEST(Scene, OutputAovsWithPixelTypesAndCompressions) {
+    Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "output": {"compression": "dwab",
+        "aovs": ["direct", {"name": "emission", "pixel_type": "float"}, {"name": "depth"}]}})",
+                         "shot.json", "");
+    ASSERT_EQ(s.output.aovs.size(), 3u);
+    EXPECT_EQ(s.output.aovs[0], (AovSpec{"direct", std::nullopt}));
+    EXPECT_EQ(s.output.aovs[1], (AovSpec{"emission", PixelType::Float}));
+    EXPECT_EQ(s.output.aovs[2], (AovSpec{"depth", std::nullopt}));
+    EXPECT_EQ(s.output.compression, "dwab");
+    EXPECT_EQ(sceneToJson(s)["output"].dump(),
+              R"({"aovs":["direct",{"name":"emission","pixel_type":"float"},"depth"],"compression":"dwab","pixel_type":"half"})");
+    for (const std::string& c : knownCompressions())
+        EXPECT_EQ(parseScene(R"({"volume": {"path": "a.vdb"}, "output": {"compression": ")" + c + R"("}})", "s.json", "")
+                      .output.compression,
+                  c);
+}
+
+TEST(Scene, OutputAovsAndCompressionAreValidated) {
+    const std::string v = R"({"volume": {"path": "a.vdb"}, "output": )";
+    EXPECT_EQ(errorOf(v + R"({"compression": "b44"}})"),
+              "shot.json: /output/compression: 'b44' is not one of none, zip, zips, piz, dwaa, dwab, rle");
+    EXPECT_EQ(errorOf(v + R"({"aovs": "direct"}})"), "shot.json: /output/aovs: expected an array of AOV names or objects");
+    EXPECT_EQ(errorOf(v + R"({"aovs": [3]}})"),
+              "shot.json: /output/aovs: unknown AOV '3' (expected direct, ambient, indirect, emission, transmittance or depth)");
+    EXPECT_EQ(errorOf(v + R"({"aovs": ["direct", {"name": "beauty"}]}})"),
+              "shot.json: /output/aovs/1/name: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, "
+              "transmittance or depth)");
+    EXPECT_EQ(errorOf(v + R"({"aovs": [{"pixel_type": "float"}]}})"), "shot.json: /output/aovs/0/name: required key is missing");
+    EXPECT_EQ(errorOf(v + R"({"aovs": [{"name": "depth", "pixel_type": "double"}]}})"),
+              "shot.json: /output/aovs/0/pixel_type: 'double' is not one of half, float");
+    EXPECT_EQ(errorOf(v + R"({"aovs": [{"name": "depth", "type": "float"}]}})"),
+              "shot.json: /output/aovs/0/type: unknown key (expected one of name, pixel_type)");
+    EXPECT_EQ(errorOf(v + R"({"aovs": ["direct", "depth", {"name": "direct", "pixel_type": "float"}]}})"),
+              "shot.json: /output/aovs/2: duplicate AOV 'direct' (first at /output/aovs/0)");
+}
+
 TEST(Scene, AmbientOcclusionAndLightsDefaults) {
     Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "intensity": 0.5}],
                              "effects": {"ambient_occlusion": true}})",
