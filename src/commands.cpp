@@ -129,6 +129,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
     if (o.pixel_type) j["output"]["pixel_type"] = *o.pixel_type;
     if (o.aovs) j["output"]["aovs"] = *o.aovs;
     if (o.output) j["output"]["path"] = *o.output;
+    if (o.preview) j["output"]["preview"] = *o.preview;
     for (const auto& set : o.sets) applySet(j, set);
     Scene s = parseScene(j.dump(), "command line", "");
     if (!o.lights.empty()) {
@@ -157,6 +158,8 @@ std::vector<std::optional<int>> framesOf(const Scene& s) {
         throw InputError(s.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
     if (!hasFramePattern(s.output.path) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
         throw InputError(s.output.path + ": several frames need a #### pattern in the output path");
+    if (!s.output.preview.empty() && !hasFramePattern(s.output.preview) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
+        throw InputError(s.output.preview + ": several frames need a #### pattern in the preview path");
     std::vector<std::optional<int>> frames;
     for (int f = (*s.volume.frames)[0]; f <= (*s.volume.frames)[1]; ++f) frames.push_back(f);
     return frames;
@@ -253,7 +256,8 @@ int runRender(const RenderCommand& cmd) {
         FrameResult r = renderer.renderToFile(frame, sequence);
         for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
         emptyFrames += r.empty;
-        std::cout << "wrote " << r.path << " (" << renderer.backendName() << ", " << r.bricks << " bricks)";
+        std::cout << "wrote " << r.path << (r.preview_path.empty() ? "" : " and " + r.preview_path) << " ("
+                  << renderer.backendName() << ", " << r.bricks << " bricks)";
         nlohmann::json stages;
         double total = 0;
         for (const auto& [stage, seconds] : r.stage_seconds) {

@@ -16,7 +16,7 @@ struct SceneOverrides {
     std::vector<std::string> lights;            // "TYPE:key=value:..."
     std::optional<std::string> shadows, backend, frames, pixel_type;
     std::optional<std::vector<std::string>> aovs;
-    std::optional<std::string> output;
+    std::optional<std::string> output, preview;
     std::vector<std::string> sets;              // "dotted.key=JSON value", any scene key
 };
 

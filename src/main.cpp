@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
     auto* renderCmd = app.add_subcommand("render", "render a scene .json, or a .vdb with default framing");
     renderCmd->add_option("input", render.input, "scene .json or volume .vdb")->required();
     renderCmd->add_option("-o,--output", render.overrides.output, "output .exr (output.path)");
+    renderCmd->add_option("--preview", render.overrides.preview,
+                          "also write an 8-bit PNG through the display and view (output.preview; #### for frames)");
     renderCmd->add_flag("--explain", render.explain, "print the render plan and exit");
     renderCmd->add_option("--stats", render.stats, "write per-stage times and peak memory as JSON");
     renderCmd->add_option("--light-edit", render.light_edits,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 namespace voxlux {
@@ -71,6 +72,31 @@ std::string illuminationReason(const Scene& s) {
     return out;
 }
 
+// What the grade stage does, or why it is skipped. Names are as the scene gives them; the
+// config resolves them (and reports missing ones) before the render starts.
+std::string gradeReason(const Scene& s) {
+    const ColorSettings& c = s.color;
+    const std::string working = c.working_space.empty() ? "the scene_linear role" : c.working_space;
+    if (!needsGrade(s)) return "skipped: no grade, output in the working space (" + working + "), no preview";
+    std::vector<std::string> parts;
+    for (const auto& g : c.grade) {
+        std::string step = g.kind == GradeKind::Look  ? "look '" + g.look + "'"
+                           : g.kind == GradeKind::Cdl ? std::string("CDL")
+                                                      : "'" + std::filesystem::path(g.file).filename().string() + "'";
+        if (!g.space.empty()) step += " in " + g.space;
+        if (g.inverse) step += " (inverse)";
+        parts.push_back(step);
+    }
+    std::string out = parts.empty() ? "" : "grade ";
+    for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + parts[i];
+    if (!parts.empty()) out += c.unpremultiply ? " on unpremultiplied colour; " : "; ";
+    if (!c.output_space.empty() && c.output_space != c.working_space) out += working + " -> " + c.output_space + "; ";
+    if (!s.output.preview.empty())
+        out += "preview through " + (c.display.empty() ? std::string("the default display") : "'" + c.display + "'") +
+               (c.view.empty() ? "" : " / '" + c.view + "'") + "; ";
+    return out.substr(0, out.size() - 2);
+}
+
 std::string shadowDescription(ShadowMethod m) {
     switch (m) {
         case ShadowMethod::Raymarch: return "ray-marched shadow rays per sample (reference)";
@@ -86,6 +112,10 @@ std::string shadowDescription(ShadowMethod m) {
 bool needsAmbientOcclusion(const Scene& s) { return s.effects.ambient_occlusion && hasLight(s, true); }
 bool needsConeShadows(const Scene& s) { return s.effects.shadows == ShadowMethod::SatCone && hasLight(s, false); }
 bool needsPropagation(const Scene& s) { return s.effects.shadows == ShadowMethod::Propagation && hasLight(s, false); }
+bool needsGrade(const Scene& s) {
+    const ColorSettings& c = s.color;
+    return !c.grade.empty() || (!c.output_space.empty() && c.output_space != c.working_space) || !s.output.preview.empty();
+}
 
 std::vector<PlannedStage> planRender(const Scene& s) {
     std::vector<PlannedStage> plan;
@@ -113,10 +143,11 @@ std::vector<PlannedStage> planRender(const Scene& s) {
     if (s.effects.perturbation) march += ", noise-perturbed";
     if (s.volume.emission) march += ", emission";
     plan.push_back({"march", {"classify", "light_cache", "illumination", "camera", "lights", "render"}, true, march});
-    plan.push_back({"grade", {"march"}, false, "skipped: no colour transform in the scene (output is scene-linear)"});
+    plan.push_back({"grade", {"march", "color", "output"}, needsGrade(s), gradeReason(s)});
     plan.push_back({"write", {"march", "grade", "output"}, true,
                     "EXR, " + std::string(s.output.pixel_type == PixelType::Half ? "half" : "float") + ", " +
-                        s.output.compression + (s.output.aovs.empty() ? "" : ", AOVs")});
+                        s.output.compression + (s.output.aovs.empty() ? "" : ", AOVs") +
+                        (s.output.preview.empty() ? "" : ", and an 8-bit PNG preview")});
     return plan;
 }
 

@@ -23,6 +23,7 @@ std::vector<PlannedStage> planRender(const Scene& scene);
 bool needsAmbientOcclusion(const Scene& scene);   // AO on and an ambient light to occlude
 bool needsConeShadows(const Scene& scene);        // sat_cone shadows and a light to shadow
 bool needsPropagation(const Scene& scene);        // propagation shadows and a light to propagate
+bool needsGrade(const Scene& scene);              // grade steps, another output space, or a preview
 bool stageRuns(const std::vector<PlannedStage>& plan, const std::string& name);
 std::string explainPlan(const std::vector<PlannedStage>& plan);
 

@@ -1,6 +1,7 @@
 #include "renderer.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "brick_atlas.h"
@@ -8,8 +9,10 @@
 #include "error.h"
 #include "exr_writer.h"
 #include "frame_pattern.h"
+#include "grade_stage.h"
 #include "kernel_inputs.h"
 #include "page_table.h"
+#include "png_writer.h"
 #include "scene_json.h"
 #include "stage_clock.h"
 #include "vdb_loader.h"
@@ -66,11 +69,27 @@ std::string Renderer::volumeKey(const std::string& file) const {
     return file + "|" + std::to_string(size) + "|" + std::to_string(time.time_since_epoch().count()) + "|" + spec.dump();
 }
 
+const ColorPipeline& Renderer::color() {
+    const char* env = std::getenv("OCIO");
+    const std::string key = sceneToJson(scene_)["color"].dump() + "|" + (env ? env : "") + "|" + scene_.output.preview;
+    if (!color_ || key != color_key_) {
+        color_.reset();
+        color_ = buildColorPipeline(scene_.color, !scene_.output.preview.empty());
+        color_key_ = key;
+    }
+    return *color_;
+}
+
 FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     FrameResult r;
     KernelInputs inputs = runStages(frame, allow_empty, r);
     StageClock clock(r.stage_seconds);
     r.image = clock("march", [&] { return backend_->march(inputs); });
+    if (stageRuns(plan_, "grade")) {
+        std::vector<std::string> aovs;
+        for (const auto& aov : scene_.output.aovs) aovs.push_back(aov.name);
+        r.preview = clock("grade", [&] { return gradeImage(r.image, color(), aovs, *backend_); });
+    }
     return r;
 }
 
@@ -81,6 +100,7 @@ FrameResult Renderer::prepare(std::optional<int> frame, bool allow_empty) {
 }
 
 KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, FrameResult& r) {
+    color();  // a bad config, space or look fails here, before any volume is read
     StageClock clock(r.stage_seconds);
     const std::string file = frame ? expandFramePattern(scene_.volume.path, *frame) : scene_.volume.path;
 
@@ -138,8 +158,25 @@ FrameResult Renderer::renderToFile(std::optional<int> frame, bool allow_empty) {
     meta.scene_hash = sceneHash(scene_);
     meta.frame = frame;
     meta.stage_seconds = r.stage_seconds;
+    const ColorPipeline& cp = color();
+    meta.color_space = cp.output_space;
+    meta.color_config = cp.config_source;
+    if (cp.output_chromaticities) {
+        const Chromaticities& c = *cp.output_chromaticities;
+        meta.chromaticities = {{c.red, c.green, c.blue, c.white}};
+    }
     StageClock clock(r.stage_seconds);
     ExrWriteReport written = clock("write", [&] { return writeExr(path, r.image, scene_.output, meta); });
+    if (!scene_.output.preview.empty()) {
+        r.preview_path = frame ? expandFramePattern(scene_.output.preview, *frame) : scene_.output.preview;
+        const std::filesystem::path folder = std::filesystem::path(r.preview_path).parent_path();
+        if (!folder.empty()) std::filesystem::create_directories(folder, ec);
+        PngWriteReport png = clock("preview", [&] {
+            return writePng(r.preview_path, r.image.width, r.image.height, r.preview, false);
+        });
+        if (png.non_finite)
+            r.warnings.push_back(r.preview_path + ": " + std::to_string(png.non_finite) + " non-finite samples written as 0");
+    }
     if (written.non_finite)
         r.warnings.push_back(path + ": " + std::to_string(written.non_finite) + " non-finite samples written as 0");
     if (written.half_overflow)

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "brick_atlas.h"
+#include "color_pipeline.h"
 #include "illumination_stage.h"
 #include "kernel_backend.h"
 #include "light_stage.h"
@@ -28,6 +29,8 @@ struct FrameResult {
     std::string path;                                       // the EXR written (renderToFile)
     std::vector<std::string> reused;                        // stages and passes kept from before
     std::optional<LightUpdate> light_update;                // what the illumination stage did, if it ran
+    std::vector<glm::vec4> preview;                         // display-referred RGBA, when output.preview is set
+    std::string preview_path;                               // the PNG written (renderToFile)
 };
 
 // Camera framing the active voxels of the density grid: what a scene without a camera renders
@@ -44,6 +47,8 @@ public:
     std::string backendName() const { return backend_->name(); }
     // The illumination volume as the last frame left it (for the viewer's display and tests).
     const IlluminationStage& illumination() const { return illumination_; }
+    // The scene's OCIO config and processors; built on first use, rebuilt when color changes.
+    const ColorPipeline& color();
 
     // Renders one frame (`frame` expands a #### volume path). An empty frame throws InputError
     // unless `allow_empty`, in which case it renders transparent and says so in the warnings.
@@ -62,6 +67,8 @@ private:
 
     Scene scene_;
     std::vector<PlannedStage> plan_;
+    std::string color_key_;                                 // the color settings and $OCIO color_ was built for
+    std::optional<ColorPipeline> color_;
     std::unique_ptr<KernelBackend> backend_;
     std::string volume_key_;                                // of the volume below; "" = none
     std::unique_ptr<LoadedVolume> volume_;

@@ -196,6 +196,7 @@ struct OutputSpec {
     PixelType pixel_type = PixelType::Half;
     std::string compression = "zip";       // one of knownCompressions()
     std::vector<AovSpec> aovs;             // each of knownAovs() at most once
+    std::string preview;                   // 8-bit PNG through color.display/view; "" = none; may contain ####
 };
 
 // One grading step, applied in order to the beauty in the working space.

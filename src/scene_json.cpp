@@ -296,9 +296,10 @@ AovSpec readAov(const JsonObject& output, size_t index) {
 }
 
 OutputSpec readOutput(const JsonObject& o) {
-    o.rejectUnknown({"path", "pixel_type", "compression", "aovs"});
+    o.rejectUnknown({"path", "pixel_type", "compression", "aovs", "preview"});
     OutputSpec out;
     out.path = o.string("path", "");
+    out.preview = o.string("preview", "");
     out.pixel_type = readPixelType(o);
     out.compression = o.choice("compression", knownCompressions(), "zip");
     if (o.has("aovs")) {
@@ -579,6 +580,7 @@ nlohmann::json sceneToJson(const Scene& s) {
 
     auto& o = j["output"];
     if (!s.output.path.empty()) o["path"] = s.output.path;
+    if (!s.output.preview.empty()) o["preview"] = s.output.preview;
     o["pixel_type"] = pixelTypeName(s.output.pixel_type);
     o["compression"] = s.output.compression;
     o["aovs"] = nlohmann::json::array();

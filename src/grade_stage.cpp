@@ -1,0 +1,46 @@
+#include "grade_stage.h"
+
+#include <algorithm>
+
+namespace voxlux {
+namespace {
+
+using PixelRgb = glm::vec3 kernel::VxPixel::*;
+
+// Runs `processor` over one RGB plane of the image (an AOV: no alpha, nothing to unpremultiply).
+void transformPlane(RenderImage& image, PixelRgb member, const OCIO::ConstProcessorRcPtr& processor,
+                    KernelBackend& backend) {
+    std::vector<glm::vec4> plane(image.pixels.size());
+    for (size_t i = 0; i < plane.size(); ++i) plane[i] = glm::vec4(image.pixels[i].*member, 1.0f);
+    backend.transformColors(processor, plane, false);
+    for (size_t i = 0; i < plane.size(); ++i) image.pixels[i].*member = glm::vec3(plane[i]);
+}
+
+}  // namespace
+
+std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color, const std::vector<std::string>& aovs,
+                                  KernelBackend& backend) {
+    std::vector<glm::vec4> beauty(image.pixels.size());
+    for (size_t i = 0; i < beauty.size(); ++i) beauty[i] = image.pixels[i].rgba;
+    if (!color.grade->isNoOp()) backend.transformColors(color.grade, beauty, color.unpremultiply);
+
+    // The preview composites the graded beauty over black, which premultiplied colour already is.
+    std::vector<glm::vec4> preview;
+    if (color.preview) {
+        preview = beauty;
+        backend.transformColors(color.preview, preview, false);
+    }
+    if (!color.output->isNoOp()) {
+        backend.transformColors(color.output, beauty, color.unpremultiply);
+        const std::pair<const char*, PixelRgb> planes[] = {{"direct", &kernel::VxPixel::direct},
+                                                           {"ambient", &kernel::VxPixel::ambient},
+                                                           {"indirect", &kernel::VxPixel::indirect},
+                                                           {"emission", &kernel::VxPixel::emission}};
+        for (const auto& [name, member] : planes)
+            if (std::find(aovs.begin(), aovs.end(), name) != aovs.end()) transformPlane(image, member, color.output, backend);
+    }
+    for (size_t i = 0; i < beauty.size(); ++i) image.pixels[i].rgba = beauty[i];
+    return preview;
+}
+
+}  // namespace voxlux
