@@ -23,7 +23,9 @@ std::string emptyReason(const LoadedVolume& v, const BrickAtlas& atlas) {
     std::string why = v.file + ": " + grid + " has nothing visible: its " + std::to_string(atlas.active_voxels) +
                       " active voxels are all zero";
     if (atlas.density_fixes.negative) why += " or negative (" + std::to_string(atlas.density_fixes.negative) + " negative)";
-    return why + " under the material";
+    why += " under the material";
+    for (size_t e = 0; e < v.emission.size(); ++e) why += (e ? ", '" : "; emission from '") + v.emission[e]->getName() + "'";
+    return why + (v.emission.empty() ? "" : " emits nothing");
 }
 
 }  // namespace
@@ -61,8 +63,10 @@ std::string Renderer::volumeKey(const std::string& file) const {
     if (ec) return "";
     const auto time = std::filesystem::last_write_time(file, ec);
     if (ec) return "";
-    nlohmann::json spec = sceneToJson(scene_)["volume"];
+    const nlohmann::json scene = sceneToJson(scene_);
+    nlohmann::json spec = scene["volume"];
     spec.erase("frames");
+    for (const auto& e : scene["emission"]) spec["emission"].push_back(e["grid"]);  // one atlas channel each
     return file + "|" + std::to_string(size) + "|" + std::to_string(time.time_since_epoch().count()) + "|" + spec.dump();
 }
 
@@ -89,7 +93,7 @@ KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, Fra
         volume_key_.clear();  // stays cleared if loading throws
         atlas_.reset();       // the last frame's bricks go before this frame's are built
         volume_.reset();
-        volume_ = std::make_unique<LoadedVolume>(clock("load", [&] { return loadVolume(file, scene_.volume); }));
+        volume_ = std::make_unique<LoadedVolume>(clock("load", [&] { return loadVolume(file, scene_.volume, scene_.emission); }));
         atlas_ = std::make_unique<BrickAtlas>(clock("brick", [&] { return buildBrickAtlas(*volume_); }));
         volume_key_ = key;
     } else {
@@ -100,7 +104,7 @@ KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, Fra
     r.warnings = volume.warnings;
     for (auto& line : sanitizeReport(atlas, volume)) r.warnings.push_back(line);
     pages_ = clock("classify", [&] {
-        return buildPageTable(atlas.coords, classifyBricks(atlas, scene_.material));
+        return buildPageTable(atlas.coords, classifyBricks(atlas, scene_.material, scene_.emission));
     });
     const PageTable& pages = pages_;
     r.bricks = pages.occupied;

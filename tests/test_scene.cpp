@@ -67,7 +67,7 @@ TEST(Scene, MalformedJsonGivesLineAndColumn) {
 TEST(Scene, RoundTripThroughJson) {
     Scene s = parseScene(R"({
         "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
-                   "emission": "temperature", "color": "Cd", "level_set": "fog"},
+                   "color": "Cd", "level_set": "fog"},
         "material": {"density_scale": 2.5, "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
                      "transfer_function": [{"value": 0, "extinction": 0}, {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
         "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 40, "cone_angle": 25}],
