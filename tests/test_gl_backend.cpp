@@ -60,6 +60,14 @@ LoadedVolume makeVolume(bool emission_and_color) {
     return volumeFromGrid(density, {emission}, color);
 }
 
+// A second emission grid, over part of the box: a topology of its own.
+openvdb::FloatGrid::Ptr flameGrid() {
+    auto g = boxGrid(Coord(-16, -8, -4), Coord(-5, 15, 19), 0.0f, 0.1);
+    g->setName("flame");
+    for (auto it = g->beginValueOn(); it; ++it) it.setValue(noise(it.getCoord() + Coord(11)));
+    return g;
+}
+
 EmissionSource emissionSource() {
     EmissionSource e;
     e.color = glm::vec3(1.0f, 0.5f, 0.2f);
@@ -269,6 +277,29 @@ TEST(GlBackend, MatchesCpuWithEmissionAndColourGrids) {
     Scene scene = baseScene();
     scene.emission = {emissionSource()};
     const auto stats = expectMatch(renderBoth(makeVolume(true), scene, *gl));
+    EXPECT_GT(stats[kDirect].peak, 0.0);
+    EXPECT_GT(stats[kEmission].peak, 0.0);
+}
+
+// Two sources on grids of different topology: a blackbody from the sphere's grid (its 0..1 up to
+// 3000 K) and a ramp from the flame grid.
+TEST(GlBackend, MatchesCpuWithTwoEmissionSources) {
+    VOXLUX_REQUIRE_GL(gl);
+    Scene scene = baseScene();
+    EmissionSource fire;
+    fire.kind = EmissionKind::Blackbody;
+    fire.temperature_scale = 3000.0f;
+    fire.cutoff = 600.0f;
+    fire.normalization = BlackbodyNormalization::Physical;
+    fire.intensity = 2.0f;
+    EmissionSource flame;
+    flame.kind = EmissionKind::Ramp;
+    flame.ramp = {{0.0f, glm::vec3(0.0f)}, {0.5f, {1.0f, 0.3f, 0.05f}}, {1.0f, {1.0f, 0.9f, 0.6f}}};
+    flame.intensity = 3.0f;
+    scene.emission = {fire, flame};
+    LoadedVolume volume = makeVolume(true);
+    volume.emission.push_back(flameGrid());
+    const auto stats = expectMatch(renderBoth(std::move(volume), scene, *gl));
     EXPECT_GT(stats[kDirect].peak, 0.0);
     EXPECT_GT(stats[kEmission].peak, 0.0);
 }
