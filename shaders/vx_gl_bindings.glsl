@@ -20,6 +20,7 @@ layout(std430, binding = 12) readonly buffer Noise { vec4 vx_noise_data[]; };
 layout(std430, binding = 13) readonly buffer PropSigma { float vx_prop_sigma_data[]; };
 layout(std430, binding = 14) readonly buffer SliceIn { float vx_prop_prev_data[]; };
 layout(std430, binding = 17) readonly buffer EyeInput { float vx_prop_in_data[]; };
+layout(std430, binding = 18) readonly buffer EmissionLut { vec4 vx_emission_lut_data[]; };
 
 float vx_atlas_density(int i) { return vx_density_data[i]; }
 float vx_atlas_emission(int i) { return vx_emission_data[i]; }
@@ -27,6 +28,7 @@ vec3 vx_atlas_color(int i) { return vec3(vx_color_data[3 * i], vx_color_data[3 *
 ivec4 vx_page_entry(int i) { return vx_page_data[i]; }
 VxLight vx_light(int i) { return vx_light_data[i]; }
 vec4 vx_tf_lut(int i) { return vx_tf_data[i]; }
+vec4 vx_emission_lut(int i) { return vx_emission_lut_data[i]; }
 float vx_cache(int i) { return vx_cache_data[i]; }
 uint vx_sat_word(int i) { return vx_sat_data[i]; }
 float vx_illum(int i) { return vx_illum_data[i]; }

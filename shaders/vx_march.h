@@ -266,7 +266,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     bool cached = P.cache_dims.x > 0;
     vec3 ambient = vec3(P.ambient);
     int per_sample_lights = per_ray_directional ? VX_LIGHTS_LOCAL : VX_LIGHTS_ALL;
-    bool emits = P.emission.w > 0.5f;
+    bool emits = P.emission_map.x > 0;
     bool plain_albedo = P.tf_domain.z < 0.5f && P.tf_domain.w < 0.5f;
     // When the light a sample scatters is the same all along the ray (unshadowed directional
     // lights and unoccluded ambient only, one albedo, no emission), a chunk's scattered light

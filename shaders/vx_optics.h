@@ -44,9 +44,21 @@ vec3 vx_albedo(VxCorners c) {
     return a;
 }
 
-// Emitted radiance per world unit at a sample.
+// Emitted radiance per world unit at a sample: each source's grid value through its own table
+// (linear between rows, clamped to the grid's range), summed over the sources. The atlas holds
+// the sources' channels one after another, so a source's corners are the density's shifted.
 vec3 vx_emission(VxCorners c) {
-    return vec3(P.emission) * VX_TRILINEAR(vx_atlas_emission, c);
+    vec3 sum = vec3(0.0f);
+    VxCorners cs = c;
+    for (int s = 0; s < P.emission_map.x; ++s) {
+        cs.base = c.base + s * P.emission_map.y;
+        float x = clamp(VX_TRILINEAR(vx_atlas_emission, cs) * P.emission_domain[s], 0.0f, 1.0f) *
+                  float(VX_EMISSION_LUT_SIZE - 1);
+        int i = min(int(x), VX_EMISSION_LUT_SIZE - 2);
+        int row = s * VX_EMISSION_LUT_SIZE + i;
+        sum += vec3(mix(vx_emission_lut(row), vx_emission_lut(row + 1), x - float(i)));
+    }
+    return sum;
 }
 
 // Unshadowed radiance arriving at world point x from light L. Returns the direction towards the

@@ -11,6 +11,7 @@
 //      float  vx_atlas_density(int index);   vec3 vx_atlas_color(int index);
 //      float  vx_atlas_emission(int index);  ivec4 vx_page_entry(int index);
 //      VxLight vx_light(int index);          vec4  vx_tf_lut(int index);
+//      vec4   vx_emission_lut(int index);    (emission tables, VX_EMISSION_LUT_SIZE rows per source)
 //      float  vx_cache(int index);           (light cache, read by the march)
 //      uint   vx_sat_word(int index);        (SAT, 3 words per entry, read by the light passes)
 //      float  vx_illum(int index);           (illumination volume, read by the march)
@@ -41,6 +42,8 @@
 #define VX_BRICK_VOXELS 729        // VX_BRICK_STRIDE^3
 #define VX_PAGE_EMPTY -1
 #define VX_TF_LUT_SIZE 256
+#define VX_MAX_EMISSION 4          // emission sources (grids) per scene
+#define VX_EMISSION_LUT_SIZE 256   // rows of one source's table: radiance over grid values [0, max]
 #define VX_CHUNK 16                // samples whose extinction is evaluated together (one SIMD batch)
 #define VX_NOISE_SIZE 32           // perturbation noise table edge (power of two); the table repeats
 #define VX_LANES 8                 // batches run in whole multiples of this (the CPU's SIMD width)

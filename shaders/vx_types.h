@@ -21,7 +21,9 @@ struct VxParams {
     vec4 march;             // x = step (world units), y = shadow step (world units),
                             // z = transmittance cutoff, w = HG anisotropy g
     vec4 material;          // rgb = albedo, w = density (extinction) scale
-    vec4 emission;          // rgb = emission colour * scale, w = 1 if an emission grid is bound
+    ivec4 emission_map;     // x = emission sources (0 = none), y = atlas floats per source channel
+    vec4 emission_domain;   // per source (component s): 1 / the largest value of its grid in this frame
+                            // (0: it emits nowhere), mapping grid values onto its table
     vec4 tf_domain;         // x = value at LUT entry 0, y = 1 / (value range), z = 1 if the LUT is used,
                             // w = 1 if a colour (Cd) grid is bound
     ivec4 bricks_min;       // xyz = lowest occupied brick coordinate, w = light count

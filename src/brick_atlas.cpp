@@ -1,7 +1,9 @@
 #include "brick_atlas.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numeric>
 
 #include <tbb/combinable.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -21,7 +23,7 @@ constexpr int kVoxels = VX_BRICK_VOXELS;
 // one would be skipped by the march).
 std::vector<glm::ivec3> bricksToStore(const LoadedVolume& v, std::vector<glm::ivec3>& active) {
     collectBricks(v.density->tree(), active, v.file);
-    if (v.emission) collectBricks(v.emission->tree(), active, v.file);
+    for (const auto& e : v.emission) collectBricks(e->tree(), active, v.file);
     if (v.color) collectBricks(v.color->tree(), active, v.file);
     uniqueBricks(active);
     std::vector<glm::ivec3> all;
@@ -98,6 +100,11 @@ size_t BrickAtlas::bytes() const {
            density_range.size() * sizeof(glm::vec2) + emission_max.size() * sizeof(float);
 }
 
+float BrickAtlas::emissionGridMax(size_t source) const {
+    const auto first = emission_max.begin() + std::ptrdiff_t(source * slots());
+    return std::accumulate(first, first + std::ptrdiff_t(slots()), 0.0f, [](float a, float b) { return std::max(a, b); });
+}
+
 BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
     BrickAtlas atlas;
     atlas.index_to_world = v.index_to_world;
@@ -105,25 +112,30 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
     std::vector<glm::ivec3> active;
     std::vector<glm::ivec3> candidates = bricksToStore(v, active);
 
-    const size_t n = candidates.size();
-    std::vector<float> density(n * kVoxels), emission(v.emission ? n * kVoxels : 0), color(v.color ? n * kVoxels * 3 : 0);
-    struct Fixes { SanitizeCounts density, emission, color; };
-    tbb::combinable<Fixes> fixes;
+    const size_t n = candidates.size(), sources = v.emission.size();
+    std::vector<float> density(n * kVoxels), emission(sources * n * kVoxels), color(v.color ? n * kVoxels * 3 : 0);
+    struct Fixes {
+        SanitizeCounts density, color;
+        std::vector<SanitizeCounts> emission;
+    };
+    tbb::combinable<Fixes> fixes([&] { return Fixes{{}, {}, std::vector<SanitizeCounts>(sources)}; });
     using FloatAcc = openvdb::FloatGrid::ConstAccessor;
     tbb::enumerable_thread_specific<FloatAcc> densityAcc([&] { return v.density->getConstAccessor(); });
-    tbb::enumerable_thread_specific<std::unique_ptr<FloatAcc>> emissionAcc;
+    tbb::enumerable_thread_specific<std::vector<FloatAcc>> emissionAcc([&] {
+        std::vector<FloatAcc> accs;
+        for (const auto& e : v.emission) accs.push_back(e->getConstAccessor());
+        return accs;
+    });
     tbb::enumerable_thread_specific<std::unique_ptr<openvdb::Vec3SGrid::ConstAccessor>> colorAcc;
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16), [&](const tbb::blocked_range<size_t>& r) {
         Fixes& f = fixes.local();
         auto& dacc = densityAcc.local();
+        auto& eacc = emissionAcc.local();
         for (size_t i = r.begin(); i != r.end(); ++i) {
             fillScalar(dacc, candidates[i], &density[i * kVoxels], f.density);
-            if (v.emission) {
-                auto& acc = emissionAcc.local();
-                if (!acc) acc = std::make_unique<FloatAcc>(v.emission->getConstAccessor());
-                fillScalar(*acc, candidates[i], &emission[i * kVoxels], f.emission);
-            }
+            for (size_t e = 0; e < sources; ++e)
+                fillScalar(eacc[e], candidates[i], &emission[(e * n + i) * kVoxels], f.emission[e]);
             if (v.color) {
                 auto& acc = colorAcc.local();
                 if (!acc) acc = std::make_unique<openvdb::Vec3SGrid::ConstAccessor>(v.color->getConstAccessor());
@@ -131,45 +143,53 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
             }
         }
     });
+    atlas.emission_sources = sources;
+    atlas.emission_fixes.resize(sources);
     fixes.combine_each([&](const Fixes& f) {
         addCounts(atlas.density_fixes, f.density);
-        addCounts(atlas.emission_fixes, f.emission);
         addCounts(atlas.color_fixes, f.color);
+        for (size_t e = 0; e < sources; ++e) addCounts(atlas.emission_fixes[e], f.emission[e]);
     });
 
     // Keep every brick with active values; keep a - side neighbour only if its block is non-zero.
     std::vector<glm::vec2> range(n);
-    std::vector<float> emissionMax(v.emission ? n : 0);
+    std::vector<float> emissionMax(sources * n);
     std::vector<char> keep(n);
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
         const float* d = &density[i * kVoxels];
         glm::vec2 mm(d[0], d[0]);
         for (int k = 1; k < kVoxels; ++k) mm = glm::vec2(std::min(mm.x, d[k]), std::max(mm.y, d[k]));
         range[i] = mm;
-        float em = 0.0f;
-        if (v.emission)
-            for (int k = 0; k < kVoxels; ++k) em = std::max(em, emission[i * kVoxels + k]);
-        if (v.emission) emissionMax[i] = em;
-        keep[i] = std::binary_search(active.begin(), active.end(), candidates[i], brickLess) || mm.y > 0.0f || em > 0.0f;
+        float any = 0.0f;
+        for (size_t e = 0; e < sources; ++e) {
+            const float* em = &emission[(e * n + i) * kVoxels];
+            emissionMax[e * n + i] = *std::max_element(em, em + kVoxels);
+            any = std::max(any, emissionMax[e * n + i]);
+        }
+        keep[i] = std::binary_search(active.begin(), active.end(), candidates[i], brickLess) || mm.y > 0.0f || any > 0.0f;
     });
 
-    // Compact in place (slot s <= candidate i), so the atlas never exists twice in memory.
-    size_t s = 0;
-    for (size_t i = 0; i < n; ++i) {
-        if (!keep[i]) continue;
+    // Compact in place (slot j <= candidate i, channel by channel), so the atlas never exists
+    // twice in memory.
+    std::vector<size_t> kept;
+    for (size_t i = 0; i < n; ++i)
+        if (keep[i]) kept.push_back(i);
+    const size_t slots = kept.size();
+    for (size_t j = 0; j < slots; ++j) {
+        const size_t i = kept[j];
         atlas.coords.push_back(candidates[i]);
         atlas.density_range.push_back(range[i]);
-        std::copy_n(&density[i * kVoxels], kVoxels, &density[s * kVoxels]);
-        if (v.emission) {
-            atlas.emission_max.push_back(emissionMax[i]);
-            std::copy_n(&emission[i * kVoxels], kVoxels, &emission[s * kVoxels]);
-        }
-        if (v.color) std::copy_n(&color[i * kVoxels * 3], kVoxels * 3, &color[s * kVoxels * 3]);
-        ++s;
+        std::copy_n(&density[i * kVoxels], kVoxels, &density[j * kVoxels]);
+        if (v.color) std::copy_n(&color[i * kVoxels * 3], kVoxels * 3, &color[j * kVoxels * 3]);
     }
-    density.resize(s * kVoxels);
-    emission.resize(v.emission ? s * kVoxels : 0);
-    color.resize(v.color ? s * kVoxels * 3 : 0);
+    for (size_t e = 0; e < sources; ++e)
+        for (size_t j = 0; j < slots; ++j) {
+            atlas.emission_max.push_back(emissionMax[e * n + kept[j]]);
+            std::copy_n(&emission[(e * n + kept[j]) * kVoxels], kVoxels, &emission[(e * slots + j) * kVoxels]);
+        }
+    density.resize(slots * kVoxels);
+    emission.resize(sources * slots * kVoxels);
+    color.resize(v.color ? slots * kVoxels * 3 : 0);
     atlas.density = std::move(density);
     atlas.emission = std::move(emission);
     atlas.color = std::move(color);
@@ -188,7 +208,7 @@ std::vector<std::string> sanitizeReport(const BrickAtlas& a, const LoadedVolume&
         out.push_back(s);
     };
     report(a.density_fixes, v.density.get());
-    report(a.emission_fixes, v.emission.get());
+    for (size_t e = 0; e < a.emission_sources; ++e) report(a.emission_fixes[e], v.emission[e].get());
     report(a.color_fixes, v.color.get());
     return out;
 }

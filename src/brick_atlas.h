@@ -24,14 +24,18 @@ struct BrickAtlas {
     glm::mat4 index_to_world{1.0f};
     std::vector<glm::ivec3> coords;          // brick coordinate (voxel >> 3) of each slot
     std::vector<float> density;              // slot * 729 + offset
-    std::vector<float> emission;             // empty, or as density
+    // One channel per emission source, source-major: (source * slots + slot) * 729 + offset.
+    std::vector<float> emission;
     std::vector<float> color;                // empty, or 3 floats per voxel
     std::vector<glm::vec2> density_range;    // min and max over each slot's 9^3 block
-    std::vector<float> emission_max;         // empty, or max over each slot's 9^3 block
-    SanitizeCounts density_fixes, emission_fixes, color_fixes;
+    std::vector<float> emission_max;         // max over each 9^3 block: source * slots + slot
+    size_t emission_sources = 0;
+    SanitizeCounts density_fixes, color_fixes;
+    std::vector<SanitizeCounts> emission_fixes;  // one per source
     uint64_t active_voxels = 0;              // of the density grid
 
     size_t slots() const { return coords.size(); }
+    float emissionGridMax(size_t source) const;  // the largest value of a source's grid (0 if no slots)
     size_t bytes() const;
 };
 

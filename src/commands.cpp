@@ -107,9 +107,18 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
     };
     setGrid("density", o.grid);
     if (o.grid_index) v["density"] = {{"name", o.grid.value_or(base.volume.density.name)}, {"index", *o.grid_index}};
-    setGrid("emission", o.emission_grid);
     setGrid("color", o.color_grid);
     if (o.level_set) v["level_set"] = *o.level_set;
+    if (o.emission_grid || o.blackbody_grid) {
+        auto& sources = j["emission"] = nlohmann::json::array();
+        if (o.emission_grid) sources.push_back({{"grid", *o.emission_grid}, {"kind", "constant"}, {"color", {1, 1, 1}}});
+        // Mantaflow (Blender) temperature: 0 ambient, 1.5 at ignition to 3 at the flames' maximum
+        // (Blender's defaults), x 1000 K as Blender's Principled Volume renders it at its default
+        // 1000 K. Brightness follows Planck's luminance, 1 at ignition; gas below 1000 K is dark.
+        if (o.blackbody_grid)
+            sources.push_back({{"grid", *o.blackbody_grid}, {"kind", "blackbody"}, {"temperature_scale", 1000},
+                               {"cutoff", 1000}, {"normalization", "physical"}, {"reference_temperature", 1500}});
+    }
     if (o.frames) {
         auto range = split(*o.frames, '-');
         if (range.size() == 1) range.push_back(range[0]);

@@ -8,7 +8,8 @@ namespace voxlux {
 
 // Options of `render` and `scene` that override scene keys one to one (docs/cli.md).
 struct SceneOverrides {
-    std::optional<std::string> grid, emission_grid, color_grid;
+    std::optional<std::string> grid, color_grid;
+    std::optional<std::string> emission_grid, blackbody_grid;  // emission sources: replace the scene's
     std::optional<int> grid_index;
     std::optional<std::string> level_set;
     std::optional<std::string> resolution;      // "WxH"

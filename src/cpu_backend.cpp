@@ -56,6 +56,7 @@ kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
     k.page = in.pages->entries.data();
     k.lights = in.lights.data();
     k.tf_lut = in.tf_lut.data();
+    k.emission_lut = in.emission_lut.data();
     k.cache = in.cache;
     k.illum = in.illum;
     k.noise = in.noise.data();

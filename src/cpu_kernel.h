@@ -10,11 +10,12 @@ namespace voxlux::kernel {
 struct CpuKernel {
     VxParams P{};
     const float* density = nullptr;
-    const float* emission = nullptr;
+    const float* emission = nullptr;       // source-major channels (P.emission_map)
     const float* color = nullptr;          // 3 floats per voxel
     const ivec4* page = nullptr;
     const VxLight* lights = nullptr;
     const vec4* tf_lut = nullptr;
+    const vec4* emission_lut = nullptr;    // VX_EMISSION_LUT_SIZE rows per emission source
     const float* cache = nullptr;          // light cache, P.cache_dims.w floats per cell
     VxSatParams S{};                       // light passes only
     const uint* sat = nullptr;
@@ -31,6 +32,7 @@ struct CpuKernel {
     ivec4 vx_page_entry(int i) const { return page[i]; }
     VxLight vx_light(int i) const { return lights[i]; }
     vec4 vx_tf_lut(int i) const { return tf_lut[i]; }
+    vec4 vx_emission_lut(int i) const { return emission_lut[i]; }
     float vx_cache(int i) const { return cache[i]; }
     uint vx_sat_word(int i) const { return sat[i]; }
     float vx_illum(int i) const { return illum[i]; }

@@ -145,6 +145,7 @@ public:
             {pages_, "PageTable", in.pages->entries.data(), in.pages->entries.size() * sizeof(glm::ivec4)},
             {lights_, "Lights", in.lights.data(), in.lights.size() * sizeof(kernel::VxLight)},
             {tf_lut_, "TransferLut", in.tf_lut.data(), in.tf_lut.size() * sizeof(glm::vec4)},
+            {emission_lut_, "EmissionLut", in.emission_lut.data(), in.emission_lut.size() * sizeof(glm::vec4)},
             {cache_, "LightCache", in.cache, in.cache_floats * sizeof(float)},
             {illum_, "Illumination", in.illum, in.illum_floats * sizeof(float)},
             {noise_, "Noise", in.noise.data(), in.noise.size() * sizeof(glm::vec4)},
@@ -307,7 +308,7 @@ private:
     const GLuint program_;
     const GLint row_offset_;
     GLint64 max_storage_block_ = 0;
-    Buffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, cache_, band_;
+    Buffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, emission_lut_, cache_, band_;
     Buffer sat_params_, sat_, needed_, channel_;
     Buffer illum_, noise_, march_params_, prop_params_, prop_sigma_, prop_in_, volume_, slice_a_, slice_b_;
     uint64_t sat_generation_ = 0;   // LightPass::sat_generation of the SAT in sat_, 0 = none

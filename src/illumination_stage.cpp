@@ -280,7 +280,8 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
     if (!warning.empty()) warnings.push_back(warning);
 
     const nlohmann::json sj = sceneToJson(scene);
-    const std::string grid_key = volume_key + "|" + sj["material"].dump() + "|" + std::to_string(resolution);
+    const std::string grid_key =
+        volume_key + "|" + sj["material"].dump() + "|" + std::to_string(resolution) + "|" + occupiedBoxKey(inputs);
     StageClock clock(times);
     if (grid_key == grid_key_) {
         reused.push_back("light_grid");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "camera.h"
 #include "noise_table.h"
@@ -30,7 +31,7 @@ kernel::VxLight packLight(const Light& l) {
 }  // namespace
 
 KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const BrickAtlas& atlas,
-                              const PageTable& pages, float frame) {
+                              const PageTable& pages, float frame, const glm::mat3& xyz_to_working) {
     KernelInputs in;
     in.atlas = &atlas;
     in.pages = &pages;
@@ -44,7 +45,17 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
                                float(r.width), float(r.height));
     P.march = glm::vec4(r.step * edge, r.shadow_step * edge, r.transmittance_cutoff, m.anisotropy);
     P.material = glm::vec4(m.albedo, m.density_scale);
-    P.emission = glm::vec4(m.emission_color * m.emission_scale, atlas.emission.empty() ? 0.0f : 1.0f);
+    // Each source's table spans its grid's values in this frame's atlas. When none emits anywhere
+    // (all-zero grids) the march runs as without emission, to the bit.
+    bool emits = false;
+    for (size_t e = 0; e < atlas.emission_sources; ++e) {
+        const float grid_max = atlas.emissionGridMax(e);
+        const EmissionTable table = bakeEmission(scene.emission.at(e), grid_max, xyz_to_working);
+        in.emission_lut.insert(in.emission_lut.end(), table.rows.begin(), table.rows.end());
+        P.emission_domain[int(e)] = grid_max > 0.0f ? 1.0f / grid_max : 0.0f;
+        emits |= table.threshold < std::numeric_limits<float>::infinity();
+    }
+    P.emission_map = glm::ivec4(emits ? int(atlas.emission_sources) : 0, int(atlas.slots()) * VX_BRICK_VOXELS, 0, 0);
     float lo = m.transfer.empty() ? 0.0f : m.transfer.front().value;
     float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
     P.tf_domain = glm::vec4(lo, 1.0f / (hi - lo), m.transfer.empty() ? 0.0f : 1.0f, atlas.color.empty() ? 0.0f : 1.0f);

@@ -49,7 +49,7 @@ void LightStage::update(const Scene& scene, const std::string& volume_key, Kerne
     if (!warning.empty()) warnings.push_back(warning);
     const nlohmann::json scene_json = sceneToJson(scene);
     const std::string grid_key = volume_key + "|" + scene_json["material"].dump() + "|" + std::to_string(resolution) +
-                                 "|" + std::to_string(bleeding);
+                                 "|" + std::to_string(bleeding) + "|" + occupiedBoxKey(inputs);
     StageClock clock(times);
     if (grid_key == grid_key_) {
         reused.push_back("light_grid");

@@ -11,7 +11,9 @@ namespace {
 void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--grid", o.grid, "density grid name (volume.density)");
     cmd.add_option("--grid-index", o.grid_index, "which of several grids with that name (volume.density.index)");
-    cmd.add_option("--emission-grid", o.emission_grid, "emission grid, e.g. temperature (volume.emission)");
+    cmd.add_option("--emission-grid", o.emission_grid, "emission of value x white from this grid, e.g. flame (emission)");
+    cmd.add_option("--blackbody-grid", o.blackbody_grid,
+                   "blackbody emission from a Mantaflow temperature grid, value x 1000 K (emission)");
     cmd.add_option("--color-grid", o.color_grid, "vec3 colour grid, e.g. Cd (volume.color)");
     cmd.add_option("--level-set", o.level_set, "reject|fog: convert a level set to fog (volume.level_set)");
     cmd.add_option("--res", o.resolution, "WIDTHxHEIGHT (render.resolution)");

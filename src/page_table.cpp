@@ -3,19 +3,28 @@
 #include <algorithm>
 
 #include "cpu_kernel.h"
+#include "emission.h"
 #include "transfer_function.h"
 
 namespace voxlux {
 
-std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material) {
-    std::vector<char> visible(atlas.slots());
+std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material,
+                                 const std::vector<EmissionSource>& emission) {
+    const size_t slots = atlas.slots();
+    std::vector<char> visible(slots);
     const std::vector<glm::vec4> table = bakeTransfer(material.transfer);  // the kernel's own table
-    for (size_t i = 0; i < atlas.slots(); ++i) {
+    for (size_t i = 0; i < slots; ++i) {
         const glm::vec2 r = atlas.density_range[i];
         float extinction =
             material.transfer.empty() ? r.y : maxTransferExtinction(table, material.transfer, r.x, r.y);
-        bool emits = !atlas.emission_max.empty() && atlas.emission_max[i] > 0.0f && material.emission_scale > 0.0f;
-        visible[i] = (extinction * material.density_scale > 0.0f) || emits;
+        visible[i] = extinction * material.density_scale > 0.0f;
+    }
+    // A brick emits when its largest value passes the value up to which the source's own table
+    // (the kernel's) is zero. Which values emit does not depend on the working space.
+    for (size_t e = 0; e < atlas.emission_sources; ++e) {
+        const float* block_max = atlas.emission_max.data() + e * slots;
+        const float threshold = bakeEmission(emission.at(e), atlas.emissionGridMax(e), kXyzD65ToAcescg).threshold;
+        for (size_t i = 0; i < slots; ++i) visible[i] |= block_max[i] > threshold;
     }
     return visible;
 }

@@ -19,8 +19,10 @@ struct PageTable {
     bool empty() const { return occupied == 0; }
 };
 
-// True for bricks the material gives non-zero extinction or emission somewhere.
-std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material);
+// True for bricks the material gives non-zero extinction somewhere, or that some emission source
+// (one per atlas emission channel) makes emit.
+std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material,
+                                 const std::vector<EmissionSource>& emission);
 
 PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible);
 

@@ -107,6 +107,11 @@ std::string shadowDescription(ShadowMethod m) {
     return "unshadowed (effects.shadows = none)";
 }
 
+std::string emissionDescription(const EmissionSource& e) {
+    const char* kind = e.kind == EmissionKind::Blackbody ? "blackbody" : e.kind == EmissionKind::Ramp ? "ramp" : "constant";
+    return std::string(kind) + " from '" + e.grid.name + "'";
+}
+
 }  // namespace
 
 bool needsAmbientOcclusion(const Scene& s) { return s.effects.ambient_occlusion && hasLight(s, true); }
@@ -120,11 +125,11 @@ bool needsGrade(const Scene& s) {
 std::vector<PlannedStage> planRender(const Scene& s) {
     std::vector<PlannedStage> plan;
     std::string grids = "density '" + s.volume.density.name + "'";
-    if (s.volume.emission) grids += ", emission '" + s.volume.emission->name + "'";
     if (s.volume.color) grids += ", colour '" + s.volume.color->name + "'";
-    plan.push_back({"load", {"volume"}, true, "reads " + grids + " from " + s.volume.path});
+    for (size_t i = 0; i < s.emission.size(); ++i) grids += (i ? ", '" : ", emission '") + s.emission[i].grid.name + "'";
+    plan.push_back({"load", {"volume", "emission"}, true, "reads " + grids + " from " + s.volume.path});
     plan.push_back({"brick", {"load"}, true, "densifies active voxels into 8^3 bricks with a +1 apron"});
-    plan.push_back({"classify", {"brick", "material"}, true,
+    plan.push_back({"classify", {"brick", "material", "emission"}, true,
                     s.material.transfer.empty() ? "drops bricks with zero density and emission"
                                                 : "drops bricks the transfer function makes transparent"});
     plan.push_back({"light_cache", {"classify", "lights", "effects"}, needsAmbientOcclusion(s) || needsConeShadows(s),
@@ -141,8 +146,9 @@ std::vector<PlannedStage> planRender(const Scene& s) {
     }
     if (s.effects.surface) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation) march += ", noise-perturbed";
-    if (s.volume.emission) march += ", emission";
-    plan.push_back({"march", {"classify", "light_cache", "illumination", "camera", "lights", "render"}, true, march});
+    for (size_t i = 0; i < s.emission.size(); ++i)
+        march += (i ? ", " : ", emission: ") + emissionDescription(s.emission[i]);
+    plan.push_back({"march", {"classify", "light_cache", "illumination", "camera", "lights", "render", "emission"}, true, march});
     plan.push_back({"grade", {"march", "color", "output"}, needsGrade(s), gradeReason(s)});
     plan.push_back({"write", {"march", "grade", "output"}, true,
                     "EXR, " + std::string(s.output.pixel_type == PixelType::Half ? "half" : "float") + ", " +

@@ -26,7 +26,9 @@ std::string emptyReason(const LoadedVolume& v, const BrickAtlas& atlas) {
     std::string why = v.file + ": " + grid + " has nothing visible: its " + std::to_string(atlas.active_voxels) +
                       " active voxels are all zero";
     if (atlas.density_fixes.negative) why += " or negative (" + std::to_string(atlas.density_fixes.negative) + " negative)";
-    return why + " under the material";
+    why += " under the material";
+    for (size_t e = 0; e < v.emission.size(); ++e) why += (e ? ", '" : "; emission from '") + v.emission[e]->getName() + "'";
+    return why + (v.emission.empty() ? "" : " emits nothing");
 }
 
 }  // namespace
@@ -64,8 +66,10 @@ std::string Renderer::volumeKey(const std::string& file) const {
     if (ec) return "";
     const auto time = std::filesystem::last_write_time(file, ec);
     if (ec) return "";
-    nlohmann::json spec = sceneToJson(scene_)["volume"];
+    const nlohmann::json scene = sceneToJson(scene_);
+    nlohmann::json spec = scene["volume"];
     spec.erase("frames");
+    for (const auto& e : scene["emission"]) spec["emission"].push_back(e["grid"]);  // one atlas channel each
     return file + "|" + std::to_string(size) + "|" + std::to_string(time.time_since_epoch().count()) + "|" + spec.dump();
 }
 
@@ -78,6 +82,17 @@ const ColorPipeline& Renderer::color() {
         color_key_ = key;
     }
     return *color_;
+}
+
+// Blackbody colours are computed in CIE XYZ and need the config's way into the working space.
+glm::mat3 Renderer::xyzToWorking() {
+    const ColorPipeline& cp = color();
+    if (cp.xyz_to_working) return *cp.xyz_to_working;
+    for (const auto& e : scene_.emission)
+        if (e.kind == EmissionKind::Blackbody)
+            throw InputError(cp.config_source + ": has no linear cie_xyz_d65_interchange role into '" + cp.working_space +
+                             "', which blackbody emission needs");
+    return glm::mat3(1.0f);  // unused: no source converts from XYZ
 }
 
 FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
@@ -100,7 +115,7 @@ FrameResult Renderer::prepare(std::optional<int> frame, bool allow_empty) {
 }
 
 KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, FrameResult& r) {
-    color();  // a bad config, space or look fails here, before any volume is read
+    xyzToWorking();  // a bad config, space or look fails here, before any volume is read
     StageClock clock(r.stage_seconds);
     const std::string file = frame ? expandFramePattern(scene_.volume.path, *frame) : scene_.volume.path;
 
@@ -109,7 +124,7 @@ KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, Fra
         volume_key_.clear();  // stays cleared if loading throws
         atlas_.reset();       // the last frame's bricks go before this frame's are built
         volume_.reset();
-        volume_ = std::make_unique<LoadedVolume>(clock("load", [&] { return loadVolume(file, scene_.volume); }));
+        volume_ = std::make_unique<LoadedVolume>(clock("load", [&] { return loadVolume(file, scene_.volume, scene_.emission); }));
         atlas_ = std::make_unique<BrickAtlas>(clock("brick", [&] { return buildBrickAtlas(*volume_); }));
         volume_key_ = key;
     } else {
@@ -120,7 +135,7 @@ KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, Fra
     r.warnings = volume.warnings;
     for (auto& line : sanitizeReport(atlas, volume)) r.warnings.push_back(line);
     pages_ = clock("classify", [&] {
-        return buildPageTable(atlas.coords, classifyBricks(atlas, scene_.material));
+        return buildPageTable(atlas.coords, classifyBricks(atlas, scene_.material, scene_.emission));
     });
     const PageTable& pages = pages_;
     r.bricks = pages.occupied;
@@ -132,7 +147,7 @@ KernelInputs Renderer::runStages(std::optional<int> frame, bool allow_empty, Fra
     }
 
     r.camera = scene_.camera ? *scene_.camera : frameActiveVoxels(volume, scene_.render);
-    KernelInputs inputs = makeKernelInputs(scene_, r.camera, atlas, pages, frame ? float(*frame) : 0.0f);
+    KernelInputs inputs = makeKernelInputs(scene_, r.camera, atlas, pages, frame ? float(*frame) : 0.0f, xyzToWorking());
     if (stageRuns(plan_, "light_cache") && !pages.empty())
         light_.update(scene_, key, inputs, *backend_, r.stage_seconds, r.reused, r.warnings);
     if (stageRuns(plan_, "illumination") && !pages.empty()) {

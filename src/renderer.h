@@ -64,6 +64,7 @@ public:
 private:
     std::string volumeKey(const std::string& file) const;
     KernelInputs runStages(std::optional<int> frame, bool allow_empty, FrameResult& r);
+    glm::mat3 xyzToWorking();
 
     Scene scene_;
     std::vector<PlannedStage> plan_;

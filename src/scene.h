@@ -24,7 +24,6 @@ struct VolumeSpec {
     std::optional<std::array<int, 2>> frames;  // inclusive range for a #### pattern
     GridRef density{"density", 0};
     std::optional<GridRef> color;          // Cd, vec3
-    std::optional<GridRef> emission;       // temperature / heat / flame
     LevelSetPolicy level_set = LevelSetPolicy::Reject;
 };
 
@@ -38,8 +37,6 @@ struct Material {
     float density_scale = 1.0f;            // grid value -> extinction per world unit
     glm::vec3 albedo{0.9f};
     float anisotropy = 0.0f;               // Henyey-Greenstein g
-    glm::vec3 emission_color{1.0f};
-    float emission_scale = 1.0f;
     std::vector<TransferPoint> transfer;   // empty: extinction = density * density_scale
 };
 
@@ -155,13 +152,14 @@ struct Effects {
     int light_memory_mb = 2048;            // budget for light grid, SAT, light cache and illumination volume
 };
 
-// Light a grid emits (fire, explosions). Each source maps its grid's value to radiance per
-// world unit in the working space; the sources add. Their grids may have any topology: the
-// bricks are the union of all grids' bricks.
+// Light a grid emits (fire, explosions). Each source (at most VX_MAX_EMISSION) maps its grid's
+// value to radiance per world unit in the working space; the sources add. Their grids may have
+// any topology: the bricks are the union of all grids' bricks. Value 0 is empty space and emits
+// nothing (the scene reader enforces it).
 enum class EmissionKind { Constant, Blackbody, Ramp };
-// Blackbody brightness: Luminance gives every temperature the same luminance (intensity),
-// only the colour changes; Physical scales it with the Planck radiance's luminance, 1 at
-// reference_temperature.
+// Blackbody brightness, as the luminance Y of CIE XYZ: Luminance gives every temperature
+// Y = intensity, only the colour changes; Physical scales it with the Planck radiance's Y,
+// intensity at reference_temperature.
 enum class BlackbodyNormalization { Luminance, Physical };
 
 struct RampPoint {
@@ -179,7 +177,8 @@ struct EmissionSource {
     float cutoff = 0.0f;                   // Blackbody: kelvin below which nothing is emitted
     BlackbodyNormalization normalization = BlackbodyNormalization::Luminance;
     float reference_temperature = 1500.0f; // Physical: the kelvin at which luminance = intensity
-    std::vector<RampPoint> ramp;           // Ramp: colour by grid value, linear between points
+    std::vector<RampPoint> ramp;           // Ramp: colour by grid value, linear between points,
+                                           // clamped beyond them; radiance = colour * intensity
 };
 
 enum class PixelType { Half, Float };

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "emission.h"
 #include "error.h"
 #include "json_reader.h"
 #include "kernel_types.h"
@@ -48,7 +49,7 @@ std::string resolvePath(const std::string& path, const std::string& base_dir) {
 }
 
 VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
-    o.rejectUnknown({"path", "frames", "density", "emission", "color", "level_set"});
+    o.rejectUnknown({"path", "frames", "density", "color", "level_set"});
     VolumeSpec v;
     v.path = o.string("path");
     v.path = resolvePath(v.path, base_dir);
@@ -59,7 +60,6 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
         v.frames = std::array<int, 2>{int(f[0]), int(f[1])};
     }
     if (o.has("density")) v.density = readGridRef(o, "density");
-    if (o.has("emission")) v.emission = readGridRef(o, "emission");
     if (o.has("color")) v.color = readGridRef(o, "color");
     v.level_set = o.choice("level_set", {"reject", "fog"}, "reject") == "fog"
                       ? LevelSetPolicy::ConvertToFog
@@ -68,8 +68,7 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
 }
 
 Material readMaterial(const JsonObject& o) {
-    o.rejectUnknown({"density_scale", "albedo", "anisotropy", "emission_color", "emission_scale",
-                     "transfer_function"});
+    o.rejectUnknown({"density_scale", "albedo", "anisotropy", "transfer_function"});
     Material m;
     m.density_scale = o.number("density_scale", m.density_scale);
     if (m.density_scale < 0) o.fail("density_scale", "must be 0 or more");
@@ -78,8 +77,6 @@ Material readMaterial(const JsonObject& o) {
         o.fail("albedo", "each component must lie in [0, 1]");
     m.anisotropy = o.number("anisotropy", m.anisotropy);
     if (!(m.anisotropy > -1 && m.anisotropy < 1)) o.fail("anisotropy", "must lie in (-1, 1)");
-    m.emission_color = o.vec3("emission_color", m.emission_color);
-    m.emission_scale = o.number("emission_scale", m.emission_scale);
     if (o.has("transfer_function")) {
         for (const auto& p : o.objects("transfer_function")) {
             p.rejectUnknown({"value", "extinction", "albedo"});
@@ -317,6 +314,68 @@ OutputSpec readOutput(const JsonObject& o) {
     return out;
 }
 
+// Emitted colours: unbounded, but finite and >= 0.
+glm::vec3 readEmittedColor(const JsonObject& o, const std::string& key) {
+    const glm::vec3 c = o.vec3(key);
+    if (!(glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) && std::isfinite(c.x + c.y + c.z)))
+        o.fail(key, "must be finite and >= 0");
+    return c;
+}
+
+// Each kind takes its own keys; another kind's are refused, as they would be ignored.
+EmissionSource readEmissionSource(const JsonObject& o) {
+    EmissionSource e;
+    const std::string kind = o.choice("kind", {"constant", "blackbody", "ramp"}, "constant");
+    e.kind = kind == "blackbody" ? EmissionKind::Blackbody : kind == "ramp" ? EmissionKind::Ramp : EmissionKind::Constant;
+    std::vector<std::string> keys{"grid", "kind", "intensity"};
+    if (e.kind == EmissionKind::Constant) keys.push_back("color");
+    if (e.kind == EmissionKind::Ramp) keys.push_back("ramp");
+    if (e.kind == EmissionKind::Blackbody) {
+        keys.insert(keys.end(), {"temperature_scale", "temperature_offset", "cutoff", "normalization"});
+        if (o.choice("normalization", {"luminance", "physical"}, "luminance") == "physical") {
+            e.normalization = BlackbodyNormalization::Physical;
+            keys.push_back("reference_temperature");
+        }
+    }
+    o.rejectUnknown(keys);
+    e.grid = readGridRef(o, "grid");
+    e.intensity = o.number("intensity", e.intensity);
+    if (!(e.intensity >= 0) || !std::isfinite(e.intensity)) o.fail("intensity", "must be a finite number >= 0");
+    if (o.has("color")) e.color = readEmittedColor(o, "color");
+    if (e.kind == EmissionKind::Ramp) {
+        for (const auto& p : o.objects("ramp")) {
+            p.rejectUnknown({"value", "color"});
+            RampPoint r{p.number("value"), readEmittedColor(p, "color")};
+            if (!std::isfinite(r.value)) p.fail("value", "must be finite");
+            if (!e.ramp.empty() && r.value <= e.ramp.back().value) p.fail("value", "ramp points must have increasing values");
+            e.ramp.push_back(r);
+        }
+        if (e.ramp.size() < 2) o.fail("ramp", "needs at least 2 points");
+    }
+    if (e.kind == EmissionKind::Blackbody) {
+        e.temperature_scale = o.number("temperature_scale", e.temperature_scale);
+        if (!(e.temperature_scale > 0) || !std::isfinite(e.temperature_scale))
+            o.fail("temperature_scale", "must be a finite number > 0");
+        e.temperature_offset = o.number("temperature_offset", e.temperature_offset);
+        if (!std::isfinite(e.temperature_offset)) o.fail("temperature_offset", "must be finite");
+        e.cutoff = o.number("cutoff", e.cutoff);
+        if (!(e.cutoff >= 0) || !std::isfinite(e.cutoff)) o.fail("cutoff", "must be a finite temperature >= 0 K");
+        e.reference_temperature = o.number("reference_temperature", e.reference_temperature);
+        if (!(e.reference_temperature > 0) || !std::isfinite(e.reference_temperature))
+            o.fail("reference_temperature", "must be a finite temperature > 0 K");
+    }
+    // Value 0 is empty space (the grids' background): emitting there would light whole bricks
+    // and stop at their edges.
+    if (emissionRadiance(e, 0.0f, kXyzD65ToAcescg) != glm::vec3(0.0f)) {
+        if (e.kind == EmissionKind::Ramp) o.fail("ramp", "must be black at value 0 (empty space emits nothing)");
+        char kelvin[32];
+        std::snprintf(kelvin, sizeof kelvin, "%g", double(e.temperature_offset));
+        o.fail("temperature_offset", "value 0 (empty space) would emit at " + std::string(kelvin) +
+                                         " K: keep the offset below cutoff");
+    }
+    return e;
+}
+
 // Floats as the shortest decimal that reads back to the same float (0.9f prints as 0.9).
 double decimal(float f) {
     char buf[32];
@@ -418,6 +477,30 @@ nlohmann::json colorToJson(const ColorSettings& c) {
     return j;
 }
 
+nlohmann::json emissionToJson(const EmissionSource& e) {
+    nlohmann::json j = {{"grid", gridRefToJson(e.grid)}, {"intensity", decimal(e.intensity)}};
+    switch (e.kind) {
+        case EmissionKind::Constant:
+            j["kind"] = "constant";
+            j["color"] = vec(e.color);
+            break;
+        case EmissionKind::Ramp:
+            j["kind"] = "ramp";
+            for (const auto& p : e.ramp) j["ramp"].push_back({{"value", decimal(p.value)}, {"color", vec(p.color)}});
+            break;
+        case EmissionKind::Blackbody:
+            j["kind"] = "blackbody";
+            j["temperature_scale"] = decimal(e.temperature_scale);
+            j["temperature_offset"] = decimal(e.temperature_offset);
+            j["cutoff"] = decimal(e.cutoff);
+            j["normalization"] = e.normalization == BlackbodyNormalization::Physical ? "physical" : "luminance";
+            if (e.normalization == BlackbodyNormalization::Physical)
+                j["reference_temperature"] = decimal(e.reference_temperature);
+            break;
+    }
+    return j;
+}
+
 }  // namespace
 
 Light readLight(const JsonObject& o) {
@@ -456,7 +539,7 @@ Light readLight(const JsonObject& o) {
 Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir) {
     const nlohmann::json json = parseJson(text, file);
     JsonObject root(json, file, "");
-    root.rejectUnknown({"volume", "material", "lights", "camera", "render", "effects", "color", "output"});
+    root.rejectUnknown({"volume", "material", "lights", "camera", "render", "effects", "emission", "color", "output"});
     Scene s;
     s.volume = readVolume(root.object("volume"), base_dir);
     if (root.has("material")) s.material = readMaterial(root.object("material"));
@@ -466,6 +549,13 @@ Scene parseScene(const std::string& text, const std::string& file, const std::st
     if (root.has("render")) s.render = readRender(root.object("render"));
     if (root.has("effects")) s.effects = readEffects(root.object("effects"));
     if (root.has("color")) s.color = readColor(root.object("color"), base_dir);
+    if (root.has("emission")) {
+        const auto sources = root.objects("emission");
+        if (sources.size() > VX_MAX_EMISSION)
+            root.fail("emission", "at most " + std::to_string(VX_MAX_EMISSION) + " sources (got " +
+                                      std::to_string(sources.size()) + ")");
+        for (const auto& e : sources) s.emission.push_back(readEmissionSource(e));
+    }
     if (root.has("output")) s.output = readOutput(root.object("output"));
     return s;
 }
@@ -503,7 +593,6 @@ nlohmann::json sceneToJson(const Scene& s) {
     v["path"] = s.volume.path;
     if (s.volume.frames) v["frames"] = {(*s.volume.frames)[0], (*s.volume.frames)[1]};
     v["density"] = gridRefToJson(s.volume.density);
-    if (s.volume.emission) v["emission"] = gridRefToJson(*s.volume.emission);
     if (s.volume.color) v["color"] = gridRefToJson(*s.volume.color);
     v["level_set"] = s.volume.level_set == LevelSetPolicy::ConvertToFog ? "fog" : "reject";
 
@@ -511,13 +600,14 @@ nlohmann::json sceneToJson(const Scene& s) {
     m["density_scale"] = decimal(s.material.density_scale);
     m["albedo"] = vec(s.material.albedo);
     m["anisotropy"] = decimal(s.material.anisotropy);
-    m["emission_color"] = vec(s.material.emission_color);
-    m["emission_scale"] = decimal(s.material.emission_scale);
     for (const auto& p : s.material.transfer)
         m["transfer_function"].push_back({{"value", decimal(p.value)}, {"extinction", decimal(p.extinction)}, {"albedo", vec(p.albedo)}});
 
     j["lights"] = nlohmann::json::array();
     for (const auto& l : s.lights) j["lights"].push_back(lightToJson(l));
+
+    j["emission"] = nlohmann::json::array();
+    for (const auto& e : s.emission) j["emission"].push_back(emissionToJson(e));
 
     if (s.camera) {
         auto& c = j["camera"];

@@ -152,7 +152,7 @@ glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file) {
     return out;
 }
 
-LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec) {
+LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::vector<EmissionSource>& emission) {
     initOpenVdb();
     auto f = openFile(file);
     auto meta = gridMetadata(*f, file);
@@ -160,10 +160,10 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec) {
     v.file = file;
     auto density = asFogFloat(readGrid(*f, file, meta, spec.density, v.warnings), file, spec, "density");
     v.index_to_world = indexToWorld(*density, file);
-    if (spec.emission)
-        v.emission = matchTransform<openvdb::FloatGrid>(
-            asFogFloat(readGrid(*f, file, meta, *spec.emission, v.warnings), file, spec, "emission"), *density,
-            file, v.warnings);
+    for (const auto& source : emission)
+        v.emission.push_back(matchTransform<openvdb::FloatGrid>(
+            asFogFloat(readGrid(*f, file, meta, source.grid, v.warnings), file, spec, "emission"), *density, file,
+            v.warnings));
     if (spec.color)
         v.color = matchTransform<openvdb::Vec3SGrid>(asColor(readGrid(*f, file, meta, *spec.color, v.warnings), file),
                                                      *density, file, v.warnings);

@@ -14,7 +14,7 @@ namespace voxlux {
 struct LoadedVolume {
     std::string file;
     openvdb::FloatGrid::ConstPtr density;
-    openvdb::FloatGrid::ConstPtr emission;   // null unless the spec names one
+    std::vector<openvdb::FloatGrid::ConstPtr> emission;  // one per emission source, in its order
     openvdb::Vec3SGrid::ConstPtr color;      // null unless the spec names one
     glm::mat4 index_to_world{1.0f};          // affine, from the density grid
     std::vector<std::string> warnings;
@@ -34,8 +34,9 @@ struct GridSummary {
 
 void initOpenVdb();
 
-// Throws InputError "<file>: <problem>".
-LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec);
+// The grids `spec` names and each emission source's grid. Throws InputError "<file>: <problem>".
+LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec,
+                        const std::vector<EmissionSource>& emission = {});
 std::vector<GridSummary> summarizeFile(const std::string& file);
 
 // Index-to-world of a grid as a column-major matrix; throws for non-affine transforms.

@@ -49,7 +49,7 @@ TEST(Bricks, SmokeRoundTripIsExact) {
     scene.volume.path = path;
     auto volume = loadVolume(path, scene.volume);
     BrickAtlas atlas = buildBrickAtlas(volume);
-    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material));
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material, scene.emission));
     expectRoundTrip(*volume.density, atlas, pages);
     EXPECT_EQ(atlas.active_voxels, 1049275u);
 }
@@ -60,7 +60,7 @@ TEST(Bricks, CloudTilesAreExpandedNotDropped) {
     auto volume = loadVolume(path, scene.volume);
     ASSERT_GT(volume.density->tree().activeTileCount(), 0u);
     BrickAtlas atlas = buildBrickAtlas(volume);
-    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material));
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material, scene.emission));
     expectRoundTrip(*volume.density, atlas, pages);
 }
 
@@ -92,7 +92,7 @@ openvdb::FloatGrid::Ptr blob(openvdb::FloatGrid::Ptr g, openvdb::Coord centre, i
 size_t totalBytes(const openvdb::FloatGrid::Ptr& g) {
     auto volume = volumeFromGrid(g);
     BrickAtlas atlas = buildBrickAtlas(volume);
-    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}));
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}, {}));
     return atlas.bytes() + pages.entries.size() * sizeof(glm::ivec4);
 }
 
@@ -110,7 +110,7 @@ TEST(Bricks, MemoryFollowsActiveVoxelsNotTheBoundingBox) {
 TEST(Bricks, EmptyGridGivesAnEmptyPageTable) {
     auto volume = volumeFromGrid(openvdb::FloatGrid::create(0.0f));
     BrickAtlas atlas = buildBrickAtlas(volume);
-    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}));
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}, {}));
     EXPECT_EQ(atlas.slots(), 0u);
     EXPECT_TRUE(pages.empty());
 }
@@ -122,7 +122,7 @@ TEST(Bricks, TransferFunctionClassifiesTransparentBricksAway) {
     BrickAtlas atlas = buildBrickAtlas(volume);
     Material m;
     m.transfer = {{0.0f, 0.0f, glm::vec3(1)}, {0.5f, 0.0f, glm::vec3(1)}, {1.0f, 1.0f, glm::vec3(1)}};
-    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, m));
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, m, {}));
     // Only the 0.8 block (brick 8) and its - side neighbours whose aprons reach it stay.
     EXPECT_EQ(pages.bricks_min.x, 7);
     EXPECT_EQ(pages.bricks_max.x, 8);
@@ -153,7 +153,7 @@ TEST(Bricks, ModerateTilesAreExpanded) {
     g->tree().addTile(2, openvdb::Coord(0), 0.25f, true);  // 128^3 voxels in one tile
     auto volume = volumeFromGrid(g);
     BrickAtlas atlas = buildBrickAtlas(volume);
-    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}));
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}, {}));
     EXPECT_EQ(pages.bricks_min, glm::ivec3(-1));  // - side neighbours hold the ramp into the tile
     EXPECT_EQ(pages.bricks_max, glm::ivec3(15));
     expectRoundTrip(*g, atlas, pages);
@@ -173,16 +173,16 @@ TEST(Load, EmissionOnAnotherTransformIsResampled) {
     heat->setName("heat");
     const std::string file = tempDir("load") + "/two_resolutions.vdb";
     openvdb::io::File(file).write({density, heat});
-    VolumeSpec spec;
-    spec.emission = GridRef{"heat", 0};
-    LoadedVolume v = loadVolume(file, spec);
+    EmissionSource heatSource;
+    heatSource.grid = GridRef{"heat", 0};
+    LoadedVolume v = loadVolume(file, VolumeSpec{}, {heatSource});
     ASSERT_EQ(v.warnings.size(), 1u);
     EXPECT_EQ(v.warnings[0], file + ": grid 'heat' has a different transform from 'density'; resampled onto it");
-    EXPECT_EQ(v.emission->transform(), v.density->transform());
-    EXPECT_NEAR(v.emission->tree().getValue(openvdb::Coord(8, 8, 8)), 2.0f, 1e-5f);
+    ASSERT_EQ(v.emission.size(), 1u);
+    EXPECT_EQ(v.emission[0]->transform(), v.density->transform());
+    EXPECT_NEAR(v.emission[0]->tree().getValue(openvdb::Coord(8, 8, 8)), 2.0f, 1e-5f);
     BrickAtlas atlas = buildBrickAtlas(v);
-    ASSERT_FALSE(atlas.emission_max.empty());
-    EXPECT_NEAR(*std::max_element(atlas.emission_max.begin(), atlas.emission_max.end()), 2.0f, 1e-5f);
+    EXPECT_NEAR(atlas.emissionGridMax(0), 2.0f, 1e-5f);
 }
 
 }  // namespace

@@ -112,6 +112,30 @@ TEST(Cli, RealCachesRender) {
     expectRenders(torus + " --grid voxel_fog_density", "torus");
 }
 
+// --emission-grid and --blackbody-grid replace the scene's emission list with one source each.
+TEST(Cli, EmissionQuickForms) {
+    initOpenVdb();
+    const std::string file = tempDir("emission_cli") + "/fire.vdb";
+    auto density = boxGrid({0, 0, 0}, {15, 15, 15}, 0.5f);
+    auto heat = boxGrid({4, 4, 4}, {11, 11, 11}, 2.0f);
+    heat->setName("temperature");
+    openvdb::io::File(file).write({density, heat});
+    CliResult r = runCli("scene " + file + " --emission-grid temperature --blackbody-grid temperature");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto emission = nlohmann::json::parse(r.out)["emission"];
+    ASSERT_EQ(emission.size(), 2u);
+    EXPECT_EQ(emission[0], nlohmann::json::parse(
+                               R"({"grid": "temperature", "kind": "constant", "color": [1, 1, 1], "intensity": 1})"));
+    EXPECT_EQ(emission[1], nlohmann::json::parse(R"({"grid": "temperature", "kind": "blackbody", "intensity": 1,
+        "temperature_scale": 1000, "temperature_offset": 0, "cutoff": 1000, "normalization": "physical",
+        "reference_temperature": 1500})"));
+    r = runCli("render " + file + " --blackbody-grid temperature --explain");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("reads density 'density', emission 'temperature' from " + file), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(", emission: blackbody from 'temperature'  [in:"), std::string::npos) << r.out;
+    expectRenders(file + " --blackbody-grid temperature --aovs emission", "blackbody");
+}
+
 TEST(Cli, InfoListsGridsAndBricks) {
     VOXLUX_REQUIRE_SHARED(fire, "blender/fire/fluid_data_0030.vdb");
     CliResult r = runCli("info " + fire);

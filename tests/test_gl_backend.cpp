@@ -40,6 +40,8 @@ void forSphere(F f) {
     }
 }
 
+// With `emission_and_color`, an emission grid (the scene's one source, emissionSource()) and a
+// colour grid over the sphere.
 LoadedVolume makeVolume(bool emission_and_color) {
     auto density = boxGrid(Coord(-16, -8, -4), Coord(7, 15, 19), 1.0f, 0.1);
     auto acc = density->getAccessor();
@@ -55,7 +57,22 @@ LoadedVolume makeVolume(bool emission_and_color) {
         eacc.setValue(c, std::max(0.0f, 1.0f - 2.0f * r) * noise(c + Coord(5)));
         cacc.setValue(c, openvdb::Vec3s(1.0f - r, noise(c), r));
     });
-    return volumeFromGrid(density, emission, color);
+    return volumeFromGrid(density, {emission}, color);
+}
+
+// A second emission grid, over part of the box: a topology of its own.
+openvdb::FloatGrid::Ptr flameGrid() {
+    auto g = boxGrid(Coord(-16, -8, -4), Coord(-5, 15, 19), 0.0f, 0.1);
+    g->setName("flame");
+    for (auto it = g->beginValueOn(); it; ++it) it.setValue(noise(it.getCoord() + Coord(11)));
+    return g;
+}
+
+EmissionSource emissionSource() {
+    EmissionSource e;
+    e.color = glm::vec3(1.0f, 0.5f, 0.2f);
+    e.intensity = 4.0f;
+    return e;
 }
 
 Light directionalLight() {
@@ -153,6 +170,7 @@ Scene satScene() {
     ambient.color = glm::vec3(0.5f, 0.6f, 0.8f);
     ambient.intensity = 0.4f;
     s.lights = {directionalLight(), pointLight(), spotLight(), ambient};
+    s.emission = {EmissionSource{}};   // white, for makeVolume(true)
     return s;
 }
 
@@ -257,9 +275,31 @@ TEST(GlBackend, MatchesCpuWithUnshadowedDirectionalLight) {
 TEST(GlBackend, MatchesCpuWithEmissionAndColourGrids) {
     VOXLUX_REQUIRE_GL(gl);
     Scene scene = baseScene();
-    scene.material.emission_color = glm::vec3(1.0f, 0.5f, 0.2f);
-    scene.material.emission_scale = 4.0f;
+    scene.emission = {emissionSource()};
     const auto stats = expectMatch(renderBoth(makeVolume(true), scene, *gl));
+    EXPECT_GT(stats[kDirect].peak, 0.0);
+    EXPECT_GT(stats[kEmission].peak, 0.0);
+}
+
+// Two sources on grids of different topology: a blackbody from the sphere's grid (its 0..1 up to
+// 3000 K) and a ramp from the flame grid.
+TEST(GlBackend, MatchesCpuWithTwoEmissionSources) {
+    VOXLUX_REQUIRE_GL(gl);
+    Scene scene = baseScene();
+    EmissionSource fire;
+    fire.kind = EmissionKind::Blackbody;
+    fire.temperature_scale = 3000.0f;
+    fire.cutoff = 600.0f;
+    fire.normalization = BlackbodyNormalization::Physical;
+    fire.intensity = 2.0f;
+    EmissionSource flame;
+    flame.kind = EmissionKind::Ramp;
+    flame.ramp = {{0.0f, glm::vec3(0.0f)}, {0.5f, {1.0f, 0.3f, 0.05f}}, {1.0f, {1.0f, 0.9f, 0.6f}}};
+    flame.intensity = 3.0f;
+    scene.emission = {fire, flame};
+    LoadedVolume volume = makeVolume(true);
+    volume.emission.push_back(flameGrid());
+    const auto stats = expectMatch(renderBoth(std::move(volume), scene, *gl));
     EXPECT_GT(stats[kDirect].peak, 0.0);
     EXPECT_GT(stats[kEmission].peak, 0.0);
 }
@@ -331,6 +371,7 @@ TEST(GlBackend, MatchesCpuWithPropagation) {
     s.effects.perturbation = p;
     s.effects.surface = SurfaceShading{};
     s.lights = {directionalLight(), pointLight(), spotLight()};
+    s.emission = {EmissionSource{}};
     const auto stats = expectMatch(renderBoth(makeVolume(true), s, *gl));
     EXPECT_GT(stats[kDirect].peak, 0.0);
     EXPECT_GT(stats[kIndirect].peak, 0.0);
@@ -340,7 +381,7 @@ TEST(GlBackend, MatchesCpuWithoutLights) {
     VOXLUX_REQUIRE_GL(gl);
     Scene scene = baseScene();
     scene.lights.clear();
-    scene.material.emission_scale = 4.0f;
+    scene.emission = {emissionSource()};
     const auto stats = expectMatch(renderBoth(makeVolume(true), scene, *gl));
     EXPECT_EQ(stats[kDirect].peak, 0.0);
     EXPECT_EQ(stats[kDirect].max_abs, 0.0);

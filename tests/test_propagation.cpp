@@ -745,7 +745,8 @@ TEST(Propagation, BlenderFireWithEveryFeatureStaysFinite) {
     VOXLUX_REQUIRE_SHARED(fire, "blender/fire/fluid_data_0040.vdb");
     Scene s;
     s.volume.path = fire;
-    s.volume.emission = GridRef{"flame", 0};
+    s.emission = {EmissionSource{}};
+    s.emission[0].grid = GridRef{"flame", 0};
     s.render.width = 48;
     s.render.height = 64;
     s.render.backend = Backend::Cpu;

@@ -67,7 +67,7 @@ TEST(Scene, MalformedJsonGivesLineAndColumn) {
 TEST(Scene, RoundTripThroughJson) {
     Scene s = parseScene(R"({
         "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
-                   "emission": "temperature", "color": "Cd", "level_set": "fog"},
+                   "color": "Cd", "level_set": "fog"},
         "material": {"density_scale": 2.5, "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
                      "transfer_function": [{"value": 0, "extinction": 0}, {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
         "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 40, "cone_angle": 25}],
@@ -186,6 +186,78 @@ TEST(Scene, PropagationEffectsAreValidated) {
               "shot.json: /effects/perturbation/displacement: must lie in [0, 64] voxels");
     EXPECT_EQ(errorOf(v + R"({"propagation": {"eye": true}}})"),
               "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling, coherent)");
+}
+
+// The emission list: every kind, its defaults and the round trip.
+TEST(EmissionScene, ParsesEveryKindAndRoundTrips) {
+    const Scene s = parseScene(R"({"volume": {"path": "fire.vdb"}, "emission": [
+        {"grid": "flame"},
+        {"grid": {"name": "temperature", "index": 1}, "kind": "blackbody", "intensity": 2, "temperature_scale": 1000,
+         "temperature_offset": -100, "cutoff": 900, "normalization": "physical", "reference_temperature": 1800},
+        {"grid": "heat", "kind": "blackbody"},
+        {"grid": "flame", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]}, {"value": 2, "color": [4, 2, 1]}]}]})",
+                               "shot.json", "");
+    ASSERT_EQ(s.emission.size(), 4u);
+    EXPECT_EQ(s.emission[0].kind, EmissionKind::Constant);   // the default kind, colour and intensity
+    EXPECT_EQ(s.emission[0].color, glm::vec3(1.0f));
+    EXPECT_EQ(s.emission[0].intensity, 1.0f);
+    const EmissionSource& b = s.emission[1];
+    EXPECT_EQ(b.grid, (GridRef{"temperature", 1}));
+    EXPECT_EQ(b.kind, EmissionKind::Blackbody);
+    EXPECT_EQ(b.normalization, BlackbodyNormalization::Physical);
+    EXPECT_EQ(b.temperature_scale, 1000.0f);
+    EXPECT_EQ(b.temperature_offset, -100.0f);
+    EXPECT_EQ(b.cutoff, 900.0f);
+    EXPECT_EQ(b.reference_temperature, 1800.0f);
+    EXPECT_EQ(s.emission[2].normalization, BlackbodyNormalization::Luminance);
+    EXPECT_EQ(s.emission[2].temperature_scale, 1.0f);
+    ASSERT_EQ(s.emission[3].ramp.size(), 2u);
+    EXPECT_EQ(s.emission[3].ramp[1].color, glm::vec3(4, 2, 1));
+    const Scene again = parseScene(sceneToJson(s).dump(), "again.json", "");
+    EXPECT_EQ(sceneToJson(again), sceneToJson(s));
+    EXPECT_EQ(sceneToJson(again)["emission"][1]["reference_temperature"], 1800);
+    EXPECT_FALSE(sceneToJson(again)["emission"][2].contains("reference_temperature"));
+}
+
+// Keys of another kind, bad values, too many sources: one line naming the key.
+TEST(EmissionScene, ErrorsNameTheKey) {
+    const std::string v = R"({"volume": {"path": "a.vdb"}, "emission": )";
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "plasma"}]})"),
+              "shot.json: /emission/0/kind: 'plasma' is not one of constant, blackbody, ramp");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t"}, {"grid": "t", "kind": "blackbody", "color": [1, 0, 0]}]})"),
+              "shot.json: /emission/1/color: unknown key (expected one of grid, kind, intensity, temperature_scale, "
+              "temperature_offset, cutoff, normalization)");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "blackbody", "reference_temperature": 1000}]})"),
+              "shot.json: /emission/0/reference_temperature: unknown key (expected one of grid, kind, intensity, "
+              "temperature_scale, temperature_offset, cutoff, normalization)");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "temperature_scale": 2}]})"),
+              "shot.json: /emission/0/temperature_scale: unknown key (expected one of grid, kind, intensity, color)");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]},
+                                                                   {"value": 2, "color": [1, 1, 1]},
+                                                                   {"value": 1, "color": [1, 0, 0]}]}]})"),
+              "shot.json: /emission/0/ramp/2/value: ramp points must have increasing values");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]}]}]})"),
+              "shot.json: /emission/0/ramp: needs at least 2 points");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0.2, "color": [1, 0, 0]},
+                                                                   {"value": 1, "color": [1, 1, 0]}]}]})"),
+              "shot.json: /emission/0/ramp: must be black at value 0 (empty space emits nothing)");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "blackbody", "temperature_offset": 300}]})"),
+              "shot.json: /emission/0/temperature_offset: value 0 (empty space) would emit at 300 K: keep the offset "
+              "below cutoff");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "intensity": -1}]})"),
+              "shot.json: /emission/0/intensity: must be a finite number >= 0");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "color": [1, -0.5, 0]}]})"),
+              "shot.json: /emission/0/color: must be finite and >= 0");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "blackbody", "temperature_scale": 0}]})"),
+              "shot.json: /emission/0/temperature_scale: must be a finite number > 0");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "blackbody", "normalization": "physical", "reference_temperature": 0}]})"),
+              "shot.json: /emission/0/reference_temperature: must be a finite temperature > 0 K");
+    EXPECT_EQ(errorOf(v + R"([{"kind": "constant"}]})"), "shot.json: /emission/0/grid: required key is missing");
+    EXPECT_EQ(errorOf(v + R"([{"grid": "a"}, {"grid": "b"}, {"grid": "c"}, {"grid": "d"}, {"grid": "e"}]})"),
+              "shot.json: /emission: at most 4 sources (got 5)");
+    // The old single-grid keys are gone.
+    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb", "emission": "heat"}})"),
+              "shot.json: /volume/emission: unknown key (expected one of path, frames, density, color, level_set)");
 }
 
 }  // namespace

@@ -29,14 +29,14 @@ std::unique_ptr<KernelBackend> glBackendOrSkip() {
     }
 }
 
-LoadedVolume volumeFromGrid(openvdb::FloatGrid::Ptr density, openvdb::FloatGrid::Ptr emission,
+LoadedVolume volumeFromGrid(openvdb::FloatGrid::Ptr density, std::vector<openvdb::FloatGrid::ConstPtr> emission,
                             openvdb::Vec3SGrid::Ptr color) {
     initOpenVdb();
     LoadedVolume v;
     v.file = "memory.vdb";
     v.index_to_world = indexToWorld(*density, v.file);
     v.density = density;
-    v.emission = emission;
+    v.emission = std::move(emission);
     v.color = color;
     return v;
 }
@@ -55,7 +55,7 @@ std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const
     auto p = std::make_unique<Prepared>();
     p->volume = std::move(volume);
     p->atlas = buildBrickAtlas(p->volume);
-    p->pages = buildPageTable(p->atlas.coords, classifyBricks(p->atlas, scene.material));
+    p->pages = buildPageTable(p->atlas.coords, classifyBricks(p->atlas, scene.material, scene.emission));
     p->inputs = makeKernelInputs(scene, camera, p->atlas, p->pages);
     return p;
 }

@@ -34,7 +34,9 @@ std::unique_ptr<KernelBackend> glBackendOrSkip();
     if (!var) GTEST_SKIP() << "VOXLUX_SKIP_GL=1: GL backend tests skipped"
 
 // A fog grid in memory, as the loader would return it.
-LoadedVolume volumeFromGrid(openvdb::FloatGrid::Ptr density, openvdb::FloatGrid::Ptr emission = nullptr,
+// `emission`: one grid per emission source of the scene it renders with.
+LoadedVolume volumeFromGrid(openvdb::FloatGrid::Ptr density,
+                            std::vector<openvdb::FloatGrid::ConstPtr> emission = {},
                             openvdb::Vec3SGrid::Ptr color = nullptr);
 
 // A constant-density box of `sigma` over index voxels [lo, hi] (inclusive), voxel size `voxel`.
