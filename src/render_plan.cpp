@@ -78,23 +78,28 @@ std::string gradeReason(const Scene& s) {
     const ColorSettings& c = s.color;
     const std::string working = c.working_space.empty() ? "the scene_linear role" : c.working_space;
     if (!needsGrade(s)) return "skipped: no grade, output in the working space (" + working + "), no preview";
-    std::vector<std::string> parts;
+    std::string steps;
     for (const auto& g : c.grade) {
         std::string step = g.kind == GradeKind::Look  ? "look '" + g.look + "'"
                            : g.kind == GradeKind::Cdl ? std::string("CDL")
                                                       : "'" + std::filesystem::path(g.file).filename().string() + "'";
         if (!g.space.empty()) step += " in " + g.space;
         if (g.inverse) step += " (inverse)";
-        parts.push_back(step);
+        steps += steps.empty() ? "grade " : ", ";
+        steps += step;
     }
-    std::string out = parts.empty() ? "" : "grade ";
-    for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + parts[i];
-    if (!parts.empty()) out += c.unpremultiply ? " on unpremultiplied colour; " : "; ";
-    if (!c.output_space.empty() && c.output_space != c.working_space) out += working + " -> " + c.output_space + "; ";
+    std::vector<std::string> parts;
+    if (!steps.empty()) parts.push_back(steps + (c.unpremultiply ? " on unpremultiplied colour" : ""));
+    if (!c.output_space.empty() && c.output_space != c.working_space) parts.push_back(working + " -> " + c.output_space);
     if (!s.output.preview.empty())
-        out += "preview through " + (c.display.empty() ? std::string("the default display") : "'" + c.display + "'") +
-               (c.view.empty() ? "" : " / '" + c.view + "'") + "; ";
-    return out.substr(0, out.size() - 2);
+        parts.push_back("preview through " + (c.display.empty() ? std::string("the default display") : "'" + c.display + "'") +
+                        (c.view.empty() ? "" : " / '" + c.view + "'"));
+    std::string out;
+    for (const auto& p : parts) {
+        if (!out.empty()) out += "; ";
+        out += p;
+    }
+    return out;
 }
 
 std::string shadowDescription(ShadowMethod m) {
@@ -126,7 +131,10 @@ std::vector<PlannedStage> planRender(const Scene& s) {
     std::vector<PlannedStage> plan;
     std::string grids = "density '" + s.volume.density.name + "'";
     if (s.volume.color) grids += ", colour '" + s.volume.color->name + "'";
-    for (size_t i = 0; i < s.emission.size(); ++i) grids += (i ? ", '" : ", emission '") + s.emission[i].grid.name + "'";
+    for (size_t i = 0; i < s.emission.size(); ++i) {
+        grids += i ? ", '" : ", emission '";
+        grids += s.emission[i].grid.name + "'";
+    }
     plan.push_back({"load", {"volume", "emission"}, true, "reads " + grids + " from " + s.volume.path});
     plan.push_back({"brick", {"load"}, true, "densifies active voxels into 8^3 bricks with a +1 apron"});
     plan.push_back({"classify", {"brick", "material", "emission"}, true,
@@ -146,8 +154,10 @@ std::vector<PlannedStage> planRender(const Scene& s) {
     }
     if (s.effects.surface) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation) march += ", noise-perturbed";
-    for (size_t i = 0; i < s.emission.size(); ++i)
-        march += (i ? ", " : ", emission: ") + emissionDescription(s.emission[i]);
+    for (size_t i = 0; i < s.emission.size(); ++i) {
+        march += i ? ", " : ", emission: ";
+        march += emissionDescription(s.emission[i]);
+    }
     plan.push_back({"march", {"classify", "light_cache", "illumination", "camera", "lights", "render", "emission"}, true, march});
     plan.push_back({"grade", {"march", "color", "output"}, needsGrade(s), gradeReason(s)});
     plan.push_back({"write", {"march", "grade", "output"}, true,
