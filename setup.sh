@@ -28,5 +28,5 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
 
 mkdir -p out
-build/voxlux render grids/default.json -o out/default.exr --stats out/default-stats.json
-echo "setup: the default scene is in out/default.exr (stage times above, and in out/default-stats.json)"
+build/voxlux render grids/default.json -o out/default.exr --preview out/default.png --stats out/default-stats.json
+echo "setup: the default scene is in out/default.exr, with an sRGB preview in out/default.png (stage times above, and in out/default-stats.json)"
