@@ -62,19 +62,11 @@ VX_INLINE VxCorners vx_corners_at(int slot, ivec3 b, vec3 p) {
         mix(mix(FETCH((c).base + 81), FETCH((c).base + 82), (c).fx), \
             mix(FETCH((c).base + 90), FETCH((c).base + 91), (c).fx), (c).fy), (c).fz)
 
-// The slot of the brick holding index point p, and p's trilinear cell in it (unset when the
-// slot is VX_PAGE_EMPTY): for lookups at any point, not along a brick being marched.
-int vx_locate(vec3 p, VX_OUT(VxCorners) c) {
-    ivec3 b = ivec3(floor(p / float(VX_BRICK)));
-    int slot = vx_page_lookup(b);
-    if (slot != VX_PAGE_EMPTY) c = vx_corners_at(slot, b, p);
-    return slot;
-}
-
 // Raw density at index point p from whichever brick holds it (0 in empty bricks): for lookups
 // that may leave the brick being marched (displaced samples, gradients).
 float vx_density_index(vec3 p) {
-    VxCorners c;
-    if (vx_locate(p, c) == VX_PAGE_EMPTY) return 0.0f;
-    return VX_TRILINEAR(vx_atlas_density, c);
+    ivec3 b = ivec3(floor(p / float(VX_BRICK)));
+    int slot = vx_page_lookup(b);
+    if (slot == VX_PAGE_EMPTY) return 0.0f;
+    return VX_TRILINEAR(vx_atlas_density, vx_corners_at(slot, b, p));
 }
