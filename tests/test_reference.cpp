@@ -208,6 +208,22 @@ TEST(Reference, DeterministicPerSeed) {
     EXPECT_NE(std::memcmp(a.pixels.data(), reseeded.pixels.data(), bytes), 0);
 }
 
+// From the command line: --method reference --spp N renders, and the variance AOV is written.
+TEST(Reference, CliWritesTheVarianceAov) {
+    const std::string dir = tempDir("reference_cli");
+    const std::string vdb = writeBall(dir), exr = dir + "/ref.exr";
+    const CliResult r = runCli("render " + vdb + " --method reference --spp 8 --res 8x8 --pixel-type float --aovs variance -o " + exr);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Exr image = readExr(exr);
+    ASSERT_EQ(image.planes.count("variance.Y"), 1u);
+    float largest = 0.0f;
+    for (float v : image.planes.at("variance.Y")) {
+        EXPECT_GE(v, 0.0f);
+        largest = std::max(largest, v);
+    }
+    EXPECT_GT(largest, 0.0f);  // 8 samples of a lit ball are not all equal
+}
+
 std::string errorOf(const std::string& json) {
     try {
         parseScene(json, "shot.json", "/shots");
