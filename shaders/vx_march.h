@@ -245,7 +245,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     px.transmittance = 1.0f;
     px.depth = 0.0f;
     px.samples = 0.0f;
-    px.pad = 0.0f;
+    px.variance = 0.0f;
 
     vec3 o = vx_to_index_point(origin);
     vec3 d = vx_to_index_dir(dir);

@@ -97,3 +97,23 @@ VX_INLINE float vx_phase_hg(float cos_theta, float g) {
     float denom = 1.0f + g * g - 2.0f * g * cos_theta;
     return (1.0f - g * g) / (4.0f * VX_PI * denom * sqrt(denom));
 }
+
+// A direction in which a path goes on after scattering, for one travelling along unit `dir`:
+// its cosine with dir follows the Henyey-Greenstein phase (the inverse of its CDF; u1, u2 uniform
+// in [0, 1)), so the phase cancels from the path's weight. Same convention as vx_phase_hg.
+vec3 vx_sample_hg(vec3 dir, float g, float u1, float u2) {
+    float cos_theta = 1.0f - 2.0f * u1;
+    if (abs(g) > 1e-3f) {
+        float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u1);
+        cos_theta = clamp((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
+    }
+    float sin_theta = sqrt(max(0.0f, 1.0f - cos_theta * cos_theta));
+    float phi = 2.0f * VX_PI * u2;
+    // Any orthonormal frame around dir (Duff et al. 2017).
+    float flip = dir.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (flip + dir.z);
+    float b = dir.x * dir.y * a;
+    vec3 t1 = vec3(1.0f + flip * dir.x * dir.x * a, flip * b, -flip * dir.x);
+    vec3 t2 = vec3(b, flip + dir.y * dir.y * a, -dir.y);
+    return normalize(t1 * (sin_theta * cos(phi)) + t2 * (sin_theta * sin(phi)) + dir * cos_theta);
+}

@@ -105,5 +105,6 @@ struct VxPixel {
     float transmittance;    // of the whole ray
     float depth;            // camera-space distance, opacity-weighted mean (0 where nothing was hit)
     float samples;          // samples the march evaluated (its cost; the benchmark counts these)
-    float pad;              // 20 floats: whole vec4s
+    float variance;         // of the pixel's luminance estimate (Monte Carlo reference); 0 from the march.
+                            // 20 floats: whole vec4s
 };

@@ -133,6 +133,8 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
     if (o.step) j["render"]["step"] = *o.step;
     if (o.shadow_step) j["render"]["shadow_step"] = *o.shadow_step;
     if (o.backend) j["render"]["backend"] = *o.backend;
+    if (o.method) j["render"]["method"] = *o.method;
+    if (o.spp) j["render"]["reference"]["spp"] = *o.spp;
     if (o.density_scale) j["material"]["density_scale"] = *o.density_scale;
     if (o.shadows) j["effects"]["shadows"] = *o.shadows;
     if (o.pixel_type) j["output"]["pixel_type"] = *o.pixel_type;

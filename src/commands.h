@@ -16,6 +16,8 @@ struct SceneOverrides {
     std::optional<float> step, shadow_step, density_scale;
     std::vector<std::string> lights;            // "TYPE:key=value:..."
     std::optional<std::string> shadows, backend, frames, pixel_type;
+    std::optional<std::string> method;          // render.method
+    std::optional<int> spp;                     // render.reference.spp
     std::optional<std::vector<std::string>> aovs;
     std::optional<std::string> output, preview;
     std::vector<std::string> sets;              // "dotted.key=JSON value", any scene key

@@ -116,6 +116,7 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         // OpenEXR names a lone grey channel Y (luminance): viewers show the layer as grey.
         if (aov.name == "transmittance") add("transmittance.Y", type, [](const kernel::VxPixel& p) { return p.transmittance; });
         if (aov.name == "depth") add("depth.Z", type, [](const kernel::VxPixel& p) { return p.depth; });
+        if (aov.name == "variance") add("variance.Y", type, [](const kernel::VxPixel& p) { return p.variance; });
     }
 
     // No NaN or Inf reaches a file; half channels saturate instead of overflowing to Inf.

@@ -25,9 +25,11 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--shadows", o.shadows, "none|raymarch|sat_cone|propagation (effects.shadows)");
     cmd.add_option("--set", o.sets, "KEY=VALUE: set any scene key, e.g. effects.cone.samples=50 (repeatable)");
     cmd.add_option("--backend", o.backend, "auto|cpu|gl (render.backend)");
+    cmd.add_option("--method", o.method, "march|reference: Monte Carlo reference on the CPU (render.method)");
+    cmd.add_option("--spp", o.spp, "reference samples per pixel (render.reference.spp)");
     cmd.add_option("--frames", o.frames, "FIRST-LAST for a #### volume path (volume.frames)");
     cmd.add_option("--pixel-type", o.pixel_type, "half|float (output.pixel_type)");
-    cmd.add_option("--aovs", o.aovs, "direct,ambient,indirect,emission,transmittance,depth (output.aovs)")->delimiter(',');
+    cmd.add_option("--aovs", o.aovs, "direct,ambient,indirect,emission,transmittance,depth,variance (output.aovs)")->delimiter(',');
 }
 
 }  // namespace

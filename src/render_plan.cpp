@@ -140,20 +140,28 @@ std::vector<PlannedStage> planRender(const Scene& s) {
     plan.push_back({"classify", {"brick", "material", "emission"}, true,
                     s.material.transfer.empty() ? "drops bricks with zero density and emission"
                                                 : "drops bricks the transfer function makes transparent"});
-    plan.push_back({"light_cache", {"classify", "lights", "effects"}, needsAmbientOcclusion(s) || needsConeShadows(s),
-                    lightCacheReason(s)});
-    plan.push_back({"illumination", {"classify", "lights", "effects", "camera"}, needsPropagation(s), illuminationReason(s)});
+    // The reference traces every shadow ray and bounce itself: precomputed light would bias it.
+    const bool reference = s.render.method == RenderMethod::Reference;
+    const std::string by_reference = "skipped: the Monte Carlo reference (render.method) computes all light itself";
+    plan.push_back({"light_cache", {"classify", "lights", "effects"}, !reference && (needsAmbientOcclusion(s) || needsConeShadows(s)),
+                    reference ? by_reference : lightCacheReason(s)});
+    plan.push_back({"illumination", {"classify", "lights", "effects", "camera"}, !reference && needsPropagation(s),
+                    reference ? by_reference : illuminationReason(s)});
 
     std::string march;
-    if (s.lights.empty()) {
+    if (reference) {
+        const ReferenceSettings& ref = s.render.reference;
+        march = "Monte Carlo reference: delta tracking, ratio-tracked shadows, up to " + std::to_string(ref.max_bounces) +
+                (ref.max_bounces == 1 ? " bounce, " : " bounces, ") + std::to_string(ref.spp) + " spp";
+    } else if (s.lights.empty()) {
         march = "no lights: emission and transmittance only";
     } else {
         march = std::to_string(s.lights.size()) + (s.lights.size() == 1 ? " light, " : " lights, ");
         march += hasLight(s, false) ? shadowDescription(s.effects.shadows) : "ambient only";
         if (hasLight(s, true)) march += needsAmbientOcclusion(s) ? ", occluded ambient" : ", unoccluded ambient";
     }
-    if (s.effects.surface) march += ", surface shading where the gradient is steep";
-    if (s.effects.perturbation) march += ", noise-perturbed";
+    if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
+    if (s.effects.perturbation && !reference) march += ", noise-perturbed";
     for (size_t i = 0; i < s.emission.size(); ++i) {
         march += i ? ", " : ", emission: ";
         march += emissionDescription(s.emission[i]);

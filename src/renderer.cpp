@@ -13,6 +13,7 @@
 #include "kernel_inputs.h"
 #include "page_table.h"
 #include "png_writer.h"
+#include "reference_renderer.h"
 #include "scene_json.h"
 #include "stage_clock.h"
 #include "vdb_loader.h"
@@ -99,7 +100,10 @@ FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     FrameResult r;
     KernelInputs inputs = runStages(frame, allow_empty, r);
     StageClock clock(r.stage_seconds);
-    r.image = clock("march", [&] { return backend_->march(inputs); });
+    r.image = clock("march", [&] {
+        return scene_.render.method == RenderMethod::Reference ? renderReference(inputs, scene_.render.reference)
+                                                               : backend_->march(inputs);
+    });
     if (stageRuns(plan_, "grade")) {
         std::vector<std::string> aovs;
         for (const auto& aov : scene_.output.aovs) aovs.push_back(aov.name);

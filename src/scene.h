@@ -66,6 +66,17 @@ struct Camera {
 
 enum class Backend { Auto, Cpu, Gl };
 
+// March: the ray marcher with the scene's effects. Reference: an unbiased Monte Carlo path tracer
+// (src/reference_renderer.h) on the CPU, to check the march against.
+enum class RenderMethod { March, Reference };
+
+struct ReferenceSettings {
+    int spp = 64;                          // samples per pixel
+    int max_bounces = 16;                  // scattering events per path; 1 = single scattering
+    int seed = 1;
+    int roulette_depth = 3;                // bounces before Russian roulette may end a path
+};
+
 struct RenderSettings {
     int width = 512;
     int height = 512;
@@ -73,6 +84,8 @@ struct RenderSettings {
     float shadow_step = 1.0f;              // voxels, for ray-marched shadows
     float transmittance_cutoff = 1e-4f;
     Backend backend = Backend::Auto;
+    RenderMethod method = RenderMethod::March;
+    ReferenceSettings reference;           // read only with method reference
 };
 
 // Raymarch: a shadow ray per sample and light (the reference). SatCone: Schlegel 2011 cones of

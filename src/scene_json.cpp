@@ -16,7 +16,7 @@ namespace voxlux {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& knownAovs() {
-    static const std::vector<std::string> aovs{"direct", "ambient", "indirect", "emission", "transmittance", "depth"};
+    static const std::vector<std::string> aovs{"direct", "ambient", "indirect", "emission", "transmittance", "depth", "variance"};
     return aovs;
 }
 
@@ -112,8 +112,21 @@ Camera readCamera(const JsonObject& o) {
     return c;
 }
 
+ReferenceSettings readReference(const JsonObject& o) {
+    o.rejectUnknown({"spp", "max_bounces", "seed", "roulette_depth"});
+    ReferenceSettings r;
+    r.spp = o.integer("spp", r.spp);
+    if (r.spp < 1 || r.spp > 1000000) o.fail("spp", "must lie in 1..1000000");
+    r.max_bounces = o.integer("max_bounces", r.max_bounces);
+    if (r.max_bounces < 1 || r.max_bounces > 1000) o.fail("max_bounces", "must lie in 1..1000");
+    r.seed = o.integer("seed", r.seed);
+    r.roulette_depth = o.integer("roulette_depth", r.roulette_depth);
+    if (r.roulette_depth < 1) o.fail("roulette_depth", "must be at least 1");
+    return r;
+}
+
 RenderSettings readRender(const JsonObject& o) {
-    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "backend"});
+    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "backend", "method", "reference"});
     RenderSettings r;
     if (o.has("resolution")) {
         auto res = o.numbers("resolution", 2);
@@ -132,6 +145,11 @@ RenderSettings readRender(const JsonObject& o) {
         o.fail("transmittance_cutoff", "must lie in (0, 1)");
     std::string b = o.choice("backend", {"auto", "cpu", "gl"}, "auto");
     r.backend = b == "cpu" ? Backend::Cpu : b == "gl" ? Backend::Gl : Backend::Auto;
+    r.method = o.choice("method", {"march", "reference"}, "march") == "reference" ? RenderMethod::Reference : RenderMethod::March;
+    // The reference renderer exists only on the CPU; auto picks the CPU for it.
+    if (r.method == RenderMethod::Reference && r.backend == Backend::Gl)
+        o.fail("method", "reference runs on the cpu backend only (render.backend is \"gl\")");
+    if (o.has("reference")) r.reference = readReference(o.object("reference"));
     return r;
 }
 
@@ -277,7 +295,7 @@ AovSpec readAov(const JsonObject& output, size_t index) {
     auto known = [](const std::string& name) {
         return std::find(knownAovs().begin(), knownAovs().end(), name) != knownAovs().end();
     };
-    const std::string expected = " (expected direct, ambient, indirect, emission, transmittance or depth)";
+    const std::string expected = " (expected direct, ambient, indirect, emission, transmittance, depth or variance)";
     const auto& a = output.raw("aovs")[index];
     if (!a.is_object()) {
         const std::string name = a.is_string() ? a.get<std::string>() : a.dump();
@@ -548,6 +566,8 @@ Scene parseScene(const std::string& text, const std::string& file, const std::st
     if (root.has("camera")) s.camera = readCamera(root.object("camera"));
     if (root.has("render")) s.render = readRender(root.object("render"));
     if (root.has("effects")) s.effects = readEffects(root.object("effects"));
+    if (s.render.method == RenderMethod::Reference && (s.effects.surface || s.effects.perturbation))
+        root.fail("effects", "surface and perturbation are march-only effects (render.method is \"reference\")");
     if (root.has("color")) s.color = readColor(root.object("color"), base_dir);
     if (root.has("emission")) {
         const auto sources = root.objects("emission");
@@ -627,6 +647,9 @@ nlohmann::json sceneToJson(const Scene& s) {
     r["shadow_step"] = decimal(s.render.shadow_step);
     r["transmittance_cutoff"] = decimal(s.render.transmittance_cutoff);
     r["backend"] = s.render.backend == Backend::Cpu ? "cpu" : s.render.backend == Backend::Gl ? "gl" : "auto";
+    r["method"] = s.render.method == RenderMethod::Reference ? "reference" : "march";
+    const ReferenceSettings& ref = s.render.reference;
+    r["reference"] = {{"spp", ref.spp}, {"max_bounces", ref.max_bounces}, {"seed", ref.seed}, {"roulette_depth", ref.roulette_depth}};
 
     auto& e = j["effects"];
     e["shadows"] = s.effects.shadows == ShadowMethod::None          ? "none"

@@ -32,7 +32,7 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
               "shot.json: /lights/0/direction: required key is missing");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
               "shot.json: /render/stepp: unknown key (expected one of resolution, step, shadow_step, "
-              "transmittance_cutoff, backend)");
+              "transmittance_cutoff, backend, method, reference)");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),
               "shot.json: /render/resolution: expected an array of 2 numbers");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "material": {"albedo": [1.5, 0, 0]}})"),
@@ -44,7 +44,7 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb", "density": {"name": "d", "index": -1}}})"),
               "shot.json: /volume/density/index: must be 0 or more");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
-              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, transmittance or depth)");
+              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"cone": {"samples": 0}}})"),
               "shot.json: /effects/cone/samples: must lie in 1..1024");
     EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": {"shells": 3, "radios": 2}}})"),
@@ -113,10 +113,10 @@ TEST(Scene, OutputAovsAndCompressionAreValidated) {
               "shot.json: /output/compression: 'b44' is not one of none, zip, zips, piz, dwaa, dwab, rle");
     EXPECT_EQ(errorOf(v + R"({"aovs": "direct"}})"), "shot.json: /output/aovs: expected an array of AOV names or objects");
     EXPECT_EQ(errorOf(v + R"({"aovs": [3]}})"),
-              "shot.json: /output/aovs: unknown AOV '3' (expected direct, ambient, indirect, emission, transmittance or depth)");
+              "shot.json: /output/aovs: unknown AOV '3' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
     EXPECT_EQ(errorOf(v + R"({"aovs": ["direct", {"name": "beauty"}]}})"),
               "shot.json: /output/aovs/1/name: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, "
-              "transmittance or depth)");
+              "transmittance, depth or variance)");
     EXPECT_EQ(errorOf(v + R"({"aovs": [{"pixel_type": "float"}]}})"), "shot.json: /output/aovs/0/name: required key is missing");
     EXPECT_EQ(errorOf(v + R"({"aovs": [{"name": "depth", "pixel_type": "double"}]}})"),
               "shot.json: /output/aovs/0/pixel_type: 'double' is not one of half, float");
