@@ -224,15 +224,6 @@ TEST(Reference, CliWritesTheVarianceAov) {
     EXPECT_GT(largest, 0.0f);  // 8 samples of a lit ball are not all equal
 }
 
-std::string errorOf(const std::string& json) {
-    try {
-        parseScene(json, "shot.json", "/shots");
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
 TEST(Reference, SceneKeys) {
     const Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "render": {"method": "reference",
         "reference": {"spp": 8, "max_bounces": 1, "seed": 5, "roulette_depth": 2}}})", "shot.json", "/shots");
@@ -252,12 +243,12 @@ TEST(Reference, SceneKeys) {
     EXPECT_EQ(defaults.render.reference.roulette_depth, 3);
 
     const std::string v = R"({"volume": {"path": "a.vdb"}, "render": )";
-    EXPECT_EQ(errorOf(v + R"({"method": "path"}})"), "shot.json: /render/method: 'path' is not one of march, reference");
-    EXPECT_EQ(errorOf(v + R"({"method": "reference", "reference": {"spp": 0}}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"method": "path"}})"), "shot.json: /render/method: 'path' is not one of march, reference");
+    EXPECT_EQ(sceneErrorOf(v + R"({"method": "reference", "reference": {"spp": 0}}})"),
               "shot.json: /render/reference/spp: must lie in 1..1000000");
-    EXPECT_EQ(errorOf(v + R"({"method": "reference", "backend": "gl"}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"method": "reference", "backend": "gl"}})"),
               "shot.json: /render/method: reference runs on the cpu backend only (render.backend is \"gl\")");
-    EXPECT_EQ(errorOf(v + R"({"method": "reference"}, "effects": {"surface": true}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"method": "reference"}, "effects": {"surface": true}})"),
               "shot.json: /effects: surface and perturbation are march-only effects (render.method is \"reference\")");
 }
 

@@ -6,15 +6,6 @@
 namespace voxlux::test {
 namespace {
 
-std::string errorOf(const std::string& json) {
-    try {
-        parseScene(json, "shot.json", "/shots");
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
 TEST(Scene, MinimalSceneGetsDefaults) {
     Scene s = parseScene(R"({"volume": {"path": "smoke.vdb"}})", "shot.json", "/shots");
     EXPECT_EQ(s.volume.path, "/shots/smoke.vdb");
@@ -26,41 +17,41 @@ TEST(Scene, MinimalSceneGetsDefaults) {
 }
 
 TEST(Scene, ErrorsNameTheKeyAndItsPath) {
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "area"}]})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "area"}]})"),
               "shot.json: /lights/0/type: 'area' is not one of directional, point, spot, ambient");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{}, {"intensity": "lots", "direction": [0,0,1]}]})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{}, {"intensity": "lots", "direction": [0,0,1]}]})"),
               "shot.json: /lights/0/direction: required key is missing");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
               "shot.json: /render/stepp: unknown key (expected one of resolution, step, shadow_step, "
               "transmittance_cutoff, backend, method, reference)");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),
               "shot.json: /render/resolution: expected an array of 2 numbers");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "material": {"albedo": [1.5, 0, 0]}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"albedo": [1.5, 0, 0]}})"),
               "shot.json: /material/albedo: each component must lie in [0, 1]");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "camera": {"position": [0,0,0], "look_at": [0,0,0]}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "camera": {"position": [0,0,0], "look_at": [0,0,0]}})"),
               "shot.json: /camera/look_at: must differ from position");
-    EXPECT_EQ(errorOf(R"({"material": {}})"), "shot.json: /volume: required key is missing");
-    EXPECT_EQ(errorOf(R"([1, 2])"), "shot.json: /: expected an object, got array");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb", "density": {"name": "d", "index": -1}}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"material": {}})"), "shot.json: /volume: required key is missing");
+    EXPECT_EQ(sceneErrorOf(R"([1, 2])"), "shot.json: /: expected an object, got array");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "density": {"name": "d", "index": -1}}})"),
               "shot.json: /volume/density/index: must be 0 or more");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
               "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"cone": {"samples": 0}}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"cone": {"samples": 0}}})"),
               "shot.json: /effects/cone/samples: must lie in 1..1024");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": {"shells": 3, "radios": 2}}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": {"shells": 3, "radios": 2}}})"),
               "shot.json: /effects/ambient_occlusion/radios: unknown key (expected one of shells, radius)");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": 3}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": 3}})"),
               "shot.json: /effects/ambient_occlusion: expected true, false or an object");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"color_bleeding": 2}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"color_bleeding": 2}})"),
               "shot.json: /effects/color_bleeding: must be true, false or a strength in [0, 1]");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"light_resolution": 1}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"light_resolution": 1}})"),
               "shot.json: /effects/light_resolution: must lie in 2..1024 cells");
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "position": [0, 0, 0]}]})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "position": [0, 0, 0]}]})"),
               "shot.json: /lights/0/position: unknown key (expected one of name, enabled, type, color, intensity)");
 }
 
 TEST(Scene, MalformedJsonGivesLineAndColumn) {
-    EXPECT_EQ(errorOf("{\n  \"volume\": {\"path\": \"a.vdb\"},\n  \"render\": {\"step\": 0.5,}\n}"),
+    EXPECT_EQ(sceneErrorOf("{\n  \"volume\": {\"path\": \"a.vdb\"},\n  \"render\": {\"step\": 0.5,}\n}"),
               "shot.json: malformed JSON at line 3, column 26: unexpected '}'; expected string literal");
 }
 
@@ -109,20 +100,20 @@ TEST(Scene, OutputAovsWithPixelTypesAndCompressions) {
 
 TEST(Scene, OutputAovsAndCompressionAreValidated) {
     const std::string v = R"({"volume": {"path": "a.vdb"}, "output": )";
-    EXPECT_EQ(errorOf(v + R"({"compression": "b44"}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"compression": "b44"}})"),
               "shot.json: /output/compression: 'b44' is not one of none, zip, zips, piz, dwaa, dwab, rle");
-    EXPECT_EQ(errorOf(v + R"({"aovs": "direct"}})"), "shot.json: /output/aovs: expected an array of AOV names or objects");
-    EXPECT_EQ(errorOf(v + R"({"aovs": [3]}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": "direct"}})"), "shot.json: /output/aovs: expected an array of AOV names or objects");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [3]}})"),
               "shot.json: /output/aovs: unknown AOV '3' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
-    EXPECT_EQ(errorOf(v + R"({"aovs": ["direct", {"name": "beauty"}]}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": ["direct", {"name": "beauty"}]}})"),
               "shot.json: /output/aovs/1/name: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, "
               "transmittance, depth or variance)");
-    EXPECT_EQ(errorOf(v + R"({"aovs": [{"pixel_type": "float"}]}})"), "shot.json: /output/aovs/0/name: required key is missing");
-    EXPECT_EQ(errorOf(v + R"({"aovs": [{"name": "depth", "pixel_type": "double"}]}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [{"pixel_type": "float"}]}})"), "shot.json: /output/aovs/0/name: required key is missing");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [{"name": "depth", "pixel_type": "double"}]}})"),
               "shot.json: /output/aovs/0/pixel_type: 'double' is not one of half, float");
-    EXPECT_EQ(errorOf(v + R"({"aovs": [{"name": "depth", "type": "float"}]}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [{"name": "depth", "type": "float"}]}})"),
               "shot.json: /output/aovs/0/type: unknown key (expected one of name, pixel_type)");
-    EXPECT_EQ(errorOf(v + R"({"aovs": ["direct", "depth", {"name": "direct", "pixel_type": "float"}]}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": ["direct", "depth", {"name": "direct", "pixel_type": "float"}]}})"),
               "shot.json: /output/aovs/2: duplicate AOV 'direct' (first at /output/aovs/0)");
 }
 
@@ -171,20 +162,20 @@ TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
 
 TEST(Scene, PropagationEffectsAreValidated) {
     const std::string v = R"({"volume": {"path": "a.vdb"}, "effects": )";
-    EXPECT_EQ(errorOf(v + R"({"indirect": {"transport_color": [1, 0, 0.5]}}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"transport_color": [1, 0, 0.5]}}})"),
               "shot.json: /effects/indirect/transport_color: each component must lie in (0, 1]");
-    EXPECT_EQ(errorOf(v + R"({"indirect": {"samples": 33}}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"samples": 33}}})"),
               "shot.json: /effects/indirect/samples: must lie in 1..32");
-    EXPECT_EQ(errorOf(v + R"({"indirect": {"phase": "mie"}}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"phase": "mie"}}})"),
               "shot.json: /effects/indirect/phase: 'mie' is not one of phong, henyey_greenstein");
-    EXPECT_EQ(errorOf(v + R"({"indirect": 3}})"), "shot.json: /effects/indirect: expected true, false or an object");
-    EXPECT_EQ(errorOf(v + R"({"surface": {"gradient_low": 0.5, "gradient_high": 0.2}}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": 3}})"), "shot.json: /effects/indirect: expected true, false or an object");
+    EXPECT_EQ(sceneErrorOf(v + R"({"surface": {"gradient_low": 0.5, "gradient_high": 0.2}}})"),
               "shot.json: /effects/surface/gradient_high: needs 0 <= gradient_low < gradient_high");
-    EXPECT_EQ(errorOf(v + R"({"perturbation": {"octaves": 0}}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"perturbation": {"octaves": 0}}})"),
               "shot.json: /effects/perturbation/octaves: must lie in 1..8");
-    EXPECT_EQ(errorOf(v + R"({"perturbation": {"displacement": -1}}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"perturbation": {"displacement": -1}}})"),
               "shot.json: /effects/perturbation/displacement: must lie in [0, 64] voxels");
-    EXPECT_EQ(errorOf(v + R"({"propagation": {"eye": true}}})"),
+    EXPECT_EQ(sceneErrorOf(v + R"({"propagation": {"eye": true}}})"),
               "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling, coherent)");
 }
 
@@ -222,41 +213,41 @@ TEST(EmissionScene, ParsesEveryKindAndRoundTrips) {
 // Keys of another kind, bad values, too many sources: one line naming the key.
 TEST(EmissionScene, ErrorsNameTheKey) {
     const std::string v = R"({"volume": {"path": "a.vdb"}, "emission": )";
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "plasma"}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "plasma"}]})"),
               "shot.json: /emission/0/kind: 'plasma' is not one of constant, blackbody, ramp");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t"}, {"grid": "t", "kind": "blackbody", "color": [1, 0, 0]}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t"}, {"grid": "t", "kind": "blackbody", "color": [1, 0, 0]}]})"),
               "shot.json: /emission/1/color: unknown key (expected one of grid, kind, intensity, temperature_scale, "
               "temperature_offset, cutoff, normalization)");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "blackbody", "reference_temperature": 1000}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "blackbody", "reference_temperature": 1000}]})"),
               "shot.json: /emission/0/reference_temperature: unknown key (expected one of grid, kind, intensity, "
               "temperature_scale, temperature_offset, cutoff, normalization)");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "temperature_scale": 2}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "temperature_scale": 2}]})"),
               "shot.json: /emission/0/temperature_scale: unknown key (expected one of grid, kind, intensity, color)");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]},
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]},
                                                                    {"value": 2, "color": [1, 1, 1]},
                                                                    {"value": 1, "color": [1, 0, 0]}]}]})"),
               "shot.json: /emission/0/ramp/2/value: ramp points must have increasing values");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]}]}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]}]}]})"),
               "shot.json: /emission/0/ramp: needs at least 2 points");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0.2, "color": [1, 0, 0]},
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0.2, "color": [1, 0, 0]},
                                                                    {"value": 1, "color": [1, 1, 0]}]}]})"),
               "shot.json: /emission/0/ramp: must be black at value 0 (empty space emits nothing)");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "blackbody", "temperature_offset": 300}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "blackbody", "temperature_offset": 300}]})"),
               "shot.json: /emission/0/temperature_offset: value 0 (empty space) would emit at 300 K: keep the offset "
               "below cutoff");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "intensity": -1}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "intensity": -1}]})"),
               "shot.json: /emission/0/intensity: must be a finite number >= 0");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "color": [1, -0.5, 0]}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "color": [1, -0.5, 0]}]})"),
               "shot.json: /emission/0/color: must be finite and >= 0");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "blackbody", "temperature_scale": 0}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "blackbody", "temperature_scale": 0}]})"),
               "shot.json: /emission/0/temperature_scale: must be a finite number > 0");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "t", "kind": "blackbody", "normalization": "physical", "reference_temperature": 0}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "blackbody", "normalization": "physical", "reference_temperature": 0}]})"),
               "shot.json: /emission/0/reference_temperature: must be a finite temperature > 0 K");
-    EXPECT_EQ(errorOf(v + R"([{"kind": "constant"}]})"), "shot.json: /emission/0/grid: required key is missing");
-    EXPECT_EQ(errorOf(v + R"([{"grid": "a"}, {"grid": "b"}, {"grid": "c"}, {"grid": "d"}, {"grid": "e"}]})"),
+    EXPECT_EQ(sceneErrorOf(v + R"([{"kind": "constant"}]})"), "shot.json: /emission/0/grid: required key is missing");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "a"}, {"grid": "b"}, {"grid": "c"}, {"grid": "d"}, {"grid": "e"}]})"),
               "shot.json: /emission: at most 4 sources (got 5)");
     // The old single-grid keys are gone.
-    EXPECT_EQ(errorOf(R"({"volume": {"path": "a.vdb", "emission": "heat"}})"),
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "emission": "heat"}})"),
               "shot.json: /volume/emission: unknown key (expected one of path, frames, density, color, level_set)");
 }
 

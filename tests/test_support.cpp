@@ -9,6 +9,9 @@
 #include <ImfFrameBuffer.h>
 #include <ImfInputFile.h>
 
+#include "error.h"
+#include "scene_json.h"
+
 namespace voxlux::test {
 namespace fs = std::filesystem;
 
@@ -110,6 +113,15 @@ std::unique_ptr<Lit> illuminate(openvdb::FloatGrid::Ptr grid, const Scene& scene
     lit->prepared = prepare(volumeFromGrid(grid), scene, camera);
     lit->stage.update(scene, camera, "test", lit->prepared->inputs, backend, lit->times, lit->reused, lit->warnings);
     return lit;
+}
+
+std::string sceneErrorOf(const std::string& json) {
+    try {
+        parseScene(json, "shot.json", "/shots");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
 }
 
 std::string writeBall(const std::string& dir) {

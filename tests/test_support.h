@@ -27,6 +27,9 @@ std::string sharedData(const std::string& relative);
     const std::string var = ::voxlux::test::sharedData(relative);                               \
     if (var.empty()) GTEST_SKIP() << "../shared/data/" relative " is absent (fresh clone): skipped"
 
+// The one-line InputError parsing `json` as "shot.json" in "/shots" gives, or "no error".
+std::string sceneErrorOf(const std::string& json);
+
 // GL backend for tests: fails the test when no context can be made, unless VOXLUX_SKIP_GL=1.
 std::unique_ptr<KernelBackend> glBackendOrSkip();
 #define VOXLUX_REQUIRE_GL(var)                                                  \
