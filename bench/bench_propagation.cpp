@@ -370,7 +370,7 @@ struct BlendPair {
     double prop_on = 0, prop_off = 0;
 };
 
-void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, const char* color,
+void sweep(const Dataset& d, bool quick, std::vector<PlotSeries>& plot, const char* color,
            std::vector<BlendPair>& blends) {
     const int runs = quick ? 1 : 2;
     Scene base;
@@ -423,14 +423,14 @@ void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, c
     // then blend_axes on at 1/2 and 1x.
     std::printf("| light res | blend_axes | light_grid (s) | propagation (s) | march (s) | total (s) | rel. RMSE | bias |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
-    bench::PlotSeries by_res{d.name + ": res 1/4, 1/2, 1x" + (quick ? "" : ", 2x") + ", one axis", color, {}};
-    bench::PlotSeries blended{d.name + ": res 1/2, 1x, blend_axes on (unlabelled)", color, {}};
+    PlotSeries by_res{d.name + ": res 1/4, 1/2, 1x" + (quick ? "" : ", 2x") + ", one axis", color, {}};
+    PlotSeries blended{d.name + ": res 1/2, 1x, blend_axes on (unlabelled)", color, {}};
     blended.dashed = true;
     struct Point {
         Error e;
         double propagation;
     };
-    auto point = [&](int res, bool blend, bench::PlotSeries& series, int n_runs) {
+    auto point = [&](int res, bool blend, PlotSeries& series, int n_runs) {
         Scene s = base;
         s.effects.shadows = ShadowMethod::Propagation;
         s.effects.light_resolution = res;
@@ -484,7 +484,7 @@ void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, c
     };
     const Render taps32 = indirectRender(32, false, false);
     row(32, false, false, taps32, "ref | ref");
-    bench::PlotSeries by_taps{d.name + ": indirect, taps vs 32 taps", color, {}};
+    PlotSeries by_taps{d.name + ": indirect, taps vs 32 taps", color, {}};
     by_taps.dotted = true;
     Render full;   // 9 taps: the reference of the chroma and eye rows
     for (int samples : quick ? std::vector<int>{1, 9} : std::vector<int>{1, 5, 9, 17}) {
@@ -521,7 +521,7 @@ int main(int argc, char** argv) {
         {"fire", data + "/blender/fire/fluid_data_0040.vdb", "density", true, 4.0f},
         {"cloud", data + "/disney-wdas-cloud/wdas_cloud_sixteenth.vdb", "density", false, 0.1f}};
     const char* colors[] = {"#1f77b4", "#ff7f0e", "#d62728"};
-    std::vector<bench::PlotSeries> plot;
+    std::vector<PlotSeries> plot;
     std::vector<BlendPair> blends;
     for (size_t i = 0; i < sets.size(); ++i) {
         if (!std::filesystem::exists(sets[i].file)) {
@@ -541,8 +541,8 @@ int main(int argc, char** argv) {
         std::printf("\n");
     }
     if (!svg.empty() && !plot.empty()) {
-        bench::writeLogLogSvg(svg, "Propagation: image error against time (CPU, 2 cores)",
-                              "light grid + propagation + march (s)", "relative RMSE (direct / indirect AOV)", plot);
+        writeLogLogSvg(svg, {{"Propagation: image error against time (CPU, 2 cores)",
+                              "light grid + propagation + march (s)", "relative RMSE (direct / indirect AOV)", plot}});
         std::printf("wrote %s\n", svg.c_str());
     }
     return 0;

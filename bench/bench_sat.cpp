@@ -162,7 +162,7 @@ Light keyLight() {
     return l;
 }
 
-void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, const char* color_shadow,
+void sweep(const Dataset& d, bool quick, std::vector<PlotSeries>& plot, const char* color_shadow,
            const char* color_ao) {
     Scene base;
     base.volume.path = d.file;
@@ -181,10 +181,10 @@ void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, c
     std::printf("Reference: ray-marched shadows (shadow step 0.5 voxel), march %.3f s.\n\n", ref.march);
     std::printf("| light res | cone cuboids | light grid (s) | SAT (s) | shadows (s) | march (s) | RMSE | max abs |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
-    bench::PlotSeries by_res{d.name + ": light res 64..256, 20 cuboids", color_shadow, {}};
-    bench::PlotSeries by_cuboids{d.name + ": 12, 20, 50 cuboids, res 256", color_shadow, {}};
+    PlotSeries by_res{d.name + ": light res 64..256, 20 cuboids", color_shadow, {}};
+    PlotSeries by_cuboids{d.name + ": 12, 20, 50 cuboids, res 256", color_shadow, {}};
     by_cuboids.dashed = true;
-    auto shadowPoint = [&](int res, int samples, bench::PlotSeries& series, const std::string& label) {
+    auto shadowPoint = [&](int res, int samples, PlotSeries& series, const std::string& label) {
         Scene s = shadowed;
         s.effects.shadows = ShadowMethod::SatCone;
         s.effects.light_resolution = res;
@@ -224,7 +224,7 @@ void sweep(const Dataset& d, bool quick, std::vector<bench::PlotSeries>& plot, c
                 radius, ao_ref.ambient);
     std::printf("| light res | shells | light grid (s) | SAT (s) | AO (s) | march (s) | RMSE | max abs |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
-    bench::PlotSeries ao_series{d.name + ": AO 3, 7, 11 shells (vs 64)", color_ao, {}};
+    PlotSeries ao_series{d.name + ": AO 3, 7, 11 shells (vs 64)", color_ao, {}};
     for (int shells : {3, 7, 11}) {
         Scene s = ambient;
         s.effects.ambient_occlusion->shells = shells;
@@ -254,7 +254,7 @@ int main(int argc, char** argv) {
 
     const std::vector<Dataset> sets = {{"smoke", data + "/arnold-usd/smoke.vdb", {240, 400}, 2.0f},
                                        {"cloud", data + "/disney-wdas-cloud/wdas_cloud_sixteenth.vdb", {400, 300}, 0.1f}};
-    std::vector<bench::PlotSeries> plot;
+    std::vector<PlotSeries> plot;
     const char* colors[][2] = {{"#1f77b4", "#9ecae1"}, {"#d62728", "#fc9272"}};
     for (size_t i = 0; i < sets.size(); ++i) {
         if (!std::filesystem::exists(sets[i].file)) {
@@ -264,8 +264,8 @@ int main(int argc, char** argv) {
         sweep(sets[i], quick, plot, colors[i][0], colors[i][1]);
     }
     if (!svg.empty() && !plot.empty()) {
-        bench::writeLogLogSvg(svg, "Extinction-SAT lighting: image error against time (CPU, 2 cores)",
-                              "light passes + march (s)", "RMSE of scene-linear RGB", plot);
+        writeLogLogSvg(svg, {{"Extinction-SAT lighting: image error against time (CPU, 2 cores)",
+                              "light passes + march (s)", "RMSE of scene-linear RGB", plot}});
         std::printf("wrote %s\n", svg.c_str());
     }
     return 0;

@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "exr_writer.h"
 #include "frame_pattern.h"
 #include "make_cloud.h"
+#include "quality_presets.h"
 #include "light_edits.h"
 #include "renderer.h"
 #include "scene_json.h"
@@ -81,26 +83,10 @@ Light parseLight(const std::string& spec) {
     return l;
 }
 
-// --set effects.cone.samples=50: the value is JSON when it parses as JSON (numbers, true, arrays,
-// objects), else a string; objects on the way are created.
-void applySet(nlohmann::json& scene, const std::string& set) {
-    const auto eq = set.find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError("--set '" + set + "': expected KEY=VALUE");
-    const std::string text = set.substr(eq + 1);
-    nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
-    if (value.is_discarded()) value = text;
-    nlohmann::json* node = &scene;
-    for (const auto& key : split(set.substr(0, eq), '.')) {
-        if (key.empty()) throw InputError("--set '" + set + "': empty key");
-        if (!node->is_object()) *node = nlohmann::json::object();
-        node = &(*node)[key];
-    }
-    *node = value;
-}
-
 // Overrides go through the scene JSON so that they are validated by exactly the same rules.
 Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
     nlohmann::json j = sceneToJson(base);
+    if (o.quality) applyQualityPreset(j, *o.quality);
     auto& v = j["volume"];
     auto setGrid = [&](const char* key, const std::optional<std::string>& name) {
         if (name) v[key] = *name;
@@ -141,7 +127,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
     if (o.aovs) j["output"]["aovs"] = *o.aovs;
     if (o.output) j["output"]["path"] = *o.output;
     if (o.preview) j["output"]["preview"] = *o.preview;
-    for (const auto& set : o.sets) applySet(j, set);
+    for (const auto& set : o.sets) applySceneSet(j, set);
     Scene s = parseScene(j.dump(), "command line", "");
     if (!o.lights.empty()) {
         s.lights.clear();
@@ -285,6 +271,13 @@ int runRender(const RenderCommand& cmd) {
     if (emptyFrames) std::cerr << "voxlux: warning: " << emptyFrames << " empty frame(s) rendered transparent\n";
     stats["peak_rss_bytes"] = peakRssBytes();
     if (cmd.stats) writeFileAtomically(*cmd.stats, stats.dump(2) + "\n");
+    return 0;
+}
+
+int runStudyCommand(const StudyCommand& cmd) {
+    Scene scene = isSceneFile(cmd.input) ? loadSceneFile(cmd.input) : quickScene(cmd.input);
+    scene = applyOverrides(scene, cmd.overrides);
+    runStudy(scene, cmd.options, std::cout, std::cerr, isatty(STDERR_FILENO));
     return 0;
 }
 

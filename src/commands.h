@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "study.h"
+
 namespace voxlux {
 
 // Options of `render` and `scene` that override scene keys one to one (docs/cli.md).
@@ -20,6 +22,7 @@ struct SceneOverrides {
     std::optional<int> spp;                     // render.reference.spp
     std::optional<std::vector<std::string>> aovs;
     std::optional<std::string> output, preview;
+    std::optional<std::string> quality;         // draft|preview|final: applied before every other override
     std::vector<std::string> sets;              // "dotted.key=JSON value", any scene key
 };
 
@@ -31,7 +34,14 @@ struct RenderCommand {
     std::optional<std::string> light_edits;     // replay these light edits, then write the final frame
 };
 
+struct StudyCommand {
+    std::string input;                          // scene .json, or a .vdb for the quick form
+    SceneOverrides overrides;
+    StudyOptions options;
+};
+
 int runRender(const RenderCommand& cmd);
+int runStudyCommand(const StudyCommand& cmd);
 int runScene(const std::string& vdb, const SceneOverrides& overrides);
 int runInfo(const std::string& vdb, bool json);
 int runMakeCloud(const std::string& output, int resolution, unsigned seed);

@@ -1,4 +1,4 @@
-// voxlux command line: render, scene, info, make-cloud. Errors are one line on stderr.
+// voxlux command line: render, scene, study, info, make-cloud. Errors are one line on stderr.
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -23,6 +23,9 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--light", o.lights,
                    "TYPE:key=value:... e.g. directional:dir=1,-1,0:intensity=3 (repeatable, replaces lights)");
     cmd.add_option("--shadows", o.shadows, "none|raymarch|sat_cone|propagation (effects.shadows)");
+    cmd.add_option("--quality", o.quality,
+                   "draft|preview|final: method and knobs from the measured Pareto front (docs/accuracy.md); "
+                   "other options override it");
     cmd.add_option("--set", o.sets, "KEY=VALUE: set any scene key, e.g. effects.cone.samples=50 (repeatable)");
     cmd.add_option("--backend", o.backend, "auto|cpu|gl (render.backend)");
     cmd.add_option("--method", o.method, "march|reference: Monte Carlo reference on the CPU (render.method)");
@@ -64,6 +67,21 @@ int main(int argc, char** argv) {
     infoCmd->add_option("volume", infoInput, "volume .vdb")->required();
     infoCmd->add_flag("--json", infoJson, "print JSON for pipeline tools");
 
+    voxlux::StudyCommand study;
+    auto* studyCmd = app.add_subcommand(
+        "study", "render with every method and knob and the Monte Carlo reference; chart error against time");
+    studyCmd->add_option("input", study.input, "scene .json or volume .vdb")->required();
+    studyCmd->add_option("-o,--output", study.options.out_dir, "folder for study.csv, chart.svg, report.md, truth.exr")
+        ->capture_default_str();
+    studyCmd->add_option("--title", study.options.title, "the scene's name in the report and chart");
+    studyCmd->add_option("--spp-list", study.options.spps, "reference samples per pixel to measure")
+        ->delimiter(',')->capture_default_str();
+    studyCmd->add_option("--truth-spp", study.options.truth_spp, "samples per pixel of the ground truth")->capture_default_str();
+    studyCmd->add_option("--repeats", study.options.repeats, "renders per config, the fastest counts")
+        ->check(CLI::Range(1, 100))->capture_default_str();
+    studyCmd->add_flag("--fresh", study.options.fresh, "measure everything again instead of resuming");
+    addSceneOverrides(*studyCmd, study.overrides);
+
     std::string cloudOutput;
     int cloudResolution = 96;
     unsigned cloudSeed = 1;
@@ -81,6 +99,11 @@ int main(int argc, char** argv) {
     try {
         if (*renderCmd) return voxlux::runRender(render);
         if (*sceneCmd) return voxlux::runScene(sceneInput, sceneOverrides);
+        if (*studyCmd) {
+            study.options.command = "voxlux";
+            for (int i = 1; i < argc; ++i) study.options.command += std::string(" ") + argv[i];
+            return voxlux::runStudyCommand(study);
+        }
         if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
     } catch (const voxlux::InputError& e) {

@@ -21,4 +21,12 @@ nlohmann::json lightToJson(const Light& light);
 // The JSON a scene file would need to reproduce `scene` (used by `voxlux scene`).
 nlohmann::json sceneToJson(const Scene& scene);
 
+// Sets one dotted key of a scene's JSON from "KEY=VALUE", as `--set effects.cone.samples=50` does.
+// Throws InputError quoting `set` when it has no '=' or an empty key.
+void applySceneSet(nlohmann::json& scene, const std::string& set);
+
+// The set that turns on the effect at dotted `key` ("effects.indirect"): "KEY=true", or
+// "KEY=<the scene's object>" when the scene already has settings for it, so they are kept.
+std::string effectOnSet(const nlohmann::json& scene, const std::string& key);
+
 }  // namespace voxlux

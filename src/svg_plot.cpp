@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
-#include <stdexcept>
 
-namespace voxlux::bench {
+#include "error.h"
+#include "exr_writer.h"
+
+namespace voxlux {
 namespace {
 
 constexpr double kWidth = 900, kHeight = 500;
@@ -27,10 +28,9 @@ void decades(double lo, double hi, double& first, double& last) {
     if (last <= first) last = first + 1;
 }
 
-}  // namespace
-
-void writeLogLogSvg(const std::string& path, const std::string& title, const std::string& x_title,
-                    const std::string& y_title, const std::vector<PlotSeries>& series) {
+// One plot as a group `top` pixels down the page.
+std::string plotSvg(const std::string& path, const LogLogPlot& plot, double top) {
+    const auto& [title, x_title, y_title, series] = plot;
     double xlo = 1e300, xhi = 0, ylo = 1e300, yhi = 0;
     for (const auto& s : series)
         for (const auto& p : s.points) {
@@ -38,7 +38,7 @@ void writeLogLogSvg(const std::string& path, const std::string& title, const std
             xlo = std::min(xlo, p.x), xhi = std::max(xhi, p.x);
             ylo = std::min(ylo, p.y), yhi = std::max(yhi, p.y);
         }
-    if (xhi <= 0 || yhi <= 0) throw std::runtime_error(path + ": nothing to plot");
+    if (xhi <= 0 || yhi <= 0) throw InputError(path + ": nothing to plot in '" + title + "'");
     double x0, x1, y0, y1;
     decades(xlo, xhi, x0, x1);
     decades(ylo, yhi, y0, y1);
@@ -47,8 +47,7 @@ void writeLogLogSvg(const std::string& path, const std::string& title, const std
     auto py = [&](double y) { return kTop + (1.0 - (std::log10(y) - y0) / (y1 - y0)) * ph; };
 
     std::ostringstream svg;
-    svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << kWidth << "' height='" << kHeight
-        << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
+    svg << "<g transform='translate(0," << top << ")'>\n";
     svg << "<text x='" << kWidth / 2 - kRight / 2 << "' y='22' text-anchor='middle' font-size='15'>" << title << "</text>\n";
     // Grid lines and tick labels at every power of ten.
     for (double d = x0; d <= x1; ++d) {
@@ -75,10 +74,11 @@ void writeLogLogSvg(const std::string& path, const std::string& title, const std
         for (const auto& p : s.points)
             if (p.x > 0 && p.y > 0) line << px(p.x) << "," << py(p.y) << " ";
         const std::string dash = s.dashed ? " stroke-dasharray='6,3'" : s.dotted ? " stroke-dasharray='2,3'" : "";
-        svg << "<polyline points='" << line.str() << "' fill='none' stroke='" << s.color << "' stroke-width='1.5'"
-            << dash << "/>\n";
+        if (s.line)
+            svg << "<polyline points='" << line.str() << "' fill='none' stroke='" << s.color << "' stroke-width='"
+                << s.width << "'" << dash << "/>\n";
         for (const auto& p : s.points) {
-            if (!(p.x > 0 && p.y > 0)) continue;
+            if (!(p.x > 0 && p.y > 0) || !s.markers) continue;
             svg << "<circle cx='" << px(p.x) << "' cy='" << py(p.y) << "' r='3.5' fill='" << s.color << "'/>\n";
             if (!p.label.empty())
                 svg << "<text x='" << px(p.x) + 5 << "' y='" << py(p.y) - 5 << "' font-size='10' fill='" << s.color
@@ -89,11 +89,19 @@ void writeLogLogSvg(const std::string& path, const std::string& title, const std
             << "<text x='" << kWidth - kRight + 40 << "' y='" << legend_y + 4 << "'>" << s.name << "</text>\n";
         legend_y += 18;
     }
-    svg << "</svg>\n";
-
-    const std::string tmp = path + ".tmp";
-    std::ofstream(tmp) << svg.str();
-    std::rename(tmp.c_str(), path.c_str());
+    svg << "</g>\n";
+    return svg.str();
 }
 
-}  // namespace voxlux::bench
+}  // namespace
+
+void writeLogLogSvg(const std::string& path, const std::vector<LogLogPlot>& plots) {
+    std::ostringstream svg;
+    svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << kWidth << "' height='" << kHeight * plots.size()
+        << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
+    for (size_t i = 0; i < plots.size(); ++i) svg << plotSvg(path, plots[i], kHeight * double(i));
+    svg << "</svg>\n";
+    writeFileAtomically(path, svg.str());
+}
+
+}  // namespace voxlux

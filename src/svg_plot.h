@@ -1,9 +1,10 @@
-// A small log-log scatter plot written as SVG, for the accuracy/time curves in docs/.
+// Log-log scatter plots written as SVG: the error-against-time charts of `voxlux study` and of
+// the benchmarks in docs/. Drawn here so the charts need nothing but a browser.
 #pragma once
 #include <string>
 #include <vector>
 
-namespace voxlux::bench {
+namespace voxlux {
 
 struct PlotPoint {
     double x = 0.0, y = 0.0;
@@ -16,10 +17,19 @@ struct PlotSeries {
     std::vector<PlotPoint> points;   // joined in order
     bool dashed = false;
     bool dotted = false;
+    bool markers = true;   // false: the line alone (a front, a floor)
+    bool line = true;      // false: the markers alone
+    double width = 1.5;    // of the line
 };
 
-// Writes `series` as a log-log plot (x and y must be > 0) with axis titles and a legend.
-void writeLogLogSvg(const std::string& path, const std::string& title, const std::string& x_title,
-                    const std::string& y_title, const std::vector<PlotSeries>& series);
+struct LogLogPlot {
+    std::string title, x_title, y_title;
+    std::vector<PlotSeries> series;   // x and y must be > 0; other points are left out
+};
 
-}  // namespace voxlux::bench
+// The plots stacked top to bottom in one SVG, each with axis titles and a legend, written
+// atomically. Throws InputError naming `path` when a plot has nothing to show or the file
+// cannot be written.
+void writeLogLogSvg(const std::string& path, const std::vector<LogLogPlot>& plots);
+
+}  // namespace voxlux
