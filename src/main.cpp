@@ -35,6 +35,16 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--aovs", o.aovs, "direct,ambient,indirect,emission,transmittance,depth,variance (output.aovs)")->delimiter(',');
 }
 
+// `arg` as a POSIX shell reads it back: quoted when it holds anything but plain characters.
+std::string shellQuoted(const std::string& arg) {
+    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789_./=,:+-") == std::string::npos;
+    if (plain) return arg;
+    std::string quoted = "'";
+    for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -101,7 +111,7 @@ int main(int argc, char** argv) {
         if (*sceneCmd) return voxlux::runScene(sceneInput, sceneOverrides);
         if (*studyCmd) {
             study.options.command = "voxlux";
-            for (int i = 1; i < argc; ++i) study.options.command += std::string(" ") + argv[i];
+            for (int i = 1; i < argc; ++i) study.options.command += " " + shellQuoted(argv[i]);
             return voxlux::runStudyCommand(study);
         }
         if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
