@@ -77,13 +77,15 @@ std::string clock(double seconds) {
 class ProgressBar {
 public:
     ProgressBar(std::ostream& os, bool terminal, size_t total) : os_(os), terminal_(terminal), total_(total) {}
+    // `left_seconds` < 0: not known yet.
     void show(size_t done, double left_seconds, const std::string& what) {
         if (!terminal_) return;
         const int width = 30, filled = total_ ? int(width * done / total_) : width;
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
         os_ << "\r\033[K[" << std::string(filled, '=') << (filled < width ? ">" : "") << std::string(std::max(0, width - filled - 1), ' ')
-            << "] " << done << "/" << total_ << "  elapsed " << clock(elapsed) << "  left ~" << clock(left_seconds) << "  "
-            << what.substr(0, 60) << std::flush;
+            << "] " << done << "/" << total_ << "  elapsed " << clock(elapsed)
+            << (left_seconds >= 0 ? "  left ~" + clock(left_seconds) : std::string()) << "  " << what.substr(0, 60)
+            << std::flush;
     }
     void finish() {
         if (terminal_) os_ << "\r\033[K" << std::flush;
@@ -119,7 +121,7 @@ Truth groundTruth(const nlohmann::json& base, const std::string& hash, const Stu
     const int seed = base["render"]["reference"].value("seed", 1);
     Measured half[2];
     for (int h = 0; h < 2; ++h) {
-        bar.show(0, 0, "ground truth, half " + std::to_string(h + 1) + " of 2");
+        bar.show(0, -1, "ground truth, half " + std::to_string(h + 1) + " of 2");
         StudyConfig c{"reference", {"render.method=reference", "render.reference.spp=" + std::to_string(o.truth_spp / 2),
                                     "render.reference.seed=" + std::to_string(seed + 1000003 * (h + 1))}, o.truth_spp / 2};
         half[h] = renderTimed(studyScene(base, c), frame, 1);
@@ -137,6 +139,7 @@ Truth groundTruth(const nlohmann::json& base, const std::string& hash, const Stu
     writeFileAtomically(json, nlohmann::json({{"scene", hash}, {"spp", o.truth_spp}, {"seconds", t.info.seconds},
                                                {"noise_rmse", t.info.noise_rmse}, {"noise_delta_e", t.info.noise_delta_e}})
                                       .dump(2) + "\n");
+    bar.finish();
     out << "ground truth: " << exr << " (" << o.truth_spp << " spp in " << clock(t.info.seconds) << ", noise RMSE "
         << t.info.noise_rmse << ")\n";
     return t;
