@@ -158,13 +158,7 @@ std::string studyReport(const StudyContext& context, const StudyPlan& plan, cons
         md << "Crossover: none: at every time the reference is at least as accurate as every approximation.\n\n";
     md << "At equal RMSE, the approximations on their own Pareto front against the reference:\n\n"
        << "| method | settings | seconds | RMSE | reference needs (s) | speed-up |\n|---|---|---|---|---|---|\n";
-    std::vector<StudyRow> approx;
-    for (const auto& r : rows)
-        if (r.spp == 0) approx.push_back(r);
-    markParetoFronts(approx);
-    std::stable_sort(approx.begin(), approx.end(), [](const StudyRow& a, const StudyRow& b) { return a.seconds < b.seconds; });
-    for (const auto& r : approx) {
-        if (!r.front_rmse) continue;
+    for (const auto& r : approximationFront(rows)) {
         const double t_ref = curve->secondsFor(r.rmse);
         md << "| " << r.method << " | " << studySettings(r.id) << " | " << fixed("%.3f", r.seconds) << " | "
            << fixed("%.4g", r.rmse) << " | " << fixed("%.3g", t_ref) << " | " << fixed("%.2g", t_ref / r.seconds) << "x |\n";

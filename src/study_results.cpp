@@ -115,9 +115,7 @@ std::optional<ReferenceCurve> fitReferenceCurve(const std::vector<StudyRow>& row
     return c;
 }
 
-Crossover crossoverOf(const std::vector<StudyRow>& rows, const ReferenceCurve& curve) {
-    // The approximations' own RMSE front, fastest first: at a budget t the best of them is the
-    // most accurate row not slower than t.
+std::vector<StudyRow> approximationFront(const std::vector<StudyRow>& rows) {
     std::vector<StudyRow> approx;
     for (const auto& r : rows)
         if (r.spp == 0) approx.push_back(r);
@@ -126,6 +124,11 @@ Crossover crossoverOf(const std::vector<StudyRow>& rows, const ReferenceCurve& c
     for (const auto& r : approx)
         if (r.front_rmse) front.push_back(r);
     std::sort(front.begin(), front.end(), [](const StudyRow& a, const StudyRow& b) { return a.seconds < b.seconds; });
+    return front;
+}
+
+Crossover crossoverOf(const std::vector<StudyRow>& rows, const ReferenceCurve& curve) {
+    const std::vector<StudyRow> front = approximationFront(rows);
     Crossover c;
     c.min_speedup = std::numeric_limits<double>::infinity();
     for (size_t j = 0; j < front.size(); ++j) {

@@ -40,6 +40,10 @@ struct ReferenceCurve {
 };
 std::optional<ReferenceCurve> fitReferenceCurve(const std::vector<StudyRow>& rows);
 
+// The approximations' (every method but the reference's) own RMSE Pareto front, fastest first:
+// at a time budget t the best of them is the most accurate row not slower than t.
+std::vector<StudyRow> approximationFront(const std::vector<StudyRow>& rows);
+
 // Where the approximations (every method but the reference) stand against the reference curve.
 struct Crossover {
     double seconds = 0;                  // below this an approximation beats the reference at equal time
