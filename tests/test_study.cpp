@@ -273,6 +273,16 @@ TEST(Study, MeasuresEveryConfigAndResumes) {
     const std::string md((std::istreambuf_iterator<char>(report)), {});
     EXPECT_NE(md.find("Bias floors"), std::string::npos);
     EXPECT_NE(md.find("Crossover"), std::string::npos);
+    EXPECT_NE(md.find("| draft | propagation+indirect |"), std::string::npos);
+    EXPECT_NE(md.find("| final | reference |"), std::string::npos);
+    // Two stacked plots (RMSE, Delta E ITP), each with its Pareto front.
+    std::ifstream chart(o.out_dir + "/chart.svg");
+    const std::string svg((std::istreambuf_iterator<char>(chart)), {});
+    size_t fronts = 0;
+    for (size_t at = svg.find(">Pareto front<"); at != std::string::npos; at = svg.find(">Pareto front<", at + 1)) ++fronts;
+    EXPECT_EQ(fronts, 2u);
+    EXPECT_NE(svg.find("RMSE against time"), std::string::npos);
+    EXPECT_NE(svg.find("perceptual error against time"), std::string::npos);
 
     // Run again: nothing is rendered.
     std::ostringstream again;
