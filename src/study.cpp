@@ -191,12 +191,17 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out, std:
     int approx_n = 0;
     auto expected = [&](const StudyConfig& c) { return c.spp ? c.spp * per_sample : approx_n ? approx_sum / approx_n : 2.0; };
 
+    auto measured = [&](const StudyConfig& c) {
+        return std::any_of(rows.begin(), rows.end(), [&](const StudyRow& r) { return r.id == c.id(); });
+    };
+
     std::ofstream append(csv, std::ios::app);
     for (size_t i = 0; i < plan.configs.size(); ++i) {
         const StudyConfig& c = plan.configs[i];
-        if (std::any_of(rows.begin(), rows.end(), [&](const StudyRow& r) { return r.id == c.id(); })) continue;
+        if (measured(c)) continue;
         double left = 0;
-        for (size_t k = i; k < plan.configs.size(); ++k) left += expected(plan.configs[k]) * o.repeats;
+        for (size_t k = i; k < plan.configs.size(); ++k)
+            if (!measured(plan.configs[k])) left += expected(plan.configs[k]) * o.repeats;
         bar.show(rows.size(), left, c.method + ": " + studySettings(c.id()));
         const Measured m = renderTimed(studyScene(base, c), frame, o.repeats);
         StudyRow r{c.id(), c.method, c.spp, m.seconds,
