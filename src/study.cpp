@@ -7,6 +7,7 @@
 #include <fstream>
 #include <ostream>
 
+#include "color_pipeline.h"
 #include "error.h"
 #include "exr_reader.h"
 #include "exr_writer.h"
@@ -159,8 +160,7 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out, std:
     const StudyPlan plan = planStudy(base, o.spps, base_scene.render.reference.seed);
     const std::string hash = sceneHash(base_scene);
 
-    Renderer probe(base_scene);
-    const ColorPipeline& color = probe.color();
+    const ColorPipeline color = buildColorPipeline(base_scene.color, false);
     if (!color.xyz_to_working)
         throw InputError(color.config_source + ": has no cie_xyz_d65_interchange role, which the study's Delta E ITP needs");
     const glm::mat3 working_to_xyz = glm::inverse(*color.xyz_to_working);
