@@ -272,7 +272,10 @@ TEST(Study, MeasuresEveryConfigAndResumes) {
     std::ifstream report(o.out_dir + "/report.md");
     const std::string md((std::istreambuf_iterator<char>(report)), {});
     EXPECT_NE(md.find("Bias floors"), std::string::npos);
-    EXPECT_NE(md.find("Crossover"), std::string::npos);
+    // The crossover needs the reference's time to grow with its samples, which a render of a few
+    // milliseconds need not show (the first pays for the thread pool): the report says which.
+    if (fitReferenceCurve(rows)) EXPECT_NE(md.find("Crossover"), std::string::npos) << md;
+    else EXPECT_NE(md.find("Too few reference renders for its error-time curve."), std::string::npos) << md;
     EXPECT_NE(md.find("| draft | propagation+indirect |"), std::string::npos);
     EXPECT_NE(md.find("| final | reference |"), std::string::npos);
     // Two stacked plots (RMSE, Delta E ITP), each with its Pareto front.
