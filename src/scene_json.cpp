@@ -540,7 +540,8 @@ Light readLight(const JsonObject& o) {
     if (l.type == LightType::Directional || l.type == LightType::Spot) {
         l.direction = o.vec3("direction");
         if (glm::length(l.direction) == 0) o.fail("direction", "must not be zero");
-        l.direction = glm::normalize(l.direction);
+        // A unit vector is kept as written, so a scene that voxlux wrote reads back to the same floats.
+        if (std::abs(glm::length(l.direction) - 1.0f) > 1e-6f) l.direction = glm::normalize(l.direction);
     }
     l.color = o.vec3("color", l.color);
     if (!(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && std::isfinite(l.color.x + l.color.y + l.color.z)))
