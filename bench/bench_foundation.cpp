@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         }
         for (ShadowMethod shadows : {ShadowMethod::None, ShadowMethod::Raymarch}) {
             scene.effects.shadows = shadows;
-            KernelInputs inputs = makeKernelInputs(scene, camera, atlas, pages);
+            KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
             backend->march(inputs);  // warm-up: GL compiles its program and uploads here
             const int runs = shadows == ShadowMethod::None ? repeats : 1;
             const double t = best(runs, [&] { image = backend->march(inputs); });
@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
     for (float step : {32.0f, 4.0f, 1.0f, 0.5f, 0.25f, 0.125f}) {
         scene.effects.shadows = ShadowMethod::None;
         scene.render.step = step;
-        KernelInputs inputs = makeKernelInputs(scene, camera, atlas, pages);
+        KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
         auto cpu = makeCpuBackend();
         const double t = best(repeats, [&] { image = cpu->march(inputs); });
         const double samples = totalSamples(image);

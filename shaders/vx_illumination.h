@@ -12,9 +12,9 @@ vec3 vx_illum_direct(vec3 x) {
                 VX_GRID_TRILINEAR(vx_illum, c, ivec3(P.illum_dims), 3, 2));
 }
 
-// Indirect radiance at x (0 when the scene has no indirect light).
+// Indirect radiance at x (0 when the scene has no indirect light or no illumination volume).
 vec3 vx_illum_indirect(vec3 x) {
-    if (P.indirect.w <= 0.0f) return vec3(0.0f);
+    if (P.indirect.w <= 0.0f || P.illum_dims.x == 0) return vec3(0.0f);
     vec3 q = vec3(P.world_to_illum * vec4(x, 1.0f)) / float(P.illum_dims.w);
     VxCacheCell c = vx_grid_cell(q, ivec3(P.chroma_dims), 3);
     c.base += P.chroma_dims.w;

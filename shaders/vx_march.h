@@ -148,7 +148,7 @@ VX_INLINE float vx_surface_factor(vec4 surface, vec3 wi, vec3 dir) {
 vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell, vec4 surface) {
     vec3 sum = vec3(0.0f);
     vec3 unshadowed = vec3(0.0f);   // what the lights would bring unshadowed (propagation)
-    bool propagated = P.bricks_max.w == VX_SHADOWS_PROPAGATION;
+    bool propagated = P.bricks_max.w == VX_SHADOWS_PROPAGATION && P.illum_dims.x > 0;
     for (int i = 0; i < P.bricks_min.w; ++i) {
         VxLight light = vx_light(i);
         bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;

@@ -223,7 +223,7 @@ OCIO::ConstConfigRcPtr loadColorConfig(const ColorSettings& color, std::string& 
     }
 }
 
-ColorPipeline buildColorPipeline(const ColorSettings& color, bool with_preview) {
+ColorPipeline resolveWorkingSpace(const ColorSettings& color) {
     ColorPipeline p;
     p.config = loadColorConfig(color, p.config_source);
     const OCIO::Config& config = *p.config;
@@ -237,6 +237,18 @@ ColorPipeline buildColorPipeline(const ColorSettings& color, bool with_preview) 
         } else {
             p.working_space = requireColorSpace(config, color.working_space, "color.working_space", source);
         }
+        if (config.getColorSpace(OCIO::ROLE_INTERCHANGE_DISPLAY))
+            p.xyz_to_working = linearMatrix(config.getProcessor(OCIO::ROLE_INTERCHANGE_DISPLAY, p.working_space.c_str()));
+    } catch (const OCIO::Exception& e) {
+        throw InputError(source + ": " + oneLine(e));
+    }
+    return p;
+}
+
+ColorPipeline buildColorTransforms(ColorPipeline p, const ColorSettings& color, bool with_preview) {
+    const OCIO::Config& config = *p.config;
+    const std::string& source = p.config_source;
+    try {
         p.output_space = color.output_space.empty()
                              ? p.working_space
                              : requireColorSpace(config, color.output_space, "color.output_space", source);
@@ -265,13 +277,15 @@ ColorPipeline buildColorPipeline(const ColorSettings& color, bool with_preview) 
             p.preview = config.getProcessor(view);
         }
         p.output_chromaticities = chromaticitiesOf(config, p.output_space);
-        if (config.getColorSpace(OCIO::ROLE_INTERCHANGE_DISPLAY))
-            p.xyz_to_working = linearMatrix(config.getProcessor(OCIO::ROLE_INTERCHANGE_DISPLAY, p.working_space.c_str()));
     } catch (const OCIO::Exception& e) {
         // Transforms OCIO cannot chain in this config.
         throw InputError(source + ": " + oneLine(e));
     }
     return p;
+}
+
+ColorPipeline buildColorPipeline(const ColorSettings& color, bool with_preview) {
+    return buildColorTransforms(resolveWorkingSpace(color), color, with_preview);
 }
 
 }  // namespace voxlux

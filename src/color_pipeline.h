@@ -46,4 +46,9 @@ OCIO::ConstConfigRcPtr loadColorConfig(const ColorSettings& color, std::string& 
 // A, B, ...)").
 ColorPipeline buildColorPipeline(const ColorSettings& color, bool with_preview);
 
+// The two halves of buildColorPipeline: the config and working space (with xyz_to_working), which
+// the march needs, and the transforms over them, which only the grade needs; each throws as above.
+ColorPipeline resolveWorkingSpace(const ColorSettings& color);
+ColorPipeline buildColorTransforms(ColorPipeline working, const ColorSettings& color, bool with_preview);
+
 }  // namespace voxlux

@@ -239,7 +239,7 @@ int runRender(const RenderCommand& cmd) {
     Scene scene = isSceneFile(cmd.input) ? loadSceneFile(cmd.input) : quickScene(cmd.input);
     scene = applyOverrides(scene, cmd.overrides);
     if (cmd.explain) {
-        std::cout << explainPlan(planRender(scene));
+        std::cout << Renderer(scene).graph().explain(scene);
         return 0;
     }
     auto frames = framesOf(scene);

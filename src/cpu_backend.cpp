@@ -57,8 +57,8 @@ kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
     k.lights = in.lights.data();
     k.tf_lut = in.tf_lut.data();
     k.emission_lut = in.emission_lut.data();
-    k.cache = in.cache;
-    k.illum = in.illum;
+    k.cache = in.light_cache ? in.light_cache->values.data() : nullptr;
+    k.illum = in.illumination ? in.illumination->values.data() : nullptr;
     k.noise = in.noise.data();
     return k;
 }

@@ -5,6 +5,7 @@
 // cuboid so that neighbouring cells' lookups stay neighbours in memory. Both paths
 // compute the same integer box sums and the same float weights as the GL backend's per-cell one.
 #include "cpu_light_pass.h"
+#include "summed_volume.h"
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>

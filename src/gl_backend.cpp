@@ -15,6 +15,7 @@
 #include "gl_program.h"
 #include "kernel_backend.h"
 #include "shader_source.h"
+#include "summed_volume.h"
 
 namespace voxlux {
 namespace {
@@ -146,8 +147,10 @@ public:
             {lights_, "Lights", in.lights.data(), in.lights.size() * sizeof(kernel::VxLight)},
             {tf_lut_, "TransferLut", in.tf_lut.data(), in.tf_lut.size() * sizeof(glm::vec4)},
             {emission_lut_, "EmissionLut", in.emission_lut.data(), in.emission_lut.size() * sizeof(glm::vec4)},
-            {cache_, "LightCache", in.cache, in.cache_floats * sizeof(float)},
-            {illum_, "Illumination", in.illum, in.illum_floats * sizeof(float)},
+            {cache_, "LightCache", in.light_cache ? in.light_cache->values.data() : nullptr,
+             in.light_cache ? in.light_cache->values.size() * sizeof(float) : 0},
+            {illum_, "Illumination", in.illumination ? in.illumination->values.data() : nullptr,
+             in.illumination ? in.illumination->values.size() * sizeof(float) : 0},
             {noise_, "Noise", in.noise.data(), in.noise.size() * sizeof(glm::vec4)},
         };
         for (const auto& a : arrays) {

@@ -8,7 +8,10 @@
 #include <glm/glm.hpp>
 
 #include "color_pipeline.h"
+#include "color_stages.h"
 #include "kernel_backend.h"
+#include "march_stage.h"
+#include "render_graph.h"
 
 namespace voxlux {
 
@@ -19,5 +22,26 @@ namespace voxlux {
 // the pipeline has no preview.
 std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color, const std::vector<std::string>& aovs,
                                   KernelBackend& backend);
+
+// The march's image graded (gradeImage), as a stage: it runs when the scene has grade steps,
+// another output space or a preview, and a grade edit re-runs it without the march.
+class GradeStage final : public Stage {
+public:
+    GradeStage(const MarchStage& march, const ColorTransformsStage& color) : march_(march), color_(color) {}
+    std::string name() const override { return "grade"; }
+    StageReads reads() const override { return {{"/output/aovs", "/render/backend"}, {"march", "color_transforms"}}; }
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    void release() override;
+    // The graded image, or the march's when the grade does not run.
+    const RenderImage& result() const { return image_.pixels.empty() ? march_.image() : image_; }
+    const std::vector<glm::vec4>& preview() const { return preview_; }   // display-referred RGBA, or empty
+
+private:
+    const MarchStage& march_;
+    const ColorTransformsStage& color_;
+    RenderImage image_;
+    std::vector<glm::vec4> preview_;
+};
 
 }  // namespace voxlux

@@ -30,8 +30,8 @@ kernel::VxLight packLight(const Light& l) {
 
 }  // namespace
 
-KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const BrickAtlas& atlas,
-                              const PageTable& pages, float frame, const glm::mat3& xyz_to_working) {
+KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const PageTable& pages, float frame,
+                              const glm::mat3& xyz_to_working, const MarchSources& sources) {
     KernelInputs in;
     in.atlas = &atlas;
     in.pages = &pages;
@@ -39,10 +39,12 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
     const auto& r = scene.render;
     const auto& m = scene.material;
     float edge = voxelEdge(atlas.index_to_world);
-    P.camera_to_world = cameraToWorld(camera);
+    if (const Camera* camera = sources.camera) {
+        P.camera_to_world = cameraToWorld(*camera);
+        P.camera_frame = glm::vec4(std::tan(glm::radians(camera->fov) * 0.5f), float(r.width) / float(r.height),
+                                   float(r.width), float(r.height));
+    }
     P.world_to_index = glm::inverse(atlas.index_to_world);
-    P.camera_frame = glm::vec4(std::tan(glm::radians(camera.fov) * 0.5f), float(r.width) / float(r.height),
-                               float(r.width), float(r.height));
     P.march = glm::vec4(r.step * edge, r.shadow_step * edge, r.transmittance_cutoff, m.anisotropy);
     P.material = glm::vec4(m.albedo, m.density_scale);
     // Each source's table spans its grid's values in this frame's atlas. When none emits anywhere
@@ -78,15 +80,24 @@ KernelInputs makeKernelInputs(const Scene& scene, const Camera& camera, const Br
                                                                              : VX_SHADOWS_NONE;
     P.bricks_min = glm::ivec4(pages.bricks_min, int(in.lights.size()));
     P.bricks_max = glm::ivec4(pages.bricks_max, shadows);
-    // No light cache until the light stage attaches one (src/light_stage.cpp).
-    P.cache_dims = glm::ivec4(0);
-    P.cache_map = glm::ivec4(-1, 1, -1, 0);
     P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, local_lights, 0);
     in.tf_lut = bakeTransfer(m.transfer);
 
-    // No illumination volume until the illumination stage attaches one; its indirect term and
-    // transport colour are known already.
+    P.cache_dims = glm::ivec4(0);
+    P.cache_map = glm::ivec4(-1, 1, -1, 0);
+    if (const LightCache* c = sources.light_cache; c && c->channels > 0) {
+        in.light_cache = c;
+        P.world_to_cache = c->world_to_cache;
+        P.cache_dims = glm::ivec4(c->dims, c->channels);
+        P.cache_map = glm::ivec4(c->ambient_channel, c->ambient_width, c->shadow_channel, 0);
+    }
     P.illum_dims = glm::ivec4(0, 0, 0, 1);
+    if (const IlluminationVolume* v = sources.illumination; v && !v->values.empty()) {
+        in.illumination = v;
+        P.world_to_illum = v->world_to_illum;
+        P.illum_dims = glm::ivec4(v->dims, v->chroma);
+        P.chroma_dims = glm::ivec4(v->chroma_dims, int(v->indirectOffset()));
+    }
     if (const auto& ind = scene.effects.indirect; ind && scene.effects.shadows == ShadowMethod::Propagation)
         P.indirect = glm::vec4(ind->transport_color, ind->strength / (4.0f * float(M_PI)));
     if (const auto& sf = scene.effects.surface)

@@ -9,9 +9,10 @@
 #include <glm/glm.hpp>
 
 #include "kernel_types.h"
-#include "summed_volume.h"
 
 namespace voxlux {
+
+struct SummedVolume;
 
 struct LightCache {
     glm::ivec3 dims{0};

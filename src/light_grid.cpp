@@ -87,16 +87,7 @@ std::string clampedCellsWarning(const LightGrid& g) {
            std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)";
 }
 
-glm::vec3 occupiedExtent(const KernelInputs& in) {
-    return glm::vec3((in.pages->bricks_max - in.pages->bricks_min + 1) * VX_BRICK);
-}
-
-std::string occupiedBoxKey(const KernelInputs& in) {
-    const glm::ivec3 lo = in.pages->bricks_min, hi = in.pages->bricks_max;
-    std::string key;
-    for (int v : {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}) key += std::to_string(v) + ",";
-    return key;
-}
+glm::vec3 occupiedExtent(const PageTable& pages) { return glm::vec3((pages.bricks_max - pages.bricks_min + 1) * VX_BRICK); }
 
 int cappedLightResolution(glm::vec3 extent, int requested) {
     return std::min(requested, 4 * int(std::max({extent.x, extent.y, extent.z})));

@@ -50,11 +50,7 @@ bool lightGridIndexable(glm::ivec3 dims, int planes, int cache_channels);
 std::string clampedCellsWarning(const LightGrid& grid);
 
 // Index-space size of the occupied bricks' box, which light grids cover.
-glm::vec3 occupiedExtent(const KernelInputs& inputs);
-
-// The occupied bricks' box as text, for cache keys: with the volume, material and resolution it
-// fixes a light grid (emission sources move the box without changing the other two).
-std::string occupiedBoxKey(const KernelInputs& inputs);
+glm::vec3 occupiedExtent(const PageTable& pages);
 
 // `requested` cells along the longest side, but no finer than a quarter voxel: finer cells would
 // only repeat voxels (a tiny volume at the default 128).

@@ -1,85 +1,103 @@
-// Runs the render plan for one frame: load -> brick -> classify -> light cache / illumination ->
-// march -> write,
-// timing each stage and keeping what a later frame or scene edit can reuse. The CLI, the benchmark and the tests all render through this.
+// Renders frames of a scene through the render graph (src/render_graph.h): the stages below, each
+// re-run only when what it reads changed, so a later frame or a scene edit recomputes only what it
+// invalidates. The CLI, the study, the benchmarks and the tests all render through this.
+//
+//   color_space -> color_transforms ------------------------------------------.
+//   load -> brick -> classify -> light_grid -> sat -> light_cache ---.        |
+//        \                  \-> illumination_grid -> propagation -> eye_pass -+-> march -> grade -> write
+//         `-> camera ---------------------------------------------------------'
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "brick_atlas.h"
-#include "color_pipeline.h"
-#include "illumination_stage.h"
+#include "color_stages.h"
+#include "extinction_sat_stages.h"
+#include "grade_stage.h"
 #include "kernel_backend.h"
-#include "light_stage.h"
-#include "render_plan.h"
+#include "march_stage.h"
+#include "propagation_stages.h"
+#include "render_graph.h"
 #include "scene.h"
-#include "vdb_loader.h"
+#include "volume_stages.h"
+#include "write_stage.h"
 
 namespace voxlux {
 
 struct FrameResult {
-    RenderImage image;
+    RenderImage image;                                      // graded when the grade ran
     Camera camera;                                          // as used (the scene's or the framing)
-    std::vector<std::pair<std::string, double>> stage_seconds;
+    std::vector<std::pair<std::string, double>> stage_seconds;   // the stages that ran, by graph name
+    std::vector<StageReport> stages;                        // every stage this frame needed, ran or not
     std::vector<std::string> warnings;                      // recoverable oddities, one line each
     bool empty = false;                                     // nothing visible in this frame
     size_t atlas_bytes = 0;
     size_t bricks = 0;
     std::string path;                                       // the EXR written (renderToFile)
-    std::vector<std::string> reused;                        // stages and passes kept from before
-    std::optional<LightUpdate> light_update;                // what the illumination stage did, if it ran
+    std::vector<std::string> reused;                        // stages kept whole, then parts kept inside stages that ran
+    std::optional<LightUpdate> light_update;                // what the propagation stage did, if it ran
     std::vector<glm::vec4> preview;                         // display-referred RGBA, when output.preview is set
     std::string preview_path;                               // the PNG written (renderToFile)
 };
 
-// Camera framing the active voxels of the density grid: what a scene without a camera renders
-// and what `voxlux scene` writes out.
-Camera frameActiveVoxels(const LoadedVolume& volume, const RenderSettings& render);
 Camera frameVolumeCamera(const std::string& file, const Scene& scene);
 
 class Renderer {
 public:
     explicit Renderer(Scene scene);
+    // Renders `volume` (grids made in memory) instead of reading files, on `backend` (not owned).
+    Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend);
     // Replaces the scene; the next render recomputes only what the change invalidates.
     void setScene(Scene scene);
-    const std::vector<PlannedStage>& plan() const { return plan_; }
-    std::string backendName() const { return backend_->name(); }
-    // The illumination volume as the last frame left it (for the viewer's display and tests).
-    const IlluminationStage& illumination() const { return illumination_; }
-    // The scene's OCIO config and processors; built on first use, rebuilt when color changes.
-    const ColorPipeline& color();
+    const Scene& scene() const { return scene_; }
+    const RenderGraph& graph() const { return graph_; }
+    std::string backendName() { return backend().name(); }
 
     // Renders one frame (`frame` expands a #### volume path). An empty frame throws InputError
     // unless `allow_empty`, in which case it renders transparent and says so in the warnings.
     FrameResult render(std::optional<int> frame, bool allow_empty);
 
-    // Runs every stage but the march (no image): brings the cached stages up to date after an
-    // edit, as a light-edit replay does between frames.
+    // Runs every stage but the march, grade and write (no image): brings the lighting up to date
+    // after an edit, as a light-edit replay does between frames.
     FrameResult prepare(std::optional<int> frame, bool allow_empty);
 
     // Renders and writes the EXR for `frame` to the scene's output path (#### expanded).
     FrameResult renderToFile(std::optional<int> frame, bool allow_empty);
 
+    // What the march read last: the illumination volume (with the eye pass's indirect light when
+    // it ran), or null without propagation; and the light cache, or null.
+    const IlluminationVolume* illumination() const;
+    const LightCache* lightCache() const;
+
+    // The render document for `frame`: the scene as sceneToJson writes it, plus /input (the
+    // frame's file and its size and time, the frame number, $OCIO and allow_empty).
+    nlohmann::json document(std::optional<int> frame, bool allow_empty) const;
+
 private:
-    std::string volumeKey(const std::string& file) const;
-    KernelInputs runStages(std::optional<int> frame, bool allow_empty, FrameResult& r);
-    glm::mat3 xyzToWorking();
+    FrameResult runGraph(std::optional<int> frame, bool allow_empty, const std::vector<std::string>& targets);
+    KernelBackend& backend();   // the scene's, made on first use (--explain needs none)
 
     Scene scene_;
-    std::vector<PlannedStage> plan_;
-    std::string color_key_;                                 // the color settings and $OCIO color_ was built for
-    std::optional<ColorPipeline> color_;
-    std::unique_ptr<KernelBackend> backend_;
-    std::string volume_key_;                                // of the volume below; "" = none
-    std::unique_ptr<LoadedVolume> volume_;
-    std::unique_ptr<BrickAtlas> atlas_;
-    PageTable pages_;                                       // this frame's classified bricks (the inputs point here)
-    LightStage light_;
-    IlluminationStage illumination_;
+    std::unique_ptr<KernelBackend> owned_backend_;
+    KernelBackend* backend_ = nullptr;
+    ColorSpaceStage color_space_;
+    ColorTransformsStage color_transforms_{color_space_};
+    LoadStage load_;
+    BrickStage brick_{load_};
+    ClassifyStage classify_{load_, brick_};
+    CameraStage camera_{load_};
+    LightGridStage light_grid_{brick_, classify_};
+    SatStage sat_{light_grid_};
+    LightCacheStage light_cache_{brick_, classify_, light_grid_, sat_};
+    IlluminationGridStage illumination_grid_{brick_, classify_};
+    PropagationStage propagation_{brick_, classify_, illumination_grid_};
+    EyePassStage eye_pass_{brick_, classify_, camera_, illumination_grid_, propagation_};
+    MarchStage march_{color_space_, brick_, classify_, camera_, {light_cache_, propagation_, eye_pass_}};
+    GradeStage grade_{march_, color_transforms_};
+    WriteStage write_{grade_, camera_, color_transforms_};
+    RenderGraph graph_;
 };
-
-// FNV-1a of the scene as rendered (canonical JSON), hex; written into the EXR metadata.
-std::string sceneHash(const Scene& scene);
 
 }  // namespace voxlux

@@ -8,9 +8,7 @@
 #include <utility>
 
 #include "camera.h"
-#include "illumination_stage.h"
-#include "light_stage.h"
-#include "render_plan.h"
+#include "renderer.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -119,41 +117,21 @@ struct Renders {
     RenderImage cpu, gl;
 };
 
-// The light stage on `backend`, as a render runs it; points `inputs` at the stage's cache.
-void buildLightCache(LightStage& stage, const Scene& scene, KernelInputs& inputs, KernelBackend& backend) {
-    StageTimes times;
-    std::vector<std::string> reused, warnings;
-    stage.update(scene, "test volume", inputs, backend, times, reused, warnings);
-}
-
-// Both backends on the same inputs. The camera is the default framing moved in, so the volume
-// reaches the image's edges and every dispatch band has something to get wrong.
-Renders renderBoth(LoadedVolume volume, const Scene& scene, KernelBackend& gl) {
+// Both backends on the same volume, each through the whole render graph, as a render on it would
+// run: each builds its own light cache and illumination volume. The camera is the default framing
+// moved in, so the volume reaches the image's edges and every dispatch band has something to get
+// wrong.
+Renders renderBoth(LoadedVolume volume, Scene scene, KernelBackend& gl) {
     const CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
     glm::vec3 lo, hi;
     worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
                 glm::vec3(box.max().x() + 1, box.max().y() + 1, box.max().z() + 1), lo, hi);
     Camera camera = frameBox(lo, hi, 40.0f, float(scene.render.width) / float(scene.render.height));
     camera.position = glm::mix(camera.look_at, camera.position, 0.45f);
-    auto prepared = prepare(std::move(volume), scene, camera);
+    scene.camera = camera;
     auto cpu = makeCpuBackend();
-    const bool cache = needsAmbientOcclusion(scene) || needsConeShadows(scene);
-    if (!cache && !needsPropagation(scene)) return {cpu->march(prepared->inputs), gl.march(prepared->inputs)};
-    // Each backend builds its own light cache and illumination volume, as a render on it would.
-    Renders r;
-    for (KernelBackend* backend : {static_cast<KernelBackend*>(cpu.get()), &gl}) {
-        LightStage stage;
-        IlluminationStage illumination;
-        KernelInputs inputs = prepared->inputs;
-        if (cache) buildLightCache(stage, scene, inputs, *backend);
-        if (needsPropagation(scene)) {
-            StageTimes times;
-            std::vector<std::string> reused, warnings;
-            illumination.update(scene, camera, "test volume", inputs, *backend, times, reused, warnings);
-        }
-        (backend == &gl ? r.gl : r.cpu) = backend->march(inputs);
-    }
-    return r;
+    return {Renderer(scene, volume, *cpu).render(std::nullopt, false).image,
+            Renderer(scene, volume, gl).render(std::nullopt, false).image};
 }
 
 // Ambient light with colour-bleeding AO, and SAT-cone shadows from a directional light, a point
@@ -320,16 +298,14 @@ TEST(GlBackend, MatchesCpuWithTransferFunction) {
 TEST(GlBackend, LightCacheMatchesCpu) {
     VOXLUX_REQUIRE_GL(gl);
     const Scene scene = satScene();
-    auto prepared = prepare(makeVolume(true), scene, Camera{});
+    const LoadedVolume volume = makeVolume(true);
     auto cpu = makeCpuBackend();
-    LightStage stages[2];
-    KernelBackend* backends[2] = {cpu.get(), gl.get()};
-    for (int b = 0; b < 2; ++b) {
-        KernelInputs inputs = prepared->inputs;
-        buildLightCache(stages[b], scene, inputs, *backends[b]);
-    }
-    EXPECT_TRUE(stages[0].sat().words == stages[1].sat().words) << "CPU and GL SATs differ";
-    const LightCache &c = stages[0].cache(), &g = stages[1].cache();
+    Renderer on_cpu(scene, volume, *cpu), on_gl(scene, volume, *gl);
+    on_cpu.prepare(std::nullopt, false);
+    on_gl.prepare(std::nullopt, false);
+    auto satOf = [](const Renderer& r) { return dynamic_cast<const SatStage&>(r.graph().stage("sat")).sat().words; };
+    EXPECT_TRUE(satOf(on_cpu) == satOf(on_gl)) << "CPU and GL SATs differ";
+    const LightCache &c = *on_cpu.lightCache(), &g = *on_gl.lightCache();
     ASSERT_EQ(c.channels, 3 + 3);  // RGB ambient occlusion, three lights
     ASSERT_EQ(c.values.size(), g.values.size());
     for (int ch = 0; ch < c.channels; ++ch) {

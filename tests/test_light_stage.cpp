@@ -57,15 +57,14 @@ TEST(LightStage, AChangeRecomputesOnlyWhatItInvalidates) {
     Scene scene = ballScene(vdb);
     Renderer renderer(scene);
     const FrameResult first = renderer.render(std::nullopt, false);
-    for (const char* stage : {"load", "brick", "light_grid", "sat", "ambient", "shadows"}) EXPECT_TRUE(ran(first, stage)) << stage;
+    for (const char* stage : {"load", "brick", "light_grid", "sat", "light_cache", "march"}) EXPECT_TRUE(ran(first, stage)) << stage;
     EXPECT_TRUE(first.reused.empty());
 
-    // The same scene again: nothing but classify and march runs.
+    // The same scene again: every stage is reused, the march too.
     const FrameResult again = renderer.render(std::nullopt, false);
-    for (const char* part : {"load", "brick", "light_grid", "sat", "ambient", "shadow of light 0", "shadow of light 1"})
-        EXPECT_TRUE(has(again.reused, part)) << part;
-    EXPECT_FALSE(ran(again, "sat"));
-    EXPECT_FALSE(ran(again, "shadows"));
+    for (const char* stage : {"load", "brick", "classify", "camera", "light_grid", "sat", "light_cache", "march"})
+        EXPECT_TRUE(has(again.reused, stage)) << stage;
+    EXPECT_TRUE(again.stage_seconds.empty());
     expectSameImage(first, again);
 
     // Moving the point light recomputes its cone only; the image is what a fresh render gives.
@@ -76,14 +75,15 @@ TEST(LightStage, AChangeRecomputesOnlyWhatItInvalidates) {
     EXPECT_TRUE(has(moved.reused, "ambient"));
     EXPECT_TRUE(has(moved.reused, "shadow of light 0"));
     EXPECT_FALSE(has(moved.reused, "shadow of light 1"));
-    EXPECT_TRUE(ran(moved, "shadows"));
+    EXPECT_TRUE(ran(moved, "light_cache"));
     expectSameImage(moved, Renderer(scene).render(std::nullopt, false));
 
-    // A brighter key light changes no optical depth: every pass is reused, the image changes.
+    // A brighter key light changes no optical depth: the light cache is reused, the image changes.
     scene.lights[0].intensity = 9.0f;
     renderer.setScene(scene);
     const FrameResult brighter = renderer.render(std::nullopt, false);
-    EXPECT_FALSE(ran(brighter, "shadows"));
+    EXPECT_FALSE(ran(brighter, "light_cache"));
+    EXPECT_TRUE(ran(brighter, "march"));
     EXPECT_NE(brighter.image.pixels[20 * 48 + 24].rgba.x, moved.image.pixels[20 * 48 + 24].rgba.x);
     expectSameImage(brighter, Renderer(scene).render(std::nullopt, false));
 
@@ -92,7 +92,7 @@ TEST(LightStage, AChangeRecomputesOnlyWhatItInvalidates) {
     renderer.setScene(scene);
     const FrameResult denser = renderer.render(std::nullopt, false);
     EXPECT_TRUE(has(denser.reused, "brick"));
-    for (const char* stage : {"light_grid", "sat", "ambient", "shadows"}) EXPECT_TRUE(ran(denser, stage)) << stage;
+    for (const char* stage : {"light_grid", "sat", "light_cache"}) EXPECT_TRUE(ran(denser, stage)) << stage;
     expectSameImage(denser, Renderer(scene).render(std::nullopt, false));
 }
 
@@ -100,13 +100,18 @@ TEST(LightStage, PassesTheSceneDoesNotNeedNeverRun) {
     const std::string vdb = writeBall(tempDir("light_stage_idle"));
     Scene scene = ballScene(vdb);
     scene.lights.pop_back();  // no ambient light: nothing for AO to occlude
-    FrameResult r = Renderer(scene).render(std::nullopt, false);
-    EXPECT_TRUE(ran(r, "shadows"));
-    EXPECT_FALSE(ran(r, "ambient"));
+    Renderer shadows_only(scene);
+    FrameResult r = shadows_only.render(std::nullopt, false);
+    EXPECT_TRUE(ran(r, "light_cache"));
+    ASSERT_NE(shadows_only.lightCache(), nullptr);
+    EXPECT_EQ(shadows_only.lightCache()->ambient_channel, -1);
+    EXPECT_EQ(shadows_only.lightCache()->channels, 2);   // one cone channel per light
     scene.effects.shadows = ShadowMethod::Raymarch;  // and no SAT shadows: no light cache at all
     r = Renderer(scene).render(std::nullopt, false);
-    EXPECT_FALSE(ran(r, "light_grid"));
-    EXPECT_FALSE(ran(r, "sat"));
+    for (const char* stage : {"light_grid", "sat", "light_cache"}) {
+        EXPECT_FALSE(ran(r, stage)) << stage;
+        EXPECT_FALSE(has(r.reused, stage)) << stage;
+    }
 }
 
 TEST(LightStage, MemoryBudgetLowersTheResolutionAndSaysSo) {
@@ -170,7 +175,7 @@ TEST(LightStage, HostileVoxelsAndEmptyFramesStayFinite) {
     scene.volume.path = dir + "/empty.vdb";
     const FrameResult blank = Renderer(scene).render(std::nullopt, true);
     EXPECT_TRUE(blank.empty);
-    EXPECT_FALSE(ran(blank, "sat"));
+    for (const char* stage : {"light_grid", "sat", "light_cache"}) EXPECT_FALSE(ran(blank, stage)) << stage;
     for (const auto& px : blank.image.pixels) ASSERT_EQ(px.rgba.w, 0.0f);
 }
 

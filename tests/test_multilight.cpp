@@ -11,7 +11,7 @@
 #include "cpu_kernel.h"
 #include "cpu_propagation.h"
 #include "error.h"
-#include "illumination_stage.h"
+#include "propagation_stages.h"
 #include "light_rig.h"
 #include "light_sweeps.h"
 #include "renderer.h"
@@ -165,7 +165,7 @@ void expectPointLightInsideCube(KernelBackend& backend) {
         auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, sigma);
         for (glm::vec3 at : {glm::vec3(12.0f), glm::vec3(11.7f, 12.2f, 12.45f)}) {
             auto lit = illuminate(grid, cubeScene({pointLight(at, glm::vec3(1.0f), intensity)}, false), backend, Camera{});
-            const IlluminationVolume& v = lit->stage.volume();
+            const IlluminationVolume& v = lit->volume();
             const bool centred = at == glm::vec3(12.0f);
             float exact_cells = 0.0f;   // relative error where the answer is exact
             float excess = 0.0f;        // optical-depth error beyond 0.07 sigma r, per sigma
@@ -280,22 +280,22 @@ TEST(MultiLight, LightsAddUpAndCoherentPassesMatchSequentialOnes) {
     auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, 0.08f);
     const std::vector<Light> rig = mixedRig();
     auto all = illuminate(grid, cubeScene(rig, true), *cpu, Camera{});
-    std::vector<float> sum(all->stage.volume().values.size(), 0.0f);
+    std::vector<float> sum(all->volume().values.size(), 0.0f);
     for (const Light& l : rig) {
         auto one = illuminate(grid, cubeScene({l}, true), *cpu, Camera{});
-        ASSERT_EQ(one->stage.volume().values.size(), sum.size());
-        for (size_t i = 0; i < sum.size(); ++i) sum[i] += one->stage.volume().values[i];
+        ASSERT_EQ(one->volume().values.size(), sum.size());
+        for (size_t i = 0; i < sum.size(); ++i) sum[i] += one->volume().values[i];
     }
-    const float additivity = relativeL2(all->stage.volume().values, sum);
+    const float additivity = relativeL2(all->volume().values, sum);
     Scene sequential = cubeScene(rig, true);
     sequential.effects.propagation.coherent = false;
     auto seq = illuminate(grid, sequential, *cpu, Camera{});
-    const float coherence = relativeL2(all->stage.volume().values, seq->stage.volume().values);
+    const float coherence = relativeL2(all->volume().values, seq->volume().values);
     std::printf("  A+B against A plus B: %.2g; coherent against sequential: %.2g (relative L2)\n", additivity, coherence);
     EXPECT_LT(additivity, 1e-6f);
     EXPECT_LT(coherence, 1e-6f);
-    EXPECT_EQ(seq->stage.lastUpdate().passes, seq->stage.lastUpdate().sweeps);
-    EXPECT_LE(all->stage.lastUpdate().passes, 12);   // at most six directions per block
+    EXPECT_EQ(seq->update().passes, seq->update().sweeps);
+    EXPECT_LE(all->update().passes, 12);   // at most six directions per block
 }
 
 // Both backends give the same volume for the mixed rig (point light inside, spot, a light beside
@@ -308,8 +308,8 @@ TEST(MultiLight, CpuAndGlAgreeOnAMixedRig) {
     scene.effects.propagation.blend_axes = true;
     auto a = illuminate(grid, scene, *cpu, Camera{});
     auto b = illuminate(grid, scene, *gl, Camera{});
-    const auto& va = a->stage.volume().values;
-    const auto& vb = b->stage.volume().values;
+    const auto& va = a->volume().values;
+    const auto& vb = b->volume().values;
     ASSERT_EQ(va.size(), vb.size());
     float peak = 0.0f, worst = 0.0f;
     for (size_t i = 0; i < va.size(); ++i) {
@@ -400,8 +400,8 @@ void expectEditsMatchFromScratch(Backend backend, int light_resolution) {
     }
     Renderer fresh(rig.scene());
     fresh.prepare(std::nullopt, false);
-    const auto& got = renderer.illumination().volume().values;
-    const auto& want = fresh.illumination().volume().values;
+    const auto& got = renderer.illumination()->values;
+    const auto& want = fresh.illumination()->values;
     ASSERT_EQ(got.size(), want.size());
     float peak = 0.0f, worst = 0.0f;
     for (size_t i = 0; i < want.size(); ++i) {
@@ -430,7 +430,7 @@ TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
     Renderer renderer(scene);
     LightRig rig(renderer, scene);
     rig.apply();
-    const std::vector<float> before = renderer.illumination().volume().values;
+    const std::vector<float> before = renderer.illumination()->values;
     rig.toggle(2, false);
     const LightRigUpdate off = rig.apply();
     ASSERT_TRUE(off.lighting);
@@ -438,11 +438,11 @@ TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
     EXPECT_EQ(off.lighting->lights_out, 1);
     EXPECT_EQ(off.lighting->lights_in, 0);
     EXPECT_EQ(off.dirty, std::vector<int>{2});
-    EXPECT_GT(relativeL2(renderer.illumination().volume().values, before), 0.01f);
+    EXPECT_GT(relativeL2(renderer.illumination()->values, before), 0.01f);
     rig.toggle(2, true);
     const LightRigUpdate on = rig.apply();
     EXPECT_EQ(on.lighting->mode, LightUpdate::Mode::Selective);
-    const float restored = relativeL2(renderer.illumination().volume().values, before);
+    const float restored = relativeL2(renderer.illumination()->values, before);
     std::printf("  toggled off and on: relative L2 %.2g; one toggle walked %lld slices in %d passes\n", restored,
                 on.lighting->slices, on.lighting->passes);
     EXPECT_LT(restored, 1e-5f);
@@ -465,7 +465,7 @@ TEST(MultiLight, SelectiveUpdatesUnderTheEyePassMatchFromScratch) {
     ASSERT_EQ(u.lighting->mode, LightUpdate::Mode::Selective) << u.lighting->reason;
     Renderer fresh(rig.scene());
     fresh.prepare(std::nullopt, false);
-    const float error = relativeL2(renderer.illumination().volume().values, fresh.illumination().volume().values);
+    const float error = relativeL2(renderer.illumination()->values, fresh.illumination()->values);
     std::printf("  selective update under the eye pass: relative L2 %.2g against a fresh volume\n", error);
     EXPECT_LT(error, 1e-5f);
 }
@@ -478,18 +478,17 @@ TEST(MultiLight, HdrExtremesStayFiniteAndKeepTheirRatio) {
     const Light strong = directionalLight({0, -1, 0}, {1, 0, 0}, 1e6f), weak = directionalLight({0, -1, 0.3f}, {0, 0, 1}, 1e-3f);
     auto both = illuminate(grid, cubeScene({strong, weak}, true), *cpu, Camera{});
     auto alone = illuminate(grid, cubeScene({weak}, true), *cpu, Camera{});
-    const IlluminationVolume& v = both->stage.volume();
+    const IlluminationVolume& v = both->volume();
     float red = 0.0f, blue = 0.0f;
     for (size_t i = 0; i < v.values.size(); ++i) ASSERT_TRUE(std::isfinite(v.values[i])) << i;
     for (size_t c = 0; c < v.cells(); ++c) red = std::max(red, v.values[3 * c]), blue = std::max(blue, v.values[3 * c + 2]);
     EXPECT_NEAR(red / blue, 1e9f, 1e9f * 1e-4f);
     // Out with the strong light: the stage re-bases, so the weak light's volume is exact.
     Scene weak_only = cubeScene({weak}, true);
-    both->stage.update(weak_only, Camera{}, "test", both->prepared->inputs = makeKernelInputs(weak_only, Camera{}, both->prepared->atlas, both->prepared->pages),
-                       *cpu, both->times, both->reused, both->warnings);
-    EXPECT_EQ(both->stage.lastUpdate().mode, LightUpdate::Mode::Entire);
-    EXPECT_EQ(both->stage.lastUpdate().reason.rfind("re-base", 0), 0u) << both->stage.lastUpdate().reason;
-    EXPECT_LT(relativeL2(both->stage.volume().values, alone->stage.volume().values), 1e-6f);
+    both->relight(weak_only);
+    EXPECT_EQ(both->update().mode, LightUpdate::Mode::Entire);
+    EXPECT_EQ(both->update().reason.rfind("re-base", 0), 0u) << both->update().reason;
+    EXPECT_LT(relativeL2(both->volume().values, alone->volume().values), 1e-6f);
 }
 
 TEST(LightRig, TracksIdsAndDirtyLightsAndRefusesUnknownOnes) {

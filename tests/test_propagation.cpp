@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "cpu_kernel.h"
-#include "illumination_stage.h"
+#include "propagation_stages.h"
 #include "light_sweeps.h"
 #include "renderer.h"
 #include "test_support.h"
@@ -215,7 +215,7 @@ void expectSlabMatches(KernelBackend& backend) {
     for (glm::vec3 dir : {glm::vec3(0, -1, 0), glm::vec3(1, -1, 0), glm::vec3(-1, -1, 1), glm::vec3(0.35f, -1, 0.2f)}) {
         for (bool blend : {false, true}) {
             auto lit = illuminate(slab(sigma), slabScene(dir, blend), backend);
-            const SlabError e = slabError(lit->stage.volume(), sigma, dir);
+            const SlabError e = slabError(lit->volume(), sigma, dir);
             const bool exact = std::abs(dir.x) == std::abs(dir.y) || dir.x == 0.0f;
             SCOPED_TRACE("dir " + std::to_string(dir.x) + " " + std::to_string(dir.y) + " " + std::to_string(dir.z) +
                          (blend ? " blended" : " one axis"));
@@ -246,7 +246,7 @@ TEST(Propagation, OpticalDepthIsIndependentOfTheGridResolution) {
     Scene scene = slabScene({0, -1, 0}, false);
     scene.effects.light_resolution = kSlabGrid / 2;
     auto lit = illuminate(slab(sigma), scene, *cpu);
-    const IlluminationVolume& v = lit->stage.volume();
+    const IlluminationVolume& v = lit->volume();
     ASSERT_EQ(v.dims, glm::ivec3(kSlabGrid / 2));
     int checked = 0;
     for (int y = 0; y < v.dims.y; ++y) {
@@ -322,7 +322,7 @@ TEST(Propagation, TransportColourShiftsIndirectLightWithDepth) {
     auto cpu = makeCpuBackend();
     Scene scene = indirectSlabScene({0, -1, 0}, false, glm::vec3(1.0f, 0.6f, 0.3f));
     auto lit = illuminate(slab(0.1f), scene, *cpu);
-    const IlluminationVolume& v = lit->stage.volume();
+    const IlluminationVolume& v = lit->volume();
     ASSERT_EQ(v.chroma_dims, v.dims);
     float last = 0.0f;
     for (int y = v.dims.y - 1; y >= 0; --y) {
@@ -473,8 +473,8 @@ TEST(Propagation, PerturbationReachesTheIlluminationVolume) {
     p.scale = 8.0f;
     scene.effects.perturbation = p;
     auto noisy = illuminate(slab(0.1f), scene, *cpu);
-    const auto& a = plain->stage.volume().values;
-    const auto& b = noisy->stage.volume().values;
+    const auto& a = plain->volume().values;
+    const auto& b = noisy->volume().values;
     float most = 0.0f;
     for (size_t i = 0; i < a.size(); ++i) most = std::max(most, std::abs(a[i] - b[i]));
     EXPECT_GT(most, 0.01f);
@@ -514,8 +514,8 @@ TEST(Propagation, CpuAndGlVolumesAgree) {
             }
             auto a = illuminate(slab(0.1f), scene, *cpu);
             auto b = illuminate(slab(0.1f), scene, *gl);
-            const auto& va = a->stage.volume().values;
-            const auto& vb = b->stage.volume().values;
+            const auto& va = a->volume().values;
+            const auto& vb = b->volume().values;
             ASSERT_EQ(va.size(), vb.size());
             float peak = 0.0f, worst = 0.0f;
             for (size_t i = 0; i < va.size(); ++i) {
@@ -549,8 +549,8 @@ TEST(Propagation, HostileLightsAndVoxelsStayFinite) {
     scene.effects.propagation.eye_pass = true;
     auto cpu = makeCpuBackend();
     auto lit = illuminate(grid, scene, *cpu);
-    for (float v : lit->stage.volume().values) ASSERT_TRUE(std::isfinite(v));
-    const RenderImage img = cpu->march(lit->prepared->inputs);
+    for (float v : lit->volume().values) ASSERT_TRUE(std::isfinite(v));
+    const RenderImage img = lit->renderer->render(std::nullopt, false).image;
     for (const auto& px : img.pixels) {
         ASSERT_TRUE(std::isfinite(px.rgba.x + px.rgba.y + px.rgba.z + px.rgba.w));
         ASSERT_TRUE(std::isfinite(px.indirect.x + px.indirect.y + px.indirect.z));
@@ -567,17 +567,17 @@ TEST(Propagation, EditsRecomputeOnlyWhatTheyInvalidate) {
         return std::any_of(f.stage_seconds.begin(), f.stage_seconds.end(), [&](const auto& p) { return p.first == stage; });
     };
     FrameResult f = r.render(std::nullopt, false);
-    EXPECT_TRUE(ran(f, "light_grid") && ran(f, "propagation"));
+    EXPECT_TRUE(ran(f, "illumination_grid") && ran(f, "propagation"));
     Camera moved;
     moved.position = glm::vec3(1, 2, 8);
     s.camera = moved;
     r.setScene(s);
     f = r.render(std::nullopt, false);
-    EXPECT_FALSE(ran(f, "light_grid") || ran(f, "propagation"));
+    EXPECT_FALSE(ran(f, "illumination_grid") || ran(f, "propagation"));
     s.lights[0].intensity = 2.0f;
     r.setScene(s);
     f = r.render(std::nullopt, false);
-    EXPECT_FALSE(ran(f, "light_grid"));
+    EXPECT_FALSE(ran(f, "illumination_grid"));
     EXPECT_TRUE(ran(f, "propagation"));
     s.effects.indirect = Indirect{};
     s.effects.propagation.eye_pass = true;
@@ -587,7 +587,7 @@ TEST(Propagation, EditsRecomputeOnlyWhatTheyInvalidate) {
     s.camera = moved;
     r.setScene(s);
     f = r.render(std::nullopt, false);
-    EXPECT_FALSE(ran(f, "light_grid") || ran(f, "propagation"));
+    EXPECT_FALSE(ran(f, "illumination_grid") || ran(f, "propagation"));
     EXPECT_TRUE(ran(f, "eye_pass"));   // only the eye pass follows the camera
     // ... and from the light sweeps' result, not its own: the same as a fresh render.
     EXPECT_TRUE(identical(f.image, renderScene(s).image));
@@ -602,7 +602,7 @@ TEST(Propagation, EditsRecomputeOnlyWhatTheyInvalidate) {
     s.material.density_scale = 5.0f;
     r.setScene(s);
     f = r.render(std::nullopt, false);
-    EXPECT_TRUE(ran(f, "light_grid"));
+    EXPECT_TRUE(ran(f, "illumination_grid"));
 }
 
 // Ropinski's eye sweep blends each cell's indirect light with the blurred light behind it: a
@@ -613,8 +613,8 @@ TEST(Propagation, EyeSweepIsAConvexBlend) {
     auto before = illuminate(slab(0.1f), scene, *cpu);
     scene.effects.propagation.eye_pass = true;
     auto after = illuminate(slab(0.1f), scene, *cpu);
-    const IlluminationVolume& a = before->stage.volume();
-    const IlluminationVolume& b = after->stage.volume();
+    const IlluminationVolume& a = before->volume();
+    const IlluminationVolume& b = after->volume();
     for (int c = 0; c < 3; ++c) {
         float lo = 1e30f, hi = -1e30f;
         for (size_t i = a.indirectOffset() + size_t(c); i < a.values.size(); i += 3) {
@@ -637,7 +637,7 @@ TEST(Propagation, EyeSweepIsAConvexBlend) {
     empty_air.effects.indirect = Indirect{};
     empty_air.effects.propagation.eye_pass = true;
     auto air = illuminate(slab(1e-9f), empty_air, *cpu);
-    const IlluminationVolume& u = air->stage.volume();
+    const IlluminationVolume& u = air->volume();
     for (size_t i = u.indirectOffset(); i < u.values.size(); ++i) ASSERT_NEAR(u.values[i], 1.0f, 1e-5f) << i;
 }
 
@@ -650,8 +650,8 @@ TEST(Propagation, ChromaSubsamplingHalvesTheIndirectGrid) {
     auto full = illuminate(slab(0.1f), scene, *cpu);
     scene.effects.propagation.chroma_subsampling = true;
     auto half = illuminate(slab(0.1f), scene, *cpu);
-    const IlluminationVolume& f = full->stage.volume();
-    const IlluminationVolume& h = half->stage.volume();
+    const IlluminationVolume& f = full->volume();
+    const IlluminationVolume& h = half->volume();
     EXPECT_EQ(h.dims, f.dims);
     EXPECT_EQ(h.chroma_dims, (f.dims + 1) / 2);
     EXPECT_EQ(h.values.size() - h.indirectOffset(), 3 * h.chromaCells());
@@ -788,12 +788,12 @@ TEST(Propagation, MemoryBudgetLowersTheResolutionAndSaysSo) {
     scene.effects.light_resolution = 160;   // 4 cells per voxel: the finest allowed
     scene.effects.light_memory_mb = 8;
     auto lit = illuminate(slab(0.1f), scene, *cpu);
-    const glm::ivec3 dims = lit->stage.volume().dims;
-    EXPECT_LE(illuminationBytes(dims, true, 1, false), size_t(8) << 20);
-    EXPECT_GT(illuminationBytes(dims + 1, true, 1, false), size_t(8) << 20);
-    ASSERT_EQ(lit->warnings.size(), 1u);
-    EXPECT_EQ(lit->warnings[0], "illumination volume of 160 cells needs " +
-                                    std::to_string(illuminationBytes(glm::ivec3(160), true, 1, false) >> 20) +
+    const glm::ivec3 dims = lit->volume().dims;
+    EXPECT_LE(illuminationBytes(dims, true, 1), size_t(8) << 20);
+    EXPECT_GT(illuminationBytes(dims + 1, true, 1), size_t(8) << 20);
+    ASSERT_EQ(lit->result.warnings.size(), 1u);
+    EXPECT_EQ(lit->result.warnings[0], "illumination volume of 160 cells needs " +
+                                    std::to_string(illuminationBytes(glm::ivec3(160), true, 1) >> 20) +
                                     " MiB, over effects.light_memory_mb = 8; using " + std::to_string(dims.x) +
                                     " cells instead");
 }
@@ -809,7 +809,7 @@ TEST(Propagation, VolumesBeyond2To24CellsStayExact) {
         Scene scene = slabScene(dir, false);
         scene.effects.light_resolution = 260;
         auto lit = illuminate(boxGrid({0, 0, 0}, {side - 1, side - 1, side - 1}, sigma), scene, *cpu);
-        const IlluminationVolume& v = lit->stage.volume();
+        const IlluminationVolume& v = lit->volume();
         ASSERT_GT(v.cells(), size_t(1) << 24);
         int checked = 0;
         for (int z = v.dims.z - 1; z >= 0 && (size_t(z) * v.dims.y * v.dims.x) >= (size_t(1) << 24); --z)

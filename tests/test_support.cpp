@@ -59,7 +59,7 @@ std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const
     p->volume = std::move(volume);
     p->atlas = buildBrickAtlas(p->volume);
     p->pages = buildPageTable(p->atlas.coords, classifyBricks(p->atlas, scene.material, scene.emission));
-    p->inputs = makeKernelInputs(scene, camera, p->atlas, p->pages);
+    p->inputs = makeKernelInputs(scene, p->atlas, p->pages, 0.0f, kXyzD65ToAcescg, {&camera});
     return p;
 }
 
@@ -110,9 +110,18 @@ std::string tempDir(const std::string& name) {
 std::unique_ptr<Lit> illuminate(openvdb::FloatGrid::Ptr grid, const Scene& scene, KernelBackend& backend,
                                 const Camera& camera) {
     auto lit = std::make_unique<Lit>();
-    lit->prepared = prepare(volumeFromGrid(grid), scene, camera);
-    lit->stage.update(scene, camera, "test", lit->prepared->inputs, backend, lit->times, lit->reused, lit->warnings);
+    lit->camera = camera;
+    Scene seen = scene;
+    seen.camera = camera;
+    lit->renderer = std::make_unique<Renderer>(seen, volumeFromGrid(grid), backend);
+    lit->result = lit->renderer->prepare(std::nullopt, false);
     return lit;
+}
+
+void Lit::relight(Scene scene) {
+    scene.camera = camera;
+    renderer->setScene(scene);
+    result = renderer->prepare(std::nullopt, false);
 }
 
 std::string sceneErrorOf(const std::string& json) {

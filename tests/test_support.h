@@ -12,7 +12,8 @@
 
 #include "brick_atlas.h"
 #include "kernel_inputs.h"
-#include "illumination_stage.h"
+#include "propagation_stages.h"
+#include "renderer.h"
 #include "kernel_backend.h"
 #include "page_table.h"
 #include "scene.h"
@@ -58,14 +59,17 @@ struct Prepared {
 };
 std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const Camera& camera);
 
-// The illumination stage run once over a grid, with what it reported.
+// A scene lit through the render graph (every stage but the march) over a grid in memory.
 struct Lit {
-    std::unique_ptr<Prepared> prepared;
-    IlluminationStage stage;
-    StageTimes times;
-    std::vector<std::string> reused, warnings;
+    std::unique_ptr<Renderer> renderer;
+    Camera camera;
+    FrameResult result;                    // of the last update
+    const IlluminationVolume& volume() const { return *renderer->illumination(); }
+    const LightUpdate& update() const { return *result.light_update; }
+    // Lights `scene` (seen from the same camera) on the same renderer: only what changed re-runs.
+    void relight(Scene scene);
 };
-// Runs the illumination stage for `scene` over `grid` on `backend`, seen from `camera`.
+// Lights `scene` over `grid` on `backend`, seen from `camera`.
 std::unique_ptr<Lit> illuminate(openvdb::FloatGrid::Ptr grid, const Scene& scene, KernelBackend& backend,
                                 const Camera& camera);
 

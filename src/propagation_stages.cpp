@@ -1,7 +1,8 @@
-#include "illumination_stage.h"
+#include "propagation_stages.h"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -10,21 +11,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/parallel_for.h>
 
+#include "camera.h"
 #include "cpu_kernel.h"
+#include "kernel_backend.h"
 #include "light_sweeps.h"
-#include "scene_json.h"
 
 namespace voxlux {
 namespace {
-
-// A grid the sweeps run over: the light grid, or its chroma-subsampled coarsening.
-struct SweepGrid {
-    glm::mat4 grid_to_world{1.0f};
-    glm::mat4 world_to_grid{1.0f};
-    glm::ivec3 dims{0};
-    float cells_per_voxel = 1.0f;          // grid cells per index voxel (for displacement)
-    const std::vector<float>* sigma = nullptr;
-};
 
 glm::ivec3 coarserDims(glm::ivec3 d, int factor) { return (d + factor - 1) / factor; }
 
@@ -246,9 +239,37 @@ std::vector<kernel::VxLight> missingFrom(const std::vector<kernel::VxLight>& fro
     return out;
 }
 
+bool hasLocalLight(const Scene& s) {
+    return std::any_of(s.lights.begin(), s.lights.end(), [](const Light& l) { return l.enabled && l.type != LightType::Ambient; });
+}
+
+StageActivity propagationActivity(const Scene& s, const std::string& what) {
+    if (s.render.method == RenderMethod::Reference)
+        return {false, "skipped: the Monte Carlo reference (render.method) computes all light itself"};
+    if (s.effects.shadows != ShadowMethod::Propagation || !hasLocalLight(s)) {
+        std::string why = "skipped: no effect in the scene needs an illumination volume";
+        if (s.effects.shadows == ShadowMethod::Propagation) why += " (propagation shadows but no light to propagate)";
+        else if (s.effects.indirect) why += " (indirect light needs effects.shadows = propagation)";
+        return {false, why};
+    }
+    return {true, what};
+}
+
+float frameOf(const nlohmann::json& document) {
+    const nlohmann::json& f = document["input"]["frame"];
+    return f.is_number() ? f.get<float>() : 0.0f;
+}
+
+// Distinct across every stage in the process, like the SAT's generations.
+uint64_t nextGridGeneration() {
+    static std::atomic<uint64_t> next{1};
+    return next++;
+}
+
+
 }  // namespace
 
-size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool eye_pass) {
+size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma) {
     const size_t cells = size_t(d.x) * d.y * d.z;
     // The light grid, its mask, the direct RGB, and an x pass's slice-major copies of the
     // extinction and of its RGB result (CPU).
@@ -256,70 +277,112 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool eye_pass)
     if (indirect) {
         const glm::ivec3 c = coarserDims(d, chroma);
         const size_t cc = size_t(c.x) * c.y * c.z;
-        bytes += cc * 3 * sizeof(float) * (eye_pass ? 2 : 1) + (chroma > 1 ? cc * sizeof(float) : 0);
+        // With the eye pass's own volume and its input copy of the indirect cells, reserved whenever
+        // indirect light is on, so that toggling the eye pass never changes the grid.
+        bytes += cc * 3 * sizeof(float) + (chroma > 1 ? cc * sizeof(float) : 0) + (cells + 2 * cc) * 3 * sizeof(float);
     }
     return bytes;
 }
 
-void IlluminationStage::update(const Scene& scene, const Camera& camera, const std::string& volume_key,
-                               KernelInputs& inputs, KernelBackend& backend, StageTimes& times,
-                               std::vector<std::string>& reused, std::vector<std::string>& warnings) {
-    const Effects& fx = scene.effects;
+StageReads IlluminationGridStage::reads() const {
+    return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
+             "/effects/propagation/chroma_subsampling"},
+            {"brick", "classify"}};
+}
+
+StageActivity IlluminationGridStage::activity(const Scene& s) const {
+    const bool chroma = s.effects.indirect && s.effects.propagation.chroma_subsampling;
+    return propagationActivity(s, "extinction box-filtered into a " + std::to_string(s.effects.light_resolution) +
+                                      "-cell grid over the occupied bricks" + (chroma ? ", and its 2x coarsening" : ""));
+}
+
+void IlluminationGridStage::release() {
+    grid_ = LightGrid{};
+    chroma_sigma_.clear();
+    fine_ = coarse_ = SweepGrid{};
+}
+
+void IlluminationGridStage::run(StageRun& run) {
+    release();
+    generation_ = nextGridGeneration();
+    const PageTable& pages = classify_.pages();
+    const Effects& fx = run.scene.effects;
     const bool indirect = fx.indirect.has_value();
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
-    const bool eye = indirect && fx.propagation.eye_pass;
-
-    const glm::vec3 extent = occupiedExtent(inputs);
-    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, eye); },
+    const glm::vec3 extent = occupiedExtent(pages);
+    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma); },
                         // The kernels index the volume (3 + 3 floats per cell at most) with ints.
                         [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 < uint64_t(INT32_MAX); },
                         "illumination volume"};
     std::string warning;
     const int resolution = fitGridResolution(extent, cappedLightResolution(extent, fx.light_resolution),
                                              size_t(fx.light_memory_mb) << 20, cost, "illumination volume", warning);
-    if (!warning.empty()) warnings.push_back(warning);
+    if (!warning.empty()) run.warnings.push_back(warning);
+    grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), pages), resolution, 0.0f);
+    if (grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(grid_));
 
-    const nlohmann::json sj = sceneToJson(scene);
-    const std::string grid_key =
-        volume_key + "|" + sj["material"].dump() + "|" + std::to_string(resolution) + "|" + occupiedBoxKey(inputs);
-    StageClock clock(times);
-    if (grid_key == grid_key_) {
-        reused.push_back("light_grid");
-    } else {
-        grid_key_.clear();  // all stay cleared if a pass throws
-        setup_key_.clear();
-        eye_key_.clear();
-        grid_ = clock("light_grid", [&] { return buildLightGrid(inputs, resolution, 0.0f); });
-        if (grid_.clamped_cells) warnings.push_back(clampedCellsWarning(grid_));
-        chroma_sigma_.clear();
-        grid_key_ = grid_key;
-    }
-
-    SweepGrid fine;
-    fine.grid_to_world = inputs.atlas->index_to_world * grid_.lightToIndex();
-    fine.world_to_grid = glm::inverse(fine.grid_to_world);
-    fine.dims = grid_.dims;
-    fine.cells_per_voxel = 1.0f / grid_.cell;
-    fine.sigma = &grid_.values;
-    SweepGrid coarse = fine;
+    fine_.grid_to_world = brick_.atlas().index_to_world * grid_.lightToIndex();
+    fine_.world_to_grid = glm::inverse(fine_.grid_to_world);
+    fine_.dims = grid_.dims;
+    fine_.cells_per_voxel = 1.0f / grid_.cell;
+    fine_.sigma = &grid_.values;
+    coarse_ = fine_;
     if (chroma > 1) {
-        if (chroma_sigma_.empty()) chroma_sigma_ = halveGrid(grid_);
-        coarse.grid_to_world = fine.grid_to_world * glm::scale(glm::mat4(1.0f), glm::vec3(float(chroma)));
-        coarse.world_to_grid = glm::inverse(coarse.grid_to_world);
-        coarse.dims = coarserDims(grid_.dims, chroma);
-        coarse.cells_per_voxel = fine.cells_per_voxel / float(chroma);
-        coarse.sigma = &chroma_sigma_;
+        chroma_sigma_ = halveGrid(grid_);
+        coarse_.grid_to_world = fine_.grid_to_world * glm::scale(glm::mat4(1.0f), glm::vec3(float(chroma)));
+        coarse_.world_to_grid = glm::inverse(coarse_.grid_to_world);
+        coarse_.dims = coarserDims(grid_.dims, chroma);
+        coarse_.cells_per_voxel = fine_.cells_per_voxel / float(chroma);
+        coarse_.sigma = &chroma_sigma_;
     }
+}
 
-    // The light sweeps depend on the knobs and lights, the eye sweep on the camera as well: a camera
-    // move re-runs only the eye sweep, from the light sweeps' indirect block kept for it.
-    const auto& P = inputs.params;
-    nlohmann::json knobs = sj["effects"]["propagation"];
-    knobs.erase("eye_pass");
-    knobs.erase("coherent");
-    const std::string setup_key = grid_key_ + "|" + knobs.dump() + "|" + sj["effects"]["indirect"].dump() + "|" +
-                                  sj["effects"]["perturbation"].dump() + "|" + std::to_string(P.noise_offset.x) + "," +
-                                  std::to_string(P.noise_offset.y) + "," + std::to_string(P.noise_offset.z);
+StageReads PropagationStage::reads() const {
+    return {{"/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/lights/*/color",
+             "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects/propagation/blend_axes",
+             "/effects/propagation/chroma_subsampling", "/effects/propagation/coherent", "/effects/indirect",
+             "/effects/perturbation", "/input/frame", "/render/backend"},
+            {"brick", "classify", "illumination_grid"}};
+}
+
+StageActivity PropagationStage::activity(const Scene& s) const {
+    const Effects& fx = s.effects;
+    const size_t lights = size_t(std::count_if(s.lights.begin(), s.lights.end(),
+                                               [](const Light& l) { return l.enabled && l.type != LightType::Ambient; }));
+    std::string out = std::to_string(lights) + (lights == 1 ? " light" : " lights") + " swept along " +
+                      (fx.propagation.blend_axes ? "the two closest axes, blended" : "the closest axis") +
+                      (lights > 1 ? (fx.propagation.coherent ? ", one pass per direction" : ", one pass per light") : "") +
+                      "; direct RGB";
+    if (const auto& in = fx.indirect) {
+        char blur[160];
+        std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, transport colour (%g, %g, %g)",
+                      double(in->angle), in->samples, double(in->transport_color.x), double(in->transport_color.y),
+                      double(in->transport_color.z));
+        out += blur;
+        if (fx.propagation.chroma_subsampling) out += ", chroma subsampled 2x";
+    }
+    if (fx.perturbation) out += ", perturbed";
+    return propagationActivity(s, out);
+}
+
+void PropagationStage::release() {
+    volume_ = IlluminationVolume{};
+    setup_key_.clear();
+    applied_.clear();
+    drift_ = 0.0;
+}
+
+void PropagationStage::run(StageRun& run) {
+    const SweepGrid& fine = grid_.fine();
+    const SweepGrid& coarse = grid_.coarse();
+    const Effects& fx = run.scene.effects;
+    const bool indirect = fx.indirect.has_value();
+    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), frameOf(run.document));
+    // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
+    std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
+    for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
+                            "/effects/indirect", "/effects/perturbation", "/render/backend"})
+        setup_key += "|" + readKey(run.document, key);
     const bool coherent = fx.propagation.coherent;
     const bool blend = fx.propagation.blend_axes;
     const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
@@ -377,62 +440,54 @@ void IlluminationStage::update(const Scene& scene, const Camera& camera, const s
     }
 
     if (report.mode == LightUpdate::Mode::Kept) {
-        reused.push_back("propagation");
+        run.reused.push_back("light sweeps");
     } else {
         setup_key_.clear();  // stays cleared if a pass throws: the volume is then half updated
-        eye_key_.clear();
-        const auto indirect_block = volume_.values.begin() + long(volume_.indirectOffset());
-        clock("propagation", [&] {
-            if (selective) {
-                // The eye sweep replaced the light sweeps' indirect block: update that block instead.
-                if (!before_eye_.empty()) std::copy(before_eye_.begin(), before_eye_.end(), indirect_block);
-                report.mode = LightUpdate::Mode::Selective;
-                report.lights_out = int(removed.size());
-                report.lights_in = int(added.size());
-                runPasses(sel_fine, fine, 0, coherent, inputs, backend, volume_, report);
-                if (indirect) runPasses(sel_coarse, coarse, volume_.indirectOffset(), coherent, inputs, backend, volume_, report);
-                drift_ += peak(removed) + peak(added);
-            } else {
-                volume_.dims = grid_.dims;
-                volume_.chroma = chroma;
-                volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
-                volume_.world_to_illum = fine.world_to_grid;
-                volume_.values.assign(3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
-                report.mode = LightUpdate::Mode::Entire;
-                report.lights_in = int(inputs.lights.size());
-                runPasses(all_fine, fine, 0, coherent, inputs, backend, volume_, report);
-                if (indirect) runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, backend, volume_, report);
-                drift_ = 0.0;
-            }
-        });
-        before_eye_.clear();
+        if (selective) {
+            report.mode = LightUpdate::Mode::Selective;
+            report.lights_out = int(removed.size());
+            report.lights_in = int(added.size());
+            runPasses(sel_fine, fine, 0, coherent, inputs, run.backend, volume_, report);
+            if (indirect) runPasses(sel_coarse, coarse, volume_.indirectOffset(), coherent, inputs, run.backend, volume_, report);
+            drift_ += peak(removed) + peak(added);
+        } else {
+            volume_.dims = fine.dims;
+            volume_.chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
+            volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
+            volume_.world_to_illum = fine.world_to_grid;
+            volume_.values.assign(3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
+            report.mode = LightUpdate::Mode::Entire;
+            report.lights_in = int(inputs.lights.size());
+            runPasses(all_fine, fine, 0, coherent, inputs, run.backend, volume_, report);
+            if (indirect) runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, run.backend, volume_, report);
+            drift_ = 0.0;
+        }
         applied_ = inputs.lights;
-        ++lights_version_;
         setup_key_ = setup_key;
     }
     last_update_ = report;
+}
 
-    const glm::vec3 eye_position(P.camera_to_world[3]);
-    const std::string eye_key = !eye ? "" : setup_key_ + "|" + std::to_string(lights_version_) + "|eye " +
-                                                std::to_string(eye_position.x) + "," + std::to_string(eye_position.y) +
-                                                "," + std::to_string(eye_position.z);
-    if (eye_key != eye_key_) {
-        const auto indirect_block = volume_.values.begin() + long(volume_.indirectOffset());
-        if (before_eye_.empty()) before_eye_.assign(indirect_block, volume_.values.end());
-        eye_key_.clear();
-        if (eye) clock("eye_pass", [&] { sweepTowardsEye(*fx.indirect, inputs, coarse, eye_position, before_eye_, backend, volume_); });
-        else std::copy(before_eye_.begin(), before_eye_.end(), indirect_block);   // the eye pass turned off
-        eye_key_ = eye_key;
-    } else if (eye) {
-        reused.push_back("eye_pass");
-    }
+StageReads EyePassStage::reads() const {
+    return {{"/effects/indirect", "/effects/perturbation", "/input/frame", "/render/backend"},
+            {"brick", "classify", "camera", "illumination_grid", "propagation"}};
+}
 
-    auto& Pm = inputs.params;
-    Pm.world_to_illum = volume_.world_to_illum;
-    Pm.illum_dims = glm::ivec4(volume_.dims, volume_.chroma);
-    Pm.chroma_dims = glm::ivec4(volume_.chroma_dims, int(volume_.indirectOffset()));
-    inputs.illum = volume_.values.data();
-    inputs.illum_floats = volume_.values.size();
+StageActivity EyePassStage::activity(const Scene& s) const {
+    const StageActivity propagation = propagationActivity(s, "");
+    if (!propagation.runs) return propagation;
+    if (!s.effects.indirect) return {false, "skipped: the eye pass carries indirect light (effects.indirect is off)"};
+    if (!s.effects.propagation.eye_pass) return {false, "skipped: effects.propagation.eye_pass is off"};
+    return {true, "indirect light swept once more towards the camera"};
+}
+
+void EyePassStage::run(StageRun& run) {
+    const IlluminationVolume& lit = propagation_.volume();
+    volume_ = lit;
+    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), frameOf(run.document));
+    const std::vector<float> before(lit.values.begin() + long(lit.indirectOffset()), lit.values.end());
+    const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);
+    sweepTowardsEye(*run.scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, run.backend, volume_);
 }
 
 }  // namespace voxlux

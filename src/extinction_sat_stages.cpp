@@ -1,0 +1,206 @@
+#include "extinction_sat_stages.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+
+#include "kernel_backend.h"
+#include "kernel_inputs.h"
+
+namespace voxlux {
+namespace {
+
+bool hasLight(const Scene& s, bool ambient) {
+    return std::any_of(s.lights.begin(), s.lights.end(),
+                       [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; });
+}
+
+bool needsAmbientOcclusion(const Scene& s) { return s.effects.ambient_occlusion && hasLight(s, true); }
+bool needsConeShadows(const Scene& s) { return s.effects.shadows == ShadowMethod::SatCone && hasLight(s, false); }
+
+StageActivity satActivity(const Scene& s, const std::string& what) {
+    if (s.render.method == RenderMethod::Reference)
+        return {false, "skipped: the Monte Carlo reference (render.method) computes all light itself"};
+    if (!needsAmbientOcclusion(s) && !needsConeShadows(s)) {
+        std::string why = "skipped: no effect in the scene needs a precomputed light cache";
+        if (s.effects.ambient_occlusion) why += " (ambient_occlusion is on but no ambient light is in the scene)";
+        return {false, why};
+    }
+    return {true, what};
+}
+
+// Channels the cache holds for `scene` with `lights` packed (enabled, non-ambient) lights.
+LightCache cacheLayout(const Scene& scene, int lights) {
+    LightCache c;
+    if (needsAmbientOcclusion(scene)) {
+        c.ambient_channel = 0;
+        c.ambient_width = scene.effects.color_bleeding > 0.0f ? 3 : 1;
+        c.channels = c.ambient_width;
+    }
+    if (needsConeShadows(scene)) {
+        c.shadow_channel = c.channels;
+        c.channels += lights;
+    }
+    return c;
+}
+
+int packedLights(const Scene& s) {
+    return int(std::count_if(s.lights.begin(), s.lights.end(), [](const Light& l) { return l.enabled && l.type != LightType::Ambient; }));
+}
+
+// The colour-bleeding weight the light grid carries (0: extinction only).
+float bleedingOf(const Scene& s) { return needsAmbientOcclusion(s) && s.effects.color_bleeding > 0.0f ? s.effects.color_bleeding : 0.0f; }
+
+// Distinct across every stage in the process, so a backend shared by several renderers never
+// mistakes one SAT for another.
+uint64_t nextSatGeneration() {
+    static std::atomic<uint64_t> next{1};
+    return next++;
+}
+
+}  // namespace
+
+StageReads LightGridStage::reads() const {
+    return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/color_bleeding",
+             "/effects/ambient_occlusion?", "/effects/shadows", "/lights/*/type", "/lights/*/enabled"},
+            {"brick", "classify"}};
+}
+
+StageActivity LightGridStage::activity(const Scene& s) const {
+    const std::string bleeding = bleedingOf(s) > 0.0f ? ", with three colour-bleeding planes" : "";
+    return satActivity(s, "extinction box-filtered into a " + std::to_string(s.effects.light_resolution) +
+                              "-cell light grid over the occupied bricks" + bleeding);
+}
+
+void LightGridStage::run(StageRun& run) {
+    const PageTable& pages = classify_.pages();
+    const Effects& fx = run.scene.effects;
+    const float bleeding = bleedingOf(run.scene);
+    const glm::vec3 extent = occupiedExtent(pages);
+    std::string warning;
+    resolution_ = fitLightResolution(extent, cappedLightResolution(extent, fx.light_resolution), bleeding > 0.0f ? 4 : 1,
+                                     cacheLayout(run.scene, packedLights(run.scene)).channels,
+                                     size_t(fx.light_memory_mb) << 20, warning);
+    if (!warning.empty()) run.warnings.push_back(warning);
+    grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), pages), resolution_, bleeding);
+    if (grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(grid_));
+}
+
+StageActivity SatStage::activity(const Scene& s) const {
+    return satActivity(s, std::string("integer summed-area table of the light grid") +
+                              (bleedingOf(s) > 0.0f ? ", four planes" : ""));
+}
+
+void SatStage::run(StageRun& run) {
+    generation_ = nextSatGeneration();
+    run.backend.buildSat(grid_.grid(), sat_);
+}
+
+StageReads LightCacheStage::reads() const {
+    return {{"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows", "/lights/*/type",
+             "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/render/backend"},
+            {"brick", "classify", "light_grid", "sat"}};
+}
+
+StageActivity LightCacheStage::activity(const Scene& s) const {
+    const Effects& fx = s.effects;
+    std::vector<std::string> passes;
+    if (needsAmbientOcclusion(s))
+        passes.push_back("ambient occlusion, " + std::to_string(fx.ambient_occlusion->shells) + " shells" +
+                         (fx.color_bleeding > 0 ? " with colour bleeding" : ""));
+    if (needsConeShadows(s)) {
+        const int lights = packedLights(s);
+        char cone[96];
+        std::snprintf(cone, sizeof cone, "%d shadow cone%s of %d cuboids (%g deg)", lights, lights == 1 ? "" : "s",
+                      fx.cone.samples, double(fx.cone.angle));
+        passes.push_back(cone);
+    }
+    std::string what;
+    for (const auto& p : passes) what += (what.empty() ? "" : ", ") + p;
+    if (fx.ambient_occlusion && !needsAmbientOcclusion(s)) what += " (ambient_occlusion is on but no ambient light is in the scene)";
+    if (fx.color_bleeding > 0 && !needsAmbientOcclusion(s)) what += " (color_bleeding needs ambient occlusion)";
+    return satActivity(s, what);
+}
+
+void LightCacheStage::release() {
+    cache_ = LightCache{};
+    channel_keys_.clear();
+}
+
+void LightCacheStage::run(StageRun& run) {
+    const Effects& fx = run.scene.effects;
+    const LightGrid& grid = grid_.grid();
+    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages());
+    LightCache layout = cacheLayout(run.scene, int(inputs.lights.size()));
+    // The cache is kept as it is while its layout is, so unchanged channels survive.
+    const glm::mat4 light_to_world = brick_.atlas().index_to_world * grid.lightToIndex();
+    layout.dims = grid.dims;
+    layout.world_to_cache = glm::inverse(light_to_world);
+    const bool same_layout = cache_.channels == layout.channels && cache_.ambient_channel == layout.ambient_channel &&
+                             cache_.ambient_width == layout.ambient_width && cache_.shadow_channel == layout.shadow_channel &&
+                             cache_.dims == layout.dims && !channel_keys_.empty();
+    if (!same_layout) {
+        layout.values.assign(grid.cells() * size_t(layout.channels), 0.0f);
+        cache_ = std::move(layout);
+        channel_keys_.assign(size_t(cache_.channels), "");
+    }
+
+    const SummedVolume& sat = sat_.sat();
+    LightPass pass;
+    pass.lights = &inputs.lights;
+    pass.sat = &sat;
+    pass.sat_generation = sat_.generation();
+    pass.needed = &grid.needed;
+    kernel::VxSatParams& S = pass.params;
+    S.light_to_world = light_to_world;
+    S.world_to_light = cache_.world_to_cache;
+    S.dims = glm::ivec4(grid.dims, sat.planes);
+    S.quantum = sat.quantum;
+    S.pass.z = cache_.channels;
+    const float cell_world = cellWorldSize(light_to_world);
+    S.cone = glm::vec4(std::tan(glm::radians(fx.cone.angle)), float(fx.cone.samples), fx.cone.growth,
+                       std::pow(1.0f + fx.cone.growth, float(fx.cone.samples)));
+    // Every channel is computed from this SAT; what else it depends on is added per channel.
+    const std::string sat_key = std::to_string(sat_.generation()) + "|" + run.document["render"]["backend"].dump();
+
+    if (cache_.ambient_channel >= 0) {
+        const AmbientOcclusion& ao = *fx.ambient_occlusion;
+        // Beyond the grid's longest side a larger radius changes nothing (and would overflow k_i).
+        const float longest = float(std::max({grid.dims.x, grid.dims.y, grid.dims.z}));
+        const float radius_cells =
+            std::min(ao.radius > 0.0f ? ao.radius / cell_world : 0.06f * float(grid_.resolution()), longest);
+        S.shells = glm::vec4(float(ao.shells), radius_cells, cell_world, 0.0f);
+        S.pass.x = -1;
+        bool ran = false;
+        for (int i = 0; i < cache_.ambient_width; ++i) {
+            S.shells.w = float(cache_.ambient_width == 3 ? i + 1 : 0);  // SAT plane: extinction or bleeding RGB
+            ran |= fillChannel(pass, cache_.ambient_channel + i, sat_key + "|ao|" + hashBytes(S.shells), run.backend);
+        }
+        if (!ran) run.reused.push_back("ambient");
+    }
+
+    if (cache_.shadow_channel >= 0) {
+        for (int i = 0; i < int(inputs.lights.size()); ++i) {
+            // Only where the light is (or, directional, where it points) shapes its cone: colour,
+            // intensity and spot angles leave the cached optical depth as it is.
+            const kernel::VxLight& light = inputs.lights[size_t(i)];
+            const glm::vec4 where = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL ? glm::vec4(glm::vec3(light.dir_cos), 0.0f)
+                                                                                 : glm::vec4(glm::vec3(light.pos_type), 1.0f);
+            S.pass.x = i;
+            if (!fillChannel(pass, cache_.shadow_channel + i, sat_key + "|cone|" + hashBytes(S.cone) + hashBytes(where), run.backend))
+                run.reused.push_back("shadow of light " + std::to_string(i));
+        }
+    }
+}
+
+bool LightCacheStage::fillChannel(LightPass& pass, int channel, const std::string& key, KernelBackend& backend) {
+    if (channel_keys_[size_t(channel)] == key) return false;
+    channel_keys_[size_t(channel)].clear();  // stays cleared if the pass throws
+    pass.params.pass.y = channel;
+    backend.fillLightChannel(pass, cache_);
+    channel_keys_[size_t(channel)] = key;
+    return true;
+}
+
+}  // namespace voxlux

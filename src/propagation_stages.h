@@ -1,0 +1,143 @@
+// Illumination propagation (Ropinski 2010 with the Kniss 2003 optical model; Sunden 2015 for many
+// lights) as three stages of the render graph:
+//  illumination_grid  the visible bricks' extinction in a dense grid over the occupied bricks, and
+//                     its 2^3 average for chroma-subsampled indirect light;
+//  propagation        every light swept slice by slice through the grid, grouped into at most six
+//                     passes, adding its direct and (blurred, transport-attenuated) indirect RGB
+//                     into one illumination volume. When only lights change it takes the changed
+//                     lights out and puts their new state in (a selective update), unless an
+//                     entire update is estimated to cost less or past updates' float residue needs
+//                     a re-base;
+//  eye_pass           the indirect light swept once more towards the camera (Ropinski Sec. 4.1):
+//                     the propagation's volume with its indirect block replaced, so a camera move
+//                     re-runs this sweep alone.
+// Cost: each sweep is linear in the cells it walks; a point light's sweep costs about 8 directional
+// ones and an indirect one 6 (SweepCost), which is what the selective update weighs.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "illumination_volume.h"
+#include "light_grid.h"
+#include "render_graph.h"
+#include "volume_stages.h"
+
+namespace voxlux {
+
+// Bytes the propagation stages need at light-grid dimensions `dims`: the light grid, the direct
+// RGB, an x pass's slice-major copies, and with indirect light the indirect cells (their own
+// extinction grid when chroma subsampled, and the eye pass's second volume and input copy of the
+// indirect cells). The lights' 2D slice buffers are left out: two slices per light.
+size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma);
+
+// What one update of the light sweeps did, for logs, the light-edit report and tests.
+struct LightUpdate {
+    enum class Mode { Kept, Entire, Selective };
+    Mode mode = Mode::Entire;
+    std::string reason;          // why this mode (empty when kept)
+    int lights = 0;              // lights in the volume afterwards
+    int lights_out = 0;          // light states taken out (selective: the changed lights' old states)
+    int lights_in = 0;           // light states put in (selective: their new states; entire: all lights)
+    int sweeps = 0;              // light sweeps run, over both blocks (a light in two passes counts twice)
+    int passes = 0;              // passes over the volume
+    long long slices = 0;        // slices walked, over all passes
+    double selective_cost = 0;   // the estimates compared (units: cells times a directional sweep's work)
+    double entire_cost = 0;
+};
+
+// The weights of the estimate that picks a selective or an entire update, in units of one
+// directional direct sweep over the same cells: CPU figures measured by voxlux_bench_multilight
+// (docs/performance-multilight.md). They only have to order the two choices.
+struct SweepCost {
+    static constexpr double kPass = 0.7;        // a pass's own walk over the extinction and the volume
+    static constexpr double kPointSweep = 8.0;  // a point or spot light's sweep (the per-cell kernel)
+    static constexpr double kIndirect = 6.0;    // times this for an indirect sweep (RGB, blurred)
+    static constexpr double kXAxis = 1.5;       // times this for an x pass (slice-major copies)
+};
+
+// The volume is re-based (an entire update) before the light swept in and out since the last
+// entire update exceeds this many times the light present, as peak radiance: adding and later
+// subtracting a light of peak m leaves a float residue of about m * 2^-24 per cell, so the residue
+// stays under ~4e-6 of the light present (tests measure it).
+constexpr double kDriftBudget = 64.0;
+
+// A grid the sweeps run over: the light grid, or its chroma-subsampled coarsening.
+struct SweepGrid {
+    glm::mat4 grid_to_world{1.0f};
+    glm::mat4 world_to_grid{1.0f};
+    glm::ivec3 dims{0};
+    float cells_per_voxel = 1.0f;          // grid cells per index voxel (for displacement)
+    const std::vector<float>* sigma = nullptr;
+};
+
+class IlluminationGridStage final : public Stage {
+public:
+    IlluminationGridStage(const BrickStage& brick, const ClassifyStage& classify) : brick_(brick), classify_(classify) {}
+    std::string name() const override { return "illumination_grid"; }
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    bool idle() const override { return classify_.pages().empty(); }
+    void release() override;
+    // The grid direct light sweeps over, and the one indirect light sweeps over (the same grid
+    // unless chroma subsampled).
+    const SweepGrid& fine() const { return fine_; }
+    const SweepGrid& coarse() const { return coarse_; }
+    uint64_t generation() const { return generation_; }   // changes whenever the grids do
+
+private:
+    const BrickStage& brick_;
+    const ClassifyStage& classify_;
+    LightGrid grid_;
+    std::vector<float> chroma_sigma_;   // the light grid averaged over 2^3 cells (chroma subsampling)
+    SweepGrid fine_, coarse_;
+    uint64_t generation_ = 0;
+};
+
+class PropagationStage final : public Stage {
+public:
+    PropagationStage(const BrickStage& brick, const ClassifyStage& classify, const IlluminationGridStage& grid)
+        : brick_(brick), classify_(classify), grid_(grid) {}
+    std::string name() const override { return "propagation"; }
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    bool idle() const override { return classify_.pages().empty(); }
+    void release() override;
+    const IlluminationVolume& volume() const { return volume_; }
+    const LightUpdate& lastUpdate() const { return last_update_; }
+
+private:
+    const BrickStage& brick_;
+    const ClassifyStage& classify_;
+    const IlluminationGridStage& grid_;
+    std::string setup_key_;             // the grid and knobs the light sweeps were computed with
+    std::vector<kernel::VxLight> applied_;   // the lights the volume holds
+    double drift_ = 0.0;                // peak radiance swept in and out since the last entire update
+    LightUpdate last_update_;
+    IlluminationVolume volume_;
+};
+
+class EyePassStage final : public Stage {
+public:
+    EyePassStage(const BrickStage& brick, const ClassifyStage& classify, const CameraStage& camera,
+                 const IlluminationGridStage& grid, const PropagationStage& propagation)
+        : brick_(brick), classify_(classify), camera_(camera), grid_(grid), propagation_(propagation) {}
+    std::string name() const override { return "eye_pass"; }
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    bool idle() const override { return classify_.pages().empty(); }
+    void release() override { volume_ = IlluminationVolume{}; }
+    const IlluminationVolume& volume() const { return volume_; }
+
+private:
+    const BrickStage& brick_;
+    const ClassifyStage& classify_;
+    const CameraStage& camera_;
+    const IlluminationGridStage& grid_;
+    const PropagationStage& propagation_;
+    IlluminationVolume volume_;
+};
+
+}  // namespace voxlux
