@@ -11,13 +11,8 @@
 namespace voxlux {
 namespace {
 
-bool hasLight(const Scene& s, bool ambient) {
-    return std::any_of(s.lights.begin(), s.lights.end(),
-                       [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; });
-}
-
-bool needsAmbientOcclusion(const Scene& s) { return s.effects.ambient_occlusion && hasLight(s, true); }
-bool needsConeShadows(const Scene& s) { return s.effects.shadows == ShadowMethod::SatCone && hasLight(s, false); }
+bool needsAmbientOcclusion(const Scene& s) { return s.effects.ambient_occlusion && enabledLightCount(s, true) > 0; }
+bool needsConeShadows(const Scene& s) { return s.effects.shadows == ShadowMethod::SatCone && enabledLightCount(s, false) > 0; }
 
 StageActivity satActivity(const Scene& s, const std::string& what) {
     if (s.render.method == RenderMethod::Reference)
@@ -43,10 +38,6 @@ LightCache cacheLayout(const Scene& scene, int lights) {
         c.channels += lights;
     }
     return c;
-}
-
-int packedLights(const Scene& s) {
-    return int(std::count_if(s.lights.begin(), s.lights.end(), [](const Light& l) { return l.enabled && l.type != LightType::Ambient; }));
 }
 
 // The colour-bleeding weight the light grid carries (0: extinction only).
@@ -80,7 +71,7 @@ void LightGridStage::run(StageRun& run) {
     const glm::vec3 extent = occupiedExtent(pages);
     std::string warning;
     resolution_ = fitLightResolution(extent, cappedLightResolution(extent, fx.light_resolution), bleeding > 0.0f ? 4 : 1,
-                                     cacheLayout(run.scene, packedLights(run.scene)).channels,
+                                     cacheLayout(run.scene, enabledLightCount(run.scene, false)).channels,
                                      size_t(fx.light_memory_mb) << 20, warning);
     if (!warning.empty()) run.warnings.push_back(warning);
     grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), pages), resolution_, bleeding);
@@ -110,7 +101,7 @@ StageActivity LightCacheStage::activity(const Scene& s) const {
         passes.push_back("ambient occlusion, " + std::to_string(fx.ambient_occlusion->shells) + " shells" +
                          (fx.color_bleeding > 0 ? " with colour bleeding" : ""));
     if (needsConeShadows(s)) {
-        const int lights = packedLights(s);
+        const int lights = enabledLightCount(s, false);
         char cone[96];
         std::snprintf(cone, sizeof cone, "%d shadow cone%s of %d cuboids (%g deg)", lights, lights == 1 ? "" : "s",
                       fx.cone.samples, double(fx.cone.angle));

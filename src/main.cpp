@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
     renderCmd->add_option("-o,--output", render.overrides.output, "output .exr (output.path)");
     renderCmd->add_option("--preview", render.overrides.preview,
                           "also write an 8-bit PNG through the display and view (output.preview; #### for frames)");
-    renderCmd->add_flag("--explain", render.explain, "print the render plan and exit");
+    renderCmd->add_flag("--explain", render.explain, "print the render graph (stages, why each runs, what each reads) and exit");
     renderCmd->add_option("--stats", render.stats, "write per-stage times and peak memory as JSON");
     renderCmd->add_option("--light-edit", render.light_edits,
                           "EDITS.json: replay light edits (selective updates), print each one's time, write the last frame");

@@ -22,11 +22,6 @@ std::string emissionDescription(const EmissionSource& e) {
     return std::string(kind) + " from '" + e.grid.name + "'";
 }
 
-bool hasLight(const Scene& s, bool ambient) {
-    return std::any_of(s.lights.begin(), s.lights.end(),
-                       [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; });
-}
-
 }  // namespace
 
 StageReads MarchStage::reads() const {
@@ -47,8 +42,8 @@ StageActivity MarchStage::activity(const Scene& s) const {
         march = "no lights: emission and transmittance only";
     } else {
         march = std::to_string(s.lights.size()) + (s.lights.size() == 1 ? " light, " : " lights, ");
-        march += hasLight(s, false) ? shadowDescription(s.effects.shadows) : "ambient only";
-        if (hasLight(s, true))
+        march += enabledLightCount(s, false) > 0 ? shadowDescription(s.effects.shadows) : "ambient only";
+        if (enabledLightCount(s, true) > 0)
             march += s.effects.ambient_occlusion ? ", occluded ambient" : ", unoccluded ambient";
     }
     if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
@@ -64,9 +59,8 @@ void MarchStage::run(StageRun& run) {
     if (lighting_.light_cache.cache().channels > 0) sources.light_cache = &lighting_.light_cache.cache();
     if (!lighting_.eye_pass.volume().values.empty()) sources.illumination = &lighting_.eye_pass.volume();
     else if (!lighting_.propagation.volume().values.empty()) sources.illumination = &lighting_.propagation.volume();
-    const nlohmann::json& frame = run.document["input"]["frame"];
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(),
-                                                 frame.is_number() ? frame.get<float>() : 0.0f, color_.xyzToWorking(), sources);
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), documentFrame(run.document),
+                                                 color_.xyzToWorking(), sources);
     image_ = scene.render.method == RenderMethod::Reference ? renderReference(inputs, scene.render.reference)
                                                             : run.backend.march(inputs);
 }

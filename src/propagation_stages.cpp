@@ -239,25 +239,16 @@ std::vector<kernel::VxLight> missingFrom(const std::vector<kernel::VxLight>& fro
     return out;
 }
 
-bool hasLocalLight(const Scene& s) {
-    return std::any_of(s.lights.begin(), s.lights.end(), [](const Light& l) { return l.enabled && l.type != LightType::Ambient; });
-}
-
 StageActivity propagationActivity(const Scene& s, const std::string& what) {
     if (s.render.method == RenderMethod::Reference)
         return {false, "skipped: the Monte Carlo reference (render.method) computes all light itself"};
-    if (s.effects.shadows != ShadowMethod::Propagation || !hasLocalLight(s)) {
+    if (s.effects.shadows != ShadowMethod::Propagation || enabledLightCount(s, false) == 0) {
         std::string why = "skipped: no effect in the scene needs an illumination volume";
         if (s.effects.shadows == ShadowMethod::Propagation) why += " (propagation shadows but no light to propagate)";
         else if (s.effects.indirect) why += " (indirect light needs effects.shadows = propagation)";
         return {false, why};
     }
     return {true, what};
-}
-
-float frameOf(const nlohmann::json& document) {
-    const nlohmann::json& f = document["input"]["frame"];
-    return f.is_number() ? f.get<float>() : 0.0f;
 }
 
 // Distinct across every stage in the process, like the SAT's generations.
@@ -347,8 +338,7 @@ StageReads PropagationStage::reads() const {
 
 StageActivity PropagationStage::activity(const Scene& s) const {
     const Effects& fx = s.effects;
-    const size_t lights = size_t(std::count_if(s.lights.begin(), s.lights.end(),
-                                               [](const Light& l) { return l.enabled && l.type != LightType::Ambient; }));
+    const int lights = enabledLightCount(s, false);
     std::string out = std::to_string(lights) + (lights == 1 ? " light" : " lights") + " swept along " +
                       (fx.propagation.blend_axes ? "the two closest axes, blended" : "the closest axis") +
                       (lights > 1 ? (fx.propagation.coherent ? ", one pass per direction" : ", one pass per light") : "") +
@@ -377,7 +367,7 @@ void PropagationStage::run(StageRun& run) {
     const SweepGrid& coarse = grid_.coarse();
     const Effects& fx = run.scene.effects;
     const bool indirect = fx.indirect.has_value();
-    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), frameOf(run.document));
+    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
     std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
@@ -484,7 +474,7 @@ StageActivity EyePassStage::activity(const Scene& s) const {
 void EyePassStage::run(StageRun& run) {
     const IlluminationVolume& lit = propagation_.volume();
     volume_ = lit;
-    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), frameOf(run.document));
+    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));
     const std::vector<float> before(lit.values.begin() + long(lit.indirectOffset()), lit.values.end());
     const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);
     sweepTowardsEye(*run.scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, run.backend, volume_);

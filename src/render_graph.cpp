@@ -66,6 +66,11 @@ std::string readKey(const nlohmann::json& document, const std::string& pointer) 
     return out;
 }
 
+float documentFrame(const nlohmann::json& document) {
+    const nlohmann::json::json_pointer at("/input/frame");
+    return document.contains(at) && document[at].is_number() ? document[at].get<float>() : 0.0f;
+}
+
 std::string hashText(const std::string& text) {
     uint64_t h = 14695981039346656037ull;   // FNV offset basis
     for (unsigned char c : text) {
@@ -180,7 +185,7 @@ std::string RenderGraph::explain(const Scene& scene) const {
         for (const auto& up : r.stages) out << ' ' << up;
         if (r.stages.empty()) out << " -";
         out << "; reads:";
-        for (const auto& k : r.keys) out << ' ' << k;
+        for (const auto& k : r.keys) out << ' ' << (k.empty() ? "(the whole document)" : k);
         if (r.keys.empty()) out << " -";
         out << "]\n";
     }

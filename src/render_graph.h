@@ -81,6 +81,9 @@ struct StageReport {
 // value, or "null" where nothing matches.
 std::string readKey(const nlohmann::json& document, const std::string& pointer);
 
+// The frame number the render document is for (its /input/frame; 0 for a file without ####).
+float documentFrame(const nlohmann::json& document);
+
 // 64-bit FNV-1a of `text`, as 16 hex digits.
 std::string hashText(const std::string& text);
 

@@ -250,6 +250,9 @@ struct Scene {
     OutputSpec output;
 };
 
+// How many enabled lights the scene has that are ambient (`ambient`), or that are not.
+int enabledLightCount(const Scene& scene, bool ambient);
+
 const std::vector<std::string>& knownAovs();
 const std::vector<std::string>& knownCompressions();  // EXR compressions by their OpenEXR names
 

@@ -16,6 +16,11 @@
 namespace voxlux {
 namespace fs = std::filesystem;
 
+int enabledLightCount(const Scene& scene, bool ambient) {
+    return int(std::count_if(scene.lights.begin(), scene.lights.end(),
+                             [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; }));
+}
+
 const std::vector<std::string>& knownAovs() {
     static const std::vector<std::string> aovs{"direct", "ambient", "indirect", "emission", "transmittance", "depth", "variance"};
     return aovs;
