@@ -173,7 +173,7 @@ float maxDifference(const RenderImage& a, const RenderImage& b) {
 // A disabled light is as if it were not in the scene, with every lighting method, on both backends.
 TEST(RenderGraph, DisabledLightsWorkWithEveryMethod) {
     std::vector<Backend> backends{Backend::Cpu};
-    if (!std::getenv("VOXLUX_SKIP_GL") || std::string(std::getenv("VOXLUX_SKIP_GL")) != "1") backends.push_back(Backend::Gl);
+    if (glBackendOrSkip()) backends.push_back(Backend::Gl);
     for (Backend backend : backends)
         for (ShadowMethod shadows : {ShadowMethod::None, ShadowMethod::Raymarch, ShadowMethod::SatCone, ShadowMethod::Propagation}) {
             SCOPED_TRACE(std::to_string(int(shadows)) + (backend == Backend::Gl ? " on gl" : " on cpu"));

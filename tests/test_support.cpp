@@ -23,7 +23,7 @@ std::string sharedData(const std::string& relative) {
 
 std::unique_ptr<KernelBackend> glBackendOrSkip() {
     const char* skip = std::getenv("VOXLUX_SKIP_GL");
-    if (skip && std::string(skip) == "1") return nullptr;
+    if (!VOXLUX_GL_BUILT || (skip && std::string(skip) == "1")) return nullptr;
     try {
         return makeGlBackend();
     } catch (const std::exception& e) {

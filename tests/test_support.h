@@ -31,11 +31,12 @@ std::string sharedData(const std::string& relative);
 // The one-line InputError parsing `json` as "shot.json" in "/shots" gives, or "no error".
 std::string sceneErrorOf(const std::string& json);
 
-// GL backend for tests: fails the test when no context can be made, unless VOXLUX_SKIP_GL=1.
+// GL backend for tests: fails the test when no context can be made, unless VOXLUX_SKIP_GL=1 or
+// the build has no GL backend (VOXLUX_GL=OFF); then null.
 std::unique_ptr<KernelBackend> glBackendOrSkip();
-#define VOXLUX_REQUIRE_GL(var)                                                  \
-    auto var = ::voxlux::test::glBackendOrSkip();                               \
-    if (!var) GTEST_SKIP() << "VOXLUX_SKIP_GL=1: GL backend tests skipped"
+#define VOXLUX_REQUIRE_GL(var)                                                                  \
+    auto var = ::voxlux::test::glBackendOrSkip();                                               \
+    if (!var) GTEST_SKIP() << "no GL backend (VOXLUX_GL=OFF build, or VOXLUX_SKIP_GL=1): skipped"
 
 // A fog grid in memory, as the loader would return it.
 // `emission`: one grid per emission source of the scene it renders with.
