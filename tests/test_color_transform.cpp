@@ -11,9 +11,6 @@
 #include <cstring>
 #include <limits>
 
-#include "gl_context.h"
-#include "gl_program.h"
-#include "shader_source.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -286,25 +283,6 @@ TEST(ColorTransform, NoOpLeavesPixelsUntouched) {
         std::vector<glm::vec4> pixels = input;
         backend->transformColors(processor, pixels, true);
         EXPECT_EQ(std::memcmp(pixels.data(), input.data(), input.size() * sizeof(glm::vec4)), 0) << backend->name();
-    }
-}
-
-// OCIO's text goes between vx_grade.h and grade.comp; a compile error names the program and
-// carries the driver's log.
-TEST(ColorTransform, GradeShaderErrorsCarryTheLog) {
-    VOXLUX_REQUIRE_GL(gl);
-    ensureGlContext();
-    const GLuint program =
-        compileComputeProgram(assembleGradeShader("vec4 ocio_transform(vec4 c) { return c; }"), "grade");
-    EXPECT_NE(program, 0u);
-    glDeleteProgram(program);
-    try {
-        compileComputeProgram(assembleGradeShader("vec4 ocio_transform(vec4 c) { return c }"), "broken grade");
-        ADD_FAILURE() << "a missing semicolon compiled";
-    } catch (const std::runtime_error& e) {
-        const std::string message = e.what(), heading = "GL compute shader broken grade does not compile:\n";
-        EXPECT_EQ(message.rfind(heading, 0), 0u) << message;
-        EXPECT_GT(message.size(), heading.size()) << "no log: " << message;
     }
 }
 

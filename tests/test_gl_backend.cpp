@@ -8,7 +8,10 @@
 #include <utility>
 
 #include "camera.h"
+#include "gl_context.h"
+#include "gl_program.h"
 #include "renderer.h"
+#include "shader_source.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -362,6 +365,25 @@ TEST(GlBackend, MatchesCpuWithoutLights) {
     EXPECT_EQ(stats[kDirect].peak, 0.0);
     EXPECT_EQ(stats[kDirect].max_abs, 0.0);
     EXPECT_GT(stats[kEmission].peak, 0.0);
+}
+
+// OCIO's text goes between vx_grade.h and grade.comp; a compile error names the program and
+// carries the driver's log.
+TEST(GlBackend, GradeShaderErrorsCarryTheLog) {
+    VOXLUX_REQUIRE_GL(gl);
+    ensureGlContext();
+    const GLuint program =
+        compileComputeProgram(assembleGradeShader("vec4 ocio_transform(vec4 c) { return c; }"), "grade");
+    EXPECT_NE(program, 0u);
+    glDeleteProgram(program);
+    try {
+        compileComputeProgram(assembleGradeShader("vec4 ocio_transform(vec4 c) { return c }"), "broken grade");
+        ADD_FAILURE() << "a missing semicolon compiled";
+    } catch (const std::runtime_error& e) {
+        const std::string message = e.what(), heading = "GL compute shader broken grade does not compile:\n";
+        EXPECT_EQ(message.rfind(heading, 0), 0u) << message;
+        EXPECT_GT(message.size(), heading.size()) << "no log: " << message;
+    }
 }
 
 }  // namespace
