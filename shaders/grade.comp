@@ -8,7 +8,7 @@ layout(local_size_x = 64) in;
 uniform int vx_pixel_count;     // pixels in this block
 uniform bool vx_unpremultiply;
 
-layout(std430, binding = 0) buffer Pixels { vec4 vx_pixels[]; };
+layout(std430, binding = VX_BIND_PIXELS) buffer Pixels { vec4 vx_pixels[]; };
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);

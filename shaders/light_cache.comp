@@ -5,8 +5,8 @@ layout(local_size_x = 64) in;
 
 uniform int vx_cell_offset;   // first cell of this dispatch
 
-layout(std430, binding = 9) readonly buffer Needed { uint vx_needed[]; };   // one byte per cell
-layout(std430, binding = 10) writeonly buffer Channel { float vx_channel[]; };
+layout(std430, binding = VX_BIND_NEEDED) readonly buffer Needed { uint vx_needed[]; };   // one byte per cell
+layout(std430, binding = VX_BIND_CHANNEL) writeonly buffer Channel { float vx_channel[]; };
 
 void main() {
     int i = int(gl_GlobalInvocationID.x) + vx_cell_offset;

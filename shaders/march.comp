@@ -7,7 +7,7 @@ uniform int vx_row_offset;   // image row of the band's first row
 
 // 20 floats per pixel of the band, row-major: rgba, direct, ambient, emission, indirect,
 // transmittance, depth, samples, pad (the byte layout of the C++ VxPixel).
-layout(std430, binding = 6) writeonly buffer Band { float vx_band[]; };
+layout(std430, binding = VX_BIND_BAND) writeonly buffer Band { float vx_band[]; };
 
 void main() {
     int x = int(gl_GlobalInvocationID.x);

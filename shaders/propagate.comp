@@ -5,8 +5,8 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 15) buffer Volume { float vx_volume[]; };   // the RGB block this sweep writes
-layout(std430, binding = 16) writeonly buffer SliceOut { float vx_slice_out[]; };
+layout(std430, binding = VX_BIND_VOLUME) buffer Volume { float vx_volume[]; };   // the RGB block this sweep writes
+layout(std430, binding = VX_BIND_SLICE_OUT) writeonly buffer SliceOut { float vx_slice_out[]; };
 
 void main() {
     int axis = Q.slice.x;

@@ -6,7 +6,7 @@ layout(local_size_x = 64) in;
 uniform int vx_scan_axis;     // 0 = x, 1 = y, 2 = z
 uniform int vx_line_offset;   // first line of this dispatch
 
-layout(std430, binding = 11) buffer SatScan { uint vx_scan[]; };   // the word layout of vx_sat.h
+layout(std430, binding = VX_BIND_SAT_SCAN) buffer SatScan { uint vx_scan[]; };   // the word layout of vx_sat.h
 
 VxU96 vx_scan_load(int plane, int e) {
     VxU96 v;

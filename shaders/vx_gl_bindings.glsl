@@ -3,24 +3,24 @@
 // block name. Assembled right after vx_types.h, so everything is declared before the kernel uses it.
 // Every array is std430: float arrays are tightly packed, vec4/ivec4/VxLight match the C++ bytes.
 
-layout(std140, binding = 0) uniform Params { VxParams P; };  // all mat4/vec4/ivec4: std140 == C++ layout
-layout(std140, binding = 1) uniform SatParams { VxSatParams S; };  // light passes only
-layout(std140, binding = 2) uniform PropParams { VxPropParams Q; };  // propagation sweeps only
+layout(std140, binding = VX_BIND_PARAMS) uniform Params { VxParams P; };  // all mat4/vec4/ivec4: std140 == C++ layout
+layout(std140, binding = VX_BIND_SAT_PARAMS) uniform SatParams { VxSatParams S; };  // light passes only
+layout(std140, binding = VX_BIND_PROP_PARAMS) uniform PropParams { VxPropParams Q; };  // propagation sweeps only
 
-layout(std430, binding = 0) readonly buffer AtlasDensity { float vx_density_data[]; };
-layout(std430, binding = 1) readonly buffer AtlasEmission { float vx_emission_data[]; };
-layout(std430, binding = 2) readonly buffer AtlasColor { float vx_color_data[]; };   // 3 floats per voxel
-layout(std430, binding = 3) readonly buffer PageTable { ivec4 vx_page_data[]; };
-layout(std430, binding = 4) readonly buffer Lights { VxLight vx_light_data[]; };
-layout(std430, binding = 5) readonly buffer TransferLut { vec4 vx_tf_data[]; };
-layout(std430, binding = 7) readonly buffer LightCache { float vx_cache_data[]; };
-layout(std430, binding = 8) readonly buffer Sat { uint vx_sat_data[]; };     // 3 words per entry
-layout(std430, binding = 11) readonly buffer Illumination { float vx_illum_data[]; };
-layout(std430, binding = 12) readonly buffer Noise { vec4 vx_noise_data[]; };
-layout(std430, binding = 13) readonly buffer PropSigma { float vx_prop_sigma_data[]; };
-layout(std430, binding = 14) readonly buffer SliceIn { float vx_prop_prev_data[]; };
-layout(std430, binding = 17) readonly buffer EyeInput { float vx_prop_in_data[]; };
-layout(std430, binding = 18) readonly buffer EmissionLut { vec4 vx_emission_lut_data[]; };
+layout(std430, binding = VX_BIND_ATLAS_DENSITY) readonly buffer AtlasDensity { float vx_density_data[]; };
+layout(std430, binding = VX_BIND_ATLAS_EMISSION) readonly buffer AtlasEmission { float vx_emission_data[]; };
+layout(std430, binding = VX_BIND_ATLAS_COLOR) readonly buffer AtlasColor { float vx_color_data[]; };   // 3 floats per voxel
+layout(std430, binding = VX_BIND_PAGE_TABLE) readonly buffer PageTable { ivec4 vx_page_data[]; };
+layout(std430, binding = VX_BIND_LIGHTS) readonly buffer Lights { VxLight vx_light_data[]; };
+layout(std430, binding = VX_BIND_TRANSFER_LUT) readonly buffer TransferLut { vec4 vx_tf_data[]; };
+layout(std430, binding = VX_BIND_LIGHT_CACHE) readonly buffer LightCache { float vx_cache_data[]; };
+layout(std430, binding = VX_BIND_SAT) readonly buffer Sat { uint vx_sat_data[]; };     // 3 words per entry
+layout(std430, binding = VX_BIND_ILLUMINATION) readonly buffer Illumination { float vx_illum_data[]; };
+layout(std430, binding = VX_BIND_NOISE) readonly buffer Noise { vec4 vx_noise_data[]; };
+layout(std430, binding = VX_BIND_PROP_SIGMA) readonly buffer PropSigma { float vx_prop_sigma_data[]; };
+layout(std430, binding = VX_BIND_SLICE_IN) readonly buffer SliceIn { float vx_prop_prev_data[]; };
+layout(std430, binding = VX_BIND_EYE_INPUT) readonly buffer EyeInput { float vx_prop_in_data[]; };
+layout(std430, binding = VX_BIND_EMISSION_LUT) readonly buffer EmissionLut { vec4 vx_emission_lut_data[]; };
 
 float vx_atlas_density(int i) { return vx_density_data[i]; }
 float vx_atlas_emission(int i) { return vx_emission_data[i]; }

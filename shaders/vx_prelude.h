@@ -57,6 +57,34 @@
 #define VX_SHADOWS_SAT_CONE 2      // shadow optical depth read from the light cache
 #define VX_SHADOWS_PROPAGATION 3   // direct and indirect light read from the illumination volume
 
+// GL binding points of every program, each once (uniform blocks and storage buffers count apart).
+// The GL backend binds buffers by block name; these numbers keep the blocks of one program apart,
+// and grade.comp's pixels are bound by number (src/gl_color_transform.cpp).
+#define VX_BIND_PARAMS 0           // uniform VxParams P
+#define VX_BIND_SAT_PARAMS 1       // uniform VxSatParams S (light passes)
+#define VX_BIND_PROP_PARAMS 2      // uniform VxPropParams Q (propagation sweeps)
+#define VX_BIND_ATLAS_DENSITY 0
+#define VX_BIND_ATLAS_EMISSION 1
+#define VX_BIND_ATLAS_COLOR 2
+#define VX_BIND_PAGE_TABLE 3
+#define VX_BIND_LIGHTS 4
+#define VX_BIND_TRANSFER_LUT 5
+#define VX_BIND_BAND 6             // march.comp: the rows it writes
+#define VX_BIND_LIGHT_CACHE 7
+#define VX_BIND_SAT 8
+#define VX_BIND_NEEDED 9           // light_cache.comp: cells to compute
+#define VX_BIND_CHANNEL 10         // light_cache.comp: the channel it writes
+#define VX_BIND_ILLUMINATION 11
+#define VX_BIND_NOISE 12
+#define VX_BIND_PROP_SIGMA 13
+#define VX_BIND_SLICE_IN 14
+#define VX_BIND_VOLUME 15          // propagate.comp: the RGB block it writes
+#define VX_BIND_SLICE_OUT 16
+#define VX_BIND_EYE_INPUT 17
+#define VX_BIND_EMISSION_LUT 18
+#define VX_BIND_SAT_SCAN 19        // sat_scan.comp: the table it scans
+#define VX_BIND_PIXELS 20          // grade.comp: the pixels it transforms
+
 #define VX_LIGHTS_ALL 0            // which lights vx_in_scattered sums
 #define VX_LIGHTS_DIRECTIONAL 1
 #define VX_LIGHTS_LOCAL 2

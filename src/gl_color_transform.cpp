@@ -5,6 +5,7 @@
 #include <string>
 
 #include "gl_program.h"
+#include "kernel_types.h"
 #include "shader_source.h"
 
 namespace voxlux {
@@ -176,7 +177,7 @@ void GlColorTransform::apply(const OCIO::ConstProcessorRcPtr& processor, std::ve
     glProgramUniform1i(p.id, p.unpremultiply, unpremultiply ? 1 : 0);
     glUseProgram(p.id);
     for (size_t unit = 0; unit < p.luts.size(); ++unit) glBindTextureUnit(GLuint(unit), p.luts[unit]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pixels_);  // grade.comp's Pixels
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, VX_BIND_PIXELS, pixels_);
     const size_t block = std::min(rgba.size(), kBlockPixels);
     glNamedBufferData(pixels_, GLsizeiptr(block * sizeof(glm::vec4)), nullptr, GL_STREAM_COPY);
     for (size_t first = 0; first < rgba.size(); first += block) {
