@@ -136,6 +136,7 @@ void LightCacheStage::run(StageRun& run) {
         cache_ = std::move(layout);
         channel_keys_.assign(size_t(cache_.channels), "");
     }
+    cache_.world_to_cache = glm::inverse(light_to_world);   // a grid of the same dims may have moved
 
     const SummedVolume& sat = sat_.sat();
     LightPass pass;

@@ -28,7 +28,7 @@ StageReads MarchStage::reads() const {
     return {{"/render", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
              "/emission", "/input/frame"},
-            {"color_space", "brick", "classify", "camera", "light_cache", "propagation", "eye_pass"}};
+            {"color_space", "brick", "classify", "empty_check", "camera", "light_cache", "propagation", "eye_pass"}};
 }
 
 StageActivity MarchStage::activity(const Scene& s) const {

@@ -145,7 +145,10 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
     const std::vector<Stage*> stages = needed(targets);
     for (Stage* s : stages) {
         const std::string& key = keys.at(s->name());
-        if (!key.empty() && (!last_keys_.count(s->name()) || last_keys_[s->name()] != key)) s->stale();
+        if (!key.empty() && (!last_keys_.count(s->name()) || last_keys_[s->name()] != key)) {
+            last_keys_.erase(s->name());   // its output is gone: it runs, even if this frame fails and the key comes back
+            s->stale();
+        }
     }
     for (Stage* s : stages) {
         StageReport report{s->name()};

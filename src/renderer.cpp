@@ -35,14 +35,14 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
 
 Renderer::Renderer(Scene scene)
     : scene_(std::move(scene)),
-      graph_({&color_space_, &color_transforms_, &load_, &brick_, &classify_, &camera_, &light_grid_, &sat_, &light_cache_,
+      graph_({&color_space_, &color_transforms_, &load_, &brick_, &classify_, &empty_check_, &camera_, &light_grid_, &sat_, &light_cache_,
               &illumination_grid_, &propagation_, &eye_pass_, &march_, &grade_, &write_}) {}
 
 Renderer::Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend)
     : scene_(std::move(scene)),
       backend_(&backend),
       load_(std::move(volume)),
-      graph_({&color_space_, &color_transforms_, &load_, &brick_, &classify_, &camera_, &light_grid_, &sat_, &light_cache_,
+      graph_({&color_space_, &color_transforms_, &load_, &brick_, &classify_, &empty_check_, &camera_, &light_grid_, &sat_, &light_cache_,
               &illumination_grid_, &propagation_, &eye_pass_, &march_, &grade_, &write_}) {}
 
 void Renderer::setScene(Scene scene) {
@@ -79,6 +79,12 @@ FrameResult Renderer::runGraph(std::optional<int> frame, bool allow_empty, const
     for (const StageReport& s : r.stages) {
         if (s.status == StageStatus::Ran) r.stage_seconds.emplace_back(s.name, s.seconds);
         if (s.name == "propagation" && s.status == StageStatus::Ran) r.light_update = propagation_.lastUpdate();
+        if (s.name == "propagation" && s.status == StageStatus::Reused) {
+            LightUpdate kept;   // nothing the sweeps read changed
+            kept.mode = LightUpdate::Mode::Kept;
+            kept.lights = propagation_.lastUpdate().lights;
+            r.light_update = kept;
+        }
     }
     r.camera = camera_.camera();
     r.bricks = classify_.pages().occupied;
@@ -95,7 +101,7 @@ FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
 }
 
 FrameResult Renderer::prepare(std::optional<int> frame, bool allow_empty) {
-    return runGraph(frame, allow_empty, {"color_transforms", "camera", "light_cache", "eye_pass"});
+    return runGraph(frame, allow_empty, {"color_transforms", "empty_check", "camera", "light_cache", "eye_pass"});
 }
 
 FrameResult Renderer::renderToFile(std::optional<int> frame, bool allow_empty) {

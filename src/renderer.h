@@ -2,10 +2,11 @@
 // re-run only when what it reads changed, so a later frame or a scene edit recomputes only what it
 // invalidates. The CLI, the study, the benchmarks and the tests all render through this.
 //
-//   color_space -> color_transforms ------------------------------------------.
-//   load -> brick -> classify -> light_grid -> sat -> light_cache ---.        |
-//        \                  \-> illumination_grid -> propagation -> eye_pass -+-> march -> grade -> write
-//         `-> camera ---------------------------------------------------------'
+//   color_space -> color_transforms ---------------------------------------------------.
+//   load -> brick -> classify -> empty_check -------------------------------------------+
+//       |                \-> light_grid -> sat -> light_cache ---------------------------+-> march -> grade -> write
+//       |                 \-> illumination_grid -> propagation -> eye_pass -------------+
+//        `-> camera --------------------------------------------------------------------'
 #pragma once
 #include <memory>
 #include <optional>
@@ -37,7 +38,7 @@ struct FrameResult {
     size_t bricks = 0;
     std::string path;                                       // the EXR written (renderToFile)
     std::vector<std::string> reused;                        // stages kept whole, then parts kept inside stages that ran
-    std::optional<LightUpdate> light_update;                // what the propagation stage did, if it ran
+    std::optional<LightUpdate> light_update;                // what the propagation stage did (Kept when reused), if active
     std::vector<glm::vec4> preview;                         // display-referred RGBA, when output.preview is set
     std::string preview_path;                               // the PNG written (renderToFile)
 };
@@ -47,6 +48,9 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene);
 class Renderer {
 public:
     explicit Renderer(Scene scene);
+    // The stages hold references to each other: a Renderer stays where it was made.
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
     // Renders `volume` (grids made in memory) instead of reading files, on `backend` (not owned).
     Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend);
     // Replaces the scene; the next render recomputes only what the change invalidates.
@@ -87,6 +91,7 @@ private:
     LoadStage load_;
     BrickStage brick_{load_};
     ClassifyStage classify_{load_, brick_};
+    EmptyFrameStage empty_check_{classify_};
     CameraStage camera_{load_};
     LightGridStage light_grid_{brick_, classify_};
     SatStage sat_{light_grid_};

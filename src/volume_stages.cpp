@@ -6,7 +6,7 @@
 namespace voxlux {
 namespace {
 
-std::string emptyReason(const LoadedVolume& v, const BrickAtlas& atlas) {
+std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas) {
     std::string grid = "grid '" + v.density->getName() + "'";
     if (atlas.active_voxels == 0) return v.file + ": " + grid + " has no active voxels";
     std::string why = v.file + ": " + grid + " has nothing visible: its " + std::to_string(atlas.active_voxels) +
@@ -44,7 +44,7 @@ void BrickStage::run(StageRun& run) {
     run.warnings = sanitizeReport(*atlas_, load_.volume());
 }
 
-StageReads ClassifyStage::reads() const { return {{"/material", "/emission", "/input/allow_empty"}, {"load", "brick"}}; }
+StageReads ClassifyStage::reads() const { return {{"/material", "/emission"}, {"load", "brick"}}; }
 
 StageActivity ClassifyStage::activity(const Scene& s) const {
     return {true, s.material.transfer.empty() ? "drops bricks with zero density and emission"
@@ -54,8 +54,16 @@ StageActivity ClassifyStage::activity(const Scene& s) const {
 void ClassifyStage::run(StageRun& run) {
     const BrickAtlas& atlas = brick_.atlas();
     pages_ = buildPageTable(atlas.coords, classifyBricks(atlas, run.scene.material, run.scene.emission));
-    if (!pages_.empty()) return;
-    const std::string why = emptyReason(load_.volume(), atlas);
+    empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas) : "";
+}
+
+StageActivity EmptyFrameStage::activity(const Scene&) const {
+    return {true, "refuses a frame with nothing visible, unless a sequence allows empty frames"};
+}
+
+void EmptyFrameStage::run(StageRun& run) {
+    const std::string& why = classify_.emptyReason();
+    if (why.empty()) return;
     if (!run.document["input"]["allow_empty"].get<bool>()) throw InputError(why);
     run.warnings.push_back(why + "; rendered as an empty frame");
 }

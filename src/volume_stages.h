@@ -46,8 +46,6 @@ private:
     std::optional<BrickAtlas> atlas_;
 };
 
-// Throws InputError for a frame with nothing visible, unless the render document's
-// /input/allow_empty says a sequence may have such frames (then it warns).
 class ClassifyStage final : public Stage {
 public:
     ClassifyStage(const LoadStage& load, const BrickStage& brick) : load_(load), brick_(brick) {}
@@ -56,11 +54,28 @@ public:
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     const PageTable& pages() const { return pages_; }
+    const std::string& emptyReason() const { return empty_reason_; }   // why nothing is visible, or ""
 
 private:
     const LoadStage& load_;
     const BrickStage& brick_;
     PageTable pages_;
+    std::string empty_reason_;
+};
+
+// Refuses a frame with nothing visible (InputError), unless the render document's
+// /input/allow_empty says a sequence may have such frames; then it warns. A stage of its own, so
+// that allowing empty frames re-runs nothing but the stages after it.
+class EmptyFrameStage final : public Stage {
+public:
+    explicit EmptyFrameStage(const ClassifyStage& classify) : classify_(classify) {}
+    std::string name() const override { return "empty_check"; }
+    StageReads reads() const override { return {{"/input/allow_empty"}, {"classify"}}; }
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+
+private:
+    const ClassifyStage& classify_;
 };
 
 class CameraStage final : public Stage {

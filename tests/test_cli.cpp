@@ -168,7 +168,7 @@ TEST(Cli, ExplainShowsThePlan) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("run   load"), std::string::npos);
     EXPECT_NE(r.out.find("run   march             1 light, ray-marched shadow rays per sample (reference)  [after: "
-                         "color_space brick classify camera light_cache propagation eye_pass; reads: /render /material"),
+                         "color_space brick classify empty_check camera light_cache propagation eye_pass; reads: /render /material"),
               std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("skip  light_cache       skipped: no effect in the scene needs a precomputed light cache"),

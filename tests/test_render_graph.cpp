@@ -197,6 +197,47 @@ TEST(RenderGraph, DisabledLightsWorkWithEveryMethod) {
         }
 }
 
+// A sequence whose volume moves by a brick (the light grid keeps its dims, not its place), with a
+// missing frame between: the frame that fails leaves nothing stale, and every frame equals a fresh
+// render of it.
+TEST(RenderGraph, FramesThatMoveOrFailLeaveNothingStale) {
+    const std::string dir = tempDir("moving_frames");
+    openvdb::io::File(dir + "/box_0001.vdb").write({boxGrid({0, 0, 0}, {23, 15, 15}, 2.0f, 0.1)});
+    openvdb::io::File(dir + "/box_0002.vdb").write({boxGrid({8, 0, 0}, {31, 15, 15}, 2.0f, 0.1)});
+    Scene scene = parseScene(R"({"volume": {"path": "box_####.vdb", "frames": [1, 3]},
+        "lights": [{"type": "point", "position": [1.2, 2.5, 0.8], "intensity": 3}, {"type": "ambient", "intensity": 0.4}],
+        "camera": {"position": [1.5, 1, 6], "look_at": [1.5, 0.8, 0.8], "fov": 35},
+        "render": {"resolution": [40, 30], "backend": "cpu"},
+        "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 3}, "light_resolution": 16}})",
+                             "moving.json", dir);
+    Renderer renderer(scene);
+    const RenderImage one = renderer.render(1, false).image;
+    EXPECT_THROW(renderer.render(3, false), InputError);   // no box_0003.vdb
+    EXPECT_EQ(maxDifference(renderer.render(1, false).image, one), 0.0f);
+    const FrameResult two = renderer.render(2, false);
+    for (const char* stage : {"load", "light_grid", "sat", "light_cache"})
+        EXPECT_TRUE(std::any_of(two.stage_seconds.begin(), two.stage_seconds.end(), [&](const auto& s) { return s.first == stage; }))
+            << stage;
+    EXPECT_GT(maxDifference(two.image, one), 0.0f);
+    EXPECT_EQ(maxDifference(two.image, Renderer(scene).render(2, false).image), 0.0f);
+}
+
+// A light-edit replay prepares the lighting allowing empty frames, then writes the last frame
+// refusing them: the write re-runs the march, not the lighting.
+TEST(RenderGraph, AllowingEmptyFramesReRunsNoLighting) {
+    Scene scene = disabledLightScene(ShadowMethod::Propagation, Backend::Cpu);
+    Renderer renderer(scene);
+    const FrameResult prepared = renderer.prepare(std::nullopt, true);
+    ASSERT_TRUE(prepared.light_update);
+    EXPECT_EQ(prepared.light_update->mode, LightUpdate::Mode::Entire);
+    const FrameResult frame = renderer.render(std::nullopt, false);
+    std::vector<std::string> ran;
+    for (const auto& [stage, seconds] : frame.stage_seconds) ran.push_back(stage);
+    EXPECT_EQ(ran, (std::vector<std::string>{"empty_check", "march"}));
+    ASSERT_TRUE(frame.light_update);
+    EXPECT_EQ(frame.light_update->mode, LightUpdate::Mode::Kept);
+}
+
 // The scenes the every-key sweep runs over: the bundled ones, and one per lighting method and
 // colour feature they lack; small, so that every key can be rendered three times.
 std::vector<std::pair<std::string, nlohmann::json>> sweepScenes() {
@@ -326,7 +367,7 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
         ASSERT_EQ(sceneToJson(parseScene(canonical.dump(), label + ".json", grids)), canonical);
         const nlohmann::json leaves = canonical.flatten();
         Renderer renderer(base);
-        renderer.render(std::nullopt, false);
+        const RenderImage first = renderer.render(std::nullopt, false).image;
         for (const auto& [pointer, value] : leaves.items()) {
             const Mutation m = mutate(canonical, pointer, copy);
             if (!m.skipped.empty()) {
@@ -361,8 +402,9 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
             for (const auto& px : fresh.pixels) peak = std::max({peak, px.rgba.x, px.rgba.y, px.rgba.z});
             // Exact but for the propagation's selective updates, whose float residue is ~1e-6 of the light.
             EXPECT_LE(maxDifference(edited.image, fresh), 1e-5f * std::max(peak, 1.0f));
+            // Back to the base scene: what the stages kept across the change must not show.
             renderer.setScene(base);
-            renderer.render(std::nullopt, false);
+            EXPECT_LE(maxDifference(renderer.render(std::nullopt, false).image, first), 1e-5f * std::max(peak, 1.0f)) << "back";
             ++swept;
         }
     }
