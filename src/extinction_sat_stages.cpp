@@ -127,7 +127,6 @@ void LightCacheStage::run(StageRun& run) {
     // The cache is kept as it is while its layout is, so unchanged channels survive.
     const glm::mat4 light_to_world = brick_.atlas().index_to_world * grid.lightToIndex();
     layout.dims = grid.dims;
-    layout.world_to_cache = glm::inverse(light_to_world);
     const bool same_layout = cache_.channels == layout.channels && cache_.ambient_channel == layout.ambient_channel &&
                              cache_.ambient_width == layout.ambient_width && cache_.shadow_channel == layout.shadow_channel &&
                              cache_.dims == layout.dims && !channel_keys_.empty();

@@ -33,17 +33,12 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
     return frameActiveVoxels(volume, scene.render);
 }
 
-Renderer::Renderer(Scene scene)
-    : scene_(std::move(scene)),
-      graph_({&color_space_, &color_transforms_, &load_, &brick_, &classify_, &empty_check_, &camera_, &light_grid_, &sat_, &light_cache_,
-              &illumination_grid_, &propagation_, &eye_pass_, &march_, &grade_, &write_}) {}
+Renderer::Renderer(Scene scene) : scene_(std::move(scene)) {}
 
 Renderer::Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend)
     : scene_(std::move(scene)),
       backend_(&backend),
-      load_(std::move(volume)),
-      graph_({&color_space_, &color_transforms_, &load_, &brick_, &classify_, &empty_check_, &camera_, &light_grid_, &sat_, &light_cache_,
-              &illumination_grid_, &propagation_, &eye_pass_, &march_, &grade_, &write_}) {}
+      load_(std::move(volume)) {}
 
 void Renderer::setScene(Scene scene) {
     if (owned_backend_ && scene.render.backend != scene_.render.backend) {

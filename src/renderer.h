@@ -102,7 +102,9 @@ private:
     MarchStage march_{color_space_, brick_, classify_, camera_, {light_cache_, propagation_, eye_pass_}};
     GradeStage grade_{march_, color_transforms_};
     WriteStage write_{grade_, camera_, color_transforms_};
-    RenderGraph graph_;
+    RenderGraph graph_{{&color_space_, &color_transforms_, &load_, &brick_, &classify_, &empty_check_, &camera_,
+                         &light_grid_, &sat_, &light_cache_, &illumination_grid_, &propagation_, &eye_pass_, &march_,
+                         &grade_, &write_}};
 };
 
 }  // namespace voxlux
