@@ -53,11 +53,12 @@ LightPass passOver(const LightGrid& g, const SummedVolume& sat, const std::vecto
     p.sat = &sat;
     p.sat_generation = 1;
     p.needed = &g.needed;
-    p.params.dims = glm::ivec4(g.dims, sat.planes);
+    p.params.dims = g.dims;
+    p.params.planes = sat.planes;
     p.params.quantum = sat.quantum;
     p.params.light_to_world = glm::mat4(1.0f);
     p.params.world_to_light = glm::mat4(1.0f);
-    p.params.pass.z = 1;
+    p.params.cache_floats = 1;
     return p;
 }
 
@@ -94,14 +95,17 @@ void paperComparison(int repeats) {
     cache.channels = 1;
     cache.values.assign(g.cells(), 0.0f);
     std::vector<kernel::VxLight> lights(2);
-    lights[0].pos_type = glm::vec4(0, 0, 0, VX_LIGHT_DIRECTIONAL);
-    lights[0].dir_cos = glm::vec4(glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f)), 0);
-    lights[1].pos_type = glm::vec4(100.0f, 200.0f, 140.0f, VX_LIGHT_POINT);
+    lights[0].type = VX_LIGHT_DIRECTIONAL;
+    lights[0].direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f));
+    lights[1].type = VX_LIGHT_POINT;
+    lights[1].position = glm::vec3(100.0f, 200.0f, 140.0f);
     const std::map<int, double> paper_ao = {{3, 0.0307}, {7, 0.0791}, {11, 0.1382}};
     for (int shells : {3, 7, 11}) {
         LightPass p = passOver(g, sat, lights);
-        p.params.pass.x = -1;
-        p.params.shells = glm::vec4(float(shells), 8.0f, 1.0f, 0.0f);
+        p.params.light = -1;
+        p.params.shells = shells;
+        p.params.shell_radius = 8.0f;
+        p.params.cell_world = 1.0f;
         const double t = best(repeats, [&] { fillLightChannelCpu(p, cache); });
         row(("AO, " + std::to_string(shells) + " shells").c_str(), paper_ao.at(shells), t);
     }
@@ -109,8 +113,11 @@ void paperComparison(int repeats) {
     for (int light : {0, 1})
         for (int samples : {20, 50}) {
             LightPass p = passOver(g, sat, lights);
-            p.params.pass.x = light;
-            p.params.cone = glm::vec4(std::tan(glm::radians(2.0f)), float(samples), 0.1f, std::pow(1.1f, float(samples)));
+            p.params.light = light;
+            p.params.cone_tan = std::tan(glm::radians(2.0f));
+            p.params.cone_cuboids = samples;
+            p.params.cone_growth = 0.1f;
+            p.params.cone_growth_total = std::pow(1.1f, float(samples));
             const double t = best(light == 0 ? repeats : 1, [&] { fillLightChannelCpu(p, cache); });
             const std::string label = std::string(light == 0 ? "cone shadows, directional, " : "cone shadows, point, ") +
                                       std::to_string(samples) + " cuboids";

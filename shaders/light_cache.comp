@@ -16,5 +16,5 @@ void main() {
         return;
     }
     ivec3 c = ivec3(i % S.dims.x, (i / S.dims.x) % S.dims.y, i / (S.dims.x * S.dims.y));
-    vx_channel[i] = S.pass.x < 0 ? vx_ambient_tau(c, int(S.shells.w)) : vx_cone_tau(c, vx_light(S.pass.x));
+    vx_channel[i] = S.light < 0 ? vx_ambient_tau(c, S.ao_plane) : vx_cone_tau(c, vx_light(S.light));
 }

@@ -12,9 +12,9 @@ layout(std430, binding = VX_BIND_BAND) writeonly buffer Band { float vx_band[]; 
 void main() {
     int x = int(gl_GlobalInvocationID.x);
     int y = int(gl_GlobalInvocationID.y);
-    if (x >= int(P.camera_frame.z) || y + vx_row_offset >= int(P.camera_frame.w)) return;
+    if (x >= P.width || y + vx_row_offset >= P.height) return;
     VxPixel px = vx_render_pixel(x, y + vx_row_offset);
-    int o = 20 * (y * int(P.camera_frame.z) + x);
+    int o = 20 * (y * P.width + x);
     vx_band[o] = px.rgba.x;
     vx_band[o + 1] = px.rgba.y;
     vx_band[o + 2] = px.rgba.z;

@@ -1,5 +1,5 @@
 // GL entry point of one slice of a propagation sweep (vx_propagation.h): one invocation per cell
-// of slice Q.slice.z. The backend dispatches the slices in order, swapping the two slice buffers
+// of slice Q.slice. The backend dispatches the slices in order, swapping the two slice buffers
 // between dispatches; a light sweep adds vx_prop_weight times its tinted light into the volume's
 // RGB block, the eye sweep replaces the block's light.
 
@@ -9,7 +9,7 @@ layout(std430, binding = VX_BIND_VOLUME) buffer Volume { float vx_volume[]; };  
 layout(std430, binding = VX_BIND_SLICE_OUT) writeonly buffer SliceOut { float vx_slice_out[]; };
 
 void main() {
-    int axis = Q.slice.x;
+    int axis = Q.axis;
     int u = vx_axis_u(axis);
     int v = vx_axis_v(axis);
     int n = int(gl_GlobalInvocationID.x);
@@ -17,14 +17,14 @@ void main() {
     int i = n % Q.dims[u];
     int j = n / Q.dims[u];
     vec3 value = vx_prop_cell(i, j);
-    for (int ch = 0; ch < Q.dims.w; ++ch) vx_slice_out[n * Q.dims.w + ch] = value[ch];
+    for (int ch = 0; ch < Q.channels; ++ch) vx_slice_out[n * Q.channels + ch] = value[ch];
     ivec3 c;
-    c[axis] = Q.slice.z;
+    c[axis] = Q.slice;
     c[u] = i;
     c[v] = j;
     int cell = ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x) * 3;
-    vec3 rgb = (Q.dims.w == 1 ? vec3(value.x) : value) * vec3(Q.tint);
+    vec3 rgb = (Q.channels == 1 ? vec3(value.x) : value) * Q.tint;
     float weight = vx_prop_weight(i, j);
     for (int ch = 0; ch < 3; ++ch)
-        vx_volume[cell + ch] = Q.flow.w > 0.5f ? rgb[ch] : vx_volume[cell + ch] + weight * rgb[ch];
+        vx_volume[cell + ch] = Q.eye_sweep != 0 ? rgb[ch] : vx_volume[cell + ch] + weight * rgb[ch];
 }

@@ -23,7 +23,7 @@ void main() {
     int n = vx_scan_axis == 0 ? sx : (vx_scan_axis == 1 ? sy : sz);
     int lines = sx * sy * sz / n;
     int line = int(gl_GlobalInvocationID.x) + vx_line_offset;
-    if (line >= lines * S.dims.w) return;
+    if (line >= lines * S.planes) return;
     int l = line % lines;
     int plane = line / lines;
     int base = 0;

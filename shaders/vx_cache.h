@@ -54,18 +54,19 @@ VX_INLINE float vx_grid_mix(float c000, float c100, float c010, float c110, floa
 }
 
 VxCacheCell vx_cache_cell(vec3 world) {
-    return vx_grid_cell(vec3(P.world_to_cache * vec4(world, 1.0f)), ivec3(P.cache_dims), P.cache_dims.w);
+    return vx_grid_cell(vec3(P.world_to_cache * vec4(world, 1.0f)), P.cache_dims, P.cache_floats);
 }
 
 // Channel `ch` of the cache at a sample.
 float vx_cache_value(VxCacheCell cell, int ch) {
-    return VX_GRID_TRILINEAR(vx_cache, cell, ivec3(P.cache_dims), P.cache_dims.w, ch);
+    VX_CHECK_INDEX(ch, P.cache_floats, "light-cache channel");
+    return VX_GRID_TRILINEAR(vx_cache, cell, P.cache_dims, P.cache_floats, ch);
 }
 
 // Ambient transmittance at a sample: exp(-tau_AO), per channel with colour bleeding.
 vec3 vx_ambient_occlusion(VxCacheCell cell) {
-    if (P.cache_map.x < 0) return vec3(1.0f);
-    if (P.cache_map.y == 1) return vec3(vx_exp(-vx_cache_value(cell, P.cache_map.x)));
-    return vec3(vx_exp(-vx_cache_value(cell, P.cache_map.x)), vx_exp(-vx_cache_value(cell, P.cache_map.x + 1)),
-                vx_exp(-vx_cache_value(cell, P.cache_map.x + 2)));
+    if (P.ao_channel < 0) return vec3(1.0f);
+    if (P.ao_channels == 1) return vec3(vx_exp(-vx_cache_value(cell, P.ao_channel)));
+    return vec3(vx_exp(-vx_cache_value(cell, P.ao_channel)), vx_exp(-vx_cache_value(cell, P.ao_channel + 1)),
+                vx_exp(-vx_cache_value(cell, P.ao_channel + 2)));
 }

@@ -21,9 +21,9 @@ float vx_safe_inv(float x) {
 // Clips [t0, t1] against the box of occupied bricks (grown by the perturbation's displacement,
 // which can pull density outwards). Returns false when nothing is left.
 bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
-    float grow = vx_displaced() ? P.noise_offset.w : 0.0f;
-    vec3 lo = vec3(P.bricks_min.x, P.bricks_min.y, P.bricks_min.z) * float(VX_BRICK) - vec3(grow);
-    vec3 hi = vec3(P.bricks_max.x + 1, P.bricks_max.y + 1, P.bricks_max.z + 1) * float(VX_BRICK) + vec3(grow);
+    float grow = vx_displaced() ? P.displacement : 0.0f;
+    vec3 lo = vec3(P.bricks_min) * float(VX_BRICK) - vec3(grow);
+    vec3 hi = vec3(P.bricks_max + ivec3(1)) * float(VX_BRICK) + vec3(grow);
     vec3 inv = vec3(vx_safe_inv(d.x), vx_safe_inv(d.y), vx_safe_inv(d.z));
     vec3 ta = (lo - o) * inv;
     vec3 tb = (hi - o) * inv;
@@ -80,7 +80,7 @@ vec3 vx_to_index_dir(vec3 v) { return vec3(P.world_to_index * vec4(v, 0.0f)); }
 // the lookup displaced by the noise vector, the result scaled by the noise.
 float vx_perturbed_extinction(vec3 p, vec3 x) {
     vec4 n = vx_noise_fbm(x);
-    float v = vx_displaced() ? vx_density_index(p + vec3(n) * P.noise_offset.w) : vx_density_index(p);
+    float v = vx_displaced() ? vx_density_index(p + vec3(n) * P.displacement) : vx_density_index(p);
     return vx_perturb_extinction(vx_value_extinction(v), n);
 }
 
@@ -89,17 +89,17 @@ float vx_perturbed_extinction(vec3 p, vec3 x) {
 VX_INLINE bool vx_visits(int slot) { return slot != VX_PAGE_EMPTY || vx_displaced(); }
 
 // Transmittance from world point x towards a light at distance `dist` along unit direction wi.
-// Reference quality: fixed step P.march.y, stops only below the transmittance cutoff.
+// Reference quality: fixed step P.shadow_step, stops only below the transmittance cutoff.
 float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
     vec3 o = vx_to_index_point(x);
     vec3 d = vx_to_index_dir(wi);
     float t0 = 0.0f;
     float t1 = dist;
     if (!vx_clip_to_bricks(o, d, t0, t1)) return 1.0f;
-    float dt = P.march.y;
+    float dt = P.shadow_step;
     float inv_dt = 1.0f / dt;
     float tau = 0.0f;
-    float tau_cut = -log(P.march.z);
+    float tau_cut = -log(P.transmittance_cutoff);
     VxDda s = vx_dda_begin(o, d, t0, t1);
     while (s.t < s.t_end) {
         int slot = vx_page_lookup(s.brick);
@@ -119,49 +119,63 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
 
 // Kniss 2003 Eq. 11: how much of a sample is shaded as a surface (0 in homogeneous regions, 1
 // where the density gradient is steep) and its normal, from central differences of the data.
-vec4 vx_surface(vec3 p) {
-    if (P.surface.y <= 0.0f) return vec4(0.0f);
+struct VxSurface {
+    vec3 normal;
+    float weight;
+};
+
+VX_INLINE VxSurface vx_no_surface() {
+    VxSurface s;
+    s.normal = vec3(0.0f);
+    s.weight = 0.0f;
+    return s;
+}
+
+VxSurface vx_surface(vec3 p) {
+    if (P.surface_inv_range <= 0.0f) return vx_no_surface();
     vec3 g = vec3(vx_density_index(p + vec3(1.0f, 0.0f, 0.0f)) - vx_density_index(p - vec3(1.0f, 0.0f, 0.0f)),
                   vx_density_index(p + vec3(0.0f, 1.0f, 0.0f)) - vx_density_index(p - vec3(0.0f, 1.0f, 0.0f)),
                   vx_density_index(p + vec3(0.0f, 0.0f, 1.0f)) - vx_density_index(p - vec3(0.0f, 0.0f, 1.0f))) * 0.5f;
     float m = length(g);
-    float weight = clamp((m - P.surface.x) * P.surface.y, 0.0f, 1.0f);
+    float weight = clamp((m - P.surface_low) * P.surface_inv_range, 0.0f, 1.0f);
     // Index-space gradient to a world normal: the inverse transpose of index->world is world_to_index^T.
-    vec3 n = m > 0.0f ? -normalize(transpose(mat3(P.world_to_index)) * g) : vec3(0.0f, 1.0f, 0.0f);
-    return vec4(n, weight);
+    VxSurface s;
+    s.normal = m > 0.0f ? -normalize(transpose(mat3(P.world_to_index)) * g) : vec3(0.0f, 1.0f, 0.0f);
+    s.weight = weight;
+    return s;
 }
 
 // The factor Kniss Eq. 11 puts on the light from direction wi seen along dir: (1 - S) + S * f_s
 // with f_s Blinn-Phong (diffuse plus specular) about the surface normal.
-VX_INLINE float vx_surface_factor(vec4 surface, vec3 wi, vec3 dir) {
-    if (surface.w <= 0.0f) return 1.0f;
-    vec3 n = vec3(surface);
+VX_INLINE float vx_surface_factor(VxSurface surface, vec3 wi, vec3 dir) {
+    if (surface.weight <= 0.0f) return 1.0f;
+    vec3 n = surface.normal;
     vec3 h = normalize(wi - dir);
-    float fs = max(dot(n, wi), 0.0f) + P.surface.z * pow(max(dot(n, h), 0.0f), P.surface.w);
-    return (1.0f - surface.w) + surface.w * fs;
+    float fs = max(dot(n, wi), 0.0f) + P.specular * pow(max(dot(n, h), 0.0f), P.shininess);
+    return (1.0f - surface.weight) + surface.weight * fs;
 }
 
 // Single-scattered light at world point x for a camera ray travelling along unit direction dir,
 // from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
 // `cell` locates x in the light cache (read only for SAT-cone shadows); `surface` is vx_surface.
-vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell, vec4 surface) {
+vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell, VxSurface surface) {
     vec3 sum = vec3(0.0f);
     vec3 unshadowed = vec3(0.0f);   // what the lights would bring unshadowed (propagation)
-    bool propagated = P.bricks_max.w == VX_SHADOWS_PROPAGATION && P.illum_dims.x > 0;
-    for (int i = 0; i < P.bricks_min.w; ++i) {
+    bool propagated = P.shadow_mode == VX_SHADOWS_PROPAGATION && P.illum_dims.x > 0;
+    for (int i = 0; i < P.light_count; ++i) {
         VxLight light = vx_light(i);
-        bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;
+        bool directional = light.type == VX_LIGHT_DIRECTIONAL;
         if ((which == VX_LIGHTS_DIRECTIONAL && !directional) || (which == VX_LIGHTS_LOCAL && directional)) continue;
         vec3 wi;
         float dist;
         vec3 e = vx_light_incident(light, x, wi, dist);
         if (e.x + e.y + e.z <= 0.0f) continue;
         float shadow = 1.0f;
-        if (P.bricks_max.w == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
-        if (P.bricks_max.w == VX_SHADOWS_SAT_CONE && P.cache_map.z >= 0) shadow = vx_exp(-vx_cache_value(cell, P.cache_map.z + i));
+        if (P.shadow_mode == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
+        if (P.shadow_mode == VX_SHADOWS_SAT_CONE && P.shadow_channel >= 0) shadow = vx_exp(-vx_cache_value(cell, P.shadow_channel + i));
         unshadowed += e;
-        sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.march.w) * vx_surface_factor(surface, wi, dir));
+        sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.anisotropy) * vx_surface_factor(surface, wi, dir));
     }
     // The illumination volume holds the lights' attenuated RGB together: each light keeps its
     // phase, scaled per channel by the fraction of the lights' unshadowed radiance that arrives.
@@ -253,26 +267,26 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     float t1 = 1e30f;
     if (!vx_clip_to_bricks(o, d, t0, t1)) return px;
 
-    float dt = P.march.x;
-    float cutoff = P.march.z;
-    bool shaded_surface = P.surface.y > 0.0f;
-    bool per_ray_directional = P.bricks_max.w == VX_SHADOWS_NONE && !shaded_surface;
+    float dt = P.step;
+    float cutoff = P.transmittance_cutoff;
+    bool shaded_surface = P.surface_inv_range > 0.0f;
+    bool per_ray_directional = P.shadow_mode == VX_SHADOWS_NONE && !shaded_surface;
     VxCacheCell no_cell;
     no_cell.base = 0;
     no_cell.fx = 0.0f;
     no_cell.fy = 0.0f;
     no_cell.fz = 0.0f;
-    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, no_cell, vec4(0.0f)) : vec3(0.0f);
+    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, no_cell, vx_no_surface()) : vec3(0.0f);
     bool cached = P.cache_dims.x > 0;
-    vec3 ambient = vec3(P.ambient);
+    vec3 ambient = P.ambient;
     int per_sample_lights = per_ray_directional ? VX_LIGHTS_LOCAL : VX_LIGHTS_ALL;
-    bool emits = P.emission_map.x > 0;
-    bool plain_albedo = P.tf_domain.z < 0.5f && P.tf_domain.w < 0.5f;
+    bool emits = P.emission_sources > 0;
+    bool plain_albedo = P.use_transfer == 0 && P.use_color_grid == 0;
     // When the light a sample scatters is the same all along the ray (unshadowed directional
     // lights and unoccluded ambient only, one albedo, no emission), a chunk's scattered light
     // telescopes exactly to albedo * L * (T before - T after): no per-sample work beyond the
     // SIMD batches.
-    bool constant_light = per_ray_directional && plain_albedo && !emits && P.page.z == 0 && !cached;
+    bool constant_light = per_ray_directional && plain_albedo && !emits && P.local_light_count == 0 && !cached;
     float tau = 0.0f;
     float T = 1.0f;
     float depth_weighted = 0.0f;
@@ -294,8 +308,8 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
             px.samples += float(n);
             if (constant_light) {
                 float T_after = chunk.T[n - 1];
-                px.direct += vec3(P.material) * directional * (T - T_after);
-                px.ambient += vec3(P.material) * ambient * (T - T_after);
+                px.direct += P.albedo * directional * (T - T_after);
+                px.ambient += P.albedo * ambient * (T - T_after);
                 depth_weighted += vx_chunk_depth(T, k, n, lanes, dt, chunk) * cos_forward;
                 tau = chunk.tau[n - 1];
                 T = T_after;
@@ -315,11 +329,11 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                 float absorbed = T - T_next;
                 if (absorbed > 0.0f) {
                     vec3 x = origin + dir * t;
-                    vec3 albedo = plain_albedo || !occupied ? vec3(P.material) : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
+                    vec3 albedo = plain_albedo || !occupied ? P.albedo : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
                     VxCacheCell cell = cached ? vx_cache_cell(x) : no_cell;
-                    vec4 surface = shaded_surface ? vx_surface(o + d * t) : vec4(0.0f);
+                    VxSurface surface = shaded_surface ? vx_surface(o + d * t) : vx_no_surface();
                     px.direct += albedo * (directional + vx_in_scattered(x, dir, per_sample_lights, cell, surface)) * absorbed;
-                    if (P.indirect.w > 0.0f) px.indirect += albedo * vx_illum_indirect(x) * (P.indirect.w * absorbed);
+                    if (P.indirect_weight > 0.0f) px.indirect += albedo * vx_illum_indirect(x) * (P.indirect_weight * absorbed);
                     px.ambient += albedo * ambient * vx_ambient_occlusion(cell) * absorbed;
                     depth_weighted += absorbed * t * cos_forward;
                 }
@@ -338,10 +352,10 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
 
 // The camera ray through the centre of pixel (x, y); y = 0 is the top row.
 void vx_camera_ray(int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
-    float w = P.camera_frame.z;
-    float h = P.camera_frame.w;
-    float sx = (2.0f * (float(x) + 0.5f) / w - 1.0f) * P.camera_frame.x * P.camera_frame.y;
-    float sy = (1.0f - 2.0f * (float(y) + 0.5f) / h) * P.camera_frame.x;
+    float w = float(P.width);
+    float h = float(P.height);
+    float sx = (2.0f * (float(x) + 0.5f) / w - 1.0f) * P.tan_half_fov * P.aspect;
+    float sy = (1.0f - 2.0f * (float(y) + 0.5f) / h) * P.tan_half_fov;
     origin = vec3(P.camera_to_world * vec4(0.0f, 0.0f, 0.0f, 1.0f));
     dir = normalize(vec3(P.camera_to_world * vec4(sx, sy, -1.0f, 0.0f)));
     forward = normalize(vec3(P.camera_to_world * vec4(0.0f, 0.0f, -1.0f, 0.0f)));

@@ -5,8 +5,8 @@
 #pragma once
 #include "vx_sample.h"
 
-VX_INLINE bool vx_perturbed() { return P.noise_scale.y > 0.5f; }
-VX_INLINE bool vx_displaced() { return P.noise_scale.y > 0.5f && P.noise_offset.w > 0.0f; }
+VX_INLINE bool vx_perturbed() { return P.noise_octaves > 0; }
+VX_INLINE bool vx_displaced() { return P.noise_octaves > 0 && P.displacement > 0.0f; }
 
 // The table at texel coordinates q (texel centres at integers), trilinear and wrapping.
 VX_INLINE vec4 vx_noise_tile(vec3 q) {
@@ -30,26 +30,26 @@ VX_INLINE vec4 vx_noise_tile(vec3 q) {
 // Octaves of the table at world point x, each `lacunarity` times finer and `gain` times weaker,
 // normalised by the sum of the weights so every component stays in [-1, 1].
 vec4 vx_noise_fbm(vec3 x) {
-    vec3 q = (x + vec3(P.noise_offset)) * P.noise_scale.x;
+    vec3 q = (x + P.noise_offset) * P.noise_frequency;
     vec4 sum = vec4(0.0f);
     float weight = 1.0f;
     float total = 0.0f;
-    for (int o = 0; o < int(P.noise_scale.y); ++o) {
+    for (int o = 0; o < P.noise_octaves; ++o) {
         // Each octave is shifted by an irrational-looking offset so the tiles' seams do not line up.
         sum += weight * vx_noise_tile(q + vec3(float(o) * 7.31f, float(o) * 3.17f, float(o) * 5.53f));
         total += weight;
-        weight *= P.noise_scale.w;
-        q *= P.noise_scale.z;
+        weight *= P.gain;
+        q *= P.lacunarity;
     }
     return sum / total;
 }
 
 // Extinction scaled by the noise at a point (never below 0).
 VX_INLINE float vx_perturb_extinction(float sigma, vec4 n) {
-    return sigma * max(1.0f + P.noise_amp.x * n.w, 0.0f);
+    return sigma * max(1.0f + P.noise_density * n.w, 0.0f);
 }
 
 // Transport colour tinted by the noise, kept in (0, 1].
 VX_INLINE vec3 vx_perturb_transport(vec3 t, vec4 n) {
-    return clamp(t * (vec3(1.0f) + P.noise_amp.y * vec3(n)), vec3(1e-6f), vec3(1.0f));
+    return clamp(t * (vec3(1.0f) + P.noise_transport * vec3(n)), vec3(1e-6f), vec3(1.0f));
 }

@@ -21,15 +21,15 @@ VX_INLINE float vx_exp(float x) {
 
 // Transfer-function lookup for a raw grid value: rgb = albedo tint, a = extinction multiplier.
 VX_INLINE vec4 vx_tf_eval(float value) {
-    float x = clamp((value - P.tf_domain.x) * P.tf_domain.y, 0.0f, 1.0f) * float(VX_TF_LUT_SIZE - 1);
+    float x = clamp((value - P.transfer_lo) * P.transfer_inv_range, 0.0f, 1.0f) * float(VX_TF_LUT_SIZE - 1);
     int i = min(int(x), VX_TF_LUT_SIZE - 2);
     return mix(vx_tf_lut(i), vx_tf_lut(i + 1), x - float(i));
 }
 
 // Extinction per world unit for a raw (reconstructed) grid value.
 VX_INLINE float vx_value_extinction(float v) {
-    if (P.tf_domain.z > 0.5f) v = vx_tf_eval(v).w;
-    return v * P.material.w;
+    if (P.use_transfer != 0) v = vx_tf_eval(v).w;
+    return v * P.density_scale;
 }
 
 VX_INLINE float vx_extinction(VxCorners c) {
@@ -38,9 +38,9 @@ VX_INLINE float vx_extinction(VxCorners c) {
 
 // Albedo at a sample: the material's, tinted by the transfer function and the colour grid.
 vec3 vx_albedo(VxCorners c) {
-    vec3 a = vec3(P.material);
-    if (P.tf_domain.z > 0.5f) a *= vec3(vx_tf_eval(VX_TRILINEAR(vx_atlas_density, c)));
-    if (P.tf_domain.w > 0.5f) a *= VX_TRILINEAR(vx_atlas_color, c);
+    vec3 a = P.albedo;
+    if (P.use_transfer != 0) a *= vec3(vx_tf_eval(VX_TRILINEAR(vx_atlas_density, c)));
+    if (P.use_color_grid != 0) a *= VX_TRILINEAR(vx_atlas_color, c);
     return a;
 }
 
@@ -50,8 +50,8 @@ vec3 vx_albedo(VxCorners c) {
 vec3 vx_emission(VxCorners c) {
     vec3 sum = vec3(0.0f);
     VxCorners cs = c;
-    for (int s = 0; s < P.emission_map.x; ++s) {
-        cs.base = c.base + s * P.emission_map.y;
+    for (int s = 0; s < P.emission_sources; ++s) {
+        cs.base = c.base + s * P.emission_source_floats;
         float x = clamp(VX_TRILINEAR(vx_atlas_emission, cs) * P.emission_domain[s], 0.0f, 1.0f) *
                   float(VX_EMISSION_LUT_SIZE - 1);
         int i = min(int(x), VX_EMISSION_LUT_SIZE - 2);
@@ -65,27 +65,26 @@ vec3 vx_emission(VxCorners c) {
 // light in `wi` and the distance to it in `dist` (a huge value for directional lights).
 // Point-light falloff is clamped at distance r_min so a light inside the medium stays finite.
 vec3 vx_light_radiance(VxLight L, vec3 x, float r_min, VX_OUT(vec3) wi, VX_OUT(float) dist) {
-    int type = int(L.pos_type.w);
-    if (type == VX_LIGHT_DIRECTIONAL) {
-        wi = -vec3(L.dir_cos);
+    if (L.type == VX_LIGHT_DIRECTIONAL) {
+        wi = -L.direction;
         dist = 1e30f;
-        return vec3(L.color);
+        return L.color;
     }
-    vec3 to_light = vec3(L.pos_type) - x;
+    vec3 to_light = L.position - x;
     float d2 = dot(to_light, to_light);
     dist = sqrt(d2);
     wi = dist > 0.0f ? to_light / dist : vec3(0.0f, 1.0f, 0.0f);
-    vec3 e = vec3(L.color) / max(d2, r_min * r_min);
-    if (type == VX_LIGHT_SPOT) {
-        float cos_angle = dot(-wi, vec3(L.dir_cos));
-        e *= smoothstep(L.dir_cos.w, L.color.w, cos_angle);
+    vec3 e = L.color / max(d2, r_min * r_min);
+    if (L.type == VX_LIGHT_SPOT) {
+        float cos_angle = dot(-wi, L.direction);
+        e *= smoothstep(L.cos_outer, L.cos_inner, cos_angle);
     }
     return e;
 }
 
 // The march's version: the falloff clamps at half a march step.
 vec3 vx_light_incident(VxLight L, vec3 x, VX_OUT(vec3) wi, VX_OUT(float) dist) {
-    return vx_light_radiance(L, x, 0.5f * P.march.x, wi, dist);
+    return vx_light_radiance(L, x, 0.5f * P.step, wi, dist);
 }
 
 // Rec. 709 luminance.

@@ -36,6 +36,15 @@
 #define VX_SIMD_SUM(var) VX_PRAGMA(omp simd reduction(+ : var))
 #endif
 
+// VX_CHECK_INDEX(i, n, what) traps an index i outside [0, n) in a C++ build with VX_BOUNDS_CHECK
+// (the backend's array accessors check the same way); elsewhere it is nothing.
+#if defined(VX_GLSL) || !defined(VX_BOUNDS_CHECK)
+#define VX_CHECK_INDEX(i, n, what)
+#else
+#define VX_CHECK_INDEX(i, n, what) \
+    if ((i) < 0 || (i) >= (n)) vx_bounds_trap(what, i, n)
+#endif
+
 #define VX_PI 3.14159265f
 #define VX_BRICK 8                 // voxels per brick edge (one OpenVDB leaf)
 #define VX_BRICK_STRIDE 9          // stored edge: brick + 1-voxel apron on the + side for trilinear

@@ -2,7 +2,7 @@
 // cell of one slice of a sweep (VxPropParams Q). The slice's value is computed from the previous
 // slice where the ray from the light (or, for the eye sweep, towards the camera) crosses it:
 //  - direct sweep (1 channel): luminance, one bilinear read, no blur, so shadow edges stay hard;
-//  - indirect sweep (3 channels): RGB blurred over Q.slice.w taps in a cone (Kniss Eq. 9) and
+//  - indirect sweep (3 channels): RGB blurred over Q.tap_count taps in a cone (Kniss Eq. 9) and
 //    attenuated by the transport colour (Kniss Eq. 8);
 //  - eye sweep (3 channels): the indirect light blended with the blurred light behind the cell.
 // The optical depth of a step is the trapezoid rule over the extinction along it times its world
@@ -10,7 +10,7 @@
 // Several lights share the volume (Sunden 2015): each sweep adds vx_prop_weight times its value,
 // tinted by Q.tint, so a negative weight takes a light out again.
 // Accessors: vx_prop_sigma (the sweep grid's extinction per world unit, one float per cell),
-// vx_prop_prev (the previous slice, Q.dims.w floats per cell), vx_prop_in (the eye sweep's input,
+// vx_prop_prev (the previous slice, Q.channels floats per cell), vx_prop_in (the eye sweep's input,
 // 3 floats per cell of the whole grid), vx_noise (perturbation table).
 #pragma once
 #include "vx_noise.h"
@@ -54,9 +54,9 @@ VX_INLINE float vx_sweep_weight(vec3 f, int axis, int sign, bool blend) {
 // Grid point with coordinate s along the sweep axis and (a, b) along u and v.
 VX_INLINE vec3 vx_prop_point(float s, float a, float b) {
     vec3 q;
-    q[Q.slice.x] = s;
-    q[vx_axis_u(Q.slice.x)] = a;
-    q[vx_axis_v(Q.slice.x)] = b;
+    q[Q.axis] = s;
+    q[vx_axis_u(Q.axis)] = a;
+    q[vx_axis_v(Q.axis)] = b;
     return q;
 }
 
@@ -85,14 +85,14 @@ VX_INLINE float vx_prop_sigma_at(vec3 q) {
 
 // Extinction at in-slice coordinates (a, b) of slice `slice`, bilinear between cell centres.
 VX_INLINE float vx_prop_sigma_slice(float a, float b, int slice) {
-    int u = vx_axis_u(Q.slice.x);
-    int v = vx_axis_v(Q.slice.x);
+    int u = vx_axis_u(Q.axis);
+    int v = vx_axis_v(Q.axis);
     float ga = a - 0.5f;
     float gb = b - 0.5f;
     float fa = floor(ga);
     float fb = floor(gb);
     ivec3 c;
-    c[Q.slice.x] = slice;
+    c[Q.axis] = slice;
     c[u] = int(fa);
     c[v] = int(fb);
     ivec3 du = ivec3(0);
@@ -108,8 +108,8 @@ VX_INLINE float vx_prop_sigma_slice(float a, float b, int slice) {
 // noise), so shadows follow the added detail. `n` is the noise at q.
 VX_INLINE float vx_prop_extinction(vec3 q, vec4 n) {
     if (!vx_perturbed()) return vx_prop_sigma_at(q);
-    // Displacement is in index voxels; Q.atten.w converts to grid cells.
-    vec3 shifted = vx_displaced() ? q + vec3(n) * (P.noise_offset.w * Q.atten.w) : q;
+    // Displacement is in index voxels; Q.cells_per_voxel converts to grid cells.
+    vec3 shifted = vx_displaced() ? q + vec3(n) * (P.displacement * Q.cells_per_voxel) : q;
     return vx_perturb_extinction(vx_prop_sigma_at(shifted), n);
 }
 
@@ -124,7 +124,7 @@ VX_INLINE float vx_prop_r_min() { return 0.5f * length(vec3(Q.grid_to_world * ve
 // intensity times the transmittance so far): smooth where the radiance itself is singular, so
 // the bilinear reads stay accurate next to the light. This is the factor between the two.
 VX_INLINE float vx_prop_distance2(vec3 q) {
-    vec3 r = mat3(Q.grid_to_world) * (q - vec3(Q.source));
+    vec3 r = mat3(Q.grid_to_world) * (q - Q.source);
     float r_min = vx_prop_r_min();
     return max(dot(r, r), r_min * r_min);
 }
@@ -133,27 +133,27 @@ VX_INLINE float vx_prop_distance2(vec3 q) {
 // sweep; luminance in x for the direct sweep; for a point or spot light times vx_prop_distance2),
 // or the eye sweep's own input at the nearest cell.
 vec3 vx_prop_outside(vec3 q) {
-    if (Q.flow.w > 0.5f) {
-        ivec3 c = clamp(ivec3(floor(q)), ivec3(0), ivec3(Q.dims) - ivec3(1));
+    if (Q.eye_sweep != 0) {
+        ivec3 c = clamp(ivec3(floor(q)), ivec3(0), Q.dims - ivec3(1));
         int i = 3 * vx_prop_index(c);
         return vec3(vx_prop_in(i), vx_prop_in(i + 1), vx_prop_in(i + 2));
     }
     vec3 wi;
     float dist;
     vec3 e = vx_light_radiance(Q.light, vec3(Q.grid_to_world * vec4(q, 1.0f)), vx_prop_r_min(), wi, dist);
-    if (Q.mode.x != 0) e *= vx_prop_distance2(q);
-    return Q.dims.w == 1 ? vec3(vx_luminance(e), 0.0f, 0.0f) : e;
+    if (Q.per_cell_flow != 0) e *= vx_prop_distance2(q);
+    return Q.channels == 1 ? vec3(vx_luminance(e), 0.0f, 0.0f) : e;
 }
 
 // The previous slice's value at cell (i, j) of the slice; `prev` is that slice's index (-1: the
 // virtual slice before the grid, all outside).
 VX_INLINE vec3 vx_prop_prev_cell(int i, int j, int prev) {
-    int u = vx_axis_u(Q.slice.x);
-    int v = vx_axis_v(Q.slice.x);
-    if (prev < 0 || prev >= Q.dims[Q.slice.x] || i < 0 || j < 0 || i >= Q.dims[u] || j >= Q.dims[v])
+    int u = vx_axis_u(Q.axis);
+    int v = vx_axis_v(Q.axis);
+    if (prev < 0 || prev >= Q.dims[Q.axis] || i < 0 || j < 0 || i >= Q.dims[u] || j >= Q.dims[v])
         return vx_prop_outside(vx_prop_point(float(prev) + 0.5f, float(i) + 0.5f, float(j) + 0.5f));
-    int at = (j * Q.dims[u] + i) * Q.dims.w;
-    if (Q.dims.w == 1) return vec3(vx_prop_prev(at), 0.0f, 0.0f);
+    int at = (j * Q.dims[u] + i) * Q.channels;
+    if (Q.channels == 1) return vec3(vx_prop_prev(at), 0.0f, 0.0f);
     return vec3(vx_prop_prev(at), vx_prop_prev(at + 1), vx_prop_prev(at + 2));
 }
 
@@ -171,53 +171,53 @@ VX_INLINE vec3 vx_prop_prev_at(float a, float b, int prev) {
                mix(vx_prop_prev_cell(i, j + 1, prev), vx_prop_prev_cell(i + 1, j + 1, prev), ta), tb);
 }
 
-// Grid point of cell (i, j) of slice Q.slice.z.
+// Grid point of cell (i, j) of slice Q.slice.
 VX_INLINE vec3 vx_prop_cell_point(int i, int j) {
-    return vx_prop_point(float(Q.slice.z) + 0.5f, float(i) + 0.5f, float(j) + 0.5f);
+    return vx_prop_point(float(Q.slice) + 0.5f, float(i) + 0.5f, float(j) + 0.5f);
 }
 
 // A point or spot light's flow through grid point x (a light exactly at x flows along +z).
 VX_INLINE vec3 vx_prop_light_flow(vec3 x) {
-    vec3 f = x - vec3(Q.source);
+    vec3 f = x - Q.source;
     return f == vec3(0.0f) ? vec3(0.0f, 0.0f, 1e-6f) : f;
 }
 
-// What cell (i, j) adds of its value: the sweep's weight; for a point or spot light (Q.mode.x)
+// What cell (i, j) adds of its value: the sweep's weight; for a point or spot light (Q.per_cell_flow)
 // times the share of the cell's own flow that this sweep carries, so that a light inside or
 // beside the volume lights each cell from the sweeps facing it, and over vx_prop_distance2, back
 // to radiance.
 VX_INLINE float vx_prop_weight(int i, int j) {
-    if (Q.mode.x == 0) return Q.flow.z;
+    if (Q.per_cell_flow == 0) return Q.weight;
     vec3 x = vx_prop_cell_point(i, j);
-    return Q.flow.z * vx_sweep_weight(vx_prop_light_flow(x), Q.slice.x, Q.slice.y, Q.mode.y != 0) / vx_prop_distance2(x);
+    return Q.weight * vx_sweep_weight(vx_prop_light_flow(x), Q.axis, Q.direction, Q.blend_axes != 0) / vx_prop_distance2(x);
 }
 
-// The value of cell (i, j) of slice Q.slice.z.
+// The value of cell (i, j) of slice Q.slice.
 VX_INLINE vec3 vx_prop_cell(int i, int j) {
-    int axis = Q.slice.x;
+    int axis = Q.axis;
     int u = vx_axis_u(axis);
     int v = vx_axis_v(axis);
-    int s = Q.slice.z;
-    int prev = s - Q.slice.y;
+    int s = Q.slice;
+    int prev = s - Q.direction;
     vec3 x = vx_prop_cell_point(i, j);
     // The direction light flows through x, in grid units, scaled to advance one slice.
-    vec3 flow = Q.source.w > 0.5f ? (x - vec3(Q.source)) * Q.flow.x : vec3(Q.source);
+    vec3 flow = Q.source_is_position != 0 ? (x - Q.source) * Q.flow : Q.source;
     vec3 back = flow / max(abs(flow[axis]), 1e-6f);
     vec3 p = x - back;
     // A point or spot light's sweep starts at the light's own plane (Sunden 2015, Fig. 5): cells
-    // before it, and cells too far sideways (Q.mode.z) for any cell this sweep weights to read,
+    // before it, and cells too far sideways (Q.max_slope) for any cell this sweep weights to read,
     // stay dark; the first slice past the plane takes the light straight from its source.
     bool first = false;
-    if (Q.mode.x != 0) {
+    if (Q.per_cell_flow != 0) {
         vec3 f = vx_prop_light_flow(x);
         // (Slope from one slice behind the light: the first slice past it may be much closer
         // than a cell, and its steep neighbours are read by the next slice.)
-        if (float(Q.slice.y) * f[axis] <= 0.0f || max(abs(f[u]), abs(f[v])) > float(Q.mode.z) * (abs(f[axis]) + 1.0f))
+        if (float(Q.direction) * f[axis] <= 0.0f || max(abs(f[u]), abs(f[v])) > float(Q.max_slope) * (abs(f[axis]) + 1.0f))
             return vec3(0.0f);
-        first = float(Q.slice.y) * (float(prev) + 0.5f - Q.source[axis]) <= 0.0f;
+        first = float(Q.direction) * (float(prev) + 0.5f - Q.source[axis]) <= 0.0f;
         if (first) {
             back = f;
-            p = vec3(Q.source);
+            p = Q.source;
         }
     }
     float step_world = length(mat3(Q.grid_to_world) * back);
@@ -246,18 +246,18 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     float tau = sum * step_world / float(pieces);
 
     // Transmittance of the step per channel (the transport colour's, Kniss Eq. 8, for indirect light).
-    vec3 k = vec3(Q.atten);
-    if (Q.dims.w == 3 && vx_perturbed() && P.noise_amp.y != 0.0f)
-        k = -log(vx_perturb_transport(vec3(P.indirect), nx));
+    vec3 k = Q.atten;
+    if (Q.channels == 3 && vx_perturbed() && P.noise_transport != 0.0f)
+        k = -log(vx_perturb_transport(P.transport, nx));
     vec3 transmitted = vec3(vx_exp(-k.x * tau), vx_exp(-k.y * tau), vx_exp(-k.z * tau));
     if (first) return vx_prop_outside(x) * transmitted;
     // Blur: taps on a disc around p in the previous slice, radius = step length * tan(half-angle).
-    float radius = length(back) * Q.flow.y;
+    float radius = length(back) * Q.blur_tan;
     vec3 incoming = vec3(0.0f);
-    for (int t = 0; t < Q.slice.w; ++t)
-        incoming += Q.taps[t].z * vx_prop_prev_at(p[u] + radius * Q.taps[t].x, p[v] + radius * Q.taps[t].y, prev);
+    for (int t = 0; t < Q.tap_count; ++t)
+        incoming += Q.taps[t].weight * vx_prop_prev_at(p[u] + radius * Q.taps[t].offset.x, p[v] + radius * Q.taps[t].offset.y, prev);
 
-    if (Q.flow.w > 0.5f) {
+    if (Q.eye_sweep != 0) {
         // Eye sweep (Ropinski Sec. 4.1, last paragraphs): the cell keeps its own indirect light in
         // proportion to its opacity and passes on the light from behind it for the rest.
         float alpha = 1.0f - vx_exp(-tau);

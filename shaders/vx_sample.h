@@ -10,12 +10,11 @@ VX_INLINE uint vx_brick_hash(ivec3 b) {
 
 // Atlas slot of brick `b`, or VX_PAGE_EMPTY.
 VX_INLINE int vx_page_lookup(ivec3 b) {
-    if (b.x < P.bricks_min.x || b.y < P.bricks_min.y || b.z < P.bricks_min.z ||
-        b.x > P.bricks_max.x || b.y > P.bricks_max.y || b.z > P.bricks_max.z)
+    if (any(lessThan(b, P.bricks_min)) || any(greaterThan(b, P.bricks_max)))
         return VX_PAGE_EMPTY;
-    uint mask = uint(P.page.x - 1);
+    uint mask = uint(P.page_capacity - 1);
     uint h = vx_brick_hash(b) & mask;
-    for (int probe = 0; probe <= P.page.y; ++probe) {
+    for (int probe = 0; probe <= P.page_max_probe; ++probe) {
         ivec4 e = vx_page_entry(int(h));
         if (e.w == VX_PAGE_EMPTY) return VX_PAGE_EMPTY;
         if (e.x == b.x && e.y == b.y && e.z == b.z) return e.w;

@@ -89,14 +89,15 @@ VX_INLINE VxU96 vx_sat_corners(int plane, ivec3 a, ivec3 b) {
 }
 
 VX_INLINE float vx_sat_quantum(int plane) {
-    return plane == 0 ? S.quantum.x : (plane == 1 ? S.quantum.y : (plane == 2 ? S.quantum.z : S.quantum.w));
+    VX_CHECK_INDEX(plane, S.planes, "SAT plane");
+    return S.quantum[plane];
 }
 
 // Sum over the cells of box [lo, hi) (clamped to the grid; cells outside are empty), in the
 // plane's value units: eight lookups, exact until the final float conversion.
 VX_INLINE float vx_sat_box(int plane, ivec3 lo, ivec3 hi) {
-    ivec3 a = clamp(lo, ivec3(0), ivec3(S.dims));
-    ivec3 b = clamp(hi, ivec3(0), ivec3(S.dims));
+    ivec3 a = clamp(lo, ivec3(0), S.dims);
+    ivec3 b = clamp(hi, ivec3(0), S.dims);
     if (a.x >= b.x || a.y >= b.y || a.z >= b.z) return 0.0f;
     return vx_u96_float(vx_sat_corners(plane, a, b)) * vx_sat_quantum(plane);
 }
@@ -121,21 +122,21 @@ struct VxCuboid {
 // 1/r_i^2 - 1/r_i+1^2 (never negative, so the float sum has no cancellation; zero for a cube
 // repeated when n > R).
 VxCuboid vx_shell_cuboid(int i) {
-    int n = int(S.shells.x);
-    int k = int(floor(float(i) * S.shells.y / float(n)));
-    int k_next = int(floor(float(i + 1) * S.shells.y / float(n)));
+    int n = S.shells;
+    int k = int(floor(float(i) * S.shell_radius / float(n)));
+    int k_next = int(floor(float(i + 1) * S.shell_radius / float(n)));
     float r = float(k) + 0.5f;
     float r_next = float(k_next) + 0.5f;
     VxCuboid q;
     q.lo = ivec3(-k);
     q.hi = ivec3(k + 1);
-    q.weight = (1.0f / (r * r) - (i < n ? 1.0f / (r_next * r_next) : 0.0f)) * S.shells.z / 24.0f;
+    q.weight = (1.0f / (r * r) - (i < n ? 1.0f / (r_next * r_next) : 0.0f)) * S.cell_world / 24.0f;
     return q;
 }
 
 float vx_ambient_tau(ivec3 c, int plane) {
     float tau = 0.0f;
-    for (int i = 1; i <= int(S.shells.x); ++i) {
+    for (int i = 1; i <= S.shells; ++i) {
         VxCuboid q = vx_shell_cuboid(i);
         tau += q.weight * vx_sat_box(plane, c + q.lo, c + q.hi);
     }
@@ -161,9 +162,9 @@ struct VxCone {
 VxCone vx_cone_from(ivec3 c, VxLight L) {
     VxCone k;
     vec3 w;
-    bool directional = int(L.pos_type.w) == VX_LIGHT_DIRECTIONAL;
-    if (directional) w = vec3(S.world_to_light * vec4(-vec3(L.dir_cos), 0.0f));
-    else w = vec3(S.world_to_light * vec4(vec3(L.pos_type), 1.0f)) - (vec3(c) + vec3(0.5f));
+    bool directional = L.type == VX_LIGHT_DIRECTIONAL;
+    if (directional) w = vec3(S.world_to_light * vec4(-L.direction, 0.0f));
+    else w = vec3(S.world_to_light * vec4(L.position, 1.0f)) - (vec3(c) + vec3(0.5f));
     vec3 aw = abs(w);
     k.axis = aw.x >= aw.y && aw.x >= aw.z ? 0 : (aw.y >= aw.z ? 1 : 2);
     k.forward = w[k.axis] > 0.0f;
@@ -183,9 +184,9 @@ VxCone vx_cone_from(ivec3 c, VxLight L) {
 // longer than the one before), rounded to cell faces. The same for every cell of a pass.
 // `ratio_j` is (1 + growth)^j, kept by the caller's loop (pow per cuboid would dominate).
 VX_INLINE float vx_cone_boundary(int j, float ratio_j, float span) {
-    float n = S.cone.y;
-    float g = S.cone.z;
-    float f = g > 1e-4f ? (ratio_j - 1.0f) / (S.cone.w - 1.0f) : float(j) / n;
+    float n = float(S.cone_cuboids);
+    float g = S.cone_growth;
+    float f = g > 1e-4f ? (ratio_j - 1.0f) / (S.cone_growth_total - 1.0f) : float(j) / n;
     return 0.5f + floor(f * (span - 0.5f) + 0.5f);
 }
 
@@ -193,7 +194,7 @@ VX_INLINE float vx_cone_boundary(int j, float ratio_j, float span) {
 // primary axis the cells the segment passes through; across it the ray's extent widened by the
 // cone radius at t1, rounded to cell faces and at least one cell wide.
 VX_INLINE VxCuboid vx_cone_cuboid(VxCone k, float t0, float t1) {
-    float radius = S.cone.x * t1 * k.wh_length;
+    float radius = S.cone_tan * t1 * k.wh_length;
     vec3 e0 = vec3(0.5f) + k.wh * t0;
     vec3 e1 = vec3(0.5f) + k.wh * t1;
     VxCuboid q;
@@ -240,8 +241,8 @@ float vx_cone_tau(ivec3 c, VxLight L) {
     float tau = vx_cone_start(c, k);
     float t0 = 0.5f;
     float ratio_j = 1.0f;
-    for (int j = 1; j <= int(S.cone.y); ++j) {
-        ratio_j *= 1.0f + S.cone.z;
+    for (int j = 1; j <= S.cone_cuboids; ++j) {
+        ratio_j *= 1.0f + S.cone_growth;
         VxCuboid q;
         if (vx_cone_next(k, j, ratio_j, t0, q)) tau += q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
     }

@@ -1,52 +1,98 @@
-// Plain data shared by both backends. Every member is a vec4/ivec4/mat4 so that the std430
-// layout of the GL buffers and the C++ struct layout are the same bytes.
+// Plain data shared by both backends: the kernel's parameters, one named member per value, and
+// the structs its arrays hold. The GL buffers' std140/std430 layouts and the C++ layouts are the
+// same bytes (see the layout rule below).
 #pragma once
 #include "vx_prelude.h"
 
-// One light. pos_type: xyz world position (point/spot), w = VX_LIGHT_*.
-// dir_cos: xyz unit world direction the light travels (directional/spot),
-//          w = cos(outer cone half-angle) for spots.
-// color: rgb = colour * intensity (scene-linear, unclamped), w = cos(inner half-angle) for spots.
+// Layout: the structs below are uniform blocks (std140) or storage-buffer arrays (std430) on the
+// GL side and plain C++ structs on the CPU side, the same bytes on both. Each line of members
+// fills 16 bytes: a mat4, a vec4, four 4-byte scalars, or a vec3/ivec3 and one scalar after it.
+// std140 puts a vector, matrix or struct at a multiple of 16 bytes where C++ packs it at 4, so
+// kernel_types.h checks that every such member already sits there. Flags are ints (a GLSL bool
+// is 4 bytes, a C++ bool 1).
+
+// One light.
 struct VxLight {
-    vec4 pos_type;
-    vec4 dir_cos;
-    vec4 color;
+    vec3 position;          // world (point and spot lights; 0 for directional)
+    int type;               // VX_LIGHT_*
+    vec3 direction;         // unit world direction the light travels (directional and spot)
+    float cos_outer;        // cos(outer cone half-angle) (spot)
+    vec3 color;             // colour * intensity (scene-linear, unclamped)
+    float cos_inner;        // cos(inner half-angle) (spot)
 };
 
 // Everything the march needs besides the data arrays.
 struct VxParams {
     mat4 camera_to_world;   // camera looks down -Z, +Y up
     mat4 world_to_index;    // affine inverse of the grid's index-to-world transform
-    vec4 camera_frame;      // x = tan(fov_y / 2), y = aspect (w / h), z = width, w = height
-    vec4 march;             // x = step (world units), y = shadow step (world units),
-                            // z = transmittance cutoff, w = HG anisotropy g
-    vec4 material;          // rgb = albedo, w = density (extinction) scale
-    ivec4 emission_map;     // x = emission sources (0 = none), y = atlas floats per source channel
-    vec4 emission_domain;   // per source (component s): 1 / the largest value of its grid in this frame
-                            // (0: it emits nowhere), mapping grid values onto its table
-    vec4 tf_domain;         // x = value at LUT entry 0, y = 1 / (value range), z = 1 if the LUT is used,
-                            // w = 1 if a colour (Cd) grid is bound
-    ivec4 bricks_min;       // xyz = lowest occupied brick coordinate, w = light count
-    ivec4 bricks_max;       // xyz = highest occupied brick coordinate, w = shadow mode VX_SHADOWS_*
-    ivec4 page;             // x = page-table capacity (power of two), y = max probe length,
-                            // z = number of point and spot lights
-    vec4 ambient;           // rgb = ambient light radiance (light type "ambient"), w = 1 if any
     mat4 world_to_cache;    // world -> light-cache cell coordinates (cell centres at i + 0.5)
-    ivec4 cache_dims;       // xyz = light-cache cells (0 = no cache), w = floats per cell
-    ivec4 cache_map;        // x = first ambient-occlusion channel (-1 none), y = 3 if AO is RGB
-                            // (colour bleeding) else 1, z = first shadow channel (-1 none)
-    // The illumination volume (propagation shadows): direct luminance per cell, then the indirect
-    // RGB block, possibly at a coarser (chroma-subsampled) resolution.
     mat4 world_to_illum;    // world -> illumination-volume cell coordinates (cell centres at i + 0.5)
-    ivec4 illum_dims;       // xyz = luminance cells (0 = no volume), w = chroma subsampling factor (1 or 2)
-    ivec4 chroma_dims;      // xyz = indirect cells, w = first float of the indirect block
-    vec4 indirect;          // rgb = transport colour, w = indirect strength / 4pi (0 = no indirect light)
-    vec4 surface;           // Kniss Eq. 11: x = gradient where surface shading starts, y = 1 / (gradient
-                            // where it is full - x) (0 = off), z = specular weight, w = shininess
-    vec4 noise_scale;       // perturbation: x = first-octave noise texels per world unit, y = octaves
-                            // (0 = off), z = lacunarity, w = gain
-    vec4 noise_offset;      // xyz = world offset of the noise (animation), w = displacement in index voxels
-    vec4 noise_amp;         // x = extinction amplitude, y = transport-colour amplitude
+
+    float tan_half_fov;     // tan(vertical field of view / 2)
+    float aspect;           // width / height
+    int width;              // pixels
+    int height;
+
+    float step;             // march step, world units
+    float shadow_step;      // ray-marched shadows' step, world units
+    float transmittance_cutoff;
+    float anisotropy;       // Henyey-Greenstein g
+
+    vec3 albedo;
+    float density_scale;    // extinction per unit of the density grid
+
+    ivec3 bricks_min;       // lowest occupied brick coordinate
+    int page_capacity;      // page-table entries (a power of two)
+    ivec3 bricks_max;       // highest occupied brick coordinate
+    int page_max_probe;     // longest probe sequence in the page table
+
+    int light_count;        // lights in the light array (ambient lights are summed into `ambient`)
+    int local_light_count;  // of which point and spot lights
+    int shadow_mode;        // VX_SHADOWS_*
+    int emission_sources;   // emitting grids (0 = none)
+
+    vec3 ambient;           // ambient light radiance (light type "ambient")
+    int has_ambient;        // 1 if any ambient light is on
+
+    vec4 emission_domain;   // per source s (component s): 1 / the largest value of its grid in this
+                            // frame (0: it emits nowhere), mapping grid values onto its table
+
+    float transfer_lo;      // grid value at transfer-function LUT entry 0
+    float transfer_inv_range;  // 1 / (value range of the LUT)
+    int use_transfer;       // 1 if the transfer-function LUT is used
+    int use_color_grid;     // 1 if a colour (Cd) grid is bound
+
+    ivec3 cache_dims;       // light-cache cells (0 = no cache)
+    int cache_floats;       // floats per light-cache cell
+    int ao_channel;         // first ambient-occlusion channel (-1: none)
+    int ao_channels;        // 3 if AO is RGB (colour bleeding), else 1
+    int shadow_channel;     // first per-light shadow channel (-1: none)
+    int emission_source_floats;  // atlas floats per emission source
+
+    // The illumination volume (propagation shadows): direct RGB per cell, then the indirect RGB
+    // block, possibly at a coarser (chroma-subsampled) resolution.
+    ivec3 illum_dims;       // direct-light cells (0 = no volume)
+    int chroma_factor;      // indirect block's subsampling (1 or 2)
+    ivec3 chroma_dims;      // indirect-light cells
+    int indirect_offset;    // first float of the indirect block
+    vec3 transport;         // transport colour
+    float indirect_weight;  // indirect strength / 4 pi (0 = no indirect light)
+
+    float surface_low;      // Kniss Eq. 11: gradient where surface shading starts
+    float surface_inv_range;  // 1 / (gradient where it is full - surface_low) (0 = off)
+    float specular;         // specular weight
+    float shininess;
+
+    vec3 noise_offset;      // perturbation: world offset of the noise (animation)
+    float displacement;     // displacement in index voxels
+    float noise_frequency;  // first-octave noise texels per world unit
+    int noise_octaves;      // 0 = no perturbation
+    float lacunarity;
+    float gain;
+    float noise_density;    // extinction amplitude
+    float noise_transport;  // transport-colour amplitude
+    int pad0;
+    int pad1;
 };
 
 // The light passes' parameters (Schlegel 2011): the extinction SAT over the light grid and the
@@ -55,14 +101,21 @@ struct VxParams {
 struct VxSatParams {
     mat4 light_to_world;    // light-grid coordinates -> world
     mat4 world_to_light;
-    ivec4 dims;             // xyz = light-grid cells, w = SAT planes (1 extinction, 4 with bleeding)
+    ivec3 dims;             // light-grid cells
+    int planes;             // SAT planes (1 extinction, 4 with bleeding)
     vec4 quantum;           // per SAT plane: the value of one integer unit (a power of two)
-    vec4 shells;            // x = shell count, y = neighbourhood radius in cells,
-                            // z = world edge of one cell, w = SAT plane the AO pass reads
-    vec4 cone;              // x = tan(cone half-angle), y = cuboids per cone, z = growth,
-                            // w = (1 + growth)^cuboids
-    ivec4 pass;             // x = light index (shadow pass), y = cache channel written,
-                            // z = floats per cache cell, w = unused
+    int shells;             // AO shell count
+    float shell_radius;     // AO neighbourhood radius, cells
+    float cell_world;       // world edge of one cell
+    int ao_plane;           // SAT plane the AO pass reads
+    float cone_tan;         // tan(cone half-angle)
+    int cone_cuboids;       // cuboids per cone
+    float cone_growth;      // each cuboid this much longer than the one before
+    float cone_growth_total;  // (1 + growth)^cuboids
+    int light;              // light index (shadow pass), -1 for ambient occlusion
+    int channel;            // cache channel written
+    int cache_floats;       // floats per cache cell
+    int pad0;
 };
 
 // One propagation sweep (Ropinski 2010, Sec. 4.1) over a grid of cells, slice by slice along an
@@ -73,26 +126,43 @@ struct VxSatParams {
 #define VX_MAX_TAPS 32
 // The second blend axis fades out before its steps move this many cells sideways per slice.
 #define VX_PROP_MAX_SLOPE 16.0f
+
+// One blur tap: an offset in the unit disc and its weight (the weights sum to 1).
+struct VxTap {
+    vec2 offset;
+    float weight;
+    float pad0;
+};
+
 struct VxPropParams {
     mat4 grid_to_world;
     mat4 world_to_grid;
-    ivec4 dims;             // xyz = cells, w = channels propagated (1 or 3)
-    ivec4 slice;            // x = axis, y = +1 / -1 (the way slices advance), z = slice written, w = blur taps
-    ivec4 strides;          // xyz = index step per cell along x, y, z of the extinction grid and eye input
-    ivec4 mode;             // x = 1: weight each cell by its own flow (point and spot lights),
-                            // y = 1: blend the two closest axes (Sunden 2015, Eq. 5), z = the
-                            // steepest slope (cells sideways per slice) a point sweep computes, w = unused
-    vec4 source;            // xyz = grid position of the light (or camera), or for a directional light the
-                            // grid-space direction it travels; w = 1 for a position, 0 for a direction
-    vec4 flow;              // x = +1 light sweep (flow away from the source), -1 eye sweep (towards it);
-                            // y = tan(blur cone half-angle), z = weight this sweep adds (negative:
-                            // subtracts), w = 1 for the eye sweep
-    vec4 atten;             // xyz = optical-depth multiplier per channel (1 direct, -ln(transport) indirect),
-                            // w = grid cells per index voxel (the perturbation's displacement is in voxels)
-    vec4 tint;              // xyz = RGB added per unit propagated (direct: the light's colour over its
-                            // luminance; indirect and eye: 1), w = unused
+    ivec3 dims;             // cells
+    int channels;           // propagated per cell (1 or 3)
+    int axis;               // the sweep axis
+    int direction;          // +1 / -1: the way slices advance
+    int slice;              // the slice written
+    int tap_count;          // blur taps
+    ivec3 strides;          // index step per cell along x, y, z of the extinction grid and eye input
+    int max_slope;          // the steepest slope (cells sideways per slice) a point sweep computes
+    int per_cell_flow;      // 1: weight each cell by its own flow (point and spot lights)
+    int blend_axes;         // 1: blend the two closest axes (Sunden 2015, Eq. 5)
+    int eye_sweep;          // 1 for the eye sweep (flow towards the camera)
+    int pad0;
+    vec3 source;            // grid position of the light (or camera), or for a directional light
+                            // the grid-space direction it travels
+    int source_is_position; // 1 for a position, 0 for a direction
+    float flow;             // +1 light sweep (flow away from the source), -1 eye sweep (towards it)
+    float blur_tan;         // tan(blur cone half-angle)
+    float weight;           // what this sweep adds (negative: subtracts)
+    float cells_per_voxel;  // grid cells per index voxel (the perturbation's displacement is in voxels)
+    vec3 atten;             // optical-depth multiplier per channel (1 direct, -ln(transport) indirect)
+    float pad1;
+    vec3 tint;              // RGB added per unit propagated (direct: the light's colour over its
+                            // luminance; indirect and eye: 1)
+    float pad2;
     VxLight light;          // the light (world), for the radiance that enters from outside the grid
-    vec4 taps[VX_MAX_TAPS]; // xy = offset in the unit disc, z = weight (the weights sum to 1)
+    VxTap taps[VX_MAX_TAPS];
 };
 
 // What one camera ray returns; the AOVs are kept separate so the EXR writer can lay them out.

@@ -1,6 +1,9 @@
 // CPU backend: the shared kernel with TBB: the march over 16x16 pixel tiles, the SAT scan
 // (summed_volume.cpp), the light passes (cpu_light_pass.cpp), the propagation sweeps
 // (cpu_propagation.cpp) and the grade stage's colour transforms (cpu_color_transform.cpp).
+#include <cstdio>
+#include <cstdlib>
+
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
@@ -21,8 +24,8 @@ public:
     RenderImage march(const KernelInputs& in) override {
         kernel::CpuKernel k = bindCpuKernel(in);
         RenderImage img;
-        img.width = int(in.params.camera_frame.z);
-        img.height = int(in.params.camera_frame.w);
+        img.width = in.params.width;
+        img.height = in.params.height;
         img.pixels.resize(size_t(img.width) * img.height);
         tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 16, 0, img.width, 16),
                           [&](const tbb::blocked_range2d<int>& r) {
@@ -47,19 +50,24 @@ public:
 
 }  // namespace
 
+[[noreturn]] void kernel::vx_bounds_trap(const char* what, int index, int size) {
+    std::fprintf(stderr, "voxlux: kernel %s index %d outside [0, %d)\n", what, index, size);
+    std::abort();
+}
+
 kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
     kernel::CpuKernel k;
     k.P = in.params;
-    k.density = in.atlas->density.data();
-    k.emission = in.atlas->emission.data();
-    k.color = in.atlas->color.data();
-    k.page = in.pages->entries.data();
-    k.lights = in.lights.data();
-    k.tf_lut = in.tf_lut.data();
-    k.emission_lut = in.emission_lut.data();
-    k.cache = in.light_cache ? in.light_cache->values.data() : nullptr;
-    k.illum = in.illumination ? in.illumination->values.data() : nullptr;
-    k.noise = in.noise.data();
+    k.density = in.atlas->density;
+    k.emission = in.atlas->emission;
+    k.color = in.atlas->color;
+    k.page = in.pages->entries;
+    k.lights = in.lights;
+    k.tf_lut = in.tf_lut;
+    k.emission_lut = in.emission_lut;
+    if (in.light_cache) k.cache = in.light_cache->values;
+    if (in.illumination) k.illum = in.illumination->values;
+    k.noise = in.noise;
     return k;
 }
 

@@ -22,17 +22,17 @@ constexpr int kRow = 16;  // cells per batch: one AVX-512 vector of 32-bit words
 std::vector<CpuKernel::VxCuboid> sharedStencil(CpuKernel& k, int light) {
     std::vector<CpuKernel::VxCuboid> stencil;
     if (light < 0) {
-        for (int i = 1; i <= int(k.S.shells.x); ++i) stencil.push_back(k.vx_shell_cuboid(i));
+        for (int i = 1; i <= k.S.shells; ++i) stencil.push_back(k.vx_shell_cuboid(i));
         return stencil;
     }
     const kernel::VxLight L = k.vx_light(light);
-    if (int(L.pos_type.w) != VX_LIGHT_DIRECTIONAL) return stencil;
+    if (L.type != VX_LIGHT_DIRECTIONAL) return stencil;
     const CpuKernel::VxCone cone = k.vx_cone_from(glm::ivec3(0), L);
     stencil.push_back(k.vx_cone_own_cell(cone));
     const float span = float(k.S.dims[cone.axis]) - 0.5f;
     float t0 = 0.5f, ratio_j = 1.0f;
-    for (int j = 1; j <= int(k.S.cone.y); ++j) {
-        ratio_j *= 1.0f + k.S.cone.z;
+    for (int j = 1; j <= k.S.cone_cuboids; ++j) {
+        ratio_j *= 1.0f + k.S.cone_growth;
         const float t1 = k.vx_cone_boundary(j, ratio_j, span);
         if (t1 <= t0) continue;
         stencil.push_back(k.vx_cone_cuboid(cone, t0, t1));
@@ -89,11 +89,11 @@ void addRowBoxes(CpuKernel& k, int plane, float quantum, const RowBoxes& r, int 
 void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
     CpuKernel k;
     k.S = pass.params;
-    k.sat = pass.sat->words.data();
-    k.lights = pass.lights->data();
+    k.sat = pass.sat->words;
+    k.lights = *pass.lights;
     const glm::ivec3 d = pass.params.dims;
-    const int light = pass.params.pass.x, channel = pass.params.pass.y;
-    const int plane = light < 0 ? int(pass.params.shells.w) : 0;
+    const int light = pass.params.light, channel = pass.params.channel;
+    const int plane = light < 0 ? pass.params.ao_plane : 0;
     const uint8_t* needed = pass.needed->data();
     const std::vector<CpuKernel::VxCuboid> stencil = sharedStencil(k, light);
     const float quantum = k.vx_sat_quantum(plane);
@@ -128,8 +128,8 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
                         t0[size_t(x)] = 0.5f;
                     }
                     float ratio_j = 1.0f;
-                    for (int j = 1; j <= int(kk.S.cone.y); ++j) {
-                        ratio_j *= 1.0f + kk.S.cone.z;
+                    for (int j = 1; j <= kk.S.cone_cuboids; ++j) {
+                        ratio_j *= 1.0f + kk.S.cone_growth;
                         // Each cell's cuboid (scalar geometry), then every box sum of the row at once.
                         for (int x = 0; x < d.x; ++x) {
                             CpuKernel::VxCuboid q;

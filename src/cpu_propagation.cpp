@@ -51,9 +51,9 @@ class RowBatch {
 public:
     RowBatch(kernel::CpuKernel& k, int nu, int nv) : k_(k), nu_(nu), nv_(nv) {
         const kernel::VxPropParams& Q = k.Q;
-        const int axis = Q.slice.x, u = k.vx_axis_u(axis), v = k.vx_axis_v(axis);
-        const glm::vec3 back = glm::vec3(Q.source) / std::max(std::abs(Q.source[axis]), 1e-6f);
-        usable_ = Q.source.w < 0.5f && Q.flow.w < 0.5f && !k.vx_perturbed() && Q.strides[u] == 1;
+        const int axis = Q.axis, u = k.vx_axis_u(axis), v = k.vx_axis_v(axis);
+        const glm::vec3 back = Q.source / std::max(std::abs(Q.source[axis]), 1e-6f);
+        usable_ = Q.source_is_position == 0 && Q.eye_sweep == 0 && !k.vx_perturbed() && Q.strides[u] == 1;
         if (!usable_) return;
         // The extinction samples of vx_prop_cell's composite trapezoid: at fraction f of the step
         // from p (previous slice) to the cell, a blend of the two slices' bilinear reads.
@@ -64,9 +64,9 @@ public:
             const float w = (q == 0 || q == pieces ? 0.5f : 1.0f) * step_world / float(pieces);
             sigma_.push_back({read(-back[u] * (1.0f - f), -back[v] * (1.0f - f), w), f});
         }
-        const float radius = glm::length(back) * Q.flow.y;
-        for (int t = 0; t < Q.slice.w; ++t)
-            taps_.push_back(read(-back[u] + radius * Q.taps[t].x, -back[v] + radius * Q.taps[t].y, Q.taps[t].z));
+        const float radius = glm::length(back) * Q.blur_tan;
+        for (int t = 0; t < Q.tap_count; ++t)
+            taps_.push_back(read(-back[u] + radius * Q.taps[t].offset.x, -back[v] + radius * Q.taps[t].offset.y, Q.taps[t].weight));
         lo_ = 0;
         hi_ = nu;
         for (const Read& r : taps_) narrow(r);
@@ -78,20 +78,20 @@ public:
     // the row's reads leave the slices (or the slice is the first).
     bool row(int j, int prev, float* out, int& first, int& last) const {
         const kernel::VxPropParams& Q = k_.Q;
-        if (!usable_ || prev < 0 || prev >= Q.dims[Q.slice.x] || lo_ >= hi_) return false;
+        if (!usable_ || prev < 0 || prev >= Q.dims[Q.axis] || lo_ >= hi_) return false;
         for (const Read& r : taps_)
             if (!rowInside(j, r)) return false;
         for (const SigmaRead& r : sigma_)
             if (!rowInside(j, r.at)) return false;
-        const int channels = Q.dims.w, axis = Q.slice.x;
+        const int channels = Q.channels, axis = Q.axis;
         const size_t sv = size_t(Q.strides[k_.vx_axis_v(axis)]), sa = size_t(Q.strides[axis]);
         float tau[kMaxRow];
         for (int base = lo_; base < hi_; base += kMaxRow) {
             const int n = std::min(kMaxRow, hi_ - base);
             std::fill(tau, tau + n, 0.0f);
             for (const SigmaRead& r : sigma_) {
-                const float* a0 = k_.prop_sigma + size_t(prev) * sa + size_t(j + r.at.dj) * sv + r.at.di;
-                const float* b0 = k_.prop_sigma + size_t(Q.slice.z) * sa + size_t(j + r.at.dj) * sv + r.at.di;
+                const float* a0 = k_.prop_sigma.data + size_t(prev) * sa + size_t(j + r.at.dj) * sv + r.at.di;
+                const float* b0 = k_.prop_sigma.data + size_t(Q.slice) * sa + size_t(j + r.at.dj) * sv + r.at.di;
                 const float ta = r.at.ta, tb = r.at.tb, f = r.slice, w = r.at.w;
 #pragma omp simd
                 for (int q = 0; q < n; ++q) {
@@ -104,7 +104,7 @@ public:
             for (int c = 0; c < channels; ++c) {
                 float acc[kMaxRow] = {};
                 for (const Read& r : taps_) {
-                    const float* p0 = k_.prop_prev + (size_t(j + r.dj) * nu_ + r.di) * channels + c;
+                    const float* p0 = k_.prop_prev.data + (size_t(j + r.dj) * nu_ + r.di) * channels + c;
                     const float* p1 = p0 + size_t(nu_) * channels;
                     const float ta = r.ta, tb = r.tb, w = r.w;
 #pragma omp simd
@@ -158,12 +158,12 @@ private:
 
 void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
     const kernel::VxPropParams& first = pass.sweeps.front();
-    const glm::ivec3 dims(first.dims);
-    const int channels = first.dims.w;
+    const glm::ivec3 dims = first.dims;
+    const int channels = first.channels;
     kernel::CpuKernel axes;
-    const int axis = first.slice.x, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
+    const int axis = first.axis, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
     const int nu = dims[u], nv = dims[v], slices = dims[axis];
-    const bool eye = first.flow.w > 0.5f;
+    const bool eye = first.eye_sweep != 0;
     float* block = volume.values.data() + pass.offset;   // RGB per cell
 
     // The pass reads the extinction (and the eye input) once for all its lights: for an x sweep,
@@ -192,10 +192,10 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
         auto lane = std::make_unique<Lane>();
         lane->k.P = *pass.march;
         lane->k.Q = Q;
-        lane->k.Q.strides = glm::ivec4(stride, 0);
-        lane->k.noise = pass.noise ? pass.noise->data() : nullptr;
-        lane->k.prop_sigma = x_major ? sigma.data() : pass.sigma->data();
-        lane->k.prop_in = !pass.input ? nullptr : x_major ? input.data() : pass.input->data();
+        lane->k.Q.strides = stride;
+        if (pass.noise) lane->k.noise = *pass.noise;
+        lane->k.prop_sigma = x_major ? sigma : *pass.sigma;
+        if (pass.input) lane->k.prop_in = x_major ? input : *pass.input;
         lane->prev.assign(size_t(nu) * nv * channels, 0.0f);
         lane->cur.assign(lane->prev.size(), 0.0f);
         lane->batch = std::make_unique<RowBatch>(lane->k, nu, nv);
@@ -203,12 +203,12 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
     }
 
     for (int step = 0; step < slices; ++step) {
-        const int slice = first.slice.y > 0 ? step : slices - 1 - step;
+        const int slice = first.direction > 0 ? step : slices - 1 - step;
         for (auto& lane : lanes) {
-            lane->k.Q.slice.z = slice;
-            lane->k.prop_prev = lane->prev.data();
+            lane->k.Q.slice = slice;
+            lane->k.prop_prev = lane->prev;
         }
-        const int previous = slice - first.slice.y;
+        const int previous = slice - first.direction;
         tbb::parallel_for(tbb::blocked_range<int>(0, nv), [&](const tbb::blocked_range<int>& rows) {
             std::vector<float> rgb(size_t(nu) * 3);   // the row's light from every lane of the pass
             for (int j = rows.begin(); j < rows.end(); ++j) {
@@ -218,15 +218,15 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
                     float* row = &lane->cur[size_t(j) * nu * channels];
                     int first_batched = 0, last_batched = 0;
                     lane->batch->row(j, previous, row, first_batched, last_batched);
-                    const bool per_cell_weight = k.Q.mode.x != 0;
-                    const glm::vec3 tint(k.Q.tint);
+                    const bool per_cell_weight = k.Q.per_cell_flow != 0;
+                    const glm::vec3 tint = k.Q.tint;
                     for (int i = 0; i < nu; ++i) {
                         float* slot = row + size_t(i) * channels;
                         if (i < first_batched || i >= last_batched) {
                             const glm::vec3 value = k.vx_prop_cell(i, j);
                             for (int ch = 0; ch < channels; ++ch) slot[ch] = value[ch];
                         }
-                        const float w = eye ? 1.0f : per_cell_weight ? k.vx_prop_weight(i, j) : k.Q.flow.z;
+                        const float w = eye ? 1.0f : per_cell_weight ? k.vx_prop_weight(i, j) : k.Q.weight;
                         for (int ch = 0; ch < 3; ++ch) rgb[size_t(i) * 3 + ch] += w * tint[ch] * slot[channels == 1 ? 0 : ch];
                     }
                 }

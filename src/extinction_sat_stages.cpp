@@ -146,12 +146,16 @@ void LightCacheStage::run(StageRun& run) {
     kernel::VxSatParams& S = pass.params;
     S.light_to_world = light_to_world;
     S.world_to_light = cache_.world_to_cache;
-    S.dims = glm::ivec4(grid.dims, sat.planes);
+    S.dims = grid.dims;
+    S.planes = sat.planes;
     S.quantum = sat.quantum;
-    S.pass.z = cache_.channels;
+    S.cache_floats = cache_.channels;
     const float cell_world = cellWorldSize(light_to_world);
-    S.cone = glm::vec4(std::tan(glm::radians(fx.cone.angle)), float(fx.cone.samples), fx.cone.growth,
-                       std::pow(1.0f + fx.cone.growth, float(fx.cone.samples)));
+    S.cone_tan = std::tan(glm::radians(fx.cone.angle));
+    S.cone_cuboids = fx.cone.samples;
+    S.cone_growth = fx.cone.growth;
+    S.cone_growth_total = std::pow(1.0f + fx.cone.growth, float(fx.cone.samples));
+    const std::string cone_key = hashBytes(glm::vec4(S.cone_tan, float(S.cone_cuboids), S.cone_growth, S.cone_growth_total));
     // Every channel is computed from this SAT; what else it depends on is added per channel.
     const std::string sat_key = std::to_string(sat_.generation()) + "|" + run.document["render"]["backend"].dump();
 
@@ -161,12 +165,15 @@ void LightCacheStage::run(StageRun& run) {
         const float longest = float(std::max({grid.dims.x, grid.dims.y, grid.dims.z}));
         const float radius_cells =
             std::min(ao.radius > 0.0f ? ao.radius / cell_world : 0.06f * float(grid_.resolution()), longest);
-        S.shells = glm::vec4(float(ao.shells), radius_cells, cell_world, 0.0f);
-        S.pass.x = -1;
+        S.shells = ao.shells;
+        S.shell_radius = radius_cells;
+        S.cell_world = cell_world;
+        S.light = -1;
         bool ran = false;
         for (int i = 0; i < cache_.ambient_width; ++i) {
-            S.shells.w = float(cache_.ambient_width == 3 ? i + 1 : 0);  // SAT plane: extinction or bleeding RGB
-            ran |= fillChannel(pass, cache_.ambient_channel + i, sat_key + "|ao|" + hashBytes(S.shells), run.backend);
+            S.ao_plane = cache_.ambient_width == 3 ? i + 1 : 0;  // SAT plane: extinction or bleeding RGB
+            const glm::vec4 shells(float(S.shells), S.shell_radius, S.cell_world, float(S.ao_plane));
+            ran |= fillChannel(pass, cache_.ambient_channel + i, sat_key + "|ao|" + hashBytes(shells), run.backend);
         }
         if (!ran) run.reused.push_back("ambient");
     }
@@ -176,10 +183,9 @@ void LightCacheStage::run(StageRun& run) {
             // Only where the light is (or, directional, where it points) shapes its cone: colour,
             // intensity and spot angles leave the cached optical depth as it is.
             const kernel::VxLight& light = inputs.lights[size_t(i)];
-            const glm::vec4 where = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL ? glm::vec4(glm::vec3(light.dir_cos), 0.0f)
-                                                                                 : glm::vec4(glm::vec3(light.pos_type), 1.0f);
-            S.pass.x = i;
-            if (!fillChannel(pass, cache_.shadow_channel + i, sat_key + "|cone|" + hashBytes(S.cone) + hashBytes(where), run.backend))
+            const glm::vec4 where = light.type == VX_LIGHT_DIRECTIONAL ? glm::vec4(light.direction, 0.0f) : glm::vec4(light.position, 1.0f);
+            S.light = i;
+            if (!fillChannel(pass, cache_.shadow_channel + i, sat_key + "|cone|" + cone_key + hashBytes(where), run.backend))
                 run.reused.push_back("shadow of light " + std::to_string(i));
         }
     }
@@ -188,7 +194,7 @@ void LightCacheStage::run(StageRun& run) {
 bool LightCacheStage::fillChannel(LightPass& pass, int channel, const std::string& key, KernelBackend& backend) {
     if (channel_keys_[size_t(channel)] == key) return false;
     channel_keys_[size_t(channel)].clear();  // stays cleared if the pass throws
-    pass.params.pass.y = channel;
+    pass.params.channel = channel;
     backend.fillLightChannel(pass, cache_);
     channel_keys_[size_t(channel)] = key;
     return true;

@@ -126,8 +126,8 @@ public:
     RenderImage march(const KernelInputs& in) override {
         ensureGlContext();  // current on this thread
         RenderImage img;
-        img.width = int(in.params.camera_frame.z);
-        img.height = int(in.params.camera_frame.w);
+        img.width = in.params.width;
+        img.height = in.params.height;
         img.pixels.resize(size_t(img.width) * img.height);
         if (img.pixels.empty()) return img;
 
@@ -186,7 +186,8 @@ public:
         ensureGlContext();
         const GLuint program = satScanProgram();
         kernel::VxSatParams params{};
-        params.dims = glm::ivec4(sat.dims, sat.planes);
+        params.dims = sat.dims;
+        params.planes = sat.planes;
         sat_params_.upload(&params, sizeof params, GL_STREAM_DRAW, "SatParams");
         sat_params_.bind(program, GL_UNIFORM_BLOCK, "SatParams");
         const size_t bytes = sat.words.size() * sizeof(uint32_t);
@@ -235,7 +236,7 @@ public:
         glGetNamedBufferSubData(channel_.id(), 0, GLsizeiptr(cells * sizeof(float)), values.data());
         if (GLenum error = glGetError(); error != GL_NO_ERROR)
             throw std::runtime_error("GL backend: a light pass failed with GL error " + std::to_string(error));
-        const int channel = pass.params.pass.y;
+        const int channel = pass.params.channel;
         for (size_t i = 0; i < cells; ++i)
             if ((*pass.needed)[i]) cache.values[i * size_t(cache.channels) + size_t(channel)] = values[i];
     }
@@ -247,7 +248,7 @@ public:
         const GLuint program = propagateProgram();
         const kernel::VxPropParams& first = pass.sweeps.front();
         kernel::CpuKernel axes;
-        const int axis = first.slice.x, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
+        const int axis = first.axis, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
         const size_t slice_cells = size_t(first.dims[u]) * first.dims[v];
         const size_t block = size_t(first.dims.x) * first.dims.y * first.dims.z * 3;
         march_params_.upload(pass.march, sizeof *pass.march, GL_STREAM_DRAW, "Params");
@@ -272,12 +273,12 @@ public:
         // Two slice buffers, swapped between slices: one read (SliceIn), one written (SliceOut).
         Buffer* slices[2] = {&slice_a_, &slice_b_};
         for (const kernel::VxPropParams& Q : pass.sweeps) {
-            for (Buffer* b : slices) b->upload(nullptr, slice_cells * Q.dims.w * sizeof(float), GL_DYNAMIC_COPY, "slice");
+            for (Buffer* b : slices) b->upload(nullptr, slice_cells * Q.channels * sizeof(float), GL_DYNAMIC_COPY, "slice");
             kernel::VxPropParams params = Q;
-            params.strides = glm::ivec4(1, Q.dims.x, Q.dims.x * Q.dims.y, 0);   // the volume's own layout
+            params.strides = glm::ivec3(1, Q.dims.x, Q.dims.x * Q.dims.y);   // the volume's own layout
             const int count = Q.dims[axis];
             for (int step = 0; step < count; ++step) {
-                params.slice.z = Q.slice.y > 0 ? step : count - 1 - step;
+                params.slice = Q.direction > 0 ? step : count - 1 - step;
                 prop_params_.upload(&params, sizeof params, GL_STREAM_DRAW, "PropParams");
                 prop_params_.bind(program, GL_UNIFORM_BLOCK, "PropParams");
                 slices[step & 1]->bind(program, GL_SHADER_STORAGE_BLOCK, "SliceIn");

@@ -22,9 +22,12 @@ kernel::VxLight packLight(const Light& l) {
     // Keys a type does not use stay zero, so equal lights pack to equal bytes (selective updates
     // compare them).
     const bool directional = type == VX_LIGHT_DIRECTIONAL, point = type == VX_LIGHT_POINT;
-    k.pos_type = glm::vec4(directional ? glm::vec3(0.0f) : l.position, float(type));
-    k.dir_cos = point ? glm::vec4(0.0f, -1.0f, 0.0f, 1.0f) : glm::vec4(glm::normalize(l.direction), std::cos(glm::radians(l.cone_angle)));
-    k.color = glm::vec4(l.color * l.intensity, point ? 1.0f : std::cos(glm::radians(std::max(0.0f, l.cone_angle - l.cone_softness))));
+    k.position = directional ? glm::vec3(0.0f) : l.position;
+    k.type = type;
+    k.direction = point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::normalize(l.direction);
+    k.cos_outer = point ? 1.0f : std::cos(glm::radians(l.cone_angle));
+    k.color = l.color * l.intensity;
+    k.cos_inner = point ? 1.0f : std::cos(glm::radians(std::max(0.0f, l.cone_angle - l.cone_softness)));
     return k;
 }
 
@@ -41,12 +44,18 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     float edge = voxelEdge(atlas.index_to_world);
     if (const Camera* camera = sources.camera) {
         P.camera_to_world = cameraToWorld(*camera);
-        P.camera_frame = glm::vec4(std::tan(glm::radians(camera->fov) * 0.5f), float(r.width) / float(r.height),
-                                   float(r.width), float(r.height));
+        P.tan_half_fov = std::tan(glm::radians(camera->fov) * 0.5f);
+        P.aspect = float(r.width) / float(r.height);
+        P.width = r.width;
+        P.height = r.height;
     }
     P.world_to_index = glm::inverse(atlas.index_to_world);
-    P.march = glm::vec4(r.step * edge, r.shadow_step * edge, r.transmittance_cutoff, m.anisotropy);
-    P.material = glm::vec4(m.albedo, m.density_scale);
+    P.step = r.step * edge;
+    P.shadow_step = r.shadow_step * edge;
+    P.transmittance_cutoff = r.transmittance_cutoff;
+    P.anisotropy = m.anisotropy;
+    P.albedo = m.albedo;
+    P.density_scale = m.density_scale;
     // Each source's table spans its grid's values in this frame's atlas. When none emits anywhere
     // (all-zero grids) the march runs as without emission, to the bit.
     bool emits = false;
@@ -57,10 +66,14 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
         P.emission_domain[int(e)] = grid_max > 0.0f ? 1.0f / grid_max : 0.0f;
         emits |= table.threshold < std::numeric_limits<float>::infinity();
     }
-    P.emission_map = glm::ivec4(emits ? int(atlas.emission_sources) : 0, int(atlas.slots()) * VX_BRICK_VOXELS, 0, 0);
-    float lo = m.transfer.empty() ? 0.0f : m.transfer.front().value;
-    float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
-    P.tf_domain = glm::vec4(lo, 1.0f / (hi - lo), m.transfer.empty() ? 0.0f : 1.0f, atlas.color.empty() ? 0.0f : 1.0f);
+    P.emission_sources = emits ? int(atlas.emission_sources) : 0;
+    P.emission_source_floats = int(atlas.slots()) * VX_BRICK_VOXELS;
+    const float lo = m.transfer.empty() ? 0.0f : m.transfer.front().value;
+    const float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
+    P.transfer_lo = lo;
+    P.transfer_inv_range = 1.0f / (hi - lo);
+    P.use_transfer = m.transfer.empty() ? 0 : 1;
+    P.use_color_grid = atlas.color.empty() ? 0 : 1;
     // Ambient lights are not shadowed and act the same everywhere: they sum into one radiance.
     glm::vec3 ambient(0.0f);
     int local_lights = 0;
@@ -73,44 +86,65 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
         in.lights.push_back(packLight(l));
         local_lights += l.type != LightType::Directional;
     }
-    P.ambient = glm::vec4(ambient, glm::any(glm::greaterThan(ambient, glm::vec3(0.0f))) ? 1.0f : 0.0f);
-    const int shadows = scene.effects.shadows == ShadowMethod::Raymarch      ? VX_SHADOWS_RAYMARCH
-                        : scene.effects.shadows == ShadowMethod::SatCone     ? VX_SHADOWS_SAT_CONE
-                        : scene.effects.shadows == ShadowMethod::Propagation ? VX_SHADOWS_PROPAGATION
-                                                                             : VX_SHADOWS_NONE;
-    P.bricks_min = glm::ivec4(pages.bricks_min, int(in.lights.size()));
-    P.bricks_max = glm::ivec4(pages.bricks_max, shadows);
-    P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, local_lights, 0);
+    P.ambient = ambient;
+    P.has_ambient = glm::any(glm::greaterThan(ambient, glm::vec3(0.0f))) ? 1 : 0;
+    P.shadow_mode = scene.effects.shadows == ShadowMethod::Raymarch      ? VX_SHADOWS_RAYMARCH
+                    : scene.effects.shadows == ShadowMethod::SatCone     ? VX_SHADOWS_SAT_CONE
+                    : scene.effects.shadows == ShadowMethod::Propagation ? VX_SHADOWS_PROPAGATION
+                                                                         : VX_SHADOWS_NONE;
+    P.light_count = int(in.lights.size());
+    P.local_light_count = local_lights;
+    P.bricks_min = pages.bricks_min;
+    P.bricks_max = pages.bricks_max;
+    P.page_capacity = int(pages.entries.size());
+    P.page_max_probe = pages.max_probe;
     in.tf_lut = bakeTransfer(m.transfer);
 
-    P.cache_dims = glm::ivec4(0);
-    P.cache_map = glm::ivec4(-1, 1, -1, 0);
+    P.ao_channel = -1;
+    P.ao_channels = 1;
+    P.shadow_channel = -1;
     if (const LightCache* c = sources.light_cache; c && c->channels > 0) {
         in.light_cache = c;
         P.world_to_cache = c->world_to_cache;
-        P.cache_dims = glm::ivec4(c->dims, c->channels);
-        P.cache_map = glm::ivec4(c->ambient_channel, c->ambient_width, c->shadow_channel, 0);
+        P.cache_dims = c->dims;
+        P.cache_floats = c->channels;
+        P.ao_channel = c->ambient_channel;
+        P.ao_channels = c->ambient_width;
+        P.shadow_channel = c->shadow_channel;
     }
-    P.illum_dims = glm::ivec4(0, 0, 0, 1);
+    P.chroma_factor = 1;
     if (const IlluminationVolume* v = sources.illumination; v && !v->values.empty()) {
         in.illumination = v;
         P.world_to_illum = v->world_to_illum;
-        P.illum_dims = glm::ivec4(v->dims, v->chroma);
-        P.chroma_dims = glm::ivec4(v->chroma_dims, int(v->indirectOffset()));
+        P.illum_dims = v->dims;
+        P.chroma_factor = v->chroma;
+        P.chroma_dims = v->chroma_dims;
+        P.indirect_offset = int(v->indirectOffset());
     }
-    if (const auto& ind = scene.effects.indirect; ind && scene.effects.shadows == ShadowMethod::Propagation)
-        P.indirect = glm::vec4(ind->transport_color, ind->strength / (4.0f * float(M_PI)));
-    if (const auto& sf = scene.effects.surface)
-        P.surface = glm::vec4(sf->gradient_low, 1.0f / (sf->gradient_high - sf->gradient_low), sf->specular, sf->shininess);
+    if (const auto& ind = scene.effects.indirect; ind && scene.effects.shadows == ShadowMethod::Propagation) {
+        P.transport = ind->transport_color;
+        P.indirect_weight = ind->strength / (4.0f * float(M_PI));
+    }
+    if (const auto& sf = scene.effects.surface) {
+        P.surface_low = sf->gradient_low;
+        P.surface_inv_range = 1.0f / (sf->gradient_high - sf->gradient_low);
+        P.specular = sf->specular;
+        P.shininess = sf->shininess;
+    }
     // A perturbation of zero amplitude is no perturbation: it stays off, so the render is exactly
     // the unperturbed one and costs nothing.
     if (const auto& pt = scene.effects.perturbation; pt && (pt->density > 0 || pt->transport > 0 || pt->displacement > 0)) {
         // Automatic: two voxels per texel of the first octave. It follows the voxel size, not the
         // data's extent, so a sequence whose extent changes frame to frame keeps its noise.
         const float scale = pt->scale > 0.0f ? pt->scale : 2.0f * float(VX_NOISE_SIZE) * edge;
-        P.noise_scale = glm::vec4(float(VX_NOISE_SIZE) / scale, float(pt->octaves), pt->lacunarity, pt->gain);
-        P.noise_offset = glm::vec4(pt->velocity * (frame + pt->time), pt->displacement);
-        P.noise_amp = glm::vec4(pt->density, pt->transport, 0.0f, 0.0f);
+        P.noise_frequency = float(VX_NOISE_SIZE) / scale;
+        P.noise_octaves = pt->octaves;
+        P.lacunarity = pt->lacunarity;
+        P.gain = pt->gain;
+        P.noise_offset = pt->velocity * (frame + pt->time);
+        P.displacement = pt->displacement;
+        P.noise_density = pt->density;
+        P.noise_transport = pt->transport;
         in.noise = makeNoiseTable(pt->seed);
     }
     return in;

@@ -24,9 +24,9 @@ struct LightCache {
     std::vector<float> values;     // cell-major: channels floats per cell
 };
 
-// One light pass: fills channel params.pass.y of the cache from the SAT, for the cells `needed`
-// marks. params.pass.x is the light (index into `lights`), or -1 for ambient occlusion, which
-// reads SAT plane params.shells.w.
+// One light pass: fills channel params.channel of the cache from the SAT, for the cells `needed`
+// marks. params.light is the light (index into `lights`), or -1 for ambient occlusion, which
+// reads SAT plane params.ao_plane.
 struct LightPass {
     kernel::VxSatParams params{};
     const std::vector<kernel::VxLight>* lights = nullptr;

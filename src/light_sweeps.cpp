@@ -81,7 +81,18 @@ std::vector<Sweep> spotLightSweeps(const std::vector<Sweep>& sweeps, glm::vec3 d
     return out;
 }
 
-std::vector<glm::vec4> blurTaps(const Indirect& in) {
+namespace {
+
+kernel::VxTap tap(glm::vec2 offset, float weight) {
+    kernel::VxTap t{};
+    t.offset = offset;
+    t.weight = weight;
+    return t;
+}
+
+}  // namespace
+
+std::vector<kernel::VxTap> blurTaps(const Indirect& in) {
     const float tan_half = std::tan(glm::radians(0.5f * in.angle));
     auto weight = [&](float r) {
         const float cos_a = 1.0f / std::sqrt(1.0f + r * r * tan_half * tan_half);
@@ -89,8 +100,8 @@ std::vector<glm::vec4> blurTaps(const Indirect& in) {
         const float g = in.g, denom = 1.0f + g * g - 2.0f * g * cos_a;
         return (1.0f - g * g) / (denom * std::sqrt(denom));
     };
-    std::vector<glm::vec4> taps;
-    if (in.samples % 2 == 1) taps.push_back({0.0f, 0.0f, weight(0.0f), 0.0f});
+    std::vector<kernel::VxTap> taps;
+    if (in.samples % 2 == 1) taps.push_back(tap(glm::vec2(0.0f), weight(0.0f)));
     // Opposite pairs on a Vogel spiral: even coverage of the disc, and a weighted centre exactly at
     // the light's own direction, so the blur never drifts the light sideways.
     const int pairs = in.samples / 2;
@@ -98,14 +109,14 @@ std::vector<glm::vec4> blurTaps(const Indirect& in) {
     for (int k = 0; k < pairs; ++k) {
         const float r = std::sqrt(float(k + 1) / float(pairs));
         const glm::vec2 at = r * glm::vec2(std::cos(golden * float(k)), std::sin(golden * float(k)));
-        taps.push_back({at.x, at.y, weight(r), 0.0f});
-        taps.push_back({-at.x, -at.y, weight(r), 0.0f});
+        taps.push_back(tap(at, weight(r)));
+        taps.push_back(tap(-at, weight(r)));
     }
-    const float total = std::accumulate(taps.begin(), taps.end(), 0.0f, [](float s, const glm::vec4& t) { return s + t.z; });
-    for (auto& t : taps) t.z /= total;
+    const float total = std::accumulate(taps.begin(), taps.end(), 0.0f, [](float s, const kernel::VxTap& t) { return s + t.weight; });
+    for (auto& t : taps) t.weight /= total;
     return taps;
 }
 
-std::vector<glm::vec4> directTaps() { return {glm::vec4(0.0f, 0.0f, 1.0f, 0.0f)}; }
+std::vector<kernel::VxTap> directTaps() { return {tap(glm::vec2(0.0f), 1.0f)}; }
 
 }  // namespace voxlux

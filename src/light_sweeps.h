@@ -42,7 +42,7 @@ std::vector<Sweep> spotLightSweeps(const std::vector<Sweep>& sweeps, glm::vec3 d
 // opposite pairs on a Vogel spiral, weighted by the Phong lobe cos^exponent or the
 // Henyey-Greenstein phase of the angle between the light and the tap, for a cone of apex angle
 // indirect.angle.
-std::vector<glm::vec4> blurTaps(const Indirect& indirect);
-std::vector<glm::vec4> directTaps();   // the direct sweep's single tap: no blur
+std::vector<kernel::VxTap> blurTaps(const Indirect& indirect);
+std::vector<kernel::VxTap> directTaps();   // the direct sweep's single tap: no blur
 
 }  // namespace voxlux

@@ -44,17 +44,21 @@ std::vector<float> halveGrid(const LightGrid& g) {
 float luminance(glm::vec3 c) { return kernel::CpuKernel().vx_luminance(c); }
 
 // What the sweeps of every light share on one grid.
-kernel::VxPropParams baseParams(const SweepGrid& g, int channels, const std::vector<glm::vec4>& taps, float tan_half,
+kernel::VxPropParams baseParams(const SweepGrid& g, int channels, const std::vector<kernel::VxTap>& taps, float tan_half,
                                 glm::vec3 atten) {
     kernel::VxPropParams Q{};
     Q.grid_to_world = g.grid_to_world;
     Q.world_to_grid = g.world_to_grid;
-    Q.dims = glm::ivec4(g.dims, channels);
-    Q.slice.w = int(taps.size());
+    Q.dims = g.dims;
+    Q.channels = channels;
+    Q.tap_count = int(taps.size());
     for (size_t k = 0; k < taps.size(); ++k) Q.taps[k] = taps[k];
-    Q.flow = glm::vec4(1.0f, tan_half, 1.0f, 0.0f);
-    Q.atten = glm::vec4(atten, g.cells_per_voxel);
-    Q.tint = glm::vec4(1.0f);
+    Q.flow = 1.0f;
+    Q.blur_tan = tan_half;
+    Q.weight = 1.0f;
+    Q.atten = atten;
+    Q.cells_per_voxel = g.cells_per_voxel;
+    Q.tint = glm::vec3(1.0f);
     return Q;
 }
 
@@ -65,38 +69,41 @@ using PassSweeps = std::array<std::vector<kernel::VxPropParams>, 6>;
 // takes it out). Direct sweeps carry luminance and are tinted back to the light's colour.
 void addLightSweeps(const kernel::VxLight& light, float sign, const SweepGrid& g, kernel::VxPropParams Q, bool blend,
                     PassSweeps& passes) {
-    const glm::vec3 color(light.color);
-    if (Q.dims.w == 1) {
+    const glm::vec3 color = light.color;
+    if (Q.channels == 1) {
         const float y = luminance(color);
         if (!(y > 0.0f)) return;   // a black light adds nothing
-        Q.tint = glm::vec4(color / y, 0.0f);
+        Q.tint = color / y;
     } else if (color == glm::vec3(0.0f)) {
         return;
     }
     Q.light = light;
-    const bool directional = int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL;
     std::vector<Sweep> sweeps;
-    if (directional) {
-        const glm::vec3 flow = glm::mat3(g.world_to_grid) * glm::vec3(light.dir_cos);
-        Q.source = glm::vec4(flow, 0.0f);
+    if (light.type == VX_LIGHT_DIRECTIONAL) {
+        const glm::vec3 flow = glm::mat3(g.world_to_grid) * light.direction;
+        Q.source = flow;
+        Q.source_is_position = 0;
         sweeps = sweepsFor(flow, blend);
     } else {
-        const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
-        Q.source = glm::vec4(at, 1.0f);
+        const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(light.position, 1.0f));
+        Q.source = at;
+        Q.source_is_position = 1;
         // The cells a sweep weights lie within slope 1 of the light (16 for a blended second
         // axis). A cell reads the previous slice up to 1 + r cells beside its own ray (bilinear
         // reads, blur radius r per slice, at most sqrt(3) tan(angle / 2)), so dark cells beyond
         // slope s creep inwards by at most 1 + r cells per slice while the weighted region grows
         // by 1: computing up to slope 2 + r keeps every weighted cell exact (3 + r, with margin).
-        const int reach = blend ? int(VX_PROP_MAX_SLOPE) : 3 + int(std::ceil(std::sqrt(3.0f) * Q.flow.y));
-        Q.mode = glm::ivec4(1, blend ? 1 : 0, reach, 0);
+        Q.max_slope = blend ? int(VX_PROP_MAX_SLOPE) : 3 + int(std::ceil(std::sqrt(3.0f) * Q.blur_tan));
+        Q.per_cell_flow = 1;
+        Q.blend_axes = blend ? 1 : 0;
         sweeps = pointLightSweeps(at, g.dims, blend);
-        if (int(light.pos_type.w) == VX_LIGHT_SPOT && !blend)
-            sweeps = spotLightSweeps(sweeps, glm::vec3(light.dir_cos), light.dir_cos.w, glm::mat3(g.world_to_grid));
+        if (light.type == VX_LIGHT_SPOT && !blend)
+            sweeps = spotLightSweeps(sweeps, light.direction, light.cos_outer, glm::mat3(g.world_to_grid));
     }
     for (const Sweep& s : sweeps) {
-        Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
-        Q.flow.z = sign * s.weight;
+        Q.axis = s.axis;
+        Q.direction = s.sign;
+        Q.weight = sign * s.weight;
         passes[size_t(2 * s.axis + (s.sign > 0))].push_back(Q);
     }
 }
@@ -108,9 +115,9 @@ void addLightSweeps(const kernel::VxLight& light, float sign, const SweepGrid& g
 // intensity edit one sweep (old and new merge into their difference).
 std::vector<kernel::VxPropParams> mergeSharedGeometry(const std::vector<kernel::VxPropParams>& sweeps) {
     auto geometry = [](kernel::VxPropParams Q) {
-        Q.light.color = glm::vec4(0.0f, 0.0f, 0.0f, Q.light.color.w);   // w: the spot cone, geometry
-        Q.tint = glm::vec4(0.0f);
-        Q.flow.z = 0.0f;
+        Q.light.color = glm::vec3(0.0f);
+        Q.tint = glm::vec3(0.0f);
+        Q.weight = 0.0f;
         return Q;
     };
     std::vector<kernel::VxPropParams> shapes;   // one per geometry
@@ -132,9 +139,9 @@ std::vector<kernel::VxPropParams> mergeSharedGeometry(const std::vector<kernel::
             continue;
         }
         kernel::VxPropParams Q = shapes[k];
-        Q.light.color = glm::vec4(1.0f, 1.0f, 1.0f, Q.light.color.w);   // luminance 1
-        Q.flow.z = 1.0f;
-        for (size_t n : members[k]) Q.tint += glm::vec4(sweeps[n].flow.z * glm::vec3(sweeps[n].light.color), 0.0f);
+        Q.light.color = glm::vec3(1.0f);   // luminance 1
+        Q.weight = 1.0f;
+        for (size_t n : members[k]) Q.tint += sweeps[n].weight * sweeps[n].light.color;
         out.push_back(Q);
     }
     return out;
@@ -150,8 +157,8 @@ double passesCost(const PassSweeps& passes, const SweepGrid& g, bool coherent) {
         const std::vector<kernel::VxPropParams> sweeps = coherent ? mergeSharedGeometry(pass) : pass;
         double own = SweepCost::kPass * double(coherent ? 1 : sweeps.size());
         for (const kernel::VxPropParams& Q : sweeps)
-            own += (Q.mode.x != 0 ? SweepCost::kPointSweep : 1.0) * (Q.dims.w == 3 ? SweepCost::kIndirect : 1.0);
-        cost += own * (sweeps.front().slice.x == 0 ? SweepCost::kXAxis : 1.0);
+            own += (Q.per_cell_flow != 0 ? SweepCost::kPointSweep : 1.0) * (Q.channels == 3 ? SweepCost::kIndirect : 1.0);
+        cost += own * (sweeps.front().axis == 0 ? SweepCost::kXAxis : 1.0);
     }
     return cost * cells;
 }
@@ -167,7 +174,7 @@ void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool
     pass.offset = offset;
     for (const auto& sweeps : passes) {
         if (sweeps.empty()) continue;
-        const int slices = g.dims[sweeps.front().slice.x];
+        const int slices = g.dims[sweeps.front().axis];
         if (coherent) {
             pass.sweeps = mergeSharedGeometry(sweeps);
             report.sweeps += int(pass.sweeps.size());
@@ -198,9 +205,12 @@ void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const Sweep
     glm::vec3 source = cam;
     if (s.sign > 0) source[s.axis] = std::max(source[s.axis], float(coarse.dims[s.axis]));
     else source[s.axis] = std::min(source[s.axis], 0.0f);
-    Q.slice = glm::ivec4(s.axis, s.sign, 0, Q.slice.w);
-    Q.source = glm::vec4(source, 1.0f);
-    Q.flow = glm::vec4(-1.0f, tan_half, 1.0f, 1.0f);
+    Q.axis = s.axis;
+    Q.direction = s.sign;
+    Q.source = source;
+    Q.source_is_position = 1;
+    Q.flow = -1.0f;
+    Q.eye_sweep = 1;
     PropagationPass pass;
     pass.sweeps = {Q};
     pass.march = &inputs.params;
@@ -214,9 +224,9 @@ void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const Sweep
 // The brightest radiance a light brings into the grid (luminance): what its sweeps add at most,
 // and so what adding and later subtracting it can leave behind as float residue.
 double peakRadiance(const kernel::VxLight& light, const SweepGrid& g) {
-    const double y = luminance(glm::vec3(light.color));
-    if (int(light.pos_type.w) == VX_LIGHT_DIRECTIONAL) return y;
-    const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(glm::vec3(light.pos_type), 1.0f));
+    const double y = luminance(light.color);
+    if (light.type == VX_LIGHT_DIRECTIONAL) return y;
+    const glm::vec3 at = glm::vec3(g.world_to_grid * glm::vec4(light.position, 1.0f));
     const glm::vec3 nearest = glm::clamp(at, glm::vec3(0.0f), glm::vec3(g.dims));
     const double d = glm::length(glm::mat3(g.grid_to_world) * (at - nearest));
     const double r_min = 0.5 * glm::length(glm::vec3(g.grid_to_world[0]));

@@ -70,7 +70,7 @@ struct Tracker {
     // collision (Le / majorant each): the integral of transmittance times Le along the flight.
     Flight flight(glm::vec3 x, glm::vec3 w, ReferenceRng& rng, int& events) const {
         Flight f;
-        const bool emits = k.P.emission_map.x > 0;
+        const bool emits = k.P.emission_sources > 0;
         walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
             for (;;) {
                 t -= std::log(1.0f - rng.next()) / m;
@@ -104,9 +104,9 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
     CpuKernel& k = tr.k;
     PathSample ps;
     ps.transmittance = tr.transmittance(origin, dir, 1e30f, rng, ps.events);
-    const glm::vec3 ambient(k.P.ambient);
-    const bool escapes_count = k.P.ambient.w > 0.0f || k.P.emission_map.x > 0;
-    const float g = k.P.march.w;
+    const glm::vec3 ambient = k.P.ambient;
+    const bool escapes_count = k.P.has_ambient != 0 || k.P.emission_sources > 0;
+    const float g = k.P.anisotropy;
     glm::vec3 beta(1.0f), x = origin, w = dir;
     for (int bounce = 0;; ++bounce) {
         const Tracker::Flight f = tr.flight(x, w, rng, ps.events);
@@ -122,7 +122,7 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
         if (bounce == rs.max_bounces) break;
         x += w * f.t;
         beta *= k.vx_albedo(f.cell);
-        for (int i = 0; i < k.P.bricks_min.w; ++i) {
+        for (int i = 0; i < k.P.light_count; ++i) {
             glm::vec3 wi;
             float dist;
             const glm::vec3 e = k.vx_light_incident(k.vx_light(i), x, wi, dist);
@@ -157,7 +157,7 @@ std::vector<float> brickMajorants(const KernelInputs& in) {
     CpuKernel k = bindCpuKernel(in);
     const BrickAtlas& atlas = *in.atlas;
     const size_t slots = atlas.slots();
-    const bool tf = k.P.tf_domain.z > 0.5f;
+    const bool tf = k.P.use_transfer != 0;
     const float floor_emitting = 1.0f / voxelEdge(atlas.index_to_world);
     std::vector<float> m(slots, 0.0f);
     for (size_t s = 0; s < slots; ++s) {
@@ -166,10 +166,10 @@ std::vector<float> brickMajorants(const KernelInputs& in) {
         const float lo = atlas.density_range[s].x, hi = atlas.density_range[s].y;
         float sigma = std::max(k.vx_value_extinction(lo), k.vx_value_extinction(hi));
         for (int i = 0; tf && i < VX_TF_LUT_SIZE; ++i) {
-            const float v = k.P.tf_domain.x + float(i) / (float(VX_TF_LUT_SIZE - 1) * k.P.tf_domain.y);
+            const float v = k.P.transfer_lo + float(i) / (float(VX_TF_LUT_SIZE - 1) * k.P.transfer_inv_range);
             if (v > lo && v < hi) sigma = std::max(sigma, k.vx_value_extinction(v));
         }
-        for (int e = 0; e < k.P.emission_map.x; ++e)
+        for (int e = 0; e < k.P.emission_sources; ++e)
             if (atlas.emission_max[size_t(e) * slots + s] > 0.0f) sigma = std::max(sigma, floor_emitting);
         m[s] = sigma;
     }
@@ -185,13 +185,13 @@ float ratioTrackedTransmittance(const KernelInputs& in, const std::vector<float>
 
 RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs) {
     CpuKernel k = bindCpuKernel(in);
-    if (k.P.surface.y > 0.0f || k.P.noise_scale.y > 0.0f)
+    if (k.P.surface_inv_range > 0.0f || k.P.noise_octaves > 0)
         throw InputError("render.method reference: effects.surface and effects.perturbation are march-only effects");
     const std::vector<float> majorants = brickMajorants(in);
     const Tracker tracker{k, majorants};
     RenderImage img;
-    img.width = int(k.P.camera_frame.z);
-    img.height = int(k.P.camera_frame.w);
+    img.width = k.P.width;
+    img.height = k.P.height;
     img.pixels.resize(size_t(img.width) * img.height);
     const float n = float(rs.spp);
     // Small tiles: a reference render is often a few pixels at many samples.

@@ -17,10 +17,11 @@ struct BrickHash {
 // are classified away, so a missing brick is right only for a zero voxel.
 void expectRoundTrip(const openvdb::FloatGrid& grid, const BrickAtlas& atlas, const PageTable& pages) {
     kernel::CpuKernel k;
-    k.P.page = glm::ivec4(int(pages.entries.size()), pages.max_probe, 0, 0);
-    k.P.bricks_min = glm::ivec4(pages.bricks_min, 0);
-    k.P.bricks_max = glm::ivec4(pages.bricks_max, 0);
-    k.page = pages.entries.data();
+    k.P.page_capacity = int(pages.entries.size());
+    k.P.page_max_probe = pages.max_probe;
+    k.P.bricks_min = pages.bricks_min;
+    k.P.bricks_max = pages.bricks_max;
+    k.page = pages.entries;
     size_t checked = 0, wrong = 0;
     for (auto it = grid.cbeginValueOn(); it; ++it) {
         openvdb::CoordBBox box = it.getBoundingBox();

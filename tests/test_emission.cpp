@@ -277,7 +277,7 @@ TEST(EmissionRender, AllZeroTemperatureEmitsNothing) {
         SCOPED_TRACE(backend->name());
         auto with = prepare(volumeFromGrid(density, {cold}), lit, camera);
         auto without = prepare(volumeFromGrid(density), plain, camera);
-        EXPECT_EQ(with->inputs.params.emission_map.x, 0);
+        EXPECT_EQ(with->inputs.params.emission_sources, 0);
         const RenderImage a = backend->march(with->inputs), b = backend->march(without->inputs);
         ASSERT_EQ(a.pixels.size(), b.pixels.size());
         float alpha = 0.0f;

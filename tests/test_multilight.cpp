@@ -213,22 +213,31 @@ TEST(MultiLight, PointSweepsComputeFarEnoughSideways) {
                 v.values.assign(3 * v.cells(), 0.0f);
                 kernel::VxPropParams Q{};
                 Q.grid_to_world = Q.world_to_grid = glm::mat4(1.0f);
-                Q.dims = glm::ivec4(dims, indirect ? 3 : 1);
+                Q.dims = dims;
+                Q.channels = indirect ? 3 : 1;
                 const auto taps = indirect ? blurTaps(blur) : directTaps();
                 for (size_t k = 0; k < taps.size(); ++k) Q.taps[k] = taps[k];
-                Q.source = glm::vec4(at, 1.0f);
-                Q.flow = glm::vec4(1.0f, indirect ? tan_half : 0.0f, 1.0f, 0.0f);
-                Q.mode = glm::ivec4(1, 0, reach, 0);
-                Q.atten = glm::vec4(indirect ? -glm::log(blur.transport_color) : glm::vec3(1.0f), 1.0f);
-                Q.tint = glm::vec4(1.0f);
-                Q.light.pos_type = glm::vec4(at, float(VX_LIGHT_POINT));
-                Q.light.color = glm::vec4(100.0f);
+                Q.tap_count = int(taps.size());
+                Q.source = at;
+                Q.source_is_position = 1;
+                Q.flow = 1.0f;
+                Q.blur_tan = indirect ? tan_half : 0.0f;
+                Q.weight = 1.0f;
+                Q.per_cell_flow = 1;
+                Q.max_slope = reach;
+                Q.atten = indirect ? -glm::log(blur.transport_color) : glm::vec3(1.0f);
+                Q.cells_per_voxel = 1.0f;
+                Q.tint = glm::vec3(1.0f);
+                Q.light.position = at;
+                Q.light.type = VX_LIGHT_POINT;
+                Q.light.color = glm::vec3(100.0f);
                 PropagationPass pass;
                 pass.march = &march;
                 pass.sigma = &sigma;
                 for (int axis = 0; axis < 3; ++axis)
                     for (int sign : {-1, 1}) {
-                        Q.slice = glm::ivec4(axis, sign, 0, int(taps.size()));
+                        Q.axis = axis;
+                        Q.direction = sign;
                         pass.sweeps = {Q};
                         propagateCpu(pass, v);
                     }

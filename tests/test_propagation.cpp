@@ -183,11 +183,11 @@ TEST(Sweeps, BlurWeightsSumToOne) {
             glm::dvec2 centroid(0.0);
             float heaviest = 0.0f;
             for (const auto& t : taps) {
-                sum += t.z;
-                centroid += double(t.z) * glm::dvec2(t.x, t.y);
-                heaviest = std::max(heaviest, t.z);
-                EXPECT_LE(glm::length(glm::vec2(t)), 1.0f + 1e-6f);
-                EXPECT_GT(t.z, 0.0f);
+                sum += t.weight;
+                centroid += double(t.weight) * glm::dvec2(t.offset);
+                heaviest = std::max(heaviest, t.weight);
+                EXPECT_LE(glm::length(t.offset), 1.0f + 1e-6f);
+                EXPECT_GT(t.weight, 0.0f);
             }
             EXPECT_NEAR(sum, 1.0, 1e-6) << n << " taps";
             // Centred on the light's direction: the blur moves no light sideways.
@@ -195,7 +195,7 @@ TEST(Sweeps, BlurWeightsSumToOne) {
             // Forward-peaked lobes weight the tap nearest the light's direction most.
             float nearest = 2.0f, nearest_weight = 0.0f;
             for (const auto& t : taps)
-                if (glm::length(glm::vec2(t)) < nearest) nearest = glm::length(glm::vec2(t)), nearest_weight = t.z;
+                if (glm::length(t.offset) < nearest) nearest = glm::length(t.offset), nearest_weight = t.weight;
             EXPECT_EQ(nearest_weight, heaviest) << n << " taps";
         }
 }
@@ -267,18 +267,24 @@ TEST(Propagation, IndirectEnergyPerSliceIsConserved) {
     kernel::CpuKernel k;
     k.Q.grid_to_world = glm::mat4(1.0f);
     k.Q.world_to_grid = glm::mat4(1.0f);
-    k.Q.dims = glm::ivec4(dims, 3);
+    k.Q.dims = dims;
+    k.Q.channels = 3;
     Indirect in;
     in.samples = 17;
     in.angle = 50.0f;
     const auto taps = blurTaps(in);
     for (size_t i = 0; i < taps.size(); ++i) k.Q.taps[i] = taps[i];
-    k.Q.slice = glm::ivec4(2, 1, 0, int(taps.size()));
-    k.Q.source = glm::vec4(0.1f, -0.05f, 1.0f, 0.0f);      // oblique: reads fall between centres
-    k.Q.flow = glm::vec4(1.0f, std::tan(glm::radians(0.5f * in.angle)), 1.0f, 0.0f);
-    k.Q.atten = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);          // transport colour 1
-    k.Q.light.color = glm::vec4(0.0f);                        // nothing from outside
-    k.prop_sigma = sigma.data();
+    k.Q.tap_count = int(taps.size());
+    k.Q.axis = 2;
+    k.Q.direction = 1;
+    k.Q.source = glm::vec3(0.1f, -0.05f, 1.0f);   // a direction, oblique: reads fall between centres
+    k.Q.flow = 1.0f;
+    k.Q.blur_tan = std::tan(glm::radians(0.5f * in.angle));
+    k.Q.weight = 1.0f;
+    k.Q.atten = glm::vec3(0.0f);                  // transport colour 1
+    k.Q.cells_per_voxel = 1.0f;
+    k.Q.light.color = glm::vec3(0.0f);            // nothing from outside
+    k.prop_sigma = sigma;
     std::vector<float> prev(size_t(dims.x) * dims.y * 3, 0.0f), cur(prev.size());
     for (int j = 0; j < dims.y; ++j)
         for (int i = 0; i < dims.x; ++i) {
@@ -303,8 +309,8 @@ TEST(Propagation, IndirectEnergyPerSliceIsConserved) {
     const double start[3] = {total(prev, 0), total(prev, 1), total(prev, 2)};
     const double start_spread = spread(prev);
     for (int s = 1; s < 12; ++s) {
-        k.Q.slice.z = s;
-        k.prop_prev = prev.data();
+        k.Q.slice = s;
+        k.prop_prev = prev;
         for (int j = 0; j < dims.y; ++j)
             for (int i = 0; i < dims.x; ++i) {
                 const glm::vec3 v = k.vx_prop_cell(i, j);
@@ -687,19 +693,19 @@ TEST(Propagation, SurfaceShadingFollowsTheGradient) {
     Camera camera;
     auto prepared = prepare(volumeFromGrid(slab(1.0f)), scene, camera);
     kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
-    const glm::vec4 inside = k.vx_surface(glm::vec3(16.0f, 16.0f, 16.0f));
-    EXPECT_EQ(inside.w, 0.0f);
-    const glm::vec4 top = k.vx_surface(glm::vec3(16.0f, 31.5f, 16.0f));
-    EXPECT_EQ(top.w, 1.0f);
-    EXPECT_NEAR(top.y, 1.0f, 1e-6f);
+    const auto inside = k.vx_surface(glm::vec3(16.0f, 16.0f, 16.0f));
+    EXPECT_EQ(inside.weight, 0.0f);
+    const auto top = k.vx_surface(glm::vec3(16.0f, 31.5f, 16.0f));
+    EXPECT_EQ(top.weight, 1.0f);
+    EXPECT_NEAR(top.normal.y, 1.0f, 1e-6f);
     const glm::vec3 wi = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f));   // light from 45 degrees
     EXPECT_NEAR(k.vx_surface_factor(top, wi, glm::vec3(0, -1, 0)), std::sqrt(0.5f), 1e-6f);
     EXPECT_EQ(k.vx_surface_factor(inside, wi, glm::vec3(0, -1, 0)), 1.0f);
     // Half way between the thresholds the surface and volume terms are mixed half and half.
-    prepared->inputs.params.surface.y = 1.0f / 1.0f;   // gradient_high = 1: the top face's 0.5 is half way
+    prepared->inputs.params.surface_inv_range = 1.0f / 1.0f;   // gradient_high = 1: the top face's 0.5 is half way
     k = bindCpuKernel(prepared->inputs);
-    const glm::vec4 half = k.vx_surface(glm::vec3(16.0f, 31.5f, 16.0f));
-    EXPECT_NEAR(half.w, 0.5f, 1e-6f);
+    const auto half = k.vx_surface(glm::vec3(16.0f, 31.5f, 16.0f));
+    EXPECT_NEAR(half.weight, 0.5f, 1e-6f);
     EXPECT_NEAR(k.vx_surface_factor(half, wi, glm::vec3(0, -1, 0)), 0.5f + 0.5f * std::sqrt(0.5f), 1e-6f);
 }
 

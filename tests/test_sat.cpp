@@ -22,8 +22,9 @@ struct SatGrid {
         grid.values = std::move(values);
         grid.needed.assign(grid.cells(), 1);
         buildSummedVolume(grid, sat);
-        k.sat = sat.words.data();
-        k.S.dims = glm::ivec4(dims, 1);
+        k.sat = sat.words;
+        k.S.dims = dims;
+        k.S.planes = 1;
         k.S.quantum = sat.quantum;
         k.S.light_to_world = glm::mat4(cell_world);
         k.S.light_to_world[3].w = 1.0f;
@@ -147,7 +148,9 @@ std::vector<int> shellHalfWidths(int n, float radius_cells) {
 }
 
 void setShells(kernel::CpuKernel& k, int shells, float radius_cells, float cell_world) {
-    k.S.shells = glm::vec4(float(shells), radius_cells, cell_world, 0.0f);
+    k.S.shells = shells;
+    k.S.shell_radius = radius_cells;
+    k.S.cell_world = cell_world;
 }
 
 TEST(AmbientOcclusion, EmptyNeighbourhoodIsExactlyOne) {
@@ -216,19 +219,23 @@ TEST(AmbientOcclusion, MonotoneInDensity) {
 
 kernel::VxLight directional(glm::vec3 travel) {
     kernel::VxLight l{};
-    l.pos_type = glm::vec4(0, 0, 0, VX_LIGHT_DIRECTIONAL);
-    l.dir_cos = glm::vec4(glm::normalize(travel), 0);
+    l.type = VX_LIGHT_DIRECTIONAL;
+    l.direction = glm::normalize(travel);
     return l;
 }
 
 kernel::VxLight point(glm::vec3 position) {
     kernel::VxLight l{};
-    l.pos_type = glm::vec4(position, VX_LIGHT_POINT);
+    l.position = position;
+    l.type = VX_LIGHT_POINT;
     return l;
 }
 
 void setCone(kernel::CpuKernel& k, float angle_deg, int samples, float growth) {
-    k.S.cone = glm::vec4(std::tan(glm::radians(angle_deg)), float(samples), growth, std::pow(1.0f + growth, float(samples)));
+    k.S.cone_tan = std::tan(glm::radians(angle_deg));
+    k.S.cone_cuboids = samples;
+    k.S.cone_growth = growth;
+    k.S.cone_growth_total = std::pow(1.0f + growth, float(samples));
 }
 
 // A slab of extinction sigma filling cells z in [z0, z1) of a grid, empty elsewhere.

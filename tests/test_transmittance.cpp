@@ -157,8 +157,8 @@ TEST(Shadows, SlabShadowRayMatchesBeerLambert) {
                             cameraAlong({1, 0, 0}));
     kernel::CpuKernel k;
     k.P = prepared->inputs.params;
-    k.density = prepared->atlas.density.data();
-    k.page = prepared->pages.entries.data();
+    k.density = prepared->atlas.density;
+    k.page = prepared->pages.entries;
     // From the centre of the box straight up (+y): 32 voxels of full density, then the ramp that
     // adds half a voxel, so depth = 63 - 31.5 + 0.5 = 32.
     float T = k.vx_shadow_transmittance(glm::vec3(31.5f), glm::vec3(0, 1, 0), 1e30f);
@@ -209,8 +209,8 @@ TEST(March, TelescopedLightingEqualsPerSampleLighting) {
     black.intensity = 0.0f;
     scene.lights.push_back(black);
     auto per_sample = prepare(volumeFromGrid(g), scene, camera);
-    ASSERT_EQ(telescoped->inputs.params.page.z, 0);
-    ASSERT_EQ(per_sample->inputs.params.page.z, 1);
+    ASSERT_EQ(telescoped->inputs.params.local_light_count, 0);
+    ASSERT_EQ(per_sample->inputs.params.local_light_count, 1);
     auto cpu = makeCpuBackend();
     RenderImage a = cpu->march(telescoped->inputs), b = cpu->march(per_sample->inputs);
     float peak = 0.0f;
