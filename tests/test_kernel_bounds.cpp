@@ -6,7 +6,7 @@
 #include "cpu_kernel.h"
 #include "test_support.h"
 
-namespace voxlux {
+namespace voxlux::test {
 namespace {
 
 #ifdef VX_BOUNDS_CHECK
@@ -72,4 +72,4 @@ TEST(KernelBounds, ASatPlanePastThePlanesTraps) {
 }
 
 }  // namespace
-}  // namespace voxlux
+}  // namespace voxlux::test
