@@ -31,13 +31,13 @@ VxCacheCell vx_grid_cell(vec3 q, ivec3 dims, int floats) {
 // Trilinear value `ch` of such a cell, FETCH(index) reading the grid's floats (a macro for the
 // same reason as VX_TRILINEAR). Neighbours along an axis of one cell are the cell itself.
 #define VX_GRID_TRILINEAR(FETCH, cell, dims, floats, ch) \
-    vx_grid_mix(FETCH((cell).base + (ch)), FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 1)), \
+    VX_TRILERP(FETCH((cell).base + (ch)), FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 1)), \
                 FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 2)), \
                 FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 1) + vx_grid_step(dims, floats, 2)), \
                 FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 4)), \
                 FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 4) + vx_grid_step(dims, floats, 1)), \
                 FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 4) + vx_grid_step(dims, floats, 2)), \
-                FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 7)), cell)
+                FETCH((cell).base + (ch) + vx_grid_step(dims, floats, 7)), (cell).fx, (cell).fy, (cell).fz)
 
 // Offset to the neighbour along the axes in `mask` (1 x, 2 y, 4 z; 7 all three).
 VX_INLINE int vx_grid_step(ivec3 dims, int floats, int mask) {
@@ -45,12 +45,6 @@ VX_INLINE int vx_grid_step(ivec3 dims, int floats, int mask) {
     int sy = dims.y > 1 ? dims.x * floats : 0;
     int sz = dims.z > 1 ? dims.x * dims.y * floats : 0;
     return ((mask & 1) != 0 ? sx : 0) + ((mask & 2) != 0 ? sy : 0) + ((mask & 4) != 0 ? sz : 0);
-}
-
-VX_INLINE float vx_grid_mix(float c000, float c100, float c010, float c110, float c001, float c101, float c011,
-                            float c111, VxCacheCell cell) {
-    return mix(mix(mix(c000, c100, cell.fx), mix(c010, c110, cell.fx), cell.fy),
-               mix(mix(c001, c101, cell.fx), mix(c011, c111, cell.fx), cell.fy), cell.fz);
 }
 
 VxCacheCell vx_cache_cell(vec3 world) {

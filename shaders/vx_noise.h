@@ -20,11 +20,9 @@ VX_INLINE vec4 vx_noise_tile(vec3 q) {
     int z1 = ((z0 + 1) & (VX_NOISE_SIZE - 1)) * VX_NOISE_SIZE * VX_NOISE_SIZE;
     y0 *= VX_NOISE_SIZE;
     z0 *= VX_NOISE_SIZE * VX_NOISE_SIZE;
-    return mix(mix(mix(vx_noise(z0 + y0 + x0), vx_noise(z0 + y0 + x1), t.x),
-                   mix(vx_noise(z0 + y1 + x0), vx_noise(z0 + y1 + x1), t.x), t.y),
-               mix(mix(vx_noise(z1 + y0 + x0), vx_noise(z1 + y0 + x1), t.x),
-                   mix(vx_noise(z1 + y1 + x0), vx_noise(z1 + y1 + x1), t.x), t.y),
-               t.z);
+    return VX_TRILERP(vx_noise(z0 + y0 + x0), vx_noise(z0 + y0 + x1), vx_noise(z0 + y1 + x0), vx_noise(z0 + y1 + x1),
+                      vx_noise(z1 + y0 + x0), vx_noise(z1 + y0 + x1), vx_noise(z1 + y1 + x0), vx_noise(z1 + y1 + x1),
+                      t.x, t.y, t.z);
 }
 
 // Octaves of the table at world point x, each `lacunarity` times finer and `gain` times weaker,

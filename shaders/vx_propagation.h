@@ -76,11 +76,10 @@ VX_INLINE float vx_prop_sigma_at(vec3 q) {
     vec3 f = floor(g);
     vec3 t = g - f;
     ivec3 c = ivec3(f);
-    return mix(mix(mix(vx_prop_sigma_cell(c), vx_prop_sigma_cell(c + ivec3(1, 0, 0)), t.x),
-                   mix(vx_prop_sigma_cell(c + ivec3(0, 1, 0)), vx_prop_sigma_cell(c + ivec3(1, 1, 0)), t.x), t.y),
-               mix(mix(vx_prop_sigma_cell(c + ivec3(0, 0, 1)), vx_prop_sigma_cell(c + ivec3(1, 0, 1)), t.x),
-                   mix(vx_prop_sigma_cell(c + ivec3(0, 1, 1)), vx_prop_sigma_cell(c + ivec3(1, 1, 1)), t.x), t.y),
-               t.z);
+    return VX_TRILERP(vx_prop_sigma_cell(c), vx_prop_sigma_cell(c + ivec3(1, 0, 0)), vx_prop_sigma_cell(c + ivec3(0, 1, 0)),
+                      vx_prop_sigma_cell(c + ivec3(1, 1, 0)), vx_prop_sigma_cell(c + ivec3(0, 0, 1)),
+                      vx_prop_sigma_cell(c + ivec3(1, 0, 1)), vx_prop_sigma_cell(c + ivec3(0, 1, 1)),
+                      vx_prop_sigma_cell(c + ivec3(1, 1, 1)), t.x, t.y, t.z);
 }
 
 // Extinction at in-slice coordinates (a, b) of slice `slice`, bilinear between cell centres.
@@ -100,8 +99,8 @@ VX_INLINE float vx_prop_sigma_slice(float a, float b, int slice) {
     du[u] = 1;
     dv[v] = 1;
     float ta = ga - fa;
-    return mix(mix(vx_prop_sigma_cell(c), vx_prop_sigma_cell(c + du), ta),
-               mix(vx_prop_sigma_cell(c + dv), vx_prop_sigma_cell(c + du + dv), ta), gb - fb);
+    return VX_BILERP(vx_prop_sigma_cell(c), vx_prop_sigma_cell(c + du), vx_prop_sigma_cell(c + dv),
+                     vx_prop_sigma_cell(c + du + dv), ta, gb - fb);
 }
 
 // Extinction the sweep sees at grid point q: perturbed as the march perturbs it (the same world
@@ -167,8 +166,8 @@ VX_INLINE vec3 vx_prop_prev_at(float a, float b, int prev) {
     int j = int(fb);
     float ta = ga - fa;
     float tb = gb - fb;
-    return mix(mix(vx_prop_prev_cell(i, j, prev), vx_prop_prev_cell(i + 1, j, prev), ta),
-               mix(vx_prop_prev_cell(i, j + 1, prev), vx_prop_prev_cell(i + 1, j + 1, prev), ta), tb);
+    return VX_BILERP(vx_prop_prev_cell(i, j, prev), vx_prop_prev_cell(i + 1, j, prev), vx_prop_prev_cell(i, j + 1, prev),
+                     vx_prop_prev_cell(i + 1, j + 1, prev), ta, tb);
 }
 
 // Grid point of cell (i, j) of slice Q.slice.
@@ -192,6 +191,26 @@ VX_INLINE float vx_prop_weight(int i, int j) {
     return Q.weight * vx_sweep_weight(vx_prop_light_flow(x), Q.axis, Q.direction, Q.blend_axes != 0) / vx_prop_distance2(x);
 }
 
+// The step from grid point x back to where its light comes from in the previous slice: the
+// direction light flows through x, in grid units, scaled to advance one slice.
+VX_INLINE vec3 vx_prop_back(vec3 x) {
+    vec3 flow = Q.source_is_position != 0 ? (x - Q.source) * Q.flow : Q.source;
+    return flow / max(abs(flow[Q.axis]), 1e-6f);
+}
+
+// The pieces of the composite trapezoid over a step `back`: one per cell it moves sideways (a
+// step of the second blend axis can cross many cells, and the medium's edge, within one slice;
+// one of the principal axis moves at most one cell sideways: the plain trapezoid).
+VX_INLINE int vx_prop_pieces(vec3 back) {
+    return max(int(ceil(max(abs(back[vx_axis_u(Q.axis)]), abs(back[vx_axis_v(Q.axis)])) - 1e-3f)), 1);
+}
+
+// World length of a step `back`.
+VX_INLINE float vx_prop_step_world(vec3 back) { return length(mat3(Q.grid_to_world) * back); }
+
+// Radius of the blur disc at the end of a step `back`: its length times tan(half-angle).
+VX_INLINE float vx_prop_blur_radius(vec3 back) { return length(back) * Q.blur_tan; }
+
 // The value of cell (i, j) of slice Q.slice.
 VX_INLINE vec3 vx_prop_cell(int i, int j) {
     int axis = Q.axis;
@@ -200,9 +219,7 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     int s = Q.slice;
     int prev = s - Q.direction;
     vec3 x = vx_prop_cell_point(i, j);
-    // The direction light flows through x, in grid units, scaled to advance one slice.
-    vec3 flow = Q.source_is_position != 0 ? (x - Q.source) * Q.flow : Q.source;
-    vec3 back = flow / max(abs(flow[axis]), 1e-6f);
+    vec3 back = vx_prop_back(x);
     vec3 p = x - back;
     // A point or spot light's sweep starts at the light's own plane (Sunden 2015, Fig. 5): cells
     // before it, and cells too far sideways (Q.max_slope) for any cell this sweep weights to read,
@@ -220,13 +237,11 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
             p = Q.source;
         }
     }
-    float step_world = length(mat3(Q.grid_to_world) * back);
+    float step_world = vx_prop_step_world(back);
 
-    // Composite trapezoid over the step, one piece per cell it moves sideways: a step of the
-    // second blend axis can cross many cells, and the medium's edge, within one slice. (A step
-    // of the principal axis moves at most one cell sideways: the plain trapezoid.)
+    // The optical depth of the step: a composite trapezoid over the extinction along it.
     vec4 nx = vx_prop_noise(x);
-    int pieces = max(int(ceil(max(abs(back[u]), abs(back[v])) - 1e-3f)), 1);
+    int pieces = vx_prop_pieces(back);
     float ends;
     if (vx_perturbed() || first) {
         ends = vx_prop_extinction(x, nx) + vx_prop_extinction(p, vx_prop_noise(p));
@@ -252,7 +267,7 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     vec3 transmitted = vec3(vx_exp(-k.x * tau), vx_exp(-k.y * tau), vx_exp(-k.z * tau));
     if (first) return vx_prop_outside(x) * transmitted;
     // Blur: taps on a disc around p in the previous slice, radius = step length * tan(half-angle).
-    float radius = length(back) * Q.blur_tan;
+    float radius = vx_prop_blur_radius(back);
     vec3 incoming = vec3(0.0f);
     for (int t = 0; t < Q.tap_count; ++t)
         incoming += Q.taps[t].weight * vx_prop_prev_at(p[u] + radius * Q.taps[t].offset.x, p[v] + radius * Q.taps[t].offset.y, prev);

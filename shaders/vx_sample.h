@@ -52,14 +52,20 @@ VX_INLINE VxCorners vx_corners_at(int slot, ivec3 b, vec3 p) {
     return vx_corners(slot, local.x, local.y, local.z);
 }
 
-// One trilinear reconstruction for any atlas channel: FETCH is an accessor taking an atlas index
-// (strides: +1 in x, +9 in y, +81 in z). A macro because GLSL has no generics; it is the only copy
-// of the filter.
+// The interpolation filters, the only copies: c_xyz is the value at corner (x, y, z) of a unit
+// cell, fx, fy, fz the position in it. Any type mix() takes (float, vec3, vec4); macros because
+// GLSL has no generics. Every lookup of the kernel (atlas, light cache, illumination volume,
+// noise, propagation grids) and the CPU's row batches filter with these.
+#define VX_BILERP(c00, c10, c01, c11, fx, fy) mix(mix(c00, c10, fx), mix(c01, c11, fx), fy)
+#define VX_TRILERP(c000, c100, c010, c110, c001, c101, c011, c111, fx, fy, fz) \
+    mix(VX_BILERP(c000, c100, c010, c110, fx, fy), VX_BILERP(c001, c101, c011, c111, fx, fy), fz)
+
+// Trilinear reconstruction of any atlas channel: FETCH is an accessor taking an atlas index
+// (strides: +1 in x, +9 in y, +81 in z).
 #define VX_TRILINEAR(FETCH, c) \
-    mix(mix(mix(FETCH((c).base), FETCH((c).base + 1), (c).fx), \
-            mix(FETCH((c).base + 9), FETCH((c).base + 10), (c).fx), (c).fy), \
-        mix(mix(FETCH((c).base + 81), FETCH((c).base + 82), (c).fx), \
-            mix(FETCH((c).base + 90), FETCH((c).base + 91), (c).fx), (c).fy), (c).fz)
+    VX_TRILERP(FETCH((c).base), FETCH((c).base + 1), FETCH((c).base + 9), FETCH((c).base + 10), \
+               FETCH((c).base + 81), FETCH((c).base + 82), FETCH((c).base + 90), FETCH((c).base + 91), \
+               (c).fx, (c).fy, (c).fz)
 
 // Raw density at index point p from whichever brick holds it (0 in empty bricks): for lookups
 // that may leave the brick being marched (displaced samples, gradients).

@@ -225,26 +225,44 @@ VX_INLINE float vx_cone_start(ivec3 c, VxCone k) {
     return own.weight * vx_sat_box(0, c + own.lo, c + own.hi);
 }
 
-// Cuboid j of the cone (`ratio_j` = (1 + growth)^j) into `q`; `t0` is where the last cuboid
-// ended (1/2 before the first) and advances. False past the light or for an empty cuboid.
-VX_INLINE bool vx_cone_next(VxCone k, int j, float ratio_j, VX_INOUT(float) t0, VX_OUT(VxCuboid) q) {
-    if (t0 >= k.reach || k.step_world <= 0.0f) return false;
-    float t1 = min(vx_cone_boundary(j, ratio_j, float(S.dims[k.axis]) - 0.5f), k.reach);
-    if (t1 <= t0) return false;
-    q = vx_cone_cuboid(k, t0, t1);
-    t0 = t1;
+// A walk along a cone's cuboids: the one cone loop, which the GL pass, the CPU's row batches
+// and vx_cone_tau share. `j` counts the cuboids so far, `ratio_j` is (1 + growth)^j (kept
+// rather than pow per cuboid, which would dominate), `t0` where the last cuboid ended (1/2, the
+// cell's own face, before the first).
+struct VxConeWalk {
+    int j;
+    float ratio_j;
+    float t0;
+};
+
+VX_INLINE VxConeWalk vx_cone_walk_begin() {
+    VxConeWalk w;
+    w.j = 0;
+    w.ratio_j = 1.0f;
+    w.t0 = 0.5f;
+    return w;
+}
+
+// Steps to the walk's next cuboid (S.cone_cuboids steps in all) and puts it in `q`. False past
+// the light or for an empty cuboid.
+VX_INLINE bool vx_cone_step(VxCone k, VX_INOUT(VxConeWalk) w, VX_OUT(VxCuboid) q) {
+    w.j += 1;
+    w.ratio_j *= 1.0f + S.cone_growth;
+    if (w.t0 >= k.reach || k.step_world <= 0.0f) return false;
+    float t1 = min(vx_cone_boundary(w.j, w.ratio_j, float(S.dims[k.axis]) - 0.5f), k.reach);
+    if (t1 <= w.t0) return false;
+    q = vx_cone_cuboid(k, w.t0, t1);
+    w.t0 = t1;
     return true;
 }
 
 float vx_cone_tau(ivec3 c, VxLight L) {
     VxCone k = vx_cone_from(c, L);
     float tau = vx_cone_start(c, k);
-    float t0 = 0.5f;
-    float ratio_j = 1.0f;
+    VxConeWalk w = vx_cone_walk_begin();
     for (int j = 1; j <= S.cone_cuboids; ++j) {
-        ratio_j *= 1.0f + S.cone_growth;
         VxCuboid q;
-        if (vx_cone_next(k, j, ratio_j, t0, q)) tau += q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
+        if (vx_cone_step(k, w, q)) tau += q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
     }
     return tau;
 }

@@ -29,14 +29,10 @@ std::vector<CpuKernel::VxCuboid> sharedStencil(CpuKernel& k, int light) {
     if (L.type != VX_LIGHT_DIRECTIONAL) return stencil;
     const CpuKernel::VxCone cone = k.vx_cone_from(glm::ivec3(0), L);
     stencil.push_back(k.vx_cone_own_cell(cone));
-    const float span = float(k.S.dims[cone.axis]) - 0.5f;
-    float t0 = 0.5f, ratio_j = 1.0f;
+    CpuKernel::VxConeWalk walk = k.vx_cone_walk_begin();
     for (int j = 1; j <= k.S.cone_cuboids; ++j) {
-        ratio_j *= 1.0f + k.S.cone_growth;
-        const float t1 = k.vx_cone_boundary(j, ratio_j, span);
-        if (t1 <= t0) continue;
-        stencil.push_back(k.vx_cone_cuboid(cone, t0, t1));
-        t0 = t1;
+        CpuKernel::VxCuboid q;
+        if (k.vx_cone_step(cone, walk, q)) stencil.push_back(q);
     }
     return stencil;
 }
@@ -111,7 +107,7 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
         std::vector<float> acc(size_t(chunks) * kRow);
         std::vector<uint8_t> active(static_cast<size_t>(chunks));
         std::vector<CpuKernel::VxCone> cones(static_cast<size_t>(d.x));
-        std::vector<float> t0(static_cast<size_t>(d.x));
+        std::vector<CpuKernel::VxConeWalk> walks(static_cast<size_t>(d.x));
         RowBoxes boxes(d.x);
         const glm::ivec3 dims(d);
         for (int z = r.rows().begin(); z < r.rows().end(); ++z)
@@ -125,16 +121,13 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
                     for (int x = 0; x < d.x; ++x) {
                         cones[size_t(x)] = kk.vx_cone_from({x, y, z}, L);
                         acc[size_t(x)] = kk.vx_cone_start({x, y, z}, cones[size_t(x)]);
-                        t0[size_t(x)] = 0.5f;
+                        walks[size_t(x)] = kk.vx_cone_walk_begin();
                     }
-                    float ratio_j = 1.0f;
                     for (int j = 1; j <= kk.S.cone_cuboids; ++j) {
-                        ratio_j *= 1.0f + kk.S.cone_growth;
                         // Each cell's cuboid (scalar geometry), then every box sum of the row at once.
                         for (int x = 0; x < d.x; ++x) {
                             CpuKernel::VxCuboid q;
-                            const bool on = needed[row + size_t(x)] &&
-                                            kk.vx_cone_next(cones[size_t(x)], j, ratio_j, t0[size_t(x)], q);
+                            const bool on = needed[row + size_t(x)] && kk.vx_cone_step(cones[size_t(x)], walks[size_t(x)], q);
                             const glm::ivec3 a = on ? glm::clamp(glm::ivec3(x, y, z) + q.lo, glm::ivec3(0), dims) : glm::ivec3(0);
                             const glm::ivec3 b = on ? glm::max(glm::clamp(glm::ivec3(x, y, z) + q.hi, glm::ivec3(0), dims), a)
                                                     : glm::ivec3(0);

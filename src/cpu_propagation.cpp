@@ -12,6 +12,8 @@
 namespace voxlux {
 namespace {
 
+using glm::mix;   // the kernel's filters (VX_BILERP) call it unqualified, as GLSL does
+
 // A sweep reads and writes whole slices. For y and z sweeps a slice is rows of x, contiguous in
 // the volume's layout; an x sweep's slice is one float per cache line there, so it runs on copies
 // laid out slice by slice (x-major: index (x * nz + z) * ny + y) and the result is added back.
@@ -52,19 +54,19 @@ public:
     RowBatch(kernel::CpuKernel& k, int nu, int nv) : k_(k), nu_(nu), nv_(nv) {
         const kernel::VxPropParams& Q = k.Q;
         const int axis = Q.axis, u = k.vx_axis_u(axis), v = k.vx_axis_v(axis);
-        const glm::vec3 back = Q.source / std::max(std::abs(Q.source[axis]), 1e-6f);
         usable_ = Q.source_is_position == 0 && Q.eye_sweep == 0 && !k.vx_perturbed() && Q.strides[u] == 1;
         if (!usable_) return;
+        const glm::vec3 back = k.vx_prop_back(glm::vec3(0.0f));   // the same for every cell
         // The extinction samples of vx_prop_cell's composite trapezoid: at fraction f of the step
         // from p (previous slice) to the cell, a blend of the two slices' bilinear reads.
-        const int pieces = std::max(int(std::ceil(std::max(std::abs(back[u]), std::abs(back[v])) - 1e-3f)), 1);
-        const float step_world = glm::length(glm::mat3(Q.grid_to_world) * back);
+        const int pieces = k.vx_prop_pieces(back);
+        const float step_world = k.vx_prop_step_world(back);
         for (int q = 0; q <= pieces; ++q) {
             const float f = float(q) / float(pieces);
             const float w = (q == 0 || q == pieces ? 0.5f : 1.0f) * step_world / float(pieces);
             sigma_.push_back({read(-back[u] * (1.0f - f), -back[v] * (1.0f - f), w), f});
         }
-        const float radius = glm::length(back) * Q.blur_tan;
+        const float radius = k.vx_prop_blur_radius(back);
         for (int t = 0; t < Q.tap_count; ++t)
             taps_.push_back(read(-back[u] + radius * Q.taps[t].offset.x, -back[v] + radius * Q.taps[t].offset.y, Q.taps[t].weight));
         lo_ = 0;
@@ -96,8 +98,8 @@ public:
 #pragma omp simd
                 for (int q = 0; q < n; ++q) {
                     const int i = base + q;
-                    const float in_prev = glm::mix(glm::mix(a0[i], a0[i + 1], ta), glm::mix(a0[i + sv], a0[i + sv + 1], ta), tb);
-                    const float in_here = glm::mix(glm::mix(b0[i], b0[i + 1], ta), glm::mix(b0[i + sv], b0[i + sv + 1], ta), tb);
+                    const float in_prev = VX_BILERP(a0[i], a0[i + 1], a0[i + sv], a0[i + sv + 1], ta, tb);
+                    const float in_here = VX_BILERP(b0[i], b0[i + 1], b0[i + sv], b0[i + sv + 1], ta, tb);
                     tau[q] += w * glm::mix(in_prev, in_here, f);
                 }
             }
@@ -110,7 +112,7 @@ public:
 #pragma omp simd
                     for (int q = 0; q < n; ++q) {
                         const size_t i = size_t(base + q) * channels;
-                        acc[q] += w * glm::mix(glm::mix(p0[i], p0[i + channels], ta), glm::mix(p1[i], p1[i + channels], ta), tb);
+                        acc[q] += w * VX_BILERP(p0[i], p0[i + channels], p1[i], p1[i + channels], ta, tb);
                     }
                 }
                 const float kc = atten_[c];
