@@ -1,18 +1,14 @@
-// CPU backend: the shared kernel with TBB: the march over 16x16 pixel tiles, the SAT scan
-// (summed_volume.cpp), the light passes (cpu_light_pass.cpp), the propagation sweeps
-// (cpu_propagation.cpp) and the grade stage's colour transforms (cpu_color_transform.cpp).
+// CPU backend: the shared kernel with TBB, the march over 16x16 pixel tiles. The lighting
+// methods' CPU passes (cpu_light_pass.cpp, cpu_propagation.cpp) and the grade stage's colour
+// transforms (cpu_color_transform.cpp) use the same kernel binding.
 #include <cstdio>
 #include <cstdlib>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
-#include "cpu_color_transform.h"
 #include "cpu_kernel.h"
-#include "cpu_light_pass.h"
-#include "cpu_propagation.h"
 #include "kernel_backend.h"
-#include "summed_volume.h"
 
 namespace voxlux {
 namespace {
@@ -20,6 +16,7 @@ namespace {
 class CpuBackend final : public KernelBackend {
 public:
     std::string name() const override { return "cpu"; }
+    Device device() const override { return Device::Cpu; }
 
     RenderImage march(const KernelInputs& in) override {
         kernel::CpuKernel k = bindCpuKernel(in);
@@ -34,17 +31,6 @@ public:
                                       img.pixels[size_t(y) * img.width + x] = k.vx_render_pixel(x, y);
                           });
         return img;
-    }
-
-    void buildSat(const LightGrid& grid, SummedVolume& sat) override { buildSummedVolume(grid, sat); }
-
-    void fillLightChannel(const LightPass& pass, LightCache& cache) override { fillLightChannelCpu(pass, cache); }
-
-    void propagate(const PropagationPass& pass, IlluminationVolume& volume) override { propagateCpu(pass, volume); }
-
-    void transformColors(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
-                         bool unpremultiply) override {
-        transformColorsCpu(processor, rgba, unpremultiply);
     }
 };
 

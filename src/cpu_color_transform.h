@@ -8,7 +8,7 @@
 
 namespace voxlux {
 
-// KernelBackend::transformColors for the cpu backend. A no-op processor leaves `rgba` untouched.
+// ColorTransformer::transformColors on the CPU. A no-op processor leaves `rgba` untouched.
 void transformColorsCpu(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
                         bool unpremultiply);
 

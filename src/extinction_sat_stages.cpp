@@ -85,7 +85,7 @@ StageActivity SatStage::activity(const Scene& s) const {
 
 void SatStage::run(StageRun& run) {
     generation_ = nextSatGeneration();
-    run.backend.buildSat(grid_.grid(), sat_);
+    passes_.on(run.backend).buildSat(grid_.grid(), sat_);
 }
 
 StageReads LightCacheStage::reads() const {
@@ -138,6 +138,7 @@ void LightCacheStage::run(StageRun& run) {
     cache_.world_to_cache = glm::inverse(light_to_world);   // a grid of the same dims may have moved
 
     const SummedVolume& sat = sat_.sat();
+    SatPasses& passes = passes_.on(run.backend);
     LightPass pass;
     pass.lights = &inputs.lights;
     pass.sat = &sat;
@@ -173,7 +174,7 @@ void LightCacheStage::run(StageRun& run) {
         for (int i = 0; i < cache_.ambient_width; ++i) {
             S.ao_plane = cache_.ambient_width == 3 ? i + 1 : 0;  // SAT plane: extinction or bleeding RGB
             const glm::vec4 shells(float(S.shells), S.shell_radius, S.cell_world, float(S.ao_plane));
-            ran |= fillChannel(pass, cache_.ambient_channel + i, sat_key + "|ao|" + hashBytes(shells), run.backend);
+            ran |= fillChannel(pass, cache_.ambient_channel + i, sat_key + "|ao|" + hashBytes(shells), passes);
         }
         if (!ran) run.reused.push_back("ambient");
     }
@@ -185,17 +186,17 @@ void LightCacheStage::run(StageRun& run) {
             const kernel::VxLight& light = inputs.lights[size_t(i)];
             const glm::vec4 where = light.type == VX_LIGHT_DIRECTIONAL ? glm::vec4(light.direction, 0.0f) : glm::vec4(light.position, 1.0f);
             S.light = i;
-            if (!fillChannel(pass, cache_.shadow_channel + i, sat_key + "|cone|" + cone_key + hashBytes(where), run.backend))
+            if (!fillChannel(pass, cache_.shadow_channel + i, sat_key + "|cone|" + cone_key + hashBytes(where), passes))
                 run.reused.push_back("shadow of light " + std::to_string(i));
         }
     }
 }
 
-bool LightCacheStage::fillChannel(LightPass& pass, int channel, const std::string& key, KernelBackend& backend) {
+bool LightCacheStage::fillChannel(LightPass& pass, int channel, const std::string& key, SatPasses& passes) {
     if (channel_keys_[size_t(channel)] == key) return false;
     channel_keys_[size_t(channel)].clear();  // stays cleared if the pass throws
     pass.params.channel = channel;
-    backend.fillLightChannel(pass, cache_);
+    passes.fillLightChannel(pass, cache_);
     channel_keys_[size_t(channel)] = key;
     return true;
 }

@@ -14,6 +14,7 @@
 #include "light_cache.h"
 #include "light_grid.h"
 #include "render_graph.h"
+#include "sat_passes.h"
 #include "summed_volume.h"
 #include "volume_stages.h"
 
@@ -52,6 +53,7 @@ public:
 
 private:
     const LightGridStage& grid_;
+    OnDevice<SatPasses> passes_{makeSatPasses};
     SummedVolume sat_;
     uint64_t generation_ = 0;
 };
@@ -70,12 +72,13 @@ public:
 
 private:
     // Runs `pass` into `channel` unless the channel was computed from `key`; true if it ran.
-    bool fillChannel(LightPass& pass, int channel, const std::string& key, KernelBackend& backend);
+    bool fillChannel(LightPass& pass, int channel, const std::string& key, SatPasses& passes);
 
     const BrickStage& brick_;
     const ClassifyStage& classify_;
     const LightGridStage& grid_;
     const SatStage& sat_;
+    OnDevice<SatPasses> passes_{makeSatPasses};
     LightCache cache_;
     std::vector<std::string> channel_keys_;   // what each channel was computed from
 };

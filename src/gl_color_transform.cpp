@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl_context.h"
 #include "gl_program.h"
 #include "kernel_types.h"
 #include "shader_source.h"
@@ -169,8 +170,9 @@ GlColorTransform::Program& GlColorTransform::program(const OCIO::ConstProcessorR
     return *programs_.front();
 }
 
-void GlColorTransform::apply(const OCIO::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
-                             bool unpremultiply) {
+void GlColorTransform::transformColors(const OCIO::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
+                                       bool unpremultiply) {
+    ensureGlContext();   // current on this thread
     if (processor->isNoOp() || rgba.empty()) return;
     const Program& p = program(processor);
     if (p.dynamic) setUniforms(p.id, *describe(processor));
@@ -192,6 +194,11 @@ void GlColorTransform::apply(const OCIO::ConstProcessorRcPtr& processor, std::ve
     }
     if (GLenum error = glGetError(); error != GL_NO_ERROR)
         throw std::runtime_error("GL backend: the colour transform failed with GL error " + std::to_string(error));
+}
+
+std::unique_ptr<ColorTransformer> makeGlColorTransformer() {
+    ensureGlContext();
+    return std::make_unique<GlColorTransform>();
 }
 
 }  // namespace voxlux

@@ -22,20 +22,21 @@
 #include <OpenColorIO/OpenColorIO.h>
 #include <glm/glm.hpp>
 
+#include "color_transformer.h"
+
 namespace voxlux {
 
-class GlColorTransform {
+class GlColorTransform final : public ColorTransformer {
 public:
     GlColorTransform();  // on the current context
     ~GlColorTransform();
     GlColorTransform(const GlColorTransform&) = delete;
     GlColorTransform& operator=(const GlColorTransform&) = delete;
 
-    // KernelBackend::transformColors on the current context. A no-op processor leaves `rgba`
-    // untouched. Throws std::runtime_error with the driver's log when the generated shader does
-    // not compile, or on a GL error.
-    void apply(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
-               bool unpremultiply);
+    // On the current context. Throws std::runtime_error with the driver's log when the generated
+    // shader does not compile, or on a GL error.
+    void transformColors(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
+                         bool unpremultiply) override;
 
 private:
     struct Program;

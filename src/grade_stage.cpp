@@ -10,35 +10,35 @@ using PixelRgb = glm::vec3 kernel::VxPixel::*;
 
 // Runs `processor` over one RGB plane of the image (an AOV: no alpha, nothing to unpremultiply).
 void transformPlane(RenderImage& image, PixelRgb member, const OCIO::ConstProcessorRcPtr& processor,
-                    KernelBackend& backend) {
+                    ColorTransformer& transformer) {
     std::vector<glm::vec4> plane(image.pixels.size());
     for (size_t i = 0; i < plane.size(); ++i) plane[i] = glm::vec4(image.pixels[i].*member, 1.0f);
-    backend.transformColors(processor, plane, false);
+    transformer.transformColors(processor, plane, false);
     for (size_t i = 0; i < plane.size(); ++i) image.pixels[i].*member = glm::vec3(plane[i]);
 }
 
 }  // namespace
 
 std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color, const std::vector<std::string>& aovs,
-                                  KernelBackend& backend) {
+                                  ColorTransformer& transformer) {
     std::vector<glm::vec4> beauty(image.pixels.size());
     for (size_t i = 0; i < beauty.size(); ++i) beauty[i] = image.pixels[i].rgba;
-    if (!color.grade->isNoOp()) backend.transformColors(color.grade, beauty, color.unpremultiply);
+    if (!color.grade->isNoOp()) transformer.transformColors(color.grade, beauty, color.unpremultiply);
 
     // The preview composites the graded beauty over black, which premultiplied colour already is.
     std::vector<glm::vec4> preview;
     if (color.preview) {
         preview = beauty;
-        backend.transformColors(color.preview, preview, false);
+        transformer.transformColors(color.preview, preview, false);
     }
     if (!color.output->isNoOp()) {
-        backend.transformColors(color.output, beauty, color.unpremultiply);
+        transformer.transformColors(color.output, beauty, color.unpremultiply);
         const std::pair<const char*, PixelRgb> planes[] = {{"direct", &kernel::VxPixel::direct},
                                                            {"ambient", &kernel::VxPixel::ambient},
                                                            {"indirect", &kernel::VxPixel::indirect},
                                                            {"emission", &kernel::VxPixel::emission}};
         for (const auto& [name, member] : planes)
-            if (std::find(aovs.begin(), aovs.end(), name) != aovs.end()) transformPlane(image, member, color.output, backend);
+            if (std::find(aovs.begin(), aovs.end(), name) != aovs.end()) transformPlane(image, member, color.output, transformer);
     }
     for (size_t i = 0; i < beauty.size(); ++i) image.pixels[i].rgba = beauty[i];
     return preview;
@@ -75,7 +75,7 @@ void GradeStage::run(StageRun& run) {
     image_ = march_.image();
     std::vector<std::string> aovs;
     for (const auto& aov : run.scene.output.aovs) aovs.push_back(aov.name);
-    preview_ = gradeImage(image_, color_.pipeline(), aovs, run.backend);
+    preview_ = gradeImage(image_, color_.pipeline(), aovs, transformer_.on(run.backend));
 }
 
 void GradeStage::release() {

@@ -1,6 +1,6 @@
 // Grade stage: takes the march's premultiplied, scene-linear image in the working space to the
 // output space, with the scene's grade (looks, CDLs, LUTs) applied to the beauty first, and makes
-// the display-referred preview. The processors run on the render's backend.
+// the display-referred preview. The processors run on the render's device.
 #pragma once
 #include <string>
 #include <vector>
@@ -9,6 +9,7 @@
 
 #include "color_pipeline.h"
 #include "color_stages.h"
+#include "color_transformer.h"
 #include "kernel_backend.h"
 #include "march_stage.h"
 #include "render_graph.h"
@@ -21,7 +22,7 @@ namespace voxlux {
 // display-referred RGBA (the graded beauty over black through color.preview), or nothing when
 // the pipeline has no preview.
 std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color, const std::vector<std::string>& aovs,
-                                  KernelBackend& backend);
+                                  ColorTransformer& transformer);
 
 // The march's image graded (gradeImage), as a stage: it runs when the scene has grade steps,
 // another output space or a preview, and a grade edit re-runs it without the march.
@@ -40,6 +41,7 @@ public:
 private:
     const MarchStage& march_;
     const ColorTransformsStage& color_;
+    OnDevice<ColorTransformer> transformer_{makeColorTransformer};
     RenderImage image_;
     std::vector<glm::vec4> preview_;
 };

@@ -1,16 +1,14 @@
-// Kernel backends: the SAT scan, the light passes, the propagation sweeps and the march, each running the shared kernel
-// (shaders/vx_*.h) on the CPU (TBB) or as GL compute shaders.
+// Kernel backends: the march, running the shared kernel (shaders/vx_*.h) on the CPU (TBB) or as
+// a GL compute shader, and the device a render runs on. The lighting methods' passes and the
+// grade's colour transforms are their own interfaces on the same device (sat_passes.h,
+// propagation_passes.h, color_transformer.h), made per device by the stage that runs them, so
+// adding a method never changes this interface.
 #pragma once
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "illumination_volume.h"
 #include "kernel_inputs.h"
-#include "light_cache.h"
-#include "light_grid.h"
-
-#include <OpenColorIO/OpenColorIO.h>
 
 namespace voxlux {
 
@@ -20,23 +18,36 @@ struct RenderImage {
     std::vector<kernel::VxPixel> pixels;   // row-major, row 0 at the top
 };
 
+enum class Device { Cpu, Gl };
+
 class KernelBackend {
 public:
     virtual ~KernelBackend() = default;
     virtual std::string name() const = 0;   // "cpu" or "gl (<renderer>)"
+    virtual Device device() const = 0;
     virtual RenderImage march(const KernelInputs& inputs) = 0;
-    // The SAT of a light grid, reusing `sat`'s storage; both backends give the same integers.
-    virtual void buildSat(const LightGrid& grid, SummedVolume& sat) = 0;
-    // One light-cache channel (see LightPass).
-    virtual void fillLightChannel(const LightPass& pass, LightCache& cache) = 0;
-    // One propagation pass (see PropagationPass) into `volume`.
-    virtual void propagate(const PropagationPass& pass, IlluminationVolume& volume) = 0;
-    // Applies an OCIO processor in place to premultiplied RGBA pixels (grade stage). With
-    // `unpremultiply`, colour is divided by alpha where alpha > 0 and multiplied back after
-    // (shaders/vx_grade.h); alpha is never changed. cpu: OCIO's CPU processor; gl: the
-    // processor's generated GLSL and LUT textures.
-    virtual void transformColors(const OCIO_NAMESPACE::ConstProcessorRcPtr& processor, std::vector<glm::vec4>& rgba,
-                                 bool unpremultiply) = 0;
+};
+
+// A stage's passes of one kind on the device of the backend it runs with, made the first time and
+// again when the device changes (`render.backend` edited between frames).
+template <class Passes>
+class OnDevice {
+public:
+    using Factory = std::unique_ptr<Passes> (*)(Device);
+    explicit OnDevice(Factory make) : make_(make) {}
+
+    Passes& on(const KernelBackend& backend) {
+        if (!passes_ || device_ != backend.device()) {
+            passes_ = make_(backend.device());
+            device_ = backend.device();
+        }
+        return *passes_;
+    }
+
+private:
+    Factory make_;
+    std::unique_ptr<Passes> passes_;
+    Device device_ = Device::Cpu;
 };
 
 std::unique_ptr<KernelBackend> makeCpuBackend();

@@ -13,7 +13,6 @@
 
 #include "camera.h"
 #include "cpu_kernel.h"
-#include "kernel_backend.h"
 #include "light_sweeps.h"
 
 namespace voxlux {
@@ -164,9 +163,9 @@ double passesCost(const PassSweeps& passes, const SweepGrid& g, bool coherent) {
 }
 
 // Runs `passes` on grid g into the block at `offset`: one pass per direction with every light in
-// it (coherent), or one pass per light sweep. Counts what ran into `report`.
+// it (coherent), or one pass per light sweep, on `device`. Counts what ran into `report`.
 void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool coherent, const KernelInputs& inputs,
-               KernelBackend& backend, IlluminationVolume& volume, LightUpdate& report) {
+               PropagationPasses& device, IlluminationVolume& volume, LightUpdate& report) {
     PropagationPass pass;
     pass.march = &inputs.params;
     pass.noise = &inputs.noise;
@@ -178,7 +177,7 @@ void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool
         if (coherent) {
             pass.sweeps = mergeSharedGeometry(sweeps);
             report.sweeps += int(pass.sweeps.size());
-            backend.propagate(pass, volume);
+            device.propagate(pass, volume);
             report.passes += 1;
             report.slices += slices;
             continue;
@@ -186,7 +185,7 @@ void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool
         report.sweeps += int(sweeps.size());
         for (const kernel::VxPropParams& Q : sweeps) {
             pass.sweeps = {Q};
-            backend.propagate(pass, volume);
+            device.propagate(pass, volume);
             report.passes += 1;
             report.slices += slices;
         }
@@ -196,7 +195,7 @@ void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool
 // The eye sweep (Ropinski Sec. 4.1): the indirect light flows towards the camera along the axis
 // facing it. It reads `before`, the light sweeps' indirect block, and replaces the volume's.
 void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const SweepGrid& coarse, glm::vec3 eye_position,
-                     const std::vector<float>& before, KernelBackend& backend, IlluminationVolume& volume) {
+                     const std::vector<float>& before, PropagationPasses& device, IlluminationVolume& volume) {
     const glm::vec3 cam = glm::vec3(coarse.world_to_grid * glm::vec4(eye_position, 1.0f));
     const Sweep s = sweepsFor(cam - 0.5f * glm::vec3(coarse.dims), false)[0];
     const float tan_half = std::tan(glm::radians(0.5f * in.angle));
@@ -218,7 +217,7 @@ void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const Sweep
     pass.sigma = coarse.sigma;
     pass.offset = volume.indirectOffset();
     pass.input = &before;
-    backend.propagate(pass, volume);
+    device.propagate(pass, volume);
 }
 
 // The brightest radiance a light brings into the grid (luminance): what its sweeps add at most,
@@ -447,8 +446,8 @@ void PropagationStage::run(StageRun& run) {
             report.mode = LightUpdate::Mode::Selective;
             report.lights_out = int(removed.size());
             report.lights_in = int(added.size());
-            runPasses(sel_fine, fine, 0, coherent, inputs, run.backend, volume_, report);
-            if (indirect) runPasses(sel_coarse, coarse, volume_.indirectOffset(), coherent, inputs, run.backend, volume_, report);
+            runPasses(sel_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
+            if (indirect) runPasses(sel_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
             drift_ += peak(removed) + peak(added);
         } else {
             volume_.dims = fine.dims;
@@ -458,8 +457,8 @@ void PropagationStage::run(StageRun& run) {
             volume_.values.assign(3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
             report.mode = LightUpdate::Mode::Entire;
             report.lights_in = int(inputs.lights.size());
-            runPasses(all_fine, fine, 0, coherent, inputs, run.backend, volume_, report);
-            if (indirect) runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, run.backend, volume_, report);
+            runPasses(all_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
+            if (indirect) runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
             drift_ = 0.0;
         }
         applied_ = inputs.lights;
@@ -487,7 +486,7 @@ void EyePassStage::run(StageRun& run) {
     const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));
     const std::vector<float> before(lit.values.begin() + long(lit.indirectOffset()), lit.values.end());
     const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);
-    sweepTowardsEye(*run.scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, run.backend, volume_);
+    sweepTowardsEye(*run.scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, passes_.on(run.backend), volume_);
 }
 
 }  // namespace voxlux

@@ -19,6 +19,7 @@
 
 #include "illumination_volume.h"
 #include "light_grid.h"
+#include "propagation_passes.h"
 #include "render_graph.h"
 #include "volume_stages.h"
 
@@ -111,6 +112,7 @@ private:
     const BrickStage& brick_;
     const ClassifyStage& classify_;
     const IlluminationGridStage& grid_;
+    OnDevice<PropagationPasses> passes_{makePropagationPasses};
     std::string setup_key_;             // the grid and knobs the light sweeps were computed with
     std::vector<kernel::VxLight> applied_;   // the lights the volume holds
     double drift_ = 0.0;                // peak radiance swept in and out since the last entire update
@@ -137,6 +139,7 @@ private:
     const CameraStage& camera_;
     const IlluminationGridStage& grid_;
     const PropagationStage& propagation_;
+    OnDevice<PropagationPasses> passes_{makePropagationPasses};
     IlluminationVolume volume_;
 };
 

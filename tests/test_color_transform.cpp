@@ -11,6 +11,7 @@
 #include <cstring>
 #include <limits>
 
+#include "color_transformer.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -52,8 +53,8 @@ std::vector<glm::vec4> testImage(float range) {
 double backendDifference(const Case& c, KernelBackend& gl) {
     const std::vector<glm::vec4> input = testImage(c.range);
     std::vector<glm::vec4> on_cpu = input, on_gl = input;
-    makeCpuBackend()->transformColors(c.processor, on_cpu, true);
-    gl.transformColors(c.processor, on_gl, true);
+    makeColorTransformer(Device::Cpu)->transformColors(c.processor, on_cpu, true);
+    makeColorTransformer(gl.device())->transformColors(c.processor, on_gl, true);
     EXPECT_NE(std::memcmp(on_cpu.data(), input.data(), input.size() * sizeof(glm::vec4)), 0) << c.name;
     double worst = 0.0;
     for (size_t i = 0; i < input.size(); ++i) {
@@ -161,8 +162,8 @@ TEST(ColorTransform, DynamicPropertiesAgreeOnBothBackends) {
     const OCIO::ConstProcessorRcPtr brighter = exposure(0.5), darker = exposure(-1.5);
     ASSERT_STREQ(brighter->getCacheID(), darker->getCacheID());
     std::vector<glm::vec4> bright = testImage(16.0f), dark = bright;
-    makeCpuBackend()->transformColors(brighter, bright, true);
-    makeCpuBackend()->transformColors(darker, dark, true);
+    makeColorTransformer(Device::Cpu)->transformColors(brighter, bright, true);
+    makeColorTransformer(Device::Cpu)->transformColors(darker, dark, true);
     ASSERT_NE(std::memcmp(bright.data(), dark.data(), bright.size() * sizeof(glm::vec4)), 0);
 
     OCIO::GradingPrimaryTransformRcPtr primary = OCIO::GradingPrimaryTransform::Create(OCIO::GRADING_LIN);
@@ -210,7 +211,7 @@ TEST(ColorTransform, CdlMatchesTheAscFormula) {
     const std::vector<glm::vec4> input = {
         {0.18f, 0.18f, 0.18f, 1.0f}, {0.5f, 0.25f, 0.75f, 1.0f}, {0.9f, 0.95f, 0.1f, 1.0f}, {0.3f, 0.0f, 0.6f, 1.0f}};
     std::vector<glm::vec4> pixels = input;
-    makeCpuBackend()->transformColors(processor, pixels, true);
+    makeColorTransformer(Device::Cpu)->transformColors(processor, pixels, true);
     for (size_t i = 0; i < input.size(); ++i) {
         const glm::dvec3 expected = ascCdl(glm::dvec3(input[i]), slope, offset, power, sat);
         for (int k = 0; k < 3; ++k) EXPECT_NEAR(pixels[i][k], expected[k], 2e-6) << "pixel " << i << " channel " << k;
@@ -242,7 +243,7 @@ TEST(ColorTransform, PremultipliedAlphaRules) {
     for (const auto& backend : bothBackends())
         for (bool unpremultiply : {true, false}) {
             std::vector<glm::vec4> pixels = input;
-            backend->transformColors(processor, pixels, unpremultiply);
+            makeColorTransformer(backend->device())->transformColors(processor, pixels, unpremultiply);
             const std::vector<glm::vec4>& expected = unpremultiply ? unpremultiplied : straight;
             for (size_t i = 0; i < input.size(); ++i)
                 for (int k = 0; k < 4; ++k)
@@ -264,7 +265,7 @@ TEST(ColorTransform, LargeImagesRunInBlocks) {
     std::vector<glm::vec4> pixels((size_t(1) << 21) + 1000);  // two whole blocks and a partial one
     auto input = [](size_t i) { return glm::vec3(float(i) * 1e-6f, float(i % 1000) * 1e-3f, 0.5f); };
     for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = glm::vec4(input(i), 1.0f);
-    gl->transformColors(processor, pixels, true);
+    makeColorTransformer(gl->device())->transformColors(processor, pixels, true);
     size_t misplaced = 0;
     for (size_t i = 0; i < pixels.size(); ++i) {
         const glm::vec3 expected = glm::vec3(1.5f, 0.5f, 2.0f) * input(i) + glm::vec3(0.1f, 0.2f, -0.1f);
@@ -281,7 +282,7 @@ TEST(ColorTransform, NoOpLeavesPixelsUntouched) {
         {0.3f, 0.7f, 0.1f, 0.3f}, {std::nanf(""), 1.0f, 2.0f, 0.0f}, {1e-30f, 5.0f, 0.0f, 0.7f}};
     for (const auto& backend : bothBackends()) {
         std::vector<glm::vec4> pixels = input;
-        backend->transformColors(processor, pixels, true);
+        makeColorTransformer(backend->device())->transformColors(processor, pixels, true);
         EXPECT_EQ(std::memcmp(pixels.data(), input.data(), input.size() * sizeof(glm::vec4)), 0) << backend->name();
     }
 }

@@ -112,9 +112,8 @@ TEST(GradeStage, CpuAndGlAgree) {
     ::unsetenv("OCIO");
     ColorPipeline p = buildColorPipeline(color, true);
     RenderImage on_cpu = r.image, on_gl = r.image;
-    auto cpu = makeCpuBackend();
-    std::vector<glm::vec4> preview_cpu = gradeImage(on_cpu, p, {"direct"}, *cpu);
-    std::vector<glm::vec4> preview_gl = gradeImage(on_gl, p, {"direct"}, *gl);
+    std::vector<glm::vec4> preview_cpu = gradeImage(on_cpu, p, {"direct"}, *makeColorTransformer(Device::Cpu));
+    std::vector<glm::vec4> preview_gl = gradeImage(on_gl, p, {"direct"}, *makeColorTransformer(gl->device()));
     float worst = 0.0f;
     for (size_t i = 0; i < on_cpu.pixels.size(); ++i)
         for (int c = 0; c < 4; ++c)

@@ -1,0 +1,27 @@
+// The Extinction-SAT method's passes on one device (Schlegel 2011): the SAT scan over the light
+// grid and the light-cache channels, AO shells and shadow cones, queried from it. The CPU runs
+// them with TBB and SIMD row batches (summed_volume.cpp, cpu_light_pass.cpp), GL as the compute
+// programs sat_scan.comp and light_cache.comp (gl_sat_passes.cpp); both give the same integers
+// and, per cell, the same kernel arithmetic (shaders/vx_sat.h).
+#pragma once
+#include <memory>
+
+#include "kernel_backend.h"
+#include "light_cache.h"
+#include "light_grid.h"
+#include "summed_volume.h"
+
+namespace voxlux {
+
+class SatPasses {
+public:
+    virtual ~SatPasses() = default;
+    // The SAT of a light grid, reusing `sat`'s storage.
+    virtual void buildSat(const LightGrid& grid, SummedVolume& sat) = 0;
+    // One light-cache channel (see LightPass).
+    virtual void fillLightChannel(const LightPass& pass, LightCache& cache) = 0;
+};
+
+std::unique_ptr<SatPasses> makeSatPasses(Device device);
+
+}  // namespace voxlux
