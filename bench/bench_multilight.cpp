@@ -383,7 +383,7 @@ RigResult measureRig(Rig rig, const Volume& vol, int resolution, const std::stri
 }
 
 // ---------------------------------------------------------------------------------------------
-// Calibration of the cost estimate (SweepCost in src/propagation_stages.h, in units of one
+// Calibration of the cost estimate (SweepCost in src/lighting/propagation/propagation_stages.h, in units of one
 // directional direct sweep).
 
 void calibration(const Volume& vol, int resolution, int repeats) {

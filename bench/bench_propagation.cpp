@@ -28,7 +28,7 @@
 
 #include "bench_timing.h"
 #include "camera.h"
-#include "light_sweeps.h"
+#include "lighting/propagation/light_sweeps.h"
 #include "renderer.h"
 #include "svg_plot.h"
 #include "vdb_loader.h"

@@ -20,10 +20,10 @@
 
 #include "bench_timing.h"
 #include "camera.h"
-#include "cpu_light_pass.h"
+#include "lighting/extinction_sat/cpu_light_pass.h"
 #include "kernel_backend.h"
 #include "renderer.h"
-#include "summed_volume.h"
+#include "lighting/extinction_sat/summed_volume.h"
 #include "svg_plot.h"
 
 namespace {

@@ -1,7 +1,8 @@
 // Ray marching through the brick atlas: brick-level DDA with empty-space skipping, optical depth
 // accumulated as a sum (tau += sigma * dt, T = exp(-tau)), brute-force shadow rays, compositing.
 #pragma once
-#include "vx_illumination.h"
+#include "lighting/extinction_sat/vx_cache.h"
+#include "lighting/propagation/vx_illumination.h"
 #include "vx_noise.h"
 
 // Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.
@@ -159,7 +160,7 @@ VX_INLINE float vx_surface_factor(VxSurface surface, vec3 wi, vec3 dir) {
 // from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
 // `cell` locates x in the light cache (read only for SAT-cone shadows); `surface` is vx_surface.
-vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxCacheCell cell, VxSurface surface) {
+vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxGridCell cell, VxSurface surface) {
     vec3 sum = vec3(0.0f);
     vec3 unshadowed = vec3(0.0f);   // what the lights would bring unshadowed (propagation)
     bool propagated = P.shadow_mode == VX_SHADOWS_PROPAGATION && P.illum_dims.x > 0;
@@ -271,7 +272,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     float cutoff = P.transmittance_cutoff;
     bool shaded_surface = P.surface_inv_range > 0.0f;
     bool per_ray_directional = P.shadow_mode == VX_SHADOWS_NONE && !shaded_surface;
-    VxCacheCell no_cell;
+    VxGridCell no_cell;
     no_cell.base = 0;
     no_cell.fx = 0.0f;
     no_cell.fy = 0.0f;
@@ -330,7 +331,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                 if (absorbed > 0.0f) {
                     vec3 x = origin + dir * t;
                     vec3 albedo = plain_albedo || !occupied ? P.albedo : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
-                    VxCacheCell cell = cached ? vx_cache_cell(x) : no_cell;
+                    VxGridCell cell = cached ? vx_cache_cell(x) : no_cell;
                     VxSurface surface = shaded_surface ? vx_surface(o + d * t) : vx_no_surface();
                     px.direct += albedo * (directional + vx_in_scattered(x, dir, per_sample_lights, cell, surface)) * absorbed;
                     if (P.indirect_weight > 0.0f) px.indirect += albedo * vx_illum_indirect(x) * (P.indirect_weight * absorbed);

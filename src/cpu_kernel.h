@@ -67,8 +67,8 @@ struct CpuKernel {
     float vx_prop_in(int i) const { return prop_in.at(i, "eye-sweep input"); }
 
 #include "vx_march.h"
-#include "vx_sat.h"
-#include "vx_propagation.h"
+#include "lighting/extinction_sat/vx_sat.h"
+#include "lighting/propagation/vx_propagation.h"
 };
 
 }  // namespace voxlux::kernel

@@ -6,9 +6,9 @@
 
 #include "brick_atlas.h"
 #include "emission.h"
-#include "illumination_volume.h"
+#include "lighting/propagation/illumination_volume.h"
 #include "kernel_types.h"
-#include "light_cache.h"
+#include "lighting/extinction_sat/light_cache.h"
 #include "page_table.h"
 #include "scene.h"
 

@@ -4,9 +4,9 @@
 // Cost: pixels x samples per ray; empty bricks are skipped by the page table's DDA.
 #pragma once
 #include "color_stages.h"
-#include "extinction_sat_stages.h"
+#include "lighting/extinction_sat/extinction_sat_stages.h"
 #include "kernel_backend.h"
-#include "propagation_stages.h"
+#include "lighting/propagation/propagation_stages.h"
 #include "render_graph.h"
 #include "volume_stages.h"
 

@@ -15,11 +15,11 @@
 #include <vector>
 
 #include "color_stages.h"
-#include "extinction_sat_stages.h"
+#include "lighting/extinction_sat/extinction_sat_stages.h"
 #include "grade_stage.h"
 #include "kernel_backend.h"
 #include "march_stage.h"
-#include "propagation_stages.h"
+#include "lighting/propagation/propagation_stages.h"
 #include "render_graph.h"
 #include "scene.h"
 #include "volume_stages.h"

@@ -10,11 +10,11 @@
 #include <random>
 
 #include "cpu_kernel.h"
-#include "cpu_light_pass.h"
-#include "cpu_propagation.h"
-#include "light_grid.h"
-#include "light_sweeps.h"
-#include "summed_volume.h"
+#include "lighting/extinction_sat/cpu_light_pass.h"
+#include "lighting/propagation/cpu_propagation.h"
+#include "lighting/light_grid.h"
+#include "lighting/propagation/light_sweeps.h"
+#include "lighting/extinction_sat/summed_volume.h"
 
 namespace voxlux::test {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "brick_atlas.h"
 #include "kernel_inputs.h"
-#include "propagation_stages.h"
+#include "lighting/propagation/propagation_stages.h"
 #include "renderer.h"
 #include "kernel_backend.h"
 #include "page_table.h"

@@ -1,4 +1,4 @@
-#include "extinction_sat_stages.h"
+#include "lighting/extinction_sat/extinction_sat_stages.h"
 
 #include <algorithm>
 #include <atomic>

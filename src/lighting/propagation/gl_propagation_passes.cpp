@@ -8,7 +8,7 @@
 #include "cpu_kernel.h"
 #include "gl_buffer.h"
 #include "gl_context.h"
-#include "propagation_passes.h"
+#include "lighting/propagation/propagation_passes.h"
 
 namespace voxlux {
 namespace {

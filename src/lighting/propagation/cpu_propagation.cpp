@@ -1,4 +1,4 @@
-#include "cpu_propagation.h"
+#include "lighting/propagation/cpu_propagation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -17,7 +17,7 @@ namespace voxlux {
 
 // Cells are clamped to this optical depth across one cell. Beyond it a cell is black either way;
 // the clamp keeps one absurd voxel (1e30) from setting the SAT's quantum and so from rounding
-// every ordinary cell to zero (src/summed_volume.h).
+// every ordinary cell to zero (src/lighting/extinction_sat/summed_volume.h).
 constexpr float kMaxCellOpticalDepth = 1e4f;
 
 struct LightGrid {

@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "illumination_volume.h"
-#include "light_grid.h"
-#include "propagation_passes.h"
+#include "lighting/propagation/illumination_volume.h"
+#include "lighting/light_grid.h"
+#include "lighting/propagation/propagation_passes.h"
 #include "render_graph.h"
 #include "volume_stages.h"
 

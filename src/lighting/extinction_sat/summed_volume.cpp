@@ -1,4 +1,4 @@
-#include "summed_volume.h"
+#include "lighting/extinction_sat/summed_volume.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,14 +2,14 @@
 // grid and the light-cache channels, AO shells and shadow cones, queried from it. The CPU runs
 // them with TBB and SIMD row batches (summed_volume.cpp, cpu_light_pass.cpp), GL as the compute
 // programs sat_scan.comp and light_cache.comp (gl_sat_passes.cpp); both give the same integers
-// and, per cell, the same kernel arithmetic (shaders/vx_sat.h).
+// and, per cell, the same kernel arithmetic (src/lighting/extinction_sat/vx_sat.h).
 #pragma once
 #include <memory>
 
 #include "kernel_backend.h"
-#include "light_cache.h"
-#include "light_grid.h"
-#include "summed_volume.h"
+#include "lighting/extinction_sat/light_cache.h"
+#include "lighting/light_grid.h"
+#include "lighting/extinction_sat/summed_volume.h"
 
 namespace voxlux {
 

@@ -1,6 +1,6 @@
-#include "sat_passes.h"
+#include "lighting/extinction_sat/sat_passes.h"
 
-#include "cpu_light_pass.h"
+#include "lighting/extinction_sat/cpu_light_pass.h"
 
 namespace voxlux {
 

@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "cpu_kernel.h"
-#include "propagation_stages.h"
-#include "light_sweeps.h"
+#include "lighting/propagation/propagation_stages.h"
+#include "lighting/propagation/light_sweeps.h"
 #include "renderer.h"
 #include "test_support.h"
 

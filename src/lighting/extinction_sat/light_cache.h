@@ -1,5 +1,5 @@
 // The light cache (Schlegel 2011, Sec. 3): per light-grid cell, the optical depths the march
-// turns into ambient occlusion and shadows, filled by SAT queries (shaders/vx_sat.h) on either
+// turns into ambient occlusion and shadows, filled by SAT queries (src/lighting/extinction_sat/vx_sat.h) on either
 // backend. Channels: ambient occlusion (1, or 3 with colour bleeding), then one per scene light
 // (in packed order) when shadows are "sat_cone".
 #pragma once

@@ -1,4 +1,4 @@
-#include "propagation_stages.h"
+#include "lighting/propagation/propagation_stages.h"
 
 #include <algorithm>
 #include <array>
@@ -13,7 +13,7 @@
 
 #include "camera.h"
 #include "cpu_kernel.h"
-#include "light_sweeps.h"
+#include "lighting/propagation/light_sweeps.h"
 
 namespace voxlux {
 namespace {

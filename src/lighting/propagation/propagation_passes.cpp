@@ -1,6 +1,6 @@
-#include "propagation_passes.h"
+#include "lighting/propagation/propagation_passes.h"
 
-#include "cpu_propagation.h"
+#include "lighting/propagation/cpu_propagation.h"
 
 namespace voxlux {
 

@@ -1,4 +1,4 @@
-#include "light_sweeps.h"
+#include "lighting/propagation/light_sweeps.h"
 
 #include <algorithm>
 #include <array>

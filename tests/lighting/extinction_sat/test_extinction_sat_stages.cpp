@@ -4,7 +4,7 @@
 #include <limits>
 #include <filesystem>
 
-#include "light_grid.h"
+#include "lighting/light_grid.h"
 #include "renderer.h"
 #include "test_support.h"
 

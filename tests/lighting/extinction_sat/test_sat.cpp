@@ -1,11 +1,11 @@
-// The extinction SAT and its queries (shaders/vx_sat.h) against brute force and closed forms:
+// The extinction SAT and its queries (src/lighting/extinction_sat/vx_sat.h) against brute force and closed forms:
 // exact box sums on adversarial grids, AO shells in empty and homogeneous media, cone shadows
 // through slabs and from lights inside the volume.
 #include <cmath>
 #include <random>
 
 #include "cpu_kernel.h"
-#include "summed_volume.h"
+#include "lighting/extinction_sat/summed_volume.h"
 #include "test_support.h"
 
 namespace voxlux::test {

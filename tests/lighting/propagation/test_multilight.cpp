@@ -9,11 +9,11 @@
 #include <random>
 
 #include "cpu_kernel.h"
-#include "cpu_propagation.h"
+#include "lighting/propagation/cpu_propagation.h"
 #include "error.h"
-#include "propagation_stages.h"
+#include "lighting/propagation/propagation_stages.h"
 #include "light_rig.h"
-#include "light_sweeps.h"
+#include "lighting/propagation/light_sweeps.h"
 #include "renderer.h"
 #include "test_support.h"
 

@@ -2,7 +2,7 @@
 // from cuboid shells (Eq. 4, 5, 8) and shadow optical depth from a cone of cuboids (Eq. 7).
 //
 // The SAT holds integers, not floats: each light-grid cell is quantised to a multiple of the
-// plane's quantum (a power of two chosen from the plane's maximum, src/summed_volume.cpp) and the
+// plane's quantum (a power of two chosen from the plane's maximum, src/lighting/extinction_sat/summed_volume.cpp) and the
 // prefix sums are kept modulo 2^96 in three 32-bit words. Box sums are differences of prefix sums,
 // so they are exact in modular arithmetic whatever the prefix sums' size; the only rounding is the
 // final conversion to float (< 3e-7 relative). docs/accuracy-sat.md derives the bound.

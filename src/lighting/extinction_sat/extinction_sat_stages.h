@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "light_cache.h"
-#include "light_grid.h"
+#include "lighting/extinction_sat/light_cache.h"
+#include "lighting/light_grid.h"
 #include "render_graph.h"
-#include "sat_passes.h"
-#include "summed_volume.h"
+#include "lighting/extinction_sat/sat_passes.h"
+#include "lighting/extinction_sat/summed_volume.h"
 #include "volume_stages.h"
 
 namespace voxlux {

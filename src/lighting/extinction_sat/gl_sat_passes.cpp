@@ -8,7 +8,7 @@
 
 #include "gl_buffer.h"
 #include "gl_context.h"
-#include "sat_passes.h"
+#include "lighting/extinction_sat/sat_passes.h"
 
 namespace voxlux {
 namespace {

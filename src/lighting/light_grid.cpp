@@ -1,4 +1,4 @@
-#include "light_grid.h"
+#include "lighting/light_grid.h"
 
 #include <algorithm>
 #include <atomic>

@@ -1,11 +1,11 @@
-// CPU light passes: AO shells and shadow cones from the SAT (shaders/vx_sat.h). When every cell of
+// CPU light passes: AO shells and shadow cones from the SAT (src/lighting/extinction_sat/vx_sat.h). When every cell of
 // a pass uses the same cuboids (AO shells, directional lights) a row of cells along x is
 // evaluated per cuboid as one SIMD batch, the eight corner lookups being contiguous loads across
 // the row; cones towards point and spot lights differ per cell, and run cell by cell within each
 // cuboid so that neighbouring cells' lookups stay neighbours in memory. Both paths
 // compute the same integer box sums and the same float weights as the GL backend's per-cell one.
-#include "cpu_light_pass.h"
-#include "summed_volume.h"
+#include "lighting/extinction_sat/cpu_light_pass.h"
+#include "lighting/extinction_sat/summed_volume.h"
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
