@@ -1,5 +1,5 @@
 // The scene: everything a render needs, as parsed from JSON (docs/scene.md) or built by the quick
-// form of `voxlux render cache.vdb`. Plain data; parsing and validation live in scene_json.cpp.
+// form of `voxlux render cache.vdb`. Plain data; reading, validation and writing live in scene_read.cpp and scene_write.cpp.
 #pragma once
 #include <array>
 #include <optional>

@@ -1,4 +1,5 @@
-// Scene <-> JSON. The format is documented in docs/scene.md.
+// Scene <-> JSON (docs/scene.md): reading and validating (scene_read.cpp), writing
+// (scene_write.cpp) and `--set` edits of the JSON before it is read (scene_set.cpp).
 #pragma once
 #include <string>
 
