@@ -31,24 +31,12 @@ kernel::VxLight packLight(const Light& l) {
     return k;
 }
 
-}  // namespace
-
-KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const PageTable& pages, float frame,
-                              const glm::mat3& xyz_to_working, const MarchSources& sources) {
-    KernelInputs in;
-    in.atlas = &atlas;
-    in.pages = &pages;
+// The medium: the march step, the material, the transfer function and the emission tables.
+void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz_to_working, KernelInputs& in) {
     auto& P = in.params;
     const auto& r = scene.render;
     const auto& m = scene.material;
-    float edge = voxelEdge(atlas.index_to_world);
-    if (const Camera* camera = sources.camera) {
-        P.camera_to_world = cameraToWorld(*camera);
-        P.tan_half_fov = std::tan(glm::radians(camera->fov) * 0.5f);
-        P.aspect = float(r.width) / float(r.height);
-        P.width = r.width;
-        P.height = r.height;
-    }
+    const float edge = voxelEdge(atlas.index_to_world);
     P.world_to_index = glm::inverse(atlas.index_to_world);
     P.step = r.step * edge;
     P.shadow_step = r.shadow_step * edge;
@@ -74,6 +62,12 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     P.transfer_inv_range = 1.0f / (hi - lo);
     P.use_transfer = m.transfer.empty() ? 0 : 1;
     P.use_color_grid = atlas.color.empty() ? 0 : 1;
+    in.tf_lut = bakeTransfer(m.transfer);
+}
+
+// The enabled lights, ambient ones summed into one radiance, and how their shadows are found.
+void setLights(const Scene& scene, KernelInputs& in) {
+    auto& P = in.params;
     // Ambient lights are not shadowed and act the same everywhere: they sum into one radiance.
     glm::vec3 ambient(0.0f);
     int local_lights = 0;
@@ -94,12 +88,11 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
                                                                          : VX_SHADOWS_NONE;
     P.light_count = int(in.lights.size());
     P.local_light_count = local_lights;
-    P.bricks_min = pages.bricks_min;
-    P.bricks_max = pages.bricks_max;
-    P.page_capacity = int(pages.entries.size());
-    P.page_max_probe = pages.max_probe;
-    in.tf_lut = bakeTransfer(m.transfer);
+}
 
+// The lighting methods' outputs the march reads: the light cache, the illumination volume.
+void setLighting(const Scene& scene, const MarchSources& sources, KernelInputs& in) {
+    auto& P = in.params;
     P.ao_channel = -1;
     P.ao_channels = 1;
     P.shadow_channel = -1;
@@ -125,7 +118,12 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
         P.transport = ind->transport_color;
         P.indirect_weight = ind->strength / (4.0f * float(M_PI));
     }
-    if (const auto& sf = scene.effects.surface) {
+}
+
+// Kniss 2003's surface shading and perturbation.
+void setKnissEffects(const Effects& fx, float edge, float frame, KernelInputs& in) {
+    auto& P = in.params;
+    if (const auto& sf = fx.surface) {
         P.surface_low = sf->gradient_low;
         P.surface_inv_range = 1.0f / (sf->gradient_high - sf->gradient_low);
         P.specular = sf->specular;
@@ -133,7 +131,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     }
     // A perturbation of zero amplitude is no perturbation: it stays off, so the render is exactly
     // the unperturbed one and costs nothing.
-    if (const auto& pt = scene.effects.perturbation; pt && (pt->density > 0 || pt->transport > 0 || pt->displacement > 0)) {
+    if (const auto& pt = fx.perturbation; pt && (pt->density > 0 || pt->transport > 0 || pt->displacement > 0)) {
         // Automatic: two voxels per texel of the first octave. It follows the voxel size, not the
         // data's extent, so a sequence whose extent changes frame to frame keeps its noise.
         const float scale = pt->scale > 0.0f ? pt->scale : 2.0f * float(VX_NOISE_SIZE) * edge;
@@ -147,6 +145,31 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
         P.noise_transport = pt->transport;
         in.noise = makeNoiseTable(pt->seed);
     }
+}
+
+}  // namespace
+
+KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const PageTable& pages, float frame,
+                              const glm::mat3& xyz_to_working, const MarchSources& sources) {
+    KernelInputs in;
+    in.atlas = &atlas;
+    in.pages = &pages;
+    auto& P = in.params;
+    if (const Camera* camera = sources.camera) {
+        P.camera_to_world = cameraToWorld(*camera);
+        P.tan_half_fov = std::tan(glm::radians(camera->fov) * 0.5f);
+        P.aspect = float(scene.render.width) / float(scene.render.height);
+        P.width = scene.render.width;
+        P.height = scene.render.height;
+    }
+    P.bricks_min = pages.bricks_min;
+    P.bricks_max = pages.bricks_max;
+    P.page_capacity = int(pages.entries.size());
+    P.page_max_probe = pages.max_probe;
+    setMedium(scene, atlas, xyz_to_working, in);
+    setLights(scene, in);
+    setLighting(scene, sources, in);
+    setKnissEffects(scene.effects, voxelEdge(atlas.index_to_world), frame, in);
     return in;
 }
 
