@@ -12,14 +12,14 @@
 #include <thread>
 #include <vector>
 
-#include "brick_atlas.h"
-#include "camera.h"
-#include "exr_writer.h"
-#include "kernel_inputs.h"
-#include "kernel_backend.h"
-#include "page_table.h"
-#include "renderer.h"
-#include "vdb_loader.h"
+#include "volume/brick_atlas.h"
+#include "scene/camera.h"
+#include "io/exr_writer.h"
+#include "kernel/kernel_inputs.h"
+#include "kernel/kernel_backend.h"
+#include "volume/page_table.h"
+#include "render/renderer.h"
+#include "volume/vdb_loader.h"
 
 namespace {
 

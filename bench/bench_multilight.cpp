@@ -44,9 +44,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench_timing.h"
-#include "light_rig.h"
-#include "renderer.h"
-#include "vdb_loader.h"
+#include "scene/light_rig.h"
+#include "render/renderer.h"
+#include "volume/vdb_loader.h"
 
 namespace {
 

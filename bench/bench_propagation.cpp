@@ -27,11 +27,11 @@
 #include <vector>
 
 #include "bench_timing.h"
-#include "camera.h"
+#include "scene/camera.h"
 #include "lighting/propagation/light_sweeps.h"
-#include "renderer.h"
-#include "svg_plot.h"
-#include "vdb_loader.h"
+#include "render/renderer.h"
+#include "tools/svg_plot.h"
+#include "volume/vdb_loader.h"
 
 namespace {
 

@@ -19,12 +19,12 @@
 #include <vector>
 
 #include "bench_timing.h"
-#include "camera.h"
+#include "scene/camera.h"
 #include "lighting/extinction_sat/cpu_light_pass.h"
-#include "kernel_backend.h"
-#include "renderer.h"
+#include "kernel/kernel_backend.h"
+#include "render/renderer.h"
 #include "lighting/extinction_sat/summed_volume.h"
-#include "svg_plot.h"
+#include "tools/svg_plot.h"
 
 namespace {
 

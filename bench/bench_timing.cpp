@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include "renderer.h"
+#include "render/renderer.h"
 
 namespace voxlux::bench {
 

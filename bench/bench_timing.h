@@ -5,8 +5,8 @@
 #include <map>
 #include <string>
 
-#include "kernel_backend.h"
-#include "scene.h"
+#include "kernel/kernel_backend.h"
+#include "scene/scene.h"
 
 namespace voxlux::bench {
 

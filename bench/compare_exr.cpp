@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <exception>
 
-#include "exr_reader.h"
+#include "io/exr_reader.h"
 
 int main(int argc, char** argv) {
     if (argc != 3) {

@@ -1,5 +1,5 @@
 // GL side of the kernel's data: the parameters and the accessor functions that vx_sample.h,
-// vx_optics.h and vx_march.h call, read from buffers the GL backend (src/gl_backend.cpp) binds by
+// vx_optics.h and vx_march.h call, read from buffers the GL backend (src/backend/gl/gl_backend.cpp) binds by
 // block name. Assembled right after vx_types.h, so everything is declared before the kernel uses it.
 // Every array is std430: float arrays are tightly packed, vec4/ivec4/VxLight match the C++ bytes.
 

@@ -1,5 +1,5 @@
 // Procedural perturbation (Kniss 2003, Sec. III.D): multi-octave noise read from a small tiling
-// table of random vec4s (src/noise_table.cpp), evaluated in world space so the march and the
+// table of random vec4s (src/optics/noise_table.cpp), evaluated in world space so the march and the
 // light propagation perturb the same points. Component w perturbs extinction, xyz displace the
 // data lookup (in index voxels) and tint the transport colour.
 #pragma once

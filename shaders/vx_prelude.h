@@ -1,7 +1,7 @@
 // Shared-kernel prelude: lets the vx_*.h headers compile both as GLSL 4.50 and as C++17 with GLM.
-// On the GL side the headers are concatenated after "#define VX_GLSL" (see src/shader_source.cpp),
+// On the GL side the headers are concatenated after "#define VX_GLSL" (see src/kernel/shader_source.cpp),
 // with their #include / #pragma once lines stripped. On the C++ side they are #included inside a
-// struct body (src/cpu_kernel.h), so backend data accessors are members and the math is one copy.
+// struct body (src/kernel/cpu_kernel.h), so backend data accessors are members and the math is one copy.
 //
 // Rules for code in vx_*.h:
 //  - out/inout parameters use VX_OUT(T) / VX_INOUT(T); no pointers, no references otherwise;
@@ -68,7 +68,7 @@
 
 // GL binding points of every program, each once (uniform blocks and storage buffers count apart).
 // The GL backend binds buffers by block name; these numbers keep the blocks of one program apart,
-// and grade.comp's pixels are bound by number (src/gl_color_transform.cpp).
+// and grade.comp's pixels are bound by number (src/backend/gl/gl_color_transform.cpp).
 #define VX_BIND_PARAMS 0           // uniform VxParams P
 #define VX_BIND_SAT_PARAMS 1       // uniform VxSatParams S (light passes)
 #define VX_BIND_PROP_PARAMS 2      // uniform VxPropParams Q (propagation sweeps)

@@ -9,8 +9,8 @@
 #include <ImfFrameBuffer.h>
 #include <ImfInputFile.h>
 
-#include "error.h"
-#include "scene_json.h"
+#include "core/error.h"
+#include "scene/scene_json.h"
 
 namespace voxlux::test {
 namespace fs = std::filesystem;

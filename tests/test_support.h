@@ -10,14 +10,14 @@
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
 
-#include "brick_atlas.h"
-#include "kernel_inputs.h"
+#include "volume/brick_atlas.h"
+#include "kernel/kernel_inputs.h"
 #include "lighting/propagation/propagation_stages.h"
-#include "renderer.h"
-#include "kernel_backend.h"
-#include "page_table.h"
-#include "scene.h"
-#include "vdb_loader.h"
+#include "render/renderer.h"
+#include "kernel/kernel_backend.h"
+#include "volume/page_table.h"
+#include "scene/scene.h"
+#include "volume/vdb_loader.h"
 
 namespace voxlux::test {
 

@@ -6,7 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "cpu_kernel.h"
+#include "kernel/cpu_kernel.h"
 
 namespace voxlux {
 namespace {

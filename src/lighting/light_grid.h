@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "kernel_inputs.h"
+#include "kernel/kernel_inputs.h"
 
 namespace voxlux {
 

@@ -2,7 +2,7 @@
 // the covered pixels; exits 1 when nothing was rendered.
 #include <cstdio>
 
-#include "renderer.h"
+#include "render/renderer.h"
 
 int main(int argc, char** argv) {
     if (argc != 2) return 2;

@@ -10,7 +10,7 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
-#include "cpu_kernel.h"
+#include "kernel/cpu_kernel.h"
 
 namespace voxlux {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "kernel_backend.h"
-#include "kernel_inputs.h"
+#include "kernel/kernel_backend.h"
+#include "kernel/kernel_inputs.h"
 
 namespace voxlux {
 namespace {

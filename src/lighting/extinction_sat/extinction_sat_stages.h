@@ -13,10 +13,10 @@
 
 #include "lighting/extinction_sat/light_cache.h"
 #include "lighting/light_grid.h"
-#include "render_graph.h"
+#include "render/render_graph.h"
 #include "lighting/extinction_sat/sat_passes.h"
 #include "lighting/extinction_sat/summed_volume.h"
-#include "volume_stages.h"
+#include "volume/volume_stages.h"
 
 namespace voxlux {
 

@@ -6,7 +6,7 @@
 #pragma once
 #include <memory>
 
-#include "kernel_backend.h"
+#include "kernel/kernel_backend.h"
 #include "lighting/extinction_sat/light_cache.h"
 #include "lighting/light_grid.h"
 #include "lighting/extinction_sat/summed_volume.h"

@@ -5,9 +5,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "cpu_kernel.h"
-#include "gl_buffer.h"
-#include "gl_context.h"
+#include "kernel/cpu_kernel.h"
+#include "backend/gl/gl_buffer.h"
+#include "backend/gl/gl_context.h"
 #include "lighting/propagation/propagation_passes.h"
 
 namespace voxlux {

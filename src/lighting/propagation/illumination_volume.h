@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "kernel_types.h"
+#include "kernel/kernel_types.h"
 
 namespace voxlux {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "cpu_kernel.h"
+#include "kernel/cpu_kernel.h"
 
 namespace voxlux {
 

@@ -5,8 +5,8 @@
 
 #include <glm/glm.hpp>
 
-#include "kernel_types.h"
-#include "scene.h"
+#include "kernel/kernel_types.h"
+#include "scene/scene.h"
 
 namespace voxlux {
 

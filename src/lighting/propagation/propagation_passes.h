@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "lighting/propagation/illumination_volume.h"
-#include "kernel_backend.h"
+#include "kernel/kernel_backend.h"
 
 namespace voxlux {
 

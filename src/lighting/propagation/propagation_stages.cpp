@@ -11,8 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/parallel_for.h>
 
-#include "camera.h"
-#include "cpu_kernel.h"
+#include "scene/camera.h"
+#include "kernel/cpu_kernel.h"
 #include "lighting/propagation/light_sweeps.h"
 
 namespace voxlux {

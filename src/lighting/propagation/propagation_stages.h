@@ -20,8 +20,8 @@
 #include "lighting/propagation/illumination_volume.h"
 #include "lighting/light_grid.h"
 #include "lighting/propagation/propagation_passes.h"
-#include "render_graph.h"
-#include "volume_stages.h"
+#include "render/render_graph.h"
+#include "volume/volume_stages.h"
 
 namespace voxlux {
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "lighting/light_grid.h"
-#include "renderer.h"
+#include "render/renderer.h"
 #include "test_support.h"
 
 namespace voxlux::test {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "cpu_kernel.h"
+#include "kernel/cpu_kernel.h"
 #include "lighting/extinction_sat/summed_volume.h"
 #include "test_support.h"
 

@@ -8,13 +8,13 @@
 #include <fstream>
 #include <random>
 
-#include "cpu_kernel.h"
+#include "kernel/cpu_kernel.h"
 #include "lighting/propagation/cpu_propagation.h"
-#include "error.h"
+#include "core/error.h"
 #include "lighting/propagation/propagation_stages.h"
-#include "light_rig.h"
+#include "scene/light_rig.h"
 #include "lighting/propagation/light_sweeps.h"
-#include "renderer.h"
+#include "render/renderer.h"
 #include "test_support.h"
 
 namespace voxlux::test {

@@ -5,10 +5,10 @@
 #include <cstring>
 #include <limits>
 
-#include "cpu_kernel.h"
+#include "kernel/cpu_kernel.h"
 #include "lighting/propagation/propagation_stages.h"
 #include "lighting/propagation/light_sweeps.h"
-#include "renderer.h"
+#include "render/renderer.h"
 #include "test_support.h"
 
 namespace voxlux::test {

@@ -1,0 +1,117 @@
+// GL backend: the march (march.comp) on the process's headless EGL context. Inputs are uploaded as
+// buffers; the image comes back in bands of rows. The lighting methods' GL passes
+// (gl_sat_passes.cpp, gl_propagation_passes.cpp) and the grade stage's colour transforms
+// (gl_color_transform.cpp) run on the same context.
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+#include "backend/gl/gl_buffer.h"
+#include "backend/gl/gl_context.h"
+#include "kernel/kernel_backend.h"
+
+namespace voxlux {
+namespace {
+
+// march.comp writes 20 floats per pixel in VxPixel's member order, so a band reads straight back.
+static_assert(sizeof(kernel::VxPixel) == 20 * sizeof(float));
+static_assert(offsetof(kernel::VxPixel, direct) == 4 * sizeof(float));
+static_assert(offsetof(kernel::VxPixel, ambient) == 7 * sizeof(float));
+static_assert(offsetof(kernel::VxPixel, indirect) == 13 * sizeof(float));
+static_assert(offsetof(kernel::VxPixel, depth) == 17 * sizeof(float));
+
+// Rows per dispatch: keeps each submission short whatever the image size (and the band buffer small).
+constexpr int kBandRows = 64;
+constexpr int kGroupSize = 8;  // local_size_x/y in march.comp
+
+class GlBackend final : public KernelBackend {
+public:
+    GlBackend()
+        : context_(ensureGlContext()),
+          program_(kernelProgram("march.comp")),
+          row_offset_(glGetUniformLocation(program_, "vx_row_offset")) {}
+
+    std::string name() const override { return "gl (" + context_.renderer + ")"; }
+    Device device() const override { return Device::Gl; }
+
+    RenderImage march(const KernelInputs& in) override {
+        ensureGlContext();  // current on this thread
+        RenderImage img;
+        img.width = in.params.width;
+        img.height = in.params.height;
+        img.pixels.resize(size_t(img.width) * img.height);
+        if (img.pixels.empty()) return img;
+
+        params_.upload(&in.params, sizeof in.params, GL_STREAM_DRAW, "parameter");
+        params_.bind(program_, GL_UNIFORM_BLOCK, "Params");
+        const BrickAtlas& atlas = *in.atlas;
+        const struct {
+            GlBuffer& buffer;
+            const char* block;
+            const void* data;
+            size_t bytes;
+        } arrays[] = {
+            {density_, "AtlasDensity", atlas.density.data(), atlas.density.size() * sizeof(float)},
+            {emission_, "AtlasEmission", atlas.emission.data(), atlas.emission.size() * sizeof(float)},
+            {color_, "AtlasColor", atlas.color.data(), atlas.color.size() * sizeof(float)},
+            {pages_, "PageTable", in.pages->entries.data(), in.pages->entries.size() * sizeof(glm::ivec4)},
+            {lights_, "Lights", in.lights.data(), in.lights.size() * sizeof(kernel::VxLight)},
+            {tf_lut_, "TransferLut", in.tf_lut.data(), in.tf_lut.size() * sizeof(glm::vec4)},
+            {emission_lut_, "EmissionLut", in.emission_lut.data(), in.emission_lut.size() * sizeof(glm::vec4)},
+            {cache_, "LightCache", in.light_cache ? in.light_cache->values.data() : nullptr,
+             in.light_cache ? in.light_cache->values.size() * sizeof(float) : 0},
+            {illum_, "Illumination", in.illumination ? in.illumination->values.data() : nullptr,
+             in.illumination ? in.illumination->values.size() * sizeof(float) : 0},
+            {noise_, "Noise", in.noise.data(), in.noise.size() * sizeof(glm::vec4)},
+        };
+        for (const auto& a : arrays) {
+            checkStorageSize(a.block, a.bytes);
+            a.buffer.upload(a.data, a.bytes, GL_STATIC_DRAW, a.block);
+            a.buffer.bind(program_, GL_SHADER_STORAGE_BLOCK, a.block);
+        }
+
+        const size_t row_bytes = size_t(img.width) * sizeof(kernel::VxPixel);
+        const int band_rows = std::min(kBandRows, img.height);
+        checkStorageSize("Band", row_bytes * band_rows);
+        band_.upload(nullptr, row_bytes * band_rows, GL_STREAM_READ, "Band");
+        band_.bind(program_, GL_SHADER_STORAGE_BLOCK, "Band");
+
+        glUseProgram(program_);
+        for (int y0 = 0; y0 < img.height; y0 += band_rows) {
+            const int rows = std::min(band_rows, img.height - y0);
+            glProgramUniform1i(program_, row_offset_, y0);
+            glDispatchCompute(GLuint((img.width + kGroupSize - 1) / kGroupSize),
+                              GLuint((rows + kGroupSize - 1) / kGroupSize), 1);
+            // Reading the band back waits for the dispatch, so only one band is ever in flight.
+            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+            glGetNamedBufferSubData(band_.id(), 0, GLsizeiptr(row_bytes * rows),
+                                    &img.pixels[size_t(y0) * img.width]);
+        }
+        if (GLenum error = glGetError(); error != GL_NO_ERROR)
+            throw std::runtime_error("GL backend: the march failed with GL error " + std::to_string(error));
+        return img;
+    }
+
+private:
+    const GlContextInfo& context_;
+    const GLuint program_;
+    const GLint row_offset_;
+    GlBuffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, emission_lut_, cache_, illum_, noise_, band_;
+};
+
+}  // namespace
+
+std::unique_ptr<KernelBackend> makeGlBackend() { return std::make_unique<GlBackend>(); }
+
+bool hardwareGlAvailable() {
+    try {
+        return !ensureGlContext().software;
+    } catch (const std::runtime_error&) {
+        return false;
+    }
+}
+
+}  // namespace voxlux

@@ -1,0 +1,146 @@
+#include "core/json_reader.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+
+namespace voxlux {
+namespace {
+
+std::string typeName(const nlohmann::json& v) { return v.type_name(); }
+
+std::string joined(const std::vector<std::string>& words) {
+    std::string out;
+    for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
+    return out;
+}
+
+}  // namespace
+
+JsonObject::JsonObject(const nlohmann::json& value, std::string file, std::string pointer)
+    : value_(value), file_(std::move(file)), pointer_(std::move(pointer)) {
+    if (!value_.is_object())
+        throw InputError(file_ + ": " + (pointer_.empty() ? "/" : pointer_) +
+                         ": expected an object, got " + typeName(value_));
+}
+
+std::string JsonObject::pointer(const std::string& key) const { return pointer_ + "/" + key; }
+
+void JsonObject::fail(const std::string& key, const std::string& problem) const {
+    throw InputError(file_ + ": " + pointer(key) + ": " + problem);
+}
+
+void JsonObject::fail(const std::string& problem) const {
+    throw InputError(file_ + ": " + (pointer_.empty() ? "/" : pointer_) + ": " + problem);
+}
+
+bool JsonObject::has(const std::string& key) const {
+    return value_.contains(key) && !value_.at(key).is_null();
+}
+
+const nlohmann::json& JsonObject::raw(const std::string& key) const {
+    if (!has(key)) fail(key, "required key is missing");
+    return value_.at(key);
+}
+
+float JsonObject::number(const std::string& key) const {
+    const auto& v = raw(key);
+    if (!v.is_number()) fail(key, "expected a number, got " + typeName(v));
+    return v.get<float>();
+}
+
+float JsonObject::number(const std::string& key, float fallback) const {
+    return has(key) ? number(key) : fallback;
+}
+
+int JsonObject::integer(const std::string& key, int fallback) const {
+    if (!has(key)) return fallback;
+    const auto& v = raw(key);
+    if (!v.is_number_integer()) fail(key, "expected an integer, got " + typeName(v));
+    return v.get<int>();
+}
+
+bool JsonObject::boolean(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    const auto& v = raw(key);
+    if (!v.is_boolean()) fail(key, "expected true or false, got " + typeName(v));
+    return v.get<bool>();
+}
+
+std::string JsonObject::string(const std::string& key) const {
+    const auto& v = raw(key);
+    if (!v.is_string()) fail(key, "expected a string, got " + typeName(v));
+    return v.get<std::string>();
+}
+
+std::string JsonObject::string(const std::string& key, const std::string& fallback) const {
+    return has(key) ? string(key) : fallback;
+}
+
+std::string JsonObject::choice(const std::string& key, const std::vector<std::string>& choices,
+                               const std::string& fallback) const {
+    std::string s = string(key, fallback);
+    if (std::find(choices.begin(), choices.end(), s) == choices.end())
+        fail(key, "'" + s + "' is not one of " + joined(choices));
+    return s;
+}
+
+std::vector<float> JsonObject::numbers(const std::string& key, size_t count) const {
+    const auto& v = raw(key);
+    if (!v.is_array() || v.size() != count)
+        fail(key, "expected an array of " + std::to_string(count) + " numbers");
+    std::vector<float> out;
+    for (const auto& e : v) {
+        if (!e.is_number()) fail(key, "expected an array of " + std::to_string(count) + " numbers");
+        out.push_back(e.get<float>());
+    }
+    return out;
+}
+
+glm::vec3 JsonObject::vec3(const std::string& key) const {
+    auto n = numbers(key, 3);
+    return {n[0], n[1], n[2]};
+}
+
+glm::vec3 JsonObject::vec3(const std::string& key, glm::vec3 fallback) const {
+    return has(key) ? vec3(key) : fallback;
+}
+
+JsonObject JsonObject::object(const std::string& key) const {
+    return JsonObject(raw(key), file_, pointer(key));
+}
+
+std::vector<JsonObject> JsonObject::objects(const std::string& key) const {
+    const auto& v = raw(key);
+    if (!v.is_array()) fail(key, "expected an array, got " + typeName(v));
+    std::vector<JsonObject> out;
+    for (size_t i = 0; i < v.size(); ++i)
+        out.emplace_back(v[i], file_, pointer(key) + "/" + std::to_string(i));
+    return out;
+}
+
+JsonObject JsonObject::element(const std::string& key, size_t index) const {
+    return JsonObject(raw(key).at(index), file_, pointer(key) + "/" + std::to_string(index));
+}
+
+void JsonObject::rejectUnknown(const std::vector<std::string>& known) const {
+    for (const auto& [key, _] : value_.items())
+        if (std::find(known.begin(), known.end(), key) == known.end())
+            fail(key, "unknown key (expected one of " + joined(known) + ")");
+}
+
+nlohmann::json parseJson(const std::string& text, const std::string& file) {
+    try {
+        return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: syntax error
+        // while parsing <what> - <problem>"; keep the position and the problem.
+        std::string what = e.what();
+        std::string where;
+        if (auto at = what.find("at line "); at != std::string::npos) where = what.substr(at, what.find(':', at) - at);
+        if (auto dash = what.find(" - "); dash != std::string::npos) what = what.substr(dash + 3);
+        throw InputError(file + ": malformed JSON" + (where.empty() ? "" : " " + where) + ": " + what);
+    }
+}
+
+}  // namespace voxlux

@@ -1,0 +1,39 @@
+#include "io/exr_reader.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <exception>
+#include <vector>
+
+#include "core/error.h"
+
+namespace voxlux {
+
+RenderImage readExrRgba(const std::string& path) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i window = file.header().dataWindow();
+        RenderImage image;
+        image.width = window.max.x - window.min.x + 1;
+        image.height = window.max.y - window.min.y + 1;
+        image.pixels.resize(size_t(image.width) * image.height);
+        // Slices write straight into the pixels' rgba, offset so the data window starts at pixel 0.
+        const size_t xstride = sizeof(kernel::VxPixel), ystride = xstride * image.width;
+        char* origin = reinterpret_cast<char*>(image.pixels.data()) -
+                       (ptrdiff_t(window.min.x) * ptrdiff_t(xstride) + ptrdiff_t(window.min.y) * ptrdiff_t(ystride));
+        Imf::FrameBuffer fb;
+        const char* names[] = {"R", "G", "B", "A"};
+        for (int c = 0; c < 4; ++c)
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, origin + offsetof(kernel::VxPixel, rgba) + c * sizeof(float),
+                                           xstride, ystride, 1, 1, 0.0));
+        file.setFrameBuffer(fb);
+        file.readPixels(window.min.y, window.max.y);
+        return image;
+    } catch (const std::exception& e) {
+        throw InputError(path + ": cannot read EXR (" + e.what() + ")");
+    }
+}
+
+}  // namespace voxlux

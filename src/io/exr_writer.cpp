@@ -1,0 +1,175 @@
+#include "io/exr_writer.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <stdexcept>
+
+#include <unistd.h>
+
+#include <half.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
+#include <ImfFloatAttribute.h>
+#include <ImfIntAttribute.h>
+
+#include "core/error.h"
+
+namespace voxlux {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The names of knownCompressions(). DWA is lossy only for channels OpenEXR classifies as colour
+// (R, G, B, Y with any layer prefix); it keeps A, depth.Z and the rest lossless.
+Imf::Compression compressionOf(const std::string& name) {
+    static const std::map<std::string, Imf::Compression> compressions{
+        {"none", Imf::NO_COMPRESSION}, {"zip", Imf::ZIP_COMPRESSION},   {"zips", Imf::ZIPS_COMPRESSION},
+        {"piz", Imf::PIZ_COMPRESSION}, {"dwaa", Imf::DWAA_COMPRESSION}, {"dwab", Imf::DWAB_COMPRESSION},
+        {"rle", Imf::RLE_COMPRESSION}};
+    auto found = compressions.find(name);
+    if (found == compressions.end()) throw std::invalid_argument("unknown EXR compression '" + name + "'");
+    return found->second;
+}
+
+Imf::PixelType imfType(PixelType t) { return t == PixelType::Half ? Imf::HALF : Imf::FLOAT; }
+
+// Depth keeps full float precision unless its AOV asks otherwise; other layers follow the output.
+Imf::PixelType layerType(const OutputSpec& spec, const AovSpec& aov) {
+    if (aov.pixel_type) return imfType(*aov.pixel_type);
+    return aov.name == "depth" ? Imf::FLOAT : imfType(spec.pixel_type);
+}
+
+Imath::M44f toImath(const glm::mat4& m) {
+    Imath::M44f out;  // Imath multiplies row vectors; glm's m[c][r] holds the same numbers
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) out[i][j] = m[i][j];
+    return out;
+}
+
+struct Channel {
+    std::string name;
+    Imf::PixelType type;
+    std::vector<float> plane;
+    std::vector<Imath::half> half_plane;  // filled from `plane` for HALF channels
+};
+
+std::string temporaryPathFor(const std::string& path) {
+    fs::path p(path);
+    return (p.parent_path() / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
+}
+
+}  // namespace
+
+void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+    const std::string tmp = temporaryPathFor(path);
+    std::error_code ec;
+    try {
+        write(tmp);
+    } catch (const std::exception& e) {
+        fs::remove(tmp, ec);
+        throw InputError(path + ": cannot write (" + e.what() + ")");
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw InputError(path + ": cannot write (" + ec.message() + ")");
+    }
+}
+
+void writeFileAtomically(const std::string& path, const std::string& bytes) {
+    writeAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out << bytes;
+        if (!out.flush()) throw std::runtime_error("write failed");
+    });
+}
+
+ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const OutputSpec& spec,
+                        const ExrMetadata& meta) {
+    const size_t n = img.pixels.size();
+    std::vector<Channel> channels;
+    auto add = [&](const std::string& name, Imf::PixelType type, auto get) {
+        Channel c{name, type, std::vector<float>(n), {}};
+        for (size_t i = 0; i < n; ++i) c.plane[i] = get(img.pixels[i]);
+        channels.push_back(std::move(c));
+    };
+    const char* rgb[] = {"R", "G", "B"};
+    auto addRgb = [&](const std::string& prefix, Imf::PixelType type, auto member) {
+        for (int k = 0; k < 3; ++k) add(prefix + rgb[k], type, [=](const kernel::VxPixel& p) { return (p.*member)[k]; });
+    };
+    const Imf::PixelType colorType = imfType(spec.pixel_type);
+    addRgb("", colorType, &kernel::VxPixel::rgba);
+    add("A", colorType, [](const kernel::VxPixel& p) { return p.rgba.w; });
+    for (const AovSpec& aov : spec.aovs) {
+        const Imf::PixelType type = layerType(spec, aov);
+        if (aov.name == "direct") addRgb("direct.", type, &kernel::VxPixel::direct);
+        if (aov.name == "indirect") addRgb("indirect.", type, &kernel::VxPixel::indirect);
+        if (aov.name == "ambient") addRgb("ambient.", type, &kernel::VxPixel::ambient);
+        if (aov.name == "emission") addRgb("emission.", type, &kernel::VxPixel::emission);
+        // OpenEXR names a lone grey channel Y (luminance): viewers show the layer as grey.
+        if (aov.name == "transmittance") add("transmittance.Y", type, [](const kernel::VxPixel& p) { return p.transmittance; });
+        if (aov.name == "depth") add("depth.Z", type, [](const kernel::VxPixel& p) { return p.depth; });
+        if (aov.name == "variance") add("variance.Y", type, [](const kernel::VxPixel& p) { return p.variance; });
+    }
+
+    // No NaN or Inf reaches a file; half channels saturate instead of overflowing to Inf.
+    ExrWriteReport report;
+    constexpr float kHalfMax = 65504.0f;
+    for (auto& c : channels)
+        for (float& v : c.plane) {
+            if (!std::isfinite(v)) {
+                v = 0.0f;
+                ++report.non_finite;
+            } else if (c.type == Imf::HALF && std::abs(v) > kHalfMax) {
+                v = std::copysign(kHalfMax, v);
+                ++report.half_overflow;
+            }
+        }
+
+    Imf::Header header(img.width, img.height);
+    header.compression() = compressionOf(spec.compression);
+    header.insert("voxlux/version", Imf::StringAttribute(VOXLUX_VERSION));
+    header.insert("voxlux/sceneHash", Imf::StringAttribute(meta.scene_hash));
+    if (meta.frame) header.insert("voxlux/frame", Imf::IntAttribute(*meta.frame));
+    for (const auto& [stage, seconds] : meta.stage_seconds)
+        header.insert("voxlux/seconds/" + stage, Imf::FloatAttribute(float(seconds)));
+    Imf::addWorldToCamera(header, toImath(meta.world_to_camera));
+    Imf::addWorldToNDC(header, toImath(meta.world_to_ndc));
+    if (!meta.color_space.empty()) {
+        header.insert("oiio:ColorSpace", Imf::StringAttribute(meta.color_space));
+        header.insert("voxlux/colorSpace", Imf::StringAttribute(meta.color_space));
+    }
+    if (!meta.color_config.empty()) header.insert("voxlux/config", Imf::StringAttribute(meta.color_config));
+    if (const auto& c = meta.chromaticities) {
+        auto xy = [](glm::vec2 v) { return Imath::V2f(v.x, v.y); };
+        Imf::addChromaticities(header, Imf::Chromaticities(xy((*c)[0]), xy((*c)[1]), xy((*c)[2]), xy((*c)[3])));
+    }
+    Imf::FrameBuffer fb;
+    for (auto& c : channels) {
+        header.channels().insert(c.name, Imf::Channel(c.type));
+        if (c.type == Imf::HALF) {
+            c.half_plane.assign(c.plane.begin(), c.plane.end());
+            fb.insert(c.name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(c.half_plane.data()), sizeof(Imath::half),
+                                         sizeof(Imath::half) * img.width));
+        } else {
+            fb.insert(c.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(c.plane.data()), sizeof(float),
+                                         sizeof(float) * img.width));
+        }
+    }
+
+    writeAtomically(path, [&](const std::string& tmp) {
+        Imf::OutputFile file(tmp.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(img.height);
+    });
+    return report;
+}
+
+}  // namespace voxlux

@@ -1,0 +1,45 @@
+// Write stage: scene-linear, premultiplied RGBA plus the requested AOV layers to OpenEXR, via a
+// temporary file renamed into place, so a failed or interrupted render never leaves a partial file.
+#pragma once
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "kernel/kernel_backend.h"
+#include "scene/scene.h"
+
+namespace voxlux {
+
+struct ExrMetadata {
+    glm::mat4 world_to_camera{1.0f};
+    glm::mat4 world_to_ndc{1.0f};
+    std::string scene_hash;
+    std::optional<int> frame;
+    std::vector<std::pair<std::string, double>> stage_seconds;
+    // OpenEXR has no standard colour-space attribute: the name goes to oiio:ColorSpace (read by
+    // OpenImageIO-based tools) and voxlux/colorSpace; "" writes neither.
+    std::string color_space;
+    std::string color_config;              // the OCIO config's name or path, as voxlux/config; "" = none
+    std::optional<std::array<glm::vec2, 4>> chromaticities;  // CIE xy of red, green, blue, white
+};
+
+struct ExrWriteReport {
+    size_t non_finite = 0;     // samples that were NaN/Inf and written as 0 (should stay 0)
+    size_t half_overflow = 0;  // samples above the half-float range, written as 65504
+};
+
+// Throws InputError "<path>: ..." when the file cannot be written; nothing is left at `path` then.
+ExrWriteReport writeExr(const std::string& path, const RenderImage& image, const OutputSpec& spec,
+                        const ExrMetadata& meta);
+
+// Calls `write` with a temporary path in the same folder, then renames it to `path`. On any
+// failure the temporary file is removed and InputError "<path>: cannot write (...)" is thrown.
+void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
+void writeFileAtomically(const std::string& path, const std::string& bytes);
+
+}  // namespace voxlux

@@ -1,0 +1,64 @@
+// Kernel backends: the march, running the shared kernel (shaders/vx_*.h) on the CPU (TBB) or as
+// a GL compute shader, and the device a render runs on. The lighting methods' passes and the
+// grade's colour transforms are their own interfaces on the same device (sat_passes.h,
+// propagation_passes.h, color_transformer.h), made per device by the stage that runs them, so
+// adding a method never changes this interface.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "kernel/kernel_inputs.h"
+
+namespace voxlux {
+
+struct RenderImage {
+    int width = 0;
+    int height = 0;
+    std::vector<kernel::VxPixel> pixels;   // row-major, row 0 at the top
+};
+
+enum class Device { Cpu, Gl };
+
+class KernelBackend {
+public:
+    virtual ~KernelBackend() = default;
+    virtual std::string name() const = 0;   // "cpu" or "gl (<renderer>)"
+    virtual Device device() const = 0;
+    virtual RenderImage march(const KernelInputs& inputs) = 0;
+};
+
+// A stage's passes of one kind on the device of the backend it runs with, made the first time and
+// again when the device changes (`render.backend` edited between frames).
+template <class Passes>
+class OnDevice {
+public:
+    using Factory = std::unique_ptr<Passes> (*)(Device);
+    explicit OnDevice(Factory make) : make_(make) {}
+
+    Passes& on(const KernelBackend& backend) {
+        if (!passes_ || device_ != backend.device()) {
+            passes_ = make_(backend.device());
+            device_ = backend.device();
+        }
+        return *passes_;
+    }
+
+private:
+    Factory make_;
+    std::unique_ptr<Passes> passes_;
+    Device device_ = Device::Cpu;
+};
+
+std::unique_ptr<KernelBackend> makeCpuBackend();
+
+// Throws std::runtime_error when no OpenGL 4.5 context can be created (EGL, headless).
+std::unique_ptr<KernelBackend> makeGlBackend();
+
+// True when an EGL context exists and runs on a hardware GPU (not llvmpipe/softpipe).
+bool hardwareGlAvailable();
+
+// Picks the backend for `choice`: Auto means GL on a hardware GPU, else CPU.
+std::unique_ptr<KernelBackend> makeBackend(Backend choice);
+
+}  // namespace voxlux

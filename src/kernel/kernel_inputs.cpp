@@ -1,0 +1,176 @@
+#include "kernel/kernel_inputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "scene/camera.h"
+#include "optics/noise_table.h"
+#include "optics/transfer_function.h"
+
+namespace voxlux {
+
+float voxelEdge(const glm::mat4& m) {
+    return std::min({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))});
+}
+
+namespace {
+
+kernel::VxLight packLight(const Light& l) {
+    kernel::VxLight k{};
+    int type = l.type == LightType::Point ? VX_LIGHT_POINT : l.type == LightType::Spot ? VX_LIGHT_SPOT : VX_LIGHT_DIRECTIONAL;
+    // Keys a type does not use stay zero, so equal lights pack to equal bytes (selective updates
+    // compare them).
+    const bool directional = type == VX_LIGHT_DIRECTIONAL, point = type == VX_LIGHT_POINT;
+    k.position = directional ? glm::vec3(0.0f) : l.position;
+    k.type = type;
+    k.direction = point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::normalize(l.direction);
+    k.cos_outer = point ? 1.0f : std::cos(glm::radians(l.cone_angle));
+    k.color = l.color * l.intensity;
+    k.cos_inner = point ? 1.0f : std::cos(glm::radians(std::max(0.0f, l.cone_angle - l.cone_softness)));
+    return k;
+}
+
+// The medium: the march step, the material, the transfer function and the emission tables.
+void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz_to_working, KernelInputs& in) {
+    auto& P = in.params;
+    const auto& r = scene.render;
+    const auto& m = scene.material;
+    const float edge = voxelEdge(atlas.index_to_world);
+    P.world_to_index = glm::inverse(atlas.index_to_world);
+    P.step = r.step * edge;
+    P.shadow_step = r.shadow_step * edge;
+    P.transmittance_cutoff = r.transmittance_cutoff;
+    P.anisotropy = m.anisotropy;
+    P.albedo = m.albedo;
+    P.density_scale = m.density_scale;
+    // Each source's table spans its grid's values in this frame's atlas. When none emits anywhere
+    // (all-zero grids) the march runs as without emission, to the bit.
+    bool emits = false;
+    for (size_t e = 0; e < atlas.emission_sources; ++e) {
+        const float grid_max = atlas.emissionGridMax(e);
+        const EmissionTable table = bakeEmission(scene.emission.at(e), grid_max, xyz_to_working);
+        in.emission_lut.insert(in.emission_lut.end(), table.rows.begin(), table.rows.end());
+        P.emission_domain[int(e)] = grid_max > 0.0f ? 1.0f / grid_max : 0.0f;
+        emits |= table.threshold < std::numeric_limits<float>::infinity();
+    }
+    P.emission_sources = emits ? int(atlas.emission_sources) : 0;
+    P.emission_source_floats = int(atlas.slots()) * VX_BRICK_VOXELS;
+    const float lo = m.transfer.empty() ? 0.0f : m.transfer.front().value;
+    const float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
+    P.transfer_lo = lo;
+    P.transfer_inv_range = 1.0f / (hi - lo);
+    P.use_transfer = m.transfer.empty() ? 0 : 1;
+    P.use_color_grid = atlas.color.empty() ? 0 : 1;
+    in.tf_lut = bakeTransfer(m.transfer);
+}
+
+// The enabled lights, ambient ones summed into one radiance, and how their shadows are found.
+void setLights(const Scene& scene, KernelInputs& in) {
+    auto& P = in.params;
+    // Ambient lights are not shadowed and act the same everywhere: they sum into one radiance.
+    glm::vec3 ambient(0.0f);
+    int local_lights = 0;
+    for (const auto& l : scene.lights) {
+        if (!l.enabled) continue;
+        if (l.type == LightType::Ambient) {
+            ambient += l.color * l.intensity;
+            continue;
+        }
+        in.lights.push_back(packLight(l));
+        local_lights += l.type != LightType::Directional;
+    }
+    P.ambient = ambient;
+    P.has_ambient = glm::any(glm::greaterThan(ambient, glm::vec3(0.0f))) ? 1 : 0;
+    P.shadow_mode = scene.effects.shadows == ShadowMethod::Raymarch      ? VX_SHADOWS_RAYMARCH
+                    : scene.effects.shadows == ShadowMethod::SatCone     ? VX_SHADOWS_SAT_CONE
+                    : scene.effects.shadows == ShadowMethod::Propagation ? VX_SHADOWS_PROPAGATION
+                                                                         : VX_SHADOWS_NONE;
+    P.light_count = int(in.lights.size());
+    P.local_light_count = local_lights;
+}
+
+// The lighting methods' outputs the march reads: the light cache, the illumination volume.
+void setLighting(const Scene& scene, const MarchSources& sources, KernelInputs& in) {
+    auto& P = in.params;
+    P.ao_channel = -1;
+    P.ao_channels = 1;
+    P.shadow_channel = -1;
+    if (const LightCache* c = sources.light_cache; c && c->channels > 0) {
+        in.light_cache = c;
+        P.world_to_cache = c->world_to_cache;
+        P.cache_dims = c->dims;
+        P.cache_floats = c->channels;
+        P.ao_channel = c->ambient_channel;
+        P.ao_channels = c->ambient_width;
+        P.shadow_channel = c->shadow_channel;
+    }
+    P.chroma_factor = 1;
+    if (const IlluminationVolume* v = sources.illumination; v && !v->values.empty()) {
+        in.illumination = v;
+        P.world_to_illum = v->world_to_illum;
+        P.illum_dims = v->dims;
+        P.chroma_factor = v->chroma;
+        P.chroma_dims = v->chroma_dims;
+        P.indirect_offset = int(v->indirectOffset());
+    }
+    if (const auto& ind = scene.effects.indirect; ind && scene.effects.shadows == ShadowMethod::Propagation) {
+        P.transport = ind->transport_color;
+        P.indirect_weight = ind->strength / (4.0f * float(M_PI));
+    }
+}
+
+// Kniss 2003's surface shading and perturbation.
+void setKnissEffects(const Effects& fx, float edge, float frame, KernelInputs& in) {
+    auto& P = in.params;
+    if (const auto& sf = fx.surface) {
+        P.surface_low = sf->gradient_low;
+        P.surface_inv_range = 1.0f / (sf->gradient_high - sf->gradient_low);
+        P.specular = sf->specular;
+        P.shininess = sf->shininess;
+    }
+    // A perturbation of zero amplitude is no perturbation: it stays off, so the render is exactly
+    // the unperturbed one and costs nothing.
+    if (const auto& pt = fx.perturbation; pt && (pt->density > 0 || pt->transport > 0 || pt->displacement > 0)) {
+        // Automatic: two voxels per texel of the first octave. It follows the voxel size, not the
+        // data's extent, so a sequence whose extent changes frame to frame keeps its noise.
+        const float scale = pt->scale > 0.0f ? pt->scale : 2.0f * float(VX_NOISE_SIZE) * edge;
+        P.noise_frequency = float(VX_NOISE_SIZE) / scale;
+        P.noise_octaves = pt->octaves;
+        P.lacunarity = pt->lacunarity;
+        P.gain = pt->gain;
+        P.noise_offset = pt->velocity * (frame + pt->time);
+        P.displacement = pt->displacement;
+        P.noise_density = pt->density;
+        P.noise_transport = pt->transport;
+        in.noise = makeNoiseTable(pt->seed);
+    }
+}
+
+}  // namespace
+
+KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const PageTable& pages, float frame,
+                              const glm::mat3& xyz_to_working, const MarchSources& sources) {
+    KernelInputs in;
+    in.atlas = &atlas;
+    in.pages = &pages;
+    auto& P = in.params;
+    if (const Camera* camera = sources.camera) {
+        P.camera_to_world = cameraToWorld(*camera);
+        P.tan_half_fov = std::tan(glm::radians(camera->fov) * 0.5f);
+        P.aspect = float(scene.render.width) / float(scene.render.height);
+        P.width = scene.render.width;
+        P.height = scene.render.height;
+    }
+    P.bricks_min = pages.bricks_min;
+    P.bricks_max = pages.bricks_max;
+    P.page_capacity = int(pages.entries.size());
+    P.page_max_probe = pages.max_probe;
+    setMedium(scene, atlas, xyz_to_working, in);
+    setLights(scene, in);
+    setLighting(scene, sources, in);
+    setKnissEffects(scene.effects, voxelEdge(atlas.index_to_world), frame, in);
+    return in;
+}
+
+}  // namespace voxlux

@@ -1,0 +1,51 @@
+#include "kernel/shader_source.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace voxlux {
+namespace {
+
+const char* const kHeader = "#version 450 core\n#define VX_GLSL 1\n";
+
+// Appends `text` without its C++-only #include / #pragma once lines.
+void appendSource(std::string& out, const std::string& text) {
+    std::istringstream in(text);
+    std::string line;
+    out += "#line 1\n";  // keeps compiler messages' line numbers per file
+    while (std::getline(in, line)) {
+        if (line.rfind("#include", 0) == 0 || line.rfind("#pragma once", 0) == 0) line.clear();
+        out += line + "\n";
+    }
+}
+
+void appendFile(std::string& out, const std::string& name) {
+    const auto& files = embeddedShaders();
+    auto it = files.find(name);
+    if (it == files.end()) throw std::runtime_error("shader file " + name + " is not embedded");
+    appendSource(out, it->second);
+}
+
+}  // namespace
+
+std::string assembleComputeShader(const std::string& entry) {
+    // The GL bindings declare `P` and the data accessors, which the later headers call.
+    static const char* kKernel[] = {"vx_prelude.h", "vx_types.h", "vx_gl_bindings.glsl", "vx_sample.h",
+                                    "vx_optics.h", "vx_grid.h", "vx_cache.h", "vx_illumination.h", "vx_noise.h",
+                                    "vx_march.h", "vx_sat.h", "vx_propagation.h"};
+    std::string out = kHeader;
+    for (const char* f : kKernel) appendFile(out, f);
+    appendFile(out, entry);
+    return out;
+}
+
+std::string assembleGradeShader(const std::string& ocio_shader) {
+    std::string out = kHeader;
+    appendFile(out, "vx_prelude.h");
+    appendFile(out, "vx_grade.h");
+    appendSource(out, ocio_shader);
+    appendFile(out, "grade.comp");
+    return out;
+}
+
+}  // namespace voxlux

@@ -1,0 +1,239 @@
+#include "reference/reference_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include "kernel/cpu_kernel.h"
+#include "core/error.h"
+
+namespace voxlux {
+namespace {
+
+using kernel::CpuKernel;
+
+// PCG hash (Jarzynski and Olano 2020): one well-mixed 32-bit word per input word.
+uint32_t pcgHash(uint32_t v) {
+    const uint32_t state = v * 747796405u + 2891336453u;
+    const uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// The tracker: the kernel bound to the inputs, and the majorants of its slots. Rays are in world
+// units; the kernel's brick DDA walks them in index space with t as world distance.
+struct Tracker {
+    CpuKernel& k;
+    const std::vector<float>& majorant;
+
+    // Calls visit(slot, brick, o, d, t_begin, t_end, majorant) for each brick of non-zero majorant
+    // the ray crosses within [0, t_max), in order, until visit returns false.
+    template <class Visit>
+    void walk(glm::vec3 x, glm::vec3 w, float t_max, Visit&& visit) const {
+        const glm::vec3 o = k.vx_to_index_point(x), d = k.vx_to_index_dir(w);
+        float t0 = 0.0f, t1 = t_max;
+        if (!k.vx_clip_to_bricks(o, d, t0, t1)) return;
+        CpuKernel::VxDda s = k.vx_dda_begin(o, d, t0, t1);
+        while (s.t < s.t_end) {
+            const int slot = k.vx_page_lookup(s.brick);
+            if (slot != VX_PAGE_EMPTY && majorant[slot] > 0.0f &&
+                !visit(slot, s.brick, o, d, s.t, k.vx_dda_exit(s), majorant[slot]))
+                return;
+            k.vx_dda_advance(s);
+        }
+    }
+
+    // Ratio tracking: the product of (1 - sigma / majorant) over the tentative collisions.
+    float transmittance(glm::vec3 x, glm::vec3 w, float dist, ReferenceRng& rng, int& events) const {
+        float T = 1.0f;
+        walk(x, w, dist, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
+            for (;;) {
+                t -= std::log(1.0f - rng.next()) / m;
+                if (t >= t_end) return true;
+                ++events;
+                T *= std::max(0.0f, 1.0f - k.vx_extinction(k.vx_corners_at(slot, brick, o + d * t)) / m);
+                if (T <= 0.0f) return false;
+            }
+        });
+        return T;
+    }
+
+    struct Flight {
+        bool collided = false;
+        float t = 0.0f;
+        CpuKernel::VxCorners cell{};
+        glm::vec3 emitted{0.0f};  // emission collected up to the collision or the exit
+    };
+
+    // Delta tracking to the first real collision. Emission is estimated at every tentative
+    // collision (Le / majorant each): the integral of transmittance times Le along the flight.
+    Flight flight(glm::vec3 x, glm::vec3 w, ReferenceRng& rng, int& events) const {
+        Flight f;
+        const bool emits = k.P.emission_sources > 0;
+        walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
+            for (;;) {
+                t -= std::log(1.0f - rng.next()) / m;
+                if (t >= t_end) return true;
+                ++events;
+                const CpuKernel::VxCorners c = k.vx_corners_at(slot, brick, o + d * t);
+                if (emits) f.emitted += k.vx_emission(c) / m;
+                if (rng.next() * m < k.vx_extinction(c)) {
+                    f.collided = true;
+                    f.t = t;
+                    f.cell = c;
+                    return false;
+                }
+            }
+        });
+        return f;
+    }
+};
+
+// One path's contributions.
+struct PathSample {
+    glm::vec3 direct{0.0f}, indirect{0.0f}, ambient{0.0f}, emission{0.0f};
+    float transmittance = 1.0f;
+    float depth = 0.0f;  // camera-space distance of the first collision
+    bool hit = false;
+    int events = 0;
+};
+
+PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 origin, glm::vec3 dir,
+                     glm::vec3 forward, ReferenceRng& rng) {
+    CpuKernel& k = tr.k;
+    PathSample ps;
+    ps.transmittance = tr.transmittance(origin, dir, 1e30f, rng, ps.events);
+    const glm::vec3 ambient = k.P.ambient;
+    const bool escapes_count = k.P.has_ambient != 0 || k.P.emission_sources > 0;
+    const float g = k.P.anisotropy;
+    glm::vec3 beta(1.0f), x = origin, w = dir;
+    for (int bounce = 0;; ++bounce) {
+        const Tracker::Flight f = tr.flight(x, w, rng, ps.events);
+        (bounce == 0 ? ps.emission : ps.indirect) += beta * f.emitted;
+        if (!f.collided) {
+            if (bounce > 0) ps.ambient += beta * ambient;
+            break;
+        }
+        if (bounce == 0) {
+            ps.hit = true;
+            ps.depth = f.t * glm::dot(dir, forward);
+        }
+        if (bounce == rs.max_bounces) break;
+        x += w * f.t;
+        beta *= k.vx_albedo(f.cell);
+        for (int i = 0; i < k.P.light_count; ++i) {
+            glm::vec3 wi;
+            float dist;
+            const glm::vec3 e = k.vx_light_incident(k.vx_light(i), x, wi, dist);
+            if (e.x + e.y + e.z <= 0.0f) continue;
+            const float T = tr.transmittance(x, wi, dist, rng, ps.events);
+            (bounce == 0 ? ps.direct : ps.indirect) += beta * e * (T * k.vx_phase_hg(glm::dot(wi, w), g));
+        }
+        // After the last scattering only escaping light (ambient) or emission can still arrive.
+        if (bounce + 1 == rs.max_bounces && !escapes_count) break;
+        if (bounce + 1 >= rs.roulette_depth) {
+            const float q = std::max({beta.x, beta.y, beta.z});
+            if (q < 1.0f) {
+                if (rng.next() >= q) break;
+                beta /= q;
+            }
+        }
+        if (beta.x + beta.y + beta.z <= 0.0f) break;
+        const float u1 = rng.next(), u2 = rng.next();
+        w = k.vx_sample_hg(w, g, u1, u2);
+    }
+    return ps;
+}
+
+}  // namespace
+
+ReferenceRng::ReferenceRng(uint32_t seed, uint32_t pixel, uint32_t sample)
+    : key_(pcgHash(seed ^ pcgHash(pixel ^ pcgHash(sample)))) {}
+
+float ReferenceRng::next() { return float(pcgHash(key_ + pcgHash(dim_++)) >> 8) * 0x1p-24f; }
+
+std::vector<float> brickMajorants(const KernelInputs& in) {
+    CpuKernel k = bindCpuKernel(in);
+    const BrickAtlas& atlas = *in.atlas;
+    const size_t slots = atlas.slots();
+    const bool tf = k.P.use_transfer != 0;
+    const float floor_emitting = 1.0f / voxelEdge(atlas.index_to_world);
+    std::vector<float> m(slots, 0.0f);
+    for (size_t s = 0; s < slots; ++s) {
+        // Trilinear values stay within the block's range; the transfer function is linear between
+        // its table rows, so its largest extinction over the range is at an end or at a row.
+        const float lo = atlas.density_range[s].x, hi = atlas.density_range[s].y;
+        float sigma = std::max(k.vx_value_extinction(lo), k.vx_value_extinction(hi));
+        for (int i = 0; tf && i < VX_TF_LUT_SIZE; ++i) {
+            const float v = k.P.transfer_lo + float(i) / (float(VX_TF_LUT_SIZE - 1) * k.P.transfer_inv_range);
+            if (v > lo && v < hi) sigma = std::max(sigma, k.vx_value_extinction(v));
+        }
+        for (int e = 0; e < k.P.emission_sources; ++e)
+            if (atlas.emission_max[size_t(e) * slots + s] > 0.0f) sigma = std::max(sigma, floor_emitting);
+        m[s] = sigma;
+    }
+    return m;
+}
+
+float ratioTrackedTransmittance(const KernelInputs& in, const std::vector<float>& majorants, glm::vec3 x, glm::vec3 w,
+                                float dist, ReferenceRng& rng) {
+    CpuKernel k = bindCpuKernel(in);
+    int events = 0;
+    return Tracker{k, majorants}.transmittance(x, w, dist, rng, events);
+}
+
+RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs) {
+    CpuKernel k = bindCpuKernel(in);
+    if (k.P.surface_inv_range > 0.0f || k.P.noise_octaves > 0)
+        throw InputError("render.method reference: effects.surface and effects.perturbation are march-only effects");
+    const std::vector<float> majorants = brickMajorants(in);
+    const Tracker tracker{k, majorants};
+    RenderImage img;
+    img.width = k.P.width;
+    img.height = k.P.height;
+    img.pixels.resize(size_t(img.width) * img.height);
+    const float n = float(rs.spp);
+    // Small tiles: a reference render is often a few pixels at many samples.
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 4, 0, img.width, 4), [&](const tbb::blocked_range2d<int>& r) {
+        for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+            for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+                const uint32_t pixel = uint32_t(y) * uint32_t(img.width) + uint32_t(x);
+                glm::vec3 origin, dir, forward;
+                k.vx_camera_ray(x, y, origin, dir, forward);
+                PathSample sum;
+                sum.transmittance = 0.0f;
+                double lum = 0.0, lum2 = 0.0;
+                int hits = 0;
+                for (int s = 0; s < rs.spp; ++s) {
+                    ReferenceRng rng(uint32_t(rs.seed), pixel, uint32_t(s));
+                    const PathSample p = tracePath(tracker, rs, origin, dir, forward, rng);
+                    sum.direct += p.direct;
+                    sum.indirect += p.indirect;
+                    sum.ambient += p.ambient;
+                    sum.emission += p.emission;
+                    sum.transmittance += p.transmittance;
+                    sum.depth += p.depth;
+                    sum.events += p.events;
+                    hits += p.hit;
+                    const double l = k.vx_luminance(p.direct + p.indirect + p.ambient + p.emission);
+                    lum += l;
+                    lum2 += l * l;
+                }
+                kernel::VxPixel& px = img.pixels[pixel];
+                px.direct = sum.direct / n;
+                px.indirect = sum.indirect / n;
+                px.ambient = sum.ambient / n;
+                px.emission = sum.emission / n;
+                px.transmittance = sum.transmittance / n;
+                px.rgba = glm::vec4(px.direct + px.indirect + px.ambient + px.emission, 1.0f - px.transmittance);
+                px.depth = hits ? sum.depth / float(hits) : 0.0f;
+                px.samples = float(sum.events) / n;
+                const double mean = lum / rs.spp;
+                px.variance = rs.spp > 1 ? float(std::max(0.0, lum2 - rs.spp * mean * mean) / (rs.spp - 1) / rs.spp) : 0.0f;
+            }
+    });
+    return img;
+}
+
+}  // namespace voxlux

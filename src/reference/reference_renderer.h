@@ -1,0 +1,49 @@
+// Monte Carlo reference renderer (render.method "reference"), CPU only: unbiased volumetric path
+// tracing of the same scene the march renders, to check the march and its approximations against.
+// Free flights by delta tracking and shadow rays by ratio tracking, both against per-brick
+// majorants; Henyey-Greenstein scattering with next-event estimation to the scene lights, up to
+// max_bounces with Russian roulette; ambient light picked up by paths that escape; emission from
+// the emission grids. Every per-sample quantity comes from the shared kernel (shaders/vx_*.h).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "kernel/kernel_backend.h"
+#include "kernel/kernel_inputs.h"
+#include "scene/scene.h"
+
+namespace voxlux {
+
+// Counter-based random numbers: number `dim` of sample `sample` of pixel `pixel` is a hash of the
+// four, so results do not depend on thread scheduling and sample i is the same at any spp (more
+// samples refine an image; they do not change the first ones).
+class ReferenceRng {
+public:
+    ReferenceRng(uint32_t seed, uint32_t pixel, uint32_t sample);
+    float next();  // uniform in [0, 1)
+
+private:
+    uint32_t key_;
+    uint32_t dim_ = 0;
+};
+
+// The largest extinction (per world unit) anywhere in each atlas slot: the majorant of delta and
+// ratio tracking there, from the slot's density range through the material (pbrt-v4's majorant
+// grid at brick resolution). Emitting slots get at least one event per voxel, so their emission
+// is sampled even where they do not attenuate.
+std::vector<float> brickMajorants(const KernelInputs& inputs);
+
+// Ratio-tracking estimate of the transmittance from world point x along unit direction w over
+// distance `dist`: unbiased, one sample.
+float ratioTrackedTransmittance(const KernelInputs& inputs, const std::vector<float>& majorants, glm::vec3 x,
+                                glm::vec3 w, float dist, ReferenceRng& rng);
+
+// Renders inputs.params' camera with `settings.spp` paths per pixel centre. The pixel holds the
+// beauty (premultiplied: alpha = 1 - the ratio-tracked transmittance of the camera ray), the
+// direct (first-bounce NEE), indirect (the rest), ambient and emission (seen from the camera)
+// AOVs, depth (mean distance of the first collision), samples (density lookups per path) and the
+// variance of the pixel's luminance estimate (sample variance / spp). Throws InputError for the
+// march-only effects surface and perturbation.
+RenderImage renderReference(const KernelInputs& inputs, const ReferenceSettings& settings);
+
+}  // namespace voxlux

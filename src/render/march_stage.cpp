@@ -1,0 +1,68 @@
+#include "render/march_stage.h"
+
+#include <algorithm>
+
+#include "reference/reference_renderer.h"
+
+namespace voxlux {
+namespace {
+
+std::string shadowDescription(ShadowMethod m) {
+    switch (m) {
+        case ShadowMethod::Raymarch: return "ray-marched shadow rays per sample (reference)";
+        case ShadowMethod::SatCone: return "SAT-cone shadows read from the light cache";
+        case ShadowMethod::Propagation: return "direct and indirect light read from the illumination volume";
+        case ShadowMethod::None: break;
+    }
+    return "unshadowed (effects.shadows = none)";
+}
+
+std::string emissionDescription(const EmissionSource& e) {
+    const char* kind = e.kind == EmissionKind::Blackbody ? "blackbody" : e.kind == EmissionKind::Ramp ? "ramp" : "constant";
+    return std::string(kind) + " from '" + e.grid.name + "'";
+}
+
+}  // namespace
+
+StageReads MarchStage::reads() const {
+    return {{"/render", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
+             "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
+             "/emission", "/input/frame"},
+            {"color_space", "brick", "classify", "empty_check", "camera", "light_cache", "propagation", "eye_pass"}};
+}
+
+StageActivity MarchStage::activity(const Scene& s) const {
+    const bool reference = s.render.method == RenderMethod::Reference;
+    std::string march;
+    if (reference) {
+        const ReferenceSettings& ref = s.render.reference;
+        march = "Monte Carlo reference: delta tracking, ratio-tracked shadows, up to " + std::to_string(ref.max_bounces) +
+                (ref.max_bounces == 1 ? " bounce, " : " bounces, ") + std::to_string(ref.spp) + " spp";
+    } else if (s.lights.empty()) {
+        march = "no lights: emission and transmittance only";
+    } else {
+        march = std::to_string(s.lights.size()) + (s.lights.size() == 1 ? " light, " : " lights, ");
+        march += enabledLightCount(s, false) > 0 ? shadowDescription(s.effects.shadows) : "ambient only";
+        if (enabledLightCount(s, true) > 0)
+            march += s.effects.ambient_occlusion ? ", occluded ambient" : ", unoccluded ambient";
+    }
+    if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
+    if (s.effects.perturbation && !reference) march += ", noise-perturbed";
+    for (size_t i = 0; i < s.emission.size(); ++i) march += (i ? ", " : ", emission: ") + emissionDescription(s.emission[i]);
+    return {true, march};
+}
+
+void MarchStage::run(StageRun& run) {
+    const Scene& scene = run.scene;
+    MarchSources sources;
+    sources.camera = &camera_.camera();
+    if (lighting_.light_cache.cache().channels > 0) sources.light_cache = &lighting_.light_cache.cache();
+    if (!lighting_.eye_pass.volume().values.empty()) sources.illumination = &lighting_.eye_pass.volume();
+    else if (!lighting_.propagation.volume().values.empty()) sources.illumination = &lighting_.propagation.volume();
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), documentFrame(run.document),
+                                                 color_.xyzToWorking(), sources);
+    image_ = scene.render.method == RenderMethod::Reference ? renderReference(inputs, scene.render.reference)
+                                                            : run.backend.march(inputs);
+}
+
+}  // namespace voxlux

@@ -1,0 +1,42 @@
+// The march (or, with render.method "reference", the Monte Carlo reference) as a stage of the
+// render graph: every camera ray through the bricks, reading the lighting the earlier stages left
+// as typed outputs (the light cache, the illumination volume) and the scene's own light.
+// Cost: pixels x samples per ray; empty bricks are skipped by the page table's DDA.
+#pragma once
+#include "grade/color_stages.h"
+#include "lighting/extinction_sat/extinction_sat_stages.h"
+#include "kernel/kernel_backend.h"
+#include "lighting/propagation/propagation_stages.h"
+#include "render/render_graph.h"
+#include "volume/volume_stages.h"
+
+namespace voxlux {
+
+struct LightingStages {
+    const LightCacheStage& light_cache;
+    const PropagationStage& propagation;
+    const EyePassStage& eye_pass;
+};
+
+class MarchStage final : public Stage {
+public:
+    MarchStage(const ColorSpaceStage& color, const BrickStage& brick, const ClassifyStage& classify,
+               const CameraStage& camera, LightingStages lighting)
+        : color_(color), brick_(brick), classify_(classify), camera_(camera), lighting_(lighting) {}
+    std::string name() const override { return "march"; }
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    void release() override { image_ = RenderImage{}; }
+    const RenderImage& image() const { return image_; }
+
+private:
+    const ColorSpaceStage& color_;
+    const BrickStage& brick_;
+    const ClassifyStage& classify_;
+    const CameraStage& camera_;
+    LightingStages lighting_;
+    RenderImage image_;
+};
+
+}  // namespace voxlux

@@ -1,0 +1,198 @@
+#include "render/render_graph.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace voxlux {
+namespace {
+
+std::vector<std::string> tokensOf(const std::string& pointer) {
+    std::vector<std::string> out;
+    std::stringstream in(pointer);
+    std::string token;
+    std::getline(in, token, '/');   // the empty text before the leading '/'
+    while (std::getline(in, token, '/')) out.push_back(token);
+    return out;
+}
+
+// Appends "path=value;" for every match of tokens[i..] below `node` at `path`.
+void collect(const nlohmann::json& node, const std::vector<std::string>& tokens, size_t i, const std::string& path,
+             std::string& out) {
+    if (i == tokens.size()) {
+        out += path + "=" + node.dump() + ";";
+        return;
+    }
+    const std::string& t = tokens[i];
+    if (t == "*") {
+        if (node.is_array())
+            for (size_t k = 0; k < node.size(); ++k) collect(node[k], tokens, i + 1, path + "/" + std::to_string(k), out);
+        else if (node.is_object())
+            for (const auto& [name, child] : node.items()) collect(child, tokens, i + 1, path + "/" + name, out);
+        return;
+    }
+    if (node.is_object() && node.contains(t)) return collect(node[t], tokens, i + 1, path + "/" + t, out);
+    const bool index = !t.empty() && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (node.is_array() && index && std::stoul(t) < node.size()) return collect(node[std::stoul(t)], tokens, i + 1, path + "/" + t, out);
+    out += path + "/" + t + "=absent;";
+}
+
+// Whether a change at `changed` can change what `declared` reads: one is a prefix of the other,
+// with "*" matching any one token; a presence key ("?") only sees changes at or above it.
+bool covers(std::string declared, const std::string& changed) {
+    const bool presence = !declared.empty() && declared.back() == '?';
+    if (presence) declared.pop_back();
+    const auto a = tokensOf(declared), b = tokensOf(changed);
+    if (presence && b.size() > a.size()) return false;   // a change inside the value leaves it set
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+        if (a[i] != "*" && b[i] != "*" && a[i] != b[i]) return false;
+    return true;
+}
+
+}  // namespace
+
+std::string readKey(const nlohmann::json& document, const std::string& pointer) {
+    std::string out;
+    if (!pointer.empty() && pointer.back() == '?') {
+        const nlohmann::json::json_pointer at(pointer.substr(0, pointer.size() - 1));
+        const bool set = document.contains(at) && !document[at].is_null() && document[at] != false;
+        return pointer + (set ? "=set;" : "=unset;");
+    }
+    collect(document, tokensOf(pointer), 0, "", out);
+    return out;
+}
+
+float documentFrame(const nlohmann::json& document) {
+    const nlohmann::json::json_pointer at("/input/frame");
+    return document.contains(at) && document[at].is_number() ? document[at].get<float>() : 0.0f;
+}
+
+std::string hashText(const std::string& text) {
+    uint64_t h = 14695981039346656037ull;   // FNV offset basis
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
+RenderGraph::RenderGraph(std::vector<Stage*> stages) {
+    for (Stage* s : stages) by_name_[s->name()] = s;
+    std::set<std::string> placed, visiting;
+    std::function<void(Stage*)> place = [&](Stage* s) {
+        if (placed.count(s->name())) return;
+        if (!visiting.insert(s->name()).second) throw std::logic_error("render graph: a cycle through stage " + s->name());
+        for (const auto& up : s->reads().stages) {
+            auto it = by_name_.find(up);
+            if (it == by_name_.end()) throw std::logic_error("render graph: stage " + s->name() + " reads unknown stage " + up);
+            place(it->second);
+        }
+        placed.insert(s->name());
+        order_.push_back(s);
+    };
+    for (Stage* s : stages) place(s);
+}
+
+const Stage& RenderGraph::stage(const std::string& name) const { return *by_name_.at(name); }
+
+std::vector<Stage*> RenderGraph::needed(const std::vector<std::string>& targets) const {
+    std::set<std::string> want;
+    std::function<void(const std::string&)> need = [&](const std::string& name) {
+        if (!want.insert(name).second) return;
+        for (const auto& up : by_name_.at(name)->reads().stages) need(up);
+    };
+    for (const auto& t : targets) need(t);
+    std::vector<Stage*> out;
+    for (Stage* s : order_)
+        if (want.count(s->name())) out.push_back(s);
+    return out;
+}
+
+std::map<std::string, std::string> RenderGraph::keys(const Scene& scene, const nlohmann::json& document) const {
+    std::map<std::string, std::string> keys;
+    for (const Stage* s : order_) {
+        if (!s->activity(scene).runs) {
+            keys[s->name()] = "";
+            continue;
+        }
+        const StageReads r = s->reads();
+        std::string text = s->name() + "\n";
+        for (const auto& k : r.keys) text += readKey(document, k) + "\n";
+        for (const auto& up : r.stages) text += up + "=" + keys.at(up) + "\n";
+        keys[s->name()] = hashText(text);
+    }
+    return keys;
+}
+
+bool RenderGraph::reads(const std::string& stage, const std::string& pointer) const {
+    const StageReads r = by_name_.at(stage)->reads();
+    return std::any_of(r.keys.begin(), r.keys.end(), [&](const std::string& k) { return covers(k, pointer); }) ||
+           std::any_of(r.stages.begin(), r.stages.end(), [&](const std::string& up) { return reads(up, pointer); });
+}
+
+std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::json& document,
+                                          KernelBackend& backend, const std::vector<std::string>& targets, std::vector<std::string>& reused,
+                                          std::vector<std::string>& warnings) {
+    const std::map<std::string, std::string> keys = this->keys(scene, document);
+    std::vector<StageReport> reports;
+    std::vector<std::string> kept_inside;
+    const std::vector<Stage*> stages = needed(targets);
+    for (Stage* s : stages) {
+        const std::string& key = keys.at(s->name());
+        if (!key.empty() && (!last_keys_.count(s->name()) || last_keys_[s->name()] != key)) {
+            last_keys_.erase(s->name());   // its output is gone: it runs, even if this frame fails and the key comes back
+            s->stale();
+        }
+    }
+    for (Stage* s : stages) {
+        StageReport report{s->name()};
+        const std::string& key = keys.at(s->name());
+        if (key.empty() || s->idle()) {
+            s->release();
+            s->output_warnings_.clear();
+            last_keys_.erase(s->name());
+        } else if (last_keys_.count(s->name()) && last_keys_[s->name()] == key) {
+            report.status = StageStatus::Reused;
+            reused.push_back(s->name());
+        } else {
+            last_keys_.erase(s->name());
+            s->output_warnings_.clear();
+            StageRun run{scene, document, backend, reports, kept_inside, s->output_warnings_};
+            const auto start = std::chrono::steady_clock::now();
+            s->run(run);
+            report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            report.status = StageStatus::Ran;
+            last_keys_[s->name()] = key;
+        }
+        warnings.insert(warnings.end(), s->outputWarnings().begin(), s->outputWarnings().end());
+        reports.push_back(report);
+    }
+    reused.insert(reused.end(), kept_inside.begin(), kept_inside.end());
+    return reports;
+}
+
+std::string RenderGraph::explain(const Scene& scene) const {
+    std::ostringstream out;
+    for (const Stage* s : order_) {
+        const StageActivity a = s->activity(scene);
+        const StageReads r = s->reads();
+        out << (a.runs ? "run   " : "skip  ") << s->name();
+        for (size_t pad = s->name().size(); pad < 18; ++pad) out << ' ';
+        out << a.reason << "  [after:";
+        for (const auto& up : r.stages) out << ' ' << up;
+        if (r.stages.empty()) out << " -";
+        out << "; reads:";
+        for (const auto& k : r.keys) out << ' ' << (k.empty() ? "(the whole document)" : k);
+        if (r.keys.empty()) out << " -";
+        out << "]\n";
+    }
+    return out.str();
+}
+
+}  // namespace voxlux

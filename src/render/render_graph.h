@@ -1,0 +1,130 @@
+// The render as a graph that runs, as a build system or Inviwo's processors do. Each stage
+// declares what it reads: keys of the render document (the scene as `voxlux scene` writes it, plus
+// the frame's input file) and the outputs of upstream stages. The graph orders the stages from
+// these declarations, derives each stage's key by hashing what it declares, and runs a stage only
+// when its key changed; otherwise the stage keeps its last output. `voxlux render --explain`
+// prints this graph, and --stats and the EXR timings name the stages as it does.
+// Cost: a hash of each stage's declared JSON values per frame, microseconds next to any stage.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/scene.h"
+
+namespace voxlux {
+
+// What a stage reads. Keys are JSON pointers into the render document; "*" stands for every
+// element of an array ("/lights/*/position"), and a key covers everything below it. A key ending
+// in "?" reads only whether the value is set (present, and not false or null): the stages that
+// size their memory by whether an effect is on, not by its knobs.
+struct StageReads {
+    std::vector<std::string> keys;
+    std::vector<std::string> stages;   // upstream stages whose outputs it takes
+};
+
+// Whether a stage takes part in rendering a scene, and why: the line --explain prints.
+struct StageActivity {
+    bool runs = true;
+    std::string reason;
+};
+
+class KernelBackend;
+struct StageReport;
+
+// What a stage's run sees besides its upstream stages' outputs.
+struct StageRun {
+    const Scene& scene;
+    const nlohmann::json& document;       // the render document its keys point into
+    KernelBackend& backend;               // the scene's backend (render.backend)
+    const std::vector<StageReport>& so_far;  // the stages of this frame before it
+    std::vector<std::string>& reused;     // parts of its output a stage that ran kept (selective updates)
+    std::vector<std::string>& warnings;   // recoverable oddities, one line each
+};
+
+class Stage {
+public:
+    virtual ~Stage() = default;
+    virtual std::string name() const = 0;
+    virtual StageReads reads() const = 0;
+    virtual StageActivity activity(const Scene& scene) const = 0;
+    // Brings the output up to date. It may reuse parts of the last output that the change left
+    // valid (a selective update); what it keeps goes into run.reused.
+    virtual void run(StageRun& run) = 0;
+    // The stage does not take part (any more): drop the output and its memory.
+    virtual void release() {}
+    // True when the upstream outputs leave nothing to do (an empty frame has no light to compute):
+    // the stage is then skipped and released, as if the scene did not need it.
+    virtual bool idle() const { return false; }
+    // Called before any stage of a frame runs, when this stage's key changed: a stage that rebuilds
+    // its output whole may drop it here, so the old and new outputs never coexist.
+    virtual void stale() {}
+    // Warnings that belong to the current output, repeated on every frame that reuses it.
+    const std::vector<std::string>& outputWarnings() const { return output_warnings_; }
+
+protected:
+    friend class RenderGraph;
+    std::vector<std::string> output_warnings_;
+};
+
+enum class StageStatus { Ran, Reused, Skipped };
+
+struct StageReport {
+    std::string name;
+    StageStatus status = StageStatus::Skipped;
+    double seconds = 0.0;                 // of the run (0 unless it ran)
+};
+
+// The value of `pointer` (with "*" wildcards) in `document`, as text: every match's path and
+// value, or "null" where nothing matches.
+std::string readKey(const nlohmann::json& document, const std::string& pointer);
+
+// The frame number the render document is for (its /input/frame; 0 for a file without ####).
+float documentFrame(const nlohmann::json& document);
+
+// 64-bit FNV-1a of `text`, as 16 hex digits.
+std::string hashText(const std::string& text);
+
+// The hash of a plain value's bytes: a key part that changes exactly when the value does.
+template <typename T>
+std::string hashBytes(const T& value) {
+    return hashText(std::string(reinterpret_cast<const char*>(&value), sizeof value));
+}
+
+class RenderGraph {
+public:
+    // Orders `stages` (not owned): each after the stages it reads, otherwise as given. Throws
+    // std::logic_error on a read of an unknown stage or a cycle.
+    explicit RenderGraph(std::vector<Stage*> stages);
+
+    const std::vector<Stage*>& stages() const { return order_; }
+    const Stage& stage(const std::string& name) const;
+
+    // Runs, in order, the stages that `targets` need and the scene activates. Stages that do not
+    // take part release their outputs. A stage that throws keeps no key, so it runs next time.
+    // Appends the stages' output warnings to `warnings`, and the parts kept inside stages that ran
+    // to `reused` (after the names of the stages reused whole).
+    std::vector<StageReport> run(const Scene& scene, const nlohmann::json& document, KernelBackend& backend,
+                                 const std::vector<std::string>& targets, std::vector<std::string>& reused,
+                                 std::vector<std::string>& warnings);
+
+    // Each stage's key for this scene and document ("" for stages that do not take part).
+    std::map<std::string, std::string> keys(const Scene& scene, const nlohmann::json& document) const;
+
+    // Whether `stage` or a stage upstream of it declares a key that covers `pointer`.
+    bool reads(const std::string& stage, const std::string& pointer) const;
+
+    // The graph for `scene`, one line a stage in order: run or skip, the name, why, and what it reads.
+    std::string explain(const Scene& scene) const;
+
+private:
+    std::vector<Stage*> needed(const std::vector<std::string>& targets) const;
+
+    std::vector<Stage*> order_;
+    std::map<std::string, Stage*> by_name_;
+    std::map<std::string, std::string> last_keys_;   // what each stage's current output was computed from
+};
+
+}  // namespace voxlux

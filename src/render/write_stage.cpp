@@ -1,0 +1,71 @@
+#include "render/write_stage.h"
+
+#include <filesystem>
+
+#include "scene/camera.h"
+#include "io/exr_writer.h"
+#include "core/frame_pattern.h"
+#include "io/png_writer.h"
+#include "scene/scene_json.h"
+
+namespace voxlux {
+namespace {
+
+std::string framePath(const std::string& pattern, const nlohmann::json& frame) {
+    return frame.is_number() ? expandFramePattern(pattern, frame.get<int>()) : pattern;
+}
+
+void makeParentFolder(const std::string& path) {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    std::error_code ec;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+}
+
+}  // namespace
+
+StageActivity WriteStage::activity(const Scene& s) const {
+    return {true, "EXR, " + std::string(s.output.pixel_type == PixelType::Half ? "half" : "float") + ", " + s.output.compression +
+                      (s.output.aovs.empty() ? "" : ", AOVs") + (s.output.preview.empty() ? "" : ", and an 8-bit PNG preview")};
+}
+
+void WriteStage::run(StageRun& run) {
+    const Scene& scene = run.scene;
+    const nlohmann::json& frame = run.document["input"]["frame"];
+    const RenderImage& image = grade_.result();
+    path_ = framePath(scene.output.path, frame);
+    preview_path_.clear();
+    makeParentFolder(path_);
+
+    ExrMetadata meta;
+    const float aspect = float(scene.render.width) / float(scene.render.height);
+    meta.world_to_camera = glm::inverse(cameraToWorld(camera_.camera()));
+    meta.world_to_ndc = cameraProjection(camera_.camera(), aspect) * meta.world_to_camera;
+    meta.scene_hash = sceneHash(scene);
+    if (frame.is_number()) meta.frame = frame.get<int>();
+    for (const StageReport& s : run.so_far)
+        if (s.status == StageStatus::Ran) meta.stage_seconds.emplace_back(s.name, s.seconds);
+    const ColorPipeline& cp = color_.pipeline();
+    meta.color_space = cp.output_space;
+    meta.color_config = cp.config_source;
+    if (cp.output_chromaticities) {
+        const Chromaticities& c = *cp.output_chromaticities;
+        meta.chromaticities = {{c.red, c.green, c.blue, c.white}};
+    }
+    const ExrWriteReport written = writeExr(path_, image, scene.output, meta);
+    if (!scene.output.preview.empty()) {
+        preview_path_ = framePath(scene.output.preview, frame);
+        makeParentFolder(preview_path_);
+        const PngWriteReport png = writePng(preview_path_, image.width, image.height, grade_.preview(), false);
+        if (png.non_finite)
+            run.warnings.push_back(preview_path_ + ": " + std::to_string(png.non_finite) + " non-finite samples written as 0");
+    }
+    if (written.non_finite)
+        run.warnings.push_back(path_ + ": " + std::to_string(written.non_finite) + " non-finite samples written as 0");
+    if (written.half_overflow)
+        run.warnings.push_back(path_ + ": " + std::to_string(written.half_overflow) +
+                               " samples above the half-float range clamped to 65504 (use output.pixel_type \"float\")");
+}
+
+std::string sceneHash(const Scene& scene) { return hashText(sceneToJson(scene).dump()); }
+
+}  // namespace voxlux

@@ -1,0 +1,37 @@
+// The last stage of the render graph: the EXR (the graded image when the grade ran, else the
+// march's) with its AOVs and metadata, and the 8-bit preview PNG when output.preview asks for
+// one, both written to a temporary file and renamed. It reads the whole render document, since
+// the EXR carries the scene's hash. Cost: compression, tens of milliseconds at 512^2.
+#pragma once
+#include <string>
+
+#include "grade/color_stages.h"
+#include "grade/grade_stage.h"
+#include "render/march_stage.h"
+#include "render/render_graph.h"
+#include "volume/volume_stages.h"
+
+namespace voxlux {
+
+class WriteStage final : public Stage {
+public:
+    WriteStage(const GradeStage& grade, const CameraStage& camera, const ColorTransformsStage& color)
+        : grade_(grade), camera_(camera), color_(color) {}
+    std::string name() const override { return "write"; }
+    StageReads reads() const override { return {{""}, {"march", "grade", "camera", "color_transforms"}}; }
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    const std::string& path() const { return path_; }                 // the EXR written
+    const std::string& previewPath() const { return preview_path_; }  // the PNG written, or ""
+
+private:
+    const GradeStage& grade_;
+    const CameraStage& camera_;
+    const ColorTransformsStage& color_;
+    std::string path_, preview_path_;
+};
+
+// FNV-1a of the scene as rendered (canonical JSON), hex; written into the EXR metadata.
+std::string sceneHash(const Scene& scene);
+
+}  // namespace voxlux

@@ -1,0 +1,22 @@
+// Camera matrices and the default framing used by the quick form of `voxlux render`.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace voxlux {
+
+// Camera-to-world (camera looks down -Z with +Y up, as OpenEXR's worldToCamera expects).
+glm::mat4 cameraToWorld(const Camera& camera);
+
+// Perspective projection to NDC in [-1, 1] (OpenEXR's worldToNDC uses it after worldToCamera).
+glm::mat4 cameraProjection(const Camera& camera, float aspect);
+
+// World-space axis-aligned box of the index-space box [lo, hi] under `index_to_world`.
+void worldBounds(const glm::mat4& index_to_world, glm::vec3 lo, glm::vec3 hi, glm::vec3& out_lo, glm::vec3& out_hi);
+
+// A three-quarter view that fits the box in the frame, and a key light from the upper left.
+Camera frameBox(glm::vec3 lo, glm::vec3 hi, float fov, float aspect);
+Light defaultKeyLight();
+
+}  // namespace voxlux

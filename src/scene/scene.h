@@ -1,0 +1,259 @@
+// The scene: everything a render needs, as parsed from JSON (docs/scene.md) or built by the quick
+// form of `voxlux render cache.vdb`. Plain data; reading, validation and writing live in scene_read.cpp and scene_write.cpp.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace voxlux {
+
+// A grid chosen by name; `index` picks among several grids with the same name.
+struct GridRef {
+    std::string name;
+    int index = 0;
+    bool operator==(const GridRef&) const = default;
+};
+
+enum class LevelSetPolicy { Reject, ConvertToFog };
+
+struct VolumeSpec {
+    std::string path;                      // may contain a #### frame pattern
+    std::optional<std::array<int, 2>> frames;  // inclusive range for a #### pattern
+    GridRef density{"density", 0};
+    std::optional<GridRef> color;          // Cd, vec3
+    LevelSetPolicy level_set = LevelSetPolicy::Reject;
+};
+
+struct TransferPoint {
+    float value = 0.0f;
+    float extinction = 0.0f;
+    glm::vec3 albedo{1.0f};
+};
+
+struct Material {
+    float density_scale = 1.0f;            // grid value -> extinction per world unit
+    glm::vec3 albedo{0.9f};
+    float anisotropy = 0.0f;               // Henyey-Greenstein g
+    std::vector<TransferPoint> transfer;   // empty: extinction = density * density_scale
+};
+
+// Ambient is uniform light from every direction (radiance color * intensity), occluded only when
+// effects.ambient_occlusion is on.
+enum class LightType { Directional, Point, Spot, Ambient };
+
+struct Light {
+    std::string name;                      // optional; light edits may address the light by it
+    bool enabled = true;                   // a disabled light is kept in the scene but casts no light
+    LightType type = LightType::Directional;
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way the light travels
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float cone_angle = 30.0f;              // spot: outer half-angle, degrees
+    float cone_softness = 5.0f;            // spot: degrees of falloff inside the outer angle
+};
+
+struct Camera {
+    glm::vec3 position{0.0f, 0.0f, 5.0f};
+    glm::vec3 look_at{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    std::optional<glm::mat4> matrix;       // camera-to-world; overrides position/look_at/up
+    float fov = 40.0f;                     // vertical, degrees
+};
+
+enum class Backend { Auto, Cpu, Gl };
+
+// March: the ray marcher with the scene's effects. Reference: an unbiased Monte Carlo path tracer
+// (src/reference/reference_renderer.h) on the CPU, to check the march against.
+enum class RenderMethod { March, Reference };
+
+struct ReferenceSettings {
+    int spp = 64;                          // samples per pixel
+    int max_bounces = 16;                  // scattering events per path; 1 = single scattering
+    int seed = 1;
+    int roulette_depth = 3;                // bounces before Russian roulette may end a path
+};
+
+struct RenderSettings {
+    int width = 512;
+    int height = 512;
+    float step = 0.5f;                     // voxels (of the smallest voxel edge)
+    float shadow_step = 1.0f;              // voxels, for ray-marched shadows
+    float transmittance_cutoff = 1e-4f;
+    Backend backend = Backend::Auto;
+    RenderMethod method = RenderMethod::March;
+    ReferenceSettings reference;           // read only with method reference
+};
+
+// Raymarch: a shadow ray per sample and light (the reference). SatCone: Schlegel 2011 cones of
+// SAT cuboids, precomputed into the light cache. Propagation: Ropinski 2010 illumination volume,
+// swept slice by slice from the lights.
+enum class ShadowMethod { None, Raymarch, SatCone, Propagation };
+
+struct AmbientOcclusion {
+    int shells = 3;
+    float radius = 0.0f;                   // world units; 0 = 6% of the light grid's longest side
+};
+
+struct ShadowCone {
+    float angle = 2.0f;                    // half-angle, degrees
+    int samples = 20;                      // cuboids per cone
+    float growth = 0.05f;                  // each cuboid this much longer than the one before
+};
+
+// Knobs of the illumination volume (shadows "propagation"); its resolution and memory budget are
+// light_resolution and light_memory_mb, as for the SAT.
+struct Propagation {
+    bool blend_axes = false;               // also sweep the second closest face axis and blend
+    bool eye_pass = false;                 // a second sweep scattering light towards the camera
+    bool chroma_subsampling = false;       // indirect light at half the resolution per axis
+    bool coherent = true;                  // all lights of a propagation direction in one pass (Sunden
+                                           // 2015); false: one pass per light. Same result, for timing
+};
+
+// Kniss 2003 indirect light: forward-scattered light blurred within a cone as it propagates and
+// attenuated by the transport colour. Needs shadows "propagation".
+enum class BlurPhase { Phong, HenyeyGreenstein };
+
+struct Indirect {
+    float strength = 1.0f;                 // scale of the indirect term in Kniss Eq. 12
+    float angle = 30.0f;                   // blur cone apex angle, degrees (Kniss theta)
+    int samples = 9;                       // blur taps per cell
+    BlurPhase phase = BlurPhase::Phong;    // tap weights: Phong lobe cos^exponent, or Henyey-Greenstein g
+    float exponent = 4.0f;
+    float g = 0.5f;
+    glm::vec3 transport_color{0.6f};       // share of indirect light kept per unit optical depth (direct keeps
+                                           // e^-1 = 0.37: indirect light reaches deeper)
+};
+
+// Kniss 2003 Eq. 11: Blinn-Phong surface shading blended in where the density gradient is steep.
+struct SurfaceShading {
+    float gradient_low = 0.05f;            // |grad density| per voxel where surface shading starts
+    float gradient_high = 0.25f;           // ... and where it is complete
+    float specular = 0.5f;
+    float shininess = 32.0f;
+};
+
+// Kniss 2003 Sec. III.D: seeded multi-octave noise perturbing extinction, transport colour and
+// the data lookup, in the march and in the light propagation alike.
+struct Perturbation {
+    int seed = 1;
+    float scale = 0.0f;                    // world size of the first octave's tile; 0 = 64 voxels
+    int octaves = 3;
+    float lacunarity = 2.0f;
+    float gain = 0.5f;
+    float density = 0.0f;                  // relative extinction amplitude
+    float transport = 0.0f;                // relative transport-colour amplitude
+    float displacement = 0.0f;             // lookup displacement amplitude, index voxels
+    glm::vec3 velocity{0.0f};              // noise drift per frame, world units
+    float time = 0.0f;                     // frames added to the sequence frame
+};
+
+struct Effects {
+    ShadowMethod shadows = ShadowMethod::Raymarch;
+    std::optional<AmbientOcclusion> ambient_occlusion;
+    float color_bleeding = 0.0f;           // 0..1: how much the neighbourhood's albedo tints AO
+    ShadowCone cone;
+    Propagation propagation;
+    std::optional<Indirect> indirect;
+    std::optional<SurfaceShading> surface;
+    std::optional<Perturbation> perturbation;
+    int light_resolution = 128;            // light-grid cells along the volume's longest side
+    int light_memory_mb = 2048;            // budget for light grid, SAT, light cache and illumination volume
+};
+
+// Light a grid emits (fire, explosions). Each source (at most VX_MAX_EMISSION) maps its grid's
+// value to radiance per world unit in the working space; the sources add. Their grids may have
+// any topology: the bricks are the union of all grids' bricks. Value 0 is empty space and emits
+// nothing (the scene reader enforces it).
+enum class EmissionKind { Constant, Blackbody, Ramp };
+// Blackbody brightness, as the luminance Y of CIE XYZ: Luminance gives every temperature
+// Y = intensity, only the colour changes; Physical scales it with the Planck radiance's Y,
+// intensity at reference_temperature.
+enum class BlackbodyNormalization { Luminance, Physical };
+
+struct RampPoint {
+    float value = 0.0f;
+    glm::vec3 color{0.0f};
+};
+
+struct EmissionSource {
+    GridRef grid;
+    EmissionKind kind = EmissionKind::Constant;
+    float intensity = 1.0f;
+    glm::vec3 color{1.0f};                 // Constant: radiance = value * color * intensity
+    float temperature_scale = 1.0f;        // Blackbody: kelvin = value * scale + offset
+    float temperature_offset = 0.0f;
+    float cutoff = 0.0f;                   // Blackbody: kelvin below which nothing is emitted
+    BlackbodyNormalization normalization = BlackbodyNormalization::Luminance;
+    float reference_temperature = 1500.0f; // Physical: the kelvin at which luminance = intensity
+    std::vector<RampPoint> ramp;           // Ramp: colour by grid value, linear between points,
+                                           // clamped beyond them; radiance = colour * intensity
+};
+
+enum class PixelType { Half, Float };
+
+// One AOV layer of the EXR; pixel_type unset: the output's pixel_type (depth: always float).
+struct AovSpec {
+    std::string name;                      // one of knownAovs()
+    std::optional<PixelType> pixel_type;
+    bool operator==(const AovSpec&) const = default;
+};
+
+struct OutputSpec {
+    std::string path;                      // may contain #### for sequences
+    PixelType pixel_type = PixelType::Half;
+    std::string compression = "zip";       // one of knownCompressions()
+    std::vector<AovSpec> aovs;             // each of knownAovs() at most once
+    std::string preview;                   // 8-bit PNG through color.display/view; "" = none; may contain ####
+};
+
+// One grading step, applied in order to the beauty in the working space.
+enum class GradeKind { Look, Cdl, CdlFile, Lut };
+
+struct GradeStep {
+    GradeKind kind = GradeKind::Cdl;
+    std::string look;                      // Look: an OCIO look name, or several as "a, +b"
+    std::string file;                      // CdlFile (.cc, .ccc, .cdl) and Lut (.cube, .clf, .spi3d, ...)
+    std::string cccid;                     // CdlFile: which correction ("" = the first)
+    glm::vec3 slope{1.0f}, offset{0.0f}, power{1.0f};  // Cdl: ASC CDL v1.2
+    float saturation = 1.0f;
+    bool clamp = false;                    // Cdl, CdlFile: the ASC v1.2 clamp to [0, 1] (off: HDR-safe)
+    std::string interpolation = "best";    // Lut: nearest, linear, tetrahedral, best
+    std::string space;                     // Cdl, CdlFile, Lut: the colour space it works in ("" = working)
+    bool inverse = false;
+};
+
+// OpenColorIO colour management (docs/color.md).
+struct ColorSettings {
+    std::string config;                    // OCIO config file; "" = $OCIO, else voxlux's own config
+    std::string working_space;             // lights, albedo, transport colours; "" = the scene_linear role
+    std::string output_space;              // of the EXR; "" = the working space
+    std::vector<GradeStep> grade;
+    bool unpremultiply = true;             // grade colour divided by alpha (where alpha > 0), then premultiplied
+    std::string display;                   // preview: "" = the config's default display
+    std::string view;                      // preview: "" = the display's default view
+};
+
+struct Scene {
+    VolumeSpec volume;
+    Material material;
+    std::vector<Light> lights;
+    std::optional<Camera> camera;          // absent: framed from the volume's bounding box
+    RenderSettings render;
+    Effects effects;
+    std::vector<EmissionSource> emission;
+    ColorSettings color;
+    OutputSpec output;
+};
+
+// How many enabled lights the scene has that are ambient (`ambient`), or that are not.
+int enabledLightCount(const Scene& scene, bool ambient);
+
+const std::vector<std::string>& knownAovs();
+const std::vector<std::string>& knownCompressions();  // EXR compressions by their OpenEXR names
+
+}  // namespace voxlux

@@ -1,0 +1,33 @@
+// Scene <-> JSON (docs/scene.md): reading and validating (scene_read.cpp), writing
+// (scene_write.cpp) and `--set` edits of the JSON before it is read (scene_set.cpp).
+#pragma once
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/json_reader.h"
+#include "scene/scene.h"
+
+namespace voxlux {
+
+// Reads and validates a scene file. Relative volume paths are resolved against the scene
+// file's folder. Throws InputError naming the file and the JSON pointer of the bad key.
+Scene loadSceneFile(const std::string& path);
+Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir);
+
+// One light of a scene's "lights" array, and back.
+Light readLight(const JsonObject& o);
+nlohmann::json lightToJson(const Light& light);
+
+// The JSON a scene file would need to reproduce `scene` (used by `voxlux scene`).
+nlohmann::json sceneToJson(const Scene& scene);
+
+// Sets one dotted key of a scene's JSON from "KEY=VALUE", as `--set effects.cone.samples=50` does.
+// Throws InputError quoting `set` when it has no '=' or an empty key.
+void applySceneSet(nlohmann::json& scene, const std::string& set);
+
+// The set that turns on the effect at dotted `key` ("effects.indirect"): "KEY=true", or
+// "KEY=<the scene's object>" when the scene already has settings for it, so they are kept.
+std::string effectOnSet(const nlohmann::json& scene, const std::string& key);
+
+}  // namespace voxlux

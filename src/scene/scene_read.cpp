@@ -1,0 +1,507 @@
+// JSON -> Scene: reads and validates a scene file (docs/scene.md). Every bad key is an InputError
+// naming the file and the key's JSON pointer; relative paths are resolved against the file's folder.
+#include "scene/scene_json.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "optics/emission.h"
+#include "core/error.h"
+#include "core/json_reader.h"
+#include "kernel/kernel_types.h"
+
+namespace voxlux {
+namespace fs = std::filesystem;
+
+namespace {
+
+GridRef readGridRef(const JsonObject& parent, const std::string& key) {
+    const auto& v = parent.raw(key);
+    if (v.is_string()) return {v.get<std::string>(), 0};
+    JsonObject o = parent.object(key);
+    o.rejectUnknown({"name", "index"});
+    GridRef ref{o.string("name"), o.integer("index", 0)};
+    if (ref.index < 0) o.fail("index", "must be 0 or more");
+    return ref;
+}
+
+// Paths in a scene file are relative to its folder.
+std::string resolvePath(const std::string& path, const std::string& base_dir) {
+    if (fs::path(path).is_relative() && !base_dir.empty()) return (fs::path(base_dir) / path).lexically_normal().string();
+    return path;
+}
+
+VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
+    o.rejectUnknown({"path", "frames", "density", "color", "level_set"});
+    VolumeSpec v;
+    v.path = o.string("path");
+    v.path = resolvePath(v.path, base_dir);
+    if (o.has("frames")) {
+        auto f = o.numbers("frames", 2);
+        if (f[0] > f[1] || f[0] != int(f[0]) || f[1] != int(f[1]))
+            o.fail("frames", "expected [first, last] integers with first <= last");
+        v.frames = std::array<int, 2>{int(f[0]), int(f[1])};
+    }
+    if (o.has("density")) v.density = readGridRef(o, "density");
+    if (o.has("color")) v.color = readGridRef(o, "color");
+    v.level_set = o.choice("level_set", {"reject", "fog"}, "reject") == "fog"
+                      ? LevelSetPolicy::ConvertToFog
+                      : LevelSetPolicy::Reject;
+    return v;
+}
+
+Material readMaterial(const JsonObject& o) {
+    o.rejectUnknown({"density_scale", "albedo", "anisotropy", "transfer_function"});
+    Material m;
+    m.density_scale = o.number("density_scale", m.density_scale);
+    if (m.density_scale < 0) o.fail("density_scale", "must be 0 or more");
+    m.albedo = o.vec3("albedo", m.albedo);
+    if (glm::any(glm::lessThan(m.albedo, glm::vec3(0))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1))))
+        o.fail("albedo", "each component must lie in [0, 1]");
+    m.anisotropy = o.number("anisotropy", m.anisotropy);
+    if (!(m.anisotropy > -1 && m.anisotropy < 1)) o.fail("anisotropy", "must lie in (-1, 1)");
+    if (o.has("transfer_function")) {
+        for (const auto& p : o.objects("transfer_function")) {
+            p.rejectUnknown({"value", "extinction", "albedo"});
+            TransferPoint t{p.number("value"), p.number("extinction"), p.vec3("albedo", glm::vec3(1))};
+            if (t.extinction < 0) p.fail("extinction", "must be 0 or more");
+            if (!m.transfer.empty() && t.value <= m.transfer.back().value)
+                p.fail("value", "control points must have increasing values");
+            m.transfer.push_back(t);
+        }
+        if (m.transfer.size() < 2) o.fail("transfer_function", "needs at least 2 control points");
+    }
+    return m;
+}
+
+Camera readCamera(const JsonObject& o) {
+    o.rejectUnknown({"position", "look_at", "up", "matrix", "fov"});
+    Camera c;
+    c.fov = o.number("fov", c.fov);
+    if (!(c.fov > 0 && c.fov < 180)) o.fail("fov", "must lie in (0, 180) degrees");
+    if (o.has("matrix")) {
+        auto m = o.numbers("matrix", 16);
+        glm::mat4 mat;
+        for (int i = 0; i < 16; ++i) mat[i / 4][i % 4] = m[i];  // column-major, as glm and GLSL
+        c.matrix = mat;
+        return c;
+    }
+    c.position = o.vec3("position");
+    c.look_at = o.vec3("look_at");
+    c.up = o.vec3("up", c.up);
+    if (glm::length(c.look_at - c.position) == 0) o.fail("look_at", "must differ from position");
+    if (glm::length(glm::cross(c.look_at - c.position, c.up)) < 1e-6f)
+        o.fail("up", "must not be parallel to the view direction");
+    return c;
+}
+
+ReferenceSettings readReference(const JsonObject& o) {
+    o.rejectUnknown({"spp", "max_bounces", "seed", "roulette_depth"});
+    ReferenceSettings r;
+    r.spp = o.integer("spp", r.spp);
+    if (r.spp < 1 || r.spp > 1000000) o.fail("spp", "must lie in 1..1000000");
+    r.max_bounces = o.integer("max_bounces", r.max_bounces);
+    if (r.max_bounces < 1 || r.max_bounces > 1000) o.fail("max_bounces", "must lie in 1..1000");
+    r.seed = o.integer("seed", r.seed);
+    r.roulette_depth = o.integer("roulette_depth", r.roulette_depth);
+    if (r.roulette_depth < 1) o.fail("roulette_depth", "must be at least 1");
+    return r;
+}
+
+RenderSettings readRender(const JsonObject& o) {
+    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "backend", "method", "reference"});
+    RenderSettings r;
+    if (o.has("resolution")) {
+        auto res = o.numbers("resolution", 2);
+        r.width = int(res[0]);
+        r.height = int(res[1]);
+        if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384 || res[0] != r.width ||
+            res[1] != r.height)
+            o.fail("resolution", "expected [width, height], integers in 1..16384");
+    }
+    r.step = o.number("step", r.step);
+    if (!(r.step >= 0.01f && r.step <= 64)) o.fail("step", "must lie in [0.01, 64] voxels");
+    r.shadow_step = o.number("shadow_step", r.shadow_step);
+    if (!(r.shadow_step >= 0.01f && r.shadow_step <= 64)) o.fail("shadow_step", "must lie in [0.01, 64] voxels");
+    r.transmittance_cutoff = o.number("transmittance_cutoff", r.transmittance_cutoff);
+    if (!(r.transmittance_cutoff > 0 && r.transmittance_cutoff < 1))
+        o.fail("transmittance_cutoff", "must lie in (0, 1)");
+    std::string b = o.choice("backend", {"auto", "cpu", "gl"}, "auto");
+    r.backend = b == "cpu" ? Backend::Cpu : b == "gl" ? Backend::Gl : Backend::Auto;
+    r.method = o.choice("method", {"march", "reference"}, "march") == "reference" ? RenderMethod::Reference : RenderMethod::March;
+    // The reference renderer exists only on the CPU; auto picks the CPU for it.
+    if (r.method == RenderMethod::Reference && r.backend == Backend::Gl)
+        o.fail("method", "reference runs on the cpu backend only (render.backend is \"gl\")");
+    if (o.has("reference")) r.reference = readReference(o.object("reference"));
+    return r;
+}
+
+// Optional effects: `true` takes the defaults, `false` turns the effect off, an object sets knobs.
+template <class T>
+std::optional<T> readOptional(const JsonObject& o, const std::string& key, T (*read)(const JsonObject&)) {
+    const auto& v = o.raw(key);
+    if (v.is_boolean()) return v.get<bool>() ? std::optional<T>(read(JsonObject(nlohmann::json::object(), "", ""))) : std::nullopt;
+    if (!v.is_object()) o.fail(key, "expected true, false or an object");
+    return read(o.object(key));
+}
+
+AmbientOcclusion readAmbientOcclusion(const JsonObject& ao) {
+    ao.rejectUnknown({"shells", "radius"});
+    AmbientOcclusion a;
+    a.shells = ao.integer("shells", a.shells);
+    if (a.shells < 1 || a.shells > 64) ao.fail("shells", "must lie in 1..64");
+    a.radius = ao.number("radius", a.radius);
+    if (!(a.radius >= 0) || !std::isfinite(a.radius)) ao.fail("radius", "must be a finite distance >= 0 (0 = automatic)");
+    return a;
+}
+
+ShadowCone readCone(const JsonObject& o) {
+    o.rejectUnknown({"angle", "samples", "growth"});
+    ShadowCone c;
+    c.angle = o.number("angle", c.angle);
+    if (!(c.angle >= 0 && c.angle < 60)) o.fail("angle", "must lie in [0, 60) degrees");
+    c.samples = o.integer("samples", c.samples);
+    if (c.samples < 1 || c.samples > 1024) o.fail("samples", "must lie in 1..1024");
+    c.growth = o.number("growth", c.growth);
+    if (!(c.growth >= 0 && c.growth <= 1)) o.fail("growth", "must lie in [0, 1]");
+    return c;
+}
+
+Propagation readPropagation(const JsonObject& o) {
+    o.rejectUnknown({"blend_axes", "eye_pass", "chroma_subsampling", "coherent"});
+    Propagation p;
+    p.coherent = o.boolean("coherent", p.coherent);
+    p.blend_axes = o.boolean("blend_axes", p.blend_axes);
+    p.eye_pass = o.boolean("eye_pass", p.eye_pass);
+    p.chroma_subsampling = o.boolean("chroma_subsampling", p.chroma_subsampling);
+    return p;
+}
+
+Indirect readIndirect(const JsonObject& o) {
+    o.rejectUnknown({"strength", "angle", "samples", "phase", "exponent", "g", "transport_color"});
+    Indirect in;
+    in.strength = o.number("strength", in.strength);
+    if (!(in.strength >= 0) || !std::isfinite(in.strength)) o.fail("strength", "must be a finite value >= 0");
+    in.angle = o.number("angle", in.angle);
+    if (!(in.angle >= 0 && in.angle <= 90)) o.fail("angle", "must lie in [0, 90] degrees");
+    in.samples = o.integer("samples", in.samples);
+    if (in.samples < 1 || in.samples > VX_MAX_TAPS) o.fail("samples", "must lie in 1.." + std::to_string(VX_MAX_TAPS));
+    in.phase = o.choice("phase", {"phong", "henyey_greenstein"}, "phong") == "phong" ? BlurPhase::Phong
+                                                                                    : BlurPhase::HenyeyGreenstein;
+    in.exponent = o.number("exponent", in.exponent);
+    if (!(in.exponent >= 0 && in.exponent <= 1000)) o.fail("exponent", "must lie in [0, 1000]");
+    in.g = o.number("g", in.g);
+    if (!(in.g > -1 && in.g < 1)) o.fail("g", "must lie in (-1, 1)");
+    in.transport_color = o.vec3("transport_color", in.transport_color);
+    if (glm::any(glm::lessThanEqual(in.transport_color, glm::vec3(0))) ||
+        glm::any(glm::greaterThan(in.transport_color, glm::vec3(1))))
+        o.fail("transport_color", "each component must lie in (0, 1]");
+    return in;
+}
+
+SurfaceShading readSurface(const JsonObject& o) {
+    o.rejectUnknown({"gradient_low", "gradient_high", "specular", "shininess"});
+    SurfaceShading sf;
+    sf.gradient_low = o.number("gradient_low", sf.gradient_low);
+    sf.gradient_high = o.number("gradient_high", sf.gradient_high);
+    if (!(sf.gradient_low >= 0 && sf.gradient_high > sf.gradient_low && std::isfinite(sf.gradient_high)))
+        o.fail("gradient_high", "needs 0 <= gradient_low < gradient_high");
+    sf.specular = o.number("specular", sf.specular);
+    if (!(sf.specular >= 0 && std::isfinite(sf.specular))) o.fail("specular", "must be a finite value >= 0");
+    sf.shininess = o.number("shininess", sf.shininess);
+    if (!(sf.shininess >= 1 && sf.shininess <= 10000)) o.fail("shininess", "must lie in [1, 10000]");
+    return sf;
+}
+
+Perturbation readPerturbation(const JsonObject& o) {
+    o.rejectUnknown({"seed", "scale", "octaves", "lacunarity", "gain", "density", "transport", "displacement",
+                     "velocity", "time"});
+    Perturbation p;
+    p.seed = o.integer("seed", p.seed);
+    p.scale = o.number("scale", p.scale);
+    if (!(p.scale >= 0) || !std::isfinite(p.scale)) o.fail("scale", "must be a finite size >= 0 (0 = automatic)");
+    p.octaves = o.integer("octaves", p.octaves);
+    if (p.octaves < 1 || p.octaves > 8) o.fail("octaves", "must lie in 1..8");
+    p.lacunarity = o.number("lacunarity", p.lacunarity);
+    if (!(p.lacunarity >= 1 && p.lacunarity <= 8)) o.fail("lacunarity", "must lie in [1, 8]");
+    p.gain = o.number("gain", p.gain);
+    if (!(p.gain > 0 && p.gain <= 1)) o.fail("gain", "must lie in (0, 1]");
+    p.density = o.number("density", p.density);
+    if (!(p.density >= 0 && p.density <= 10)) o.fail("density", "must lie in [0, 10]");
+    p.transport = o.number("transport", p.transport);
+    if (!(p.transport >= 0 && p.transport <= 1)) o.fail("transport", "must lie in [0, 1]");
+    p.displacement = o.number("displacement", p.displacement);
+    if (!(p.displacement >= 0 && p.displacement <= 64)) o.fail("displacement", "must lie in [0, 64] voxels");
+    p.velocity = o.vec3("velocity", p.velocity);
+    if (!std::isfinite(p.velocity.x + p.velocity.y + p.velocity.z)) o.fail("velocity", "must be finite");
+    p.time = o.number("time", p.time);
+    if (!std::isfinite(p.time)) o.fail("time", "must be finite");
+    return p;
+}
+
+Effects readEffects(const JsonObject& o) {
+    o.rejectUnknown({"shadows", "ambient_occlusion", "color_bleeding", "cone", "propagation", "indirect", "surface",
+                     "perturbation", "light_resolution", "light_memory_mb"});
+    Effects e;
+    std::string shadows = o.choice("shadows", {"none", "raymarch", "sat_cone", "propagation"}, "raymarch");
+    e.shadows = shadows == "none"         ? ShadowMethod::None
+                : shadows == "sat_cone"   ? ShadowMethod::SatCone
+                : shadows == "propagation" ? ShadowMethod::Propagation
+                                           : ShadowMethod::Raymarch;
+    if (o.has("propagation")) e.propagation = readPropagation(o.object("propagation"));
+    if (o.has("indirect")) e.indirect = readOptional(o, "indirect", readIndirect);
+    if (o.has("surface")) e.surface = readOptional(o, "surface", readSurface);
+    if (o.has("perturbation")) e.perturbation = readOptional(o, "perturbation", readPerturbation);
+    if (o.has("ambient_occlusion")) e.ambient_occlusion = readOptional(o, "ambient_occlusion", readAmbientOcclusion);
+    if (o.has("color_bleeding")) {
+        const auto& v = o.raw("color_bleeding");
+        e.color_bleeding = v.is_boolean() ? (v.get<bool>() ? 1.0f : 0.0f) : o.number("color_bleeding");
+        if (!(e.color_bleeding >= 0 && e.color_bleeding <= 1))
+            o.fail("color_bleeding", "must be true, false or a strength in [0, 1]");
+    }
+    if (o.has("cone")) e.cone = readCone(o.object("cone"));
+    e.light_resolution = o.integer("light_resolution", e.light_resolution);
+    if (e.light_resolution < 2 || e.light_resolution > 1024) o.fail("light_resolution", "must lie in 2..1024 cells");
+    e.light_memory_mb = o.integer("light_memory_mb", e.light_memory_mb);
+    if (e.light_memory_mb < 1) o.fail("light_memory_mb", "must be at least 1");
+    return e;
+}
+
+PixelType readPixelType(const JsonObject& o) {
+    return o.choice("pixel_type", {"half", "float"}, "half") == "float" ? PixelType::Float : PixelType::Half;
+}
+
+// An AOV is a name, or {"name": ..., "pixel_type": ...} to give its layer its own pixel type.
+AovSpec readAov(const JsonObject& output, size_t index) {
+    auto known = [](const std::string& name) {
+        return std::find(knownAovs().begin(), knownAovs().end(), name) != knownAovs().end();
+    };
+    const std::string expected = " (expected direct, ambient, indirect, emission, transmittance, depth or variance)";
+    const auto& a = output.raw("aovs")[index];
+    if (!a.is_object()) {
+        const std::string name = a.is_string() ? a.get<std::string>() : a.dump();
+        if (!known(name)) output.fail("aovs", "unknown AOV '" + name + "'" + expected);
+        return {name, std::nullopt};
+    }
+    JsonObject o = output.element("aovs", index);
+    o.rejectUnknown({"name", "pixel_type"});
+    AovSpec aov{o.string("name"), std::nullopt};
+    if (!known(aov.name)) o.fail("name", "unknown AOV '" + aov.name + "'" + expected);
+    if (o.has("pixel_type")) aov.pixel_type = readPixelType(o);
+    return aov;
+}
+
+OutputSpec readOutput(const JsonObject& o) {
+    o.rejectUnknown({"path", "pixel_type", "compression", "aovs", "preview"});
+    OutputSpec out;
+    out.path = o.string("path", "");
+    out.preview = o.string("preview", "");
+    out.pixel_type = readPixelType(o);
+    out.compression = o.choice("compression", knownCompressions(), "zip");
+    if (o.has("aovs")) {
+        const auto& list = o.raw("aovs");
+        if (!list.is_array()) o.fail("aovs", "expected an array of AOV names or objects");
+        for (size_t i = 0; i < list.size(); ++i) {
+            AovSpec aov = readAov(o, i);
+            for (size_t j = 0; j < out.aovs.size(); ++j)
+                if (out.aovs[j].name == aov.name)
+                    o.fail("aovs/" + std::to_string(i),
+                           "duplicate AOV '" + aov.name + "' (first at " + o.pointer("aovs/" + std::to_string(j)) + ")");
+            out.aovs.push_back(aov);
+        }
+    }
+    return out;
+}
+
+// Emitted colours: unbounded, but finite and >= 0.
+glm::vec3 readEmittedColor(const JsonObject& o, const std::string& key) {
+    const glm::vec3 c = o.vec3(key);
+    if (!(glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) && std::isfinite(c.x + c.y + c.z)))
+        o.fail(key, "must be finite and >= 0");
+    return c;
+}
+
+// Each kind takes its own keys; another kind's are refused, as they would be ignored.
+EmissionSource readEmissionSource(const JsonObject& o) {
+    EmissionSource e;
+    const std::string kind = o.choice("kind", {"constant", "blackbody", "ramp"}, "constant");
+    e.kind = kind == "blackbody" ? EmissionKind::Blackbody : kind == "ramp" ? EmissionKind::Ramp : EmissionKind::Constant;
+    std::vector<std::string> keys{"grid", "kind", "intensity"};
+    if (e.kind == EmissionKind::Constant) keys.push_back("color");
+    if (e.kind == EmissionKind::Ramp) keys.push_back("ramp");
+    if (e.kind == EmissionKind::Blackbody) {
+        keys.insert(keys.end(), {"temperature_scale", "temperature_offset", "cutoff", "normalization"});
+        if (o.choice("normalization", {"luminance", "physical"}, "luminance") == "physical") {
+            e.normalization = BlackbodyNormalization::Physical;
+            keys.push_back("reference_temperature");
+        }
+    }
+    o.rejectUnknown(keys);
+    e.grid = readGridRef(o, "grid");
+    e.intensity = o.number("intensity", e.intensity);
+    if (!(e.intensity >= 0) || !std::isfinite(e.intensity)) o.fail("intensity", "must be a finite number >= 0");
+    if (o.has("color")) e.color = readEmittedColor(o, "color");
+    if (e.kind == EmissionKind::Ramp) {
+        for (const auto& p : o.objects("ramp")) {
+            p.rejectUnknown({"value", "color"});
+            RampPoint r{p.number("value"), readEmittedColor(p, "color")};
+            if (!std::isfinite(r.value)) p.fail("value", "must be finite");
+            if (!e.ramp.empty() && r.value <= e.ramp.back().value) p.fail("value", "ramp points must have increasing values");
+            e.ramp.push_back(r);
+        }
+        if (e.ramp.size() < 2) o.fail("ramp", "needs at least 2 points");
+    }
+    if (e.kind == EmissionKind::Blackbody) {
+        e.temperature_scale = o.number("temperature_scale", e.temperature_scale);
+        if (!(e.temperature_scale > 0) || !std::isfinite(e.temperature_scale))
+            o.fail("temperature_scale", "must be a finite number > 0");
+        e.temperature_offset = o.number("temperature_offset", e.temperature_offset);
+        if (!std::isfinite(e.temperature_offset)) o.fail("temperature_offset", "must be finite");
+        e.cutoff = o.number("cutoff", e.cutoff);
+        if (!(e.cutoff >= 0) || !std::isfinite(e.cutoff)) o.fail("cutoff", "must be a finite temperature >= 0 K");
+        e.reference_temperature = o.number("reference_temperature", e.reference_temperature);
+        if (!(e.reference_temperature > 0) || !std::isfinite(e.reference_temperature))
+            o.fail("reference_temperature", "must be a finite temperature > 0 K");
+    }
+    // Value 0 is empty space (the grids' background): emitting there would light whole bricks
+    // and stop at their edges.
+    if (emissionRadiance(e, 0.0f, kXyzD65ToAcescg) != glm::vec3(0.0f)) {
+        if (e.kind == EmissionKind::Ramp) o.fail("ramp", "must be black at value 0 (empty space emits nothing)");
+        char kelvin[32];
+        std::snprintf(kelvin, sizeof kelvin, "%g", double(e.temperature_offset));
+        o.fail("temperature_offset", "value 0 (empty space) would emit at " + std::string(kelvin) +
+                                         " K: keep the offset below cutoff");
+    }
+    return e;
+}
+
+// One grading step: exactly one of look, cdl, cdl_file or lut, with the keys that kind takes.
+GradeStep readGradeStep(const JsonObject& o, const std::string& base_dir) {
+    const std::vector<std::string> kinds{"look", "cdl", "cdl_file", "lut"};
+    std::vector<std::string> present;
+    for (const auto& k : kinds)
+        if (o.has(k)) present.push_back(k);
+    if (present.size() != 1) o.fail("expected exactly one of look, cdl, cdl_file or lut");
+    GradeStep g;
+    const std::string& kind = present[0];
+    if (kind == "look") {
+        o.rejectUnknown({"look", "inverse"});
+        g.kind = GradeKind::Look;
+        g.look = o.string("look");
+    } else if (kind == "cdl") {
+        o.rejectUnknown({"cdl", "space", "inverse", "clamp"});
+        g.kind = GradeKind::Cdl;
+        JsonObject c = o.object("cdl");
+        c.rejectUnknown({"slope", "offset", "power", "saturation"});
+        g.slope = c.vec3("slope", g.slope);
+        g.offset = c.vec3("offset", g.offset);
+        g.power = c.vec3("power", g.power);
+        g.saturation = c.number("saturation", g.saturation);
+        if (glm::any(glm::lessThan(g.slope, glm::vec3(0.0f)))) c.fail("slope", "must be 0 or more");
+        if (glm::any(glm::lessThanEqual(g.power, glm::vec3(0.0f)))) c.fail("power", "must be more than 0");
+        if (!(g.saturation >= 0.0f)) c.fail("saturation", "must be 0 or more");
+    } else if (kind == "cdl_file") {
+        o.rejectUnknown({"cdl_file", "cccid", "space", "inverse", "clamp"});
+        g.kind = GradeKind::CdlFile;
+        g.file = resolvePath(o.string("cdl_file"), base_dir);
+        g.cccid = o.string("cccid", "");
+    } else {
+        o.rejectUnknown({"lut", "interpolation", "space", "inverse"});
+        g.kind = GradeKind::Lut;
+        g.file = resolvePath(o.string("lut"), base_dir);
+        g.interpolation = o.choice("interpolation", {"nearest", "linear", "tetrahedral", "best"}, "best");
+    }
+    g.space = o.string("space", "");
+    g.inverse = o.boolean("inverse", false);
+    g.clamp = o.boolean("clamp", false);
+    return g;
+}
+
+ColorSettings readColor(const JsonObject& o, const std::string& base_dir) {
+    o.rejectUnknown({"config", "working_space", "output_space", "grade", "unpremultiply", "display", "view"});
+    ColorSettings c;
+    if (o.has("config")) c.config = resolvePath(o.string("config"), base_dir);
+    c.working_space = o.string("working_space", "");
+    c.output_space = o.string("output_space", "");
+    if (o.has("grade"))
+        for (const auto& step : o.objects("grade")) c.grade.push_back(readGradeStep(step, base_dir));
+    c.unpremultiply = o.boolean("unpremultiply", c.unpremultiply);
+    c.display = o.string("display", "");
+    c.view = o.string("view", "");
+    return c;
+}
+
+}  // namespace
+
+Light readLight(const JsonObject& o) {
+    Light l;
+    std::string type = o.choice("type", {"directional", "point", "spot", "ambient"}, "directional");
+    l.type = type == "point"     ? LightType::Point
+             : type == "spot"    ? LightType::Spot
+             : type == "ambient" ? LightType::Ambient
+                                 : LightType::Directional;
+    if (l.type == LightType::Ambient)
+        o.rejectUnknown({"name", "enabled", "type", "color", "intensity"});
+    else
+        o.rejectUnknown({"name", "enabled", "type", "position", "direction", "color", "intensity", "cone_angle",
+                         "cone_softness"});
+    l.name = o.string("name", "");
+    l.enabled = o.boolean("enabled", true);
+    if (l.type == LightType::Point || l.type == LightType::Spot) l.position = o.vec3("position");
+    if (l.type == LightType::Directional || l.type == LightType::Spot) {
+        l.direction = o.vec3("direction");
+        if (glm::length(l.direction) == 0) o.fail("direction", "must not be zero");
+        // A unit vector is kept as written, so a scene that voxlux wrote reads back to the same floats.
+        if (std::abs(glm::length(l.direction) - 1.0f) > 1e-6f) l.direction = glm::normalize(l.direction);
+    }
+    l.color = o.vec3("color", l.color);
+    if (!(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && std::isfinite(l.color.x + l.color.y + l.color.z)))
+        o.fail("color", "must be finite and >= 0");
+    l.intensity = o.number("intensity", l.intensity);
+    if (!(l.intensity >= 0) || !std::isfinite(l.intensity)) o.fail("intensity", "must be a finite number >= 0");
+    l.cone_angle = o.number("cone_angle", l.cone_angle);
+    if (!(l.cone_angle > 0 && l.cone_angle < 90)) o.fail("cone_angle", "must lie in (0, 90) degrees");
+    l.cone_softness = o.number("cone_softness", l.cone_softness);
+    if (!(l.cone_softness >= 0 && l.cone_softness <= l.cone_angle))
+        o.fail("cone_softness", "must lie in [0, cone_angle]");
+    return l;
+}
+
+Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir) {
+    const nlohmann::json json = parseJson(text, file);
+    JsonObject root(json, file, "");
+    root.rejectUnknown({"volume", "material", "lights", "camera", "render", "effects", "emission", "color", "output"});
+    Scene s;
+    s.volume = readVolume(root.object("volume"), base_dir);
+    if (root.has("material")) s.material = readMaterial(root.object("material"));
+    if (root.has("lights"))
+        for (const auto& l : root.objects("lights")) s.lights.push_back(readLight(l));
+    if (root.has("camera")) s.camera = readCamera(root.object("camera"));
+    if (root.has("render")) s.render = readRender(root.object("render"));
+    if (root.has("effects")) s.effects = readEffects(root.object("effects"));
+    if (s.render.method == RenderMethod::Reference && (s.effects.surface || s.effects.perturbation))
+        root.fail("effects", "surface and perturbation are march-only effects (render.method is \"reference\")");
+    if (root.has("color")) s.color = readColor(root.object("color"), base_dir);
+    if (root.has("emission")) {
+        const auto sources = root.objects("emission");
+        if (sources.size() > VX_MAX_EMISSION)
+            root.fail("emission", "at most " + std::to_string(VX_MAX_EMISSION) + " sources (got " +
+                                      std::to_string(sources.size()) + ")");
+        for (const auto& e : sources) s.emission.push_back(readEmissionSource(e));
+    }
+    if (root.has("output")) s.output = readOutput(root.object("output"));
+    return s;
+}
+
+Scene loadSceneFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open scene file");
+    std::stringstream text;
+    text << in.rdbuf();
+    return parseScene(text.str(), path, fs::path(path).parent_path().string());
+}
+
+}  // namespace voxlux

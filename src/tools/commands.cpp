@@ -1,0 +1,339 @@
+#include "tools/commands.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/camera.h"
+#include "core/error.h"
+#include "io/exr_writer.h"
+#include "core/frame_pattern.h"
+#include "volume/make_cloud.h"
+#include "scene/quality_presets.h"
+#include "scene/light_edits.h"
+#include "render/renderer.h"
+#include "scene/scene_json.h"
+#include "volume/vdb_loader.h"
+
+namespace voxlux {
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    std::string part;
+    while (std::getline(in, part, sep)) out.push_back(part);
+    return out;
+}
+
+float parseFloat(const std::string& text, const std::string& context) {
+    try {
+        size_t used = 0;
+        float v = std::stof(text, &used);
+        if (used == text.size() && std::isfinite(v)) return v;
+    } catch (const std::exception&) {
+    }
+    throw InputError(context + ": '" + text + "' is not a number");
+}
+
+glm::vec3 parseVec3(const std::string& text, const std::string& context) {
+    auto parts = split(text, ',');
+    if (parts.size() != 3) throw InputError(context + ": expected three numbers x,y,z, got '" + text + "'");
+    return {parseFloat(parts[0], context), parseFloat(parts[1], context), parseFloat(parts[2], context)};
+}
+
+// "directional:dir=1,-1,0:intensity=3" and so on; keys as in docs/cli.md.
+Light parseLight(const std::string& spec) {
+    const std::string context = "--light '" + spec + "'";
+    auto parts = split(spec, ':');
+    Light l;
+    if (parts.empty() ||
+        (parts[0] != "directional" && parts[0] != "point" && parts[0] != "spot" && parts[0] != "ambient"))
+        throw InputError(context + ": type must be directional, point, spot or ambient");
+    l.type = parts[0] == "point"     ? LightType::Point
+             : parts[0] == "spot"    ? LightType::Spot
+             : parts[0] == "ambient" ? LightType::Ambient
+                                     : LightType::Directional;
+    bool hasPos = false, hasDir = false;
+    for (size_t i = 1; i < parts.size(); ++i) {
+        auto eq = parts[i].find('=');
+        if (eq == std::string::npos) throw InputError(context + ": expected key=value, got '" + parts[i] + "'");
+        std::string key = parts[i].substr(0, eq), value = parts[i].substr(eq + 1);
+        if (key == "dir") { l.direction = parseVec3(value, context); hasDir = true; }
+        else if (key == "pos") { l.position = parseVec3(value, context); hasPos = true; }
+        else if (key == "color") l.color = parseVec3(value, context);
+        else if (key == "intensity") l.intensity = parseFloat(value, context);
+        else if (key == "angle") l.cone_angle = parseFloat(value, context);
+        else if (key == "softness") l.cone_softness = parseFloat(value, context);
+        else throw InputError(context + ": unknown key '" + key + "' (dir, pos, color, intensity, angle, softness)");
+    }
+    const bool positioned = l.type == LightType::Point || l.type == LightType::Spot;
+    const bool aimed = l.type == LightType::Directional || l.type == LightType::Spot;
+    if (positioned && !hasPos) throw InputError(context + ": needs pos=x,y,z");
+    if (aimed && !hasDir) throw InputError(context + ": needs dir=x,y,z");
+    if (!positioned && hasPos) throw InputError(context + ": " + parts[0] + " lights have no pos");
+    if (!aimed && hasDir) throw InputError(context + ": " + parts[0] + " lights have no dir");
+    return l;
+}
+
+// Overrides go through the scene JSON so that they are validated by exactly the same rules.
+Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
+    nlohmann::json j = sceneToJson(base);
+    if (o.quality) applyQualityPreset(j, *o.quality);
+    auto& v = j["volume"];
+    auto setGrid = [&](const char* key, const std::optional<std::string>& name) {
+        if (name) v[key] = *name;
+    };
+    setGrid("density", o.grid);
+    if (o.grid_index) v["density"] = {{"name", o.grid.value_or(base.volume.density.name)}, {"index", *o.grid_index}};
+    setGrid("color", o.color_grid);
+    if (o.level_set) v["level_set"] = *o.level_set;
+    if (o.emission_grid || o.blackbody_grid) {
+        auto& sources = j["emission"] = nlohmann::json::array();
+        if (o.emission_grid) sources.push_back({{"grid", *o.emission_grid}, {"kind", "constant"}, {"color", {1, 1, 1}}});
+        // Mantaflow (Blender) temperature: 0 ambient, 1.5 at ignition to 3 at the flames' maximum
+        // (Blender's defaults), x 1000 K as Blender's Principled Volume renders it at its default
+        // 1000 K. Brightness follows Planck's luminance, 1 at ignition; gas below 1000 K is dark.
+        if (o.blackbody_grid)
+            sources.push_back({{"grid", *o.blackbody_grid}, {"kind", "blackbody"}, {"temperature_scale", 1000},
+                               {"cutoff", 1000}, {"normalization", "physical"}, {"reference_temperature", 1500}});
+    }
+    if (o.frames) {
+        auto range = split(*o.frames, '-');
+        if (range.size() == 1) range.push_back(range[0]);
+        if (range.size() != 2) throw InputError("--frames '" + *o.frames + "': expected FIRST-LAST");
+        v["frames"] = {parseFloat(range[0], "--frames"), parseFloat(range[1], "--frames")};
+    }
+    if (o.resolution) {
+        auto wh = split(*o.resolution, 'x');
+        if (wh.size() != 2) throw InputError("--res '" + *o.resolution + "': expected WIDTHxHEIGHT");
+        j["render"]["resolution"] = {parseFloat(wh[0], "--res"), parseFloat(wh[1], "--res")};
+    }
+    if (o.step) j["render"]["step"] = *o.step;
+    if (o.shadow_step) j["render"]["shadow_step"] = *o.shadow_step;
+    if (o.backend) j["render"]["backend"] = *o.backend;
+    if (o.method) j["render"]["method"] = *o.method;
+    if (o.spp) j["render"]["reference"]["spp"] = *o.spp;
+    if (o.density_scale) j["material"]["density_scale"] = *o.density_scale;
+    if (o.shadows) j["effects"]["shadows"] = *o.shadows;
+    if (o.pixel_type) j["output"]["pixel_type"] = *o.pixel_type;
+    if (o.aovs) j["output"]["aovs"] = *o.aovs;
+    if (o.output) j["output"]["path"] = *o.output;
+    if (o.preview) j["output"]["preview"] = *o.preview;
+    for (const auto& set : o.sets) applySceneSet(j, set);
+    Scene s = parseScene(j.dump(), "command line", "");
+    if (!o.lights.empty()) {
+        s.lights.clear();
+        for (const auto& l : o.lights) s.lights.push_back(parseLight(l));
+    }
+    return s;
+}
+
+bool isSceneFile(const std::string& path) {
+    auto ext = std::filesystem::path(path).extension().string();
+    return ext == ".json";
+}
+
+// The quick form: a .vdb with default light and framing (a camera is filled in by `scene`).
+Scene quickScene(const std::string& vdb) {
+    Scene s;
+    s.volume.path = vdb;
+    s.lights.push_back(defaultKeyLight());
+    return s;
+}
+
+std::vector<std::optional<int>> framesOf(const Scene& s) {
+    if (!hasFramePattern(s.volume.path)) return {std::nullopt};
+    if (!s.volume.frames)
+        throw InputError(s.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
+    if (!hasFramePattern(s.output.path) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
+        throw InputError(s.output.path + ": several frames need a #### pattern in the output path");
+    if (!s.output.preview.empty() && !hasFramePattern(s.output.preview) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
+        throw InputError(s.output.preview + ": several frames need a #### pattern in the preview path");
+    std::vector<std::optional<int>> frames;
+    for (int f = (*s.volume.frames)[0]; f <= (*s.volume.frames)[1]; ++f) frames.push_back(f);
+    return frames;
+}
+
+size_t peakRssBytes() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return size_t(u.ru_maxrss) * 1024;
+}
+
+std::string secondsText(double s) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3f s", s);
+    return buf;
+}
+
+const char* modeName(LightUpdate::Mode m) {
+    return m == LightUpdate::Mode::Kept ? "kept" : m == LightUpdate::Mode::Selective ? "selective" : "entire";
+}
+
+nlohmann::json describeUpdate(const LightRigUpdate& u, const std::string& what) {
+    nlohmann::json j = {{"edit", what}, {"seconds", u.seconds}};
+    for (const auto& [stage, seconds] : u.stage_seconds) j["stages"][stage] = seconds;
+    if (const auto& l = u.lighting) {
+        j["mode"] = modeName(l->mode);
+        j["reason"] = l->reason;
+        j["lights"] = l->lights;
+        j["lights_out"] = l->lights_out;
+        j["lights_in"] = l->lights_in;
+        j["sweeps"] = l->sweeps;
+        j["passes"] = l->passes;
+        j["slices"] = l->slices;
+    }
+    return j;
+}
+
+// `render --light-edit`: the scene's first update, then each edit applied through a LightRig and
+// timed on its own, then the final frame marched and written.
+int runLightEdits(const Scene& scene, const std::string& edits_file, std::optional<int> frame,
+                  const std::optional<std::string>& stats_file) {
+    const std::vector<LightEdit> edits = loadLightEdits(edits_file);
+    Renderer renderer(scene);
+    LightRig rig(renderer, scene);
+    {   // every edit is checked before anything renders
+        LightRig dry = rig;
+        for (const auto& e : edits) applyLightEdit(dry, e);
+    }
+    nlohmann::json log = nlohmann::json::array();
+    auto report = [&](const std::string& what, const LightRigUpdate& u) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%-28s %8.4f s", what.c_str(), u.seconds);
+        std::cout << line;
+        if (const auto& l = u.lighting) {
+            std::snprintf(line, sizeof line, "  %-9s -%d +%d of %2d lights %3d sweeps %2d passes %6lld slices", modeName(l->mode),
+                          l->lights_out, l->lights_in, l->lights, l->sweeps, l->passes, l->slices);
+            std::cout << line << (l->reason.empty() ? "" : "  (" + l->reason + ")");
+        }
+        std::cout << "\n";
+        log.push_back(describeUpdate(u, what));
+    };
+    report("initial", rig.apply(frame));
+    for (size_t k = 0; k < edits.size(); ++k) {
+        const std::string what = std::to_string(k + 1) + ": " + applyLightEdit(rig, edits[k]);
+        report(what, rig.apply(frame));
+    }
+    FrameResult r = renderer.renderToFile(frame, false);
+    for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
+    std::cout << "wrote " << r.path << " (" << renderer.backendName() << ", " << edits.size() << " light edits)\n";
+    if (stats_file)
+        writeFileAtomically(*stats_file, nlohmann::json({{"backend", renderer.backendName()}, {"light_edits", log},
+                                                         {"peak_rss_bytes", peakRssBytes()}})
+                                                 .dump(2) + "\n");
+    return 0;
+}
+
+}  // namespace
+
+int runRender(const RenderCommand& cmd) {
+    Scene scene = isSceneFile(cmd.input) ? loadSceneFile(cmd.input) : quickScene(cmd.input);
+    scene = applyOverrides(scene, cmd.overrides);
+    if (cmd.explain) {
+        std::cout << Renderer(scene).graph().explain(scene);
+        return 0;
+    }
+    auto frames = framesOf(scene);
+    const bool sequence = frames.size() > 1 || frames.front().has_value();
+    if (cmd.light_edits) return runLightEdits(scene, *cmd.light_edits, frames.front(), cmd.stats);
+
+    Renderer renderer(scene);
+    nlohmann::json stats = {{"backend", renderer.backendName()}, {"frames", nlohmann::json::array()}};
+    size_t emptyFrames = 0;
+    for (const auto& frame : frames) {
+        FrameResult r = renderer.renderToFile(frame, sequence);
+        for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
+        emptyFrames += r.empty;
+        std::cout << "wrote " << r.path << (r.preview_path.empty() ? "" : " and " + r.preview_path) << " ("
+                  << renderer.backendName() << ", " << r.bricks << " bricks)";
+        nlohmann::json stages;
+        double total = 0;
+        for (const auto& [stage, seconds] : r.stage_seconds) {
+            std::cout << "  " << stage << " " << secondsText(seconds);
+            stages[stage] = seconds;
+            total += seconds;
+        }
+        std::cout << "\n";
+        nlohmann::json fj = {{"stages", stages}, {"total_seconds", total}, {"bricks", r.bricks},
+                             {"atlas_bytes", r.atlas_bytes}, {"empty", r.empty}};
+        if (frame) fj["frame"] = *frame;
+        stats["frames"].push_back(fj);
+    }
+    if (emptyFrames) std::cerr << "voxlux: warning: " << emptyFrames << " empty frame(s) rendered transparent\n";
+    stats["peak_rss_bytes"] = peakRssBytes();
+    if (cmd.stats) writeFileAtomically(*cmd.stats, stats.dump(2) + "\n");
+    return 0;
+}
+
+int runStudyCommand(const StudyCommand& cmd) {
+    Scene scene = isSceneFile(cmd.input) ? loadSceneFile(cmd.input) : quickScene(cmd.input);
+    scene = applyOverrides(scene, cmd.overrides);
+    runStudy(scene, cmd.options, std::cout, std::cerr, isatty(STDERR_FILENO));
+    return 0;
+}
+
+int runScene(const std::string& vdb, const SceneOverrides& overrides) {
+    Scene scene = applyOverrides(quickScene(vdb), overrides);
+    scene.camera = frameVolumeCamera(vdb, scene);
+    std::cout << sceneToJson(scene).dump(2) << "\n";
+    return 0;
+}
+
+int runInfo(const std::string& vdb, bool json) {
+    auto grids = summarizeFile(vdb);
+    if (json) {
+        nlohmann::json out = {{"file", vdb}, {"grids", nlohmann::json::array()}};
+        for (const auto& g : grids) {
+            nlohmann::json gj = {{"name", g.name}, {"type", g.value_type}, {"class", g.grid_class},
+                                 {"active_voxels", g.active_voxels}, {"active_tiles", g.active_tiles},
+                                 {"voxel_size", {g.voxel_size.x(), g.voxel_size.y(), g.voxel_size.z()}},
+                                 {"bricks", g.bricks}};
+            if (g.active_voxels > 0) {
+                gj["bbox_min"] = {g.bbox.min().x(), g.bbox.min().y(), g.bbox.min().z()};
+                gj["bbox_max"] = {g.bbox.max().x(), g.bbox.max().y(), g.bbox.max().z()};
+            }
+            out["grids"].push_back(gj);
+        }
+        std::cout << out.dump(2) << "\n";
+        return 0;
+    }
+    std::cout << vdb << ": " << grids.size() << (grids.size() == 1 ? " grid\n" : " grids\n");
+    for (const auto& g : grids) {
+        std::cout << "  " << g.name << "  " << g.value_type << "  " << g.grid_class << "\n"
+                  << "    active voxels " << g.active_voxels << " (" << g.active_tiles << " active tiles)\n";
+        if (g.active_voxels == 0) {
+            std::cout << "    empty\n";
+            continue;
+        }
+        const auto& b = g.bbox;
+        std::cout << "    bbox (index) [" << b.min().x() << ", " << b.min().y() << ", " << b.min().z() << "] -> ["
+                  << b.max().x() << ", " << b.max().y() << ", " << b.max().z() << "]  (" << b.dim().x() << " x "
+                  << b.dim().y() << " x " << b.dim().z() << ")\n"
+                  << "    voxel size " << g.voxel_size.x() << " " << g.voxel_size.y() << " " << g.voxel_size.z() << "\n"
+                  << "    bricks (8^3) " << g.bricks << "\n";
+    }
+    return 0;
+}
+
+int runMakeCloud(const std::string& output, int resolution, unsigned seed) {
+    initOpenVdb();
+    CloudParams p;
+    p.resolution = resolution;
+    p.seed = seed;
+    auto grid = makeCloud(p);
+    grid->setSaveFloatAsHalf(true);
+    writeAtomically(output, [&](const std::string& tmp) { openvdb::io::File(tmp).write({grid}); });
+    std::cout << "wrote " << output << " (" << grid->activeVoxelCount() << " active voxels)\n";
+    return 0;
+}
+
+}  // namespace voxlux

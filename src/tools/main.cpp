@@ -1,0 +1,127 @@
+// voxlux command line: render, scene, study, info, make-cloud. Errors are one line on stderr.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "tools/commands.h"
+#include "core/error.h"
+
+namespace {
+
+void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
+    cmd.add_option("--grid", o.grid, "density grid name (volume.density)");
+    cmd.add_option("--grid-index", o.grid_index, "which of several grids with that name (volume.density.index)");
+    cmd.add_option("--emission-grid", o.emission_grid, "emission of value x white from this grid, e.g. flame (emission)");
+    cmd.add_option("--blackbody-grid", o.blackbody_grid,
+                   "blackbody emission from a Mantaflow temperature grid, value x 1000 K (emission)");
+    cmd.add_option("--color-grid", o.color_grid, "vec3 colour grid, e.g. Cd (volume.color)");
+    cmd.add_option("--level-set", o.level_set, "reject|fog: convert a level set to fog (volume.level_set)");
+    cmd.add_option("--res", o.resolution, "WIDTHxHEIGHT (render.resolution)");
+    cmd.add_option("--step", o.step, "march step in voxels (render.step)");
+    cmd.add_option("--shadow-step", o.shadow_step, "shadow-ray step in voxels (render.shadow_step)");
+    cmd.add_option("--density-scale", o.density_scale, "density to extinction (material.density_scale)");
+    cmd.add_option("--light", o.lights,
+                   "TYPE:key=value:... e.g. directional:dir=1,-1,0:intensity=3 (repeatable, replaces lights)");
+    cmd.add_option("--shadows", o.shadows, "none|raymarch|sat_cone|propagation (effects.shadows)");
+    cmd.add_option("--quality", o.quality,
+                   "draft|preview|final: method and knobs from the measured Pareto front (docs/accuracy.md); "
+                   "other options override it");
+    cmd.add_option("--set", o.sets, "KEY=VALUE: set any scene key, e.g. effects.cone.samples=50 (repeatable)");
+    cmd.add_option("--backend", o.backend, "auto|cpu|gl (render.backend)");
+    cmd.add_option("--method", o.method, "march|reference: Monte Carlo reference on the CPU (render.method)");
+    cmd.add_option("--spp", o.spp, "reference samples per pixel (render.reference.spp)");
+    cmd.add_option("--frames", o.frames, "FIRST-LAST for a #### volume path (volume.frames)");
+    cmd.add_option("--pixel-type", o.pixel_type, "half|float (output.pixel_type)");
+    cmd.add_option("--aovs", o.aovs, "direct,ambient,indirect,emission,transmittance,depth,variance (output.aovs)")->delimiter(',');
+}
+
+// `arg` as a POSIX shell reads it back: quoted when it holds anything but plain characters.
+std::string shellQuoted(const std::string& arg) {
+    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789_./=,:+-") == std::string::npos;
+    if (plain) return arg;
+    std::string quoted = "'";
+    for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"voxlux: volume shading for OpenVDB caches"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", VOXLUX_VERSION);
+
+    voxlux::RenderCommand render;
+    auto* renderCmd = app.add_subcommand("render", "render a scene .json, or a .vdb with default framing");
+    renderCmd->add_option("input", render.input, "scene .json or volume .vdb")->required();
+    renderCmd->add_option("-o,--output", render.overrides.output, "output .exr (output.path)");
+    renderCmd->add_option("--preview", render.overrides.preview,
+                          "also write an 8-bit PNG through the display and view (output.preview; #### for frames)");
+    renderCmd->add_flag("--explain", render.explain, "print the render graph (stages, why each runs, what each reads) and exit");
+    renderCmd->add_option("--stats", render.stats, "write per-stage times and peak memory as JSON");
+    renderCmd->add_option("--light-edit", render.light_edits,
+                          "EDITS.json: replay light edits (selective updates), print each one's time, write the last frame");
+    addSceneOverrides(*renderCmd, render.overrides);
+
+    std::string sceneInput;
+    voxlux::SceneOverrides sceneOverrides;
+    auto* sceneCmd = app.add_subcommand("scene", "print the scene the quick form of render would use");
+    sceneCmd->add_option("volume", sceneInput, "volume .vdb")->required();
+    sceneCmd->add_option("-o,--output", sceneOverrides.output, "output.path to put in the scene");
+    addSceneOverrides(*sceneCmd, sceneOverrides);
+
+    std::string infoInput;
+    bool infoJson = false;
+    auto* infoCmd = app.add_subcommand("info", "list the grids of a .vdb file");
+    infoCmd->add_option("volume", infoInput, "volume .vdb")->required();
+    infoCmd->add_flag("--json", infoJson, "print JSON for pipeline tools");
+
+    voxlux::StudyCommand study;
+    auto* studyCmd = app.add_subcommand(
+        "study", "render with every method and knob and the Monte Carlo reference; chart error against time");
+    studyCmd->add_option("input", study.input, "scene .json or volume .vdb")->required();
+    studyCmd->add_option("-o,--output", study.options.out_dir, "folder for study.csv, chart.svg, report.md, truth.exr")
+        ->capture_default_str();
+    studyCmd->add_option("--title", study.options.title, "the scene's name in the report and chart");
+    studyCmd->add_option("--spp-list", study.options.spps, "reference samples per pixel to measure")
+        ->delimiter(',')->capture_default_str();
+    studyCmd->add_option("--truth-spp", study.options.truth_spp, "samples per pixel of the ground truth")->capture_default_str();
+    studyCmd->add_option("--repeats", study.options.repeats, "renders per config, the fastest counts")
+        ->check(CLI::Range(1, 100))->capture_default_str();
+    studyCmd->add_flag("--fresh", study.options.fresh, "measure everything again instead of resuming");
+    addSceneOverrides(*studyCmd, study.overrides);
+
+    std::string cloudOutput;
+    int cloudResolution = 96;
+    unsigned cloudSeed = 1;
+    auto* cloudCmd = app.add_subcommand("make-cloud", "write a procedural cloud .vdb");
+    cloudCmd->add_option("-o,--output", cloudOutput, "output .vdb")->required();
+    cloudCmd->add_option("--res", cloudResolution, "voxels across")->check(CLI::Range(8, 1024));
+    cloudCmd->add_option("--seed", cloudSeed, "noise seed");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+
+    try {
+        if (*renderCmd) return voxlux::runRender(render);
+        if (*sceneCmd) return voxlux::runScene(sceneInput, sceneOverrides);
+        if (*studyCmd) {
+            study.options.command = "voxlux";
+            for (int i = 1; i < argc; ++i) study.options.command += " " + shellQuoted(argv[i]);
+            return voxlux::runStudyCommand(study);
+        }
+        if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
+        if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
+    } catch (const voxlux::InputError& e) {
+        std::cerr << "voxlux: error: " << e.what() << "\n";
+        return voxlux::kInputError;
+    } catch (const std::exception& e) {
+        std::cerr << "voxlux: internal error: " << e.what() << "\n";
+        return voxlux::kInternalError;
+    }
+    return 0;
+}

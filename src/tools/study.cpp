@@ -1,0 +1,235 @@
+#include "tools/study.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+
+#include "grade/color_pipeline.h"
+#include "core/error.h"
+#include "io/exr_reader.h"
+#include "io/exr_writer.h"
+#include "core/frame_pattern.h"
+#include "core/image_metrics.h"
+#include "render/renderer.h"
+#include "scene/scene_json.h"
+#include "tools/study_plan.h"
+#include "tools/study_report.h"
+#include "tools/study_results.h"
+
+namespace voxlux {
+namespace fs = std::filesystem;
+namespace {
+
+// The scene as every config starts from: CPU, ungraded, in the working space, no files written.
+// Errors are measured on the scene-linear beauty, before any look or display transform.
+nlohmann::json studyBase(const Scene& scene) {
+    nlohmann::json j = sceneToJson(scene);
+    j["render"]["backend"] = "cpu";
+    for (const char* key : {"output_space", "grade", "display", "view"}) j["color"].erase(key);
+    j["output"]["aovs"] = nlohmann::json::array();
+    j["output"]["preview"] = "";
+    return j;
+}
+
+std::optional<int> studyFrame(const Scene& scene) {
+    if (!hasFramePattern(scene.volume.path)) return std::nullopt;
+    if (!scene.volume.frames)
+        throw InputError(scene.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
+    return (*scene.volume.frames)[0];
+}
+
+// Every stage but reading the file and the colour config, which are the same for every method.
+double computeSeconds(const FrameResult& r) {
+    double s = 0;
+    for (const auto& [stage, seconds] : r.stage_seconds)
+        if (stage != "load" && stage != "color_space" && stage != "color_transforms") s += seconds;
+    return s;
+}
+
+struct Measured {
+    RenderImage image;
+    double seconds = 0;
+};
+
+Measured renderTimed(const Scene& scene, std::optional<int> frame, int repeats) {
+    Measured m;
+    m.seconds = 1e300;
+    for (int i = 0; i < repeats; ++i) {
+        Renderer renderer(scene);   // fresh: nothing reused from an earlier config
+        FrameResult r = renderer.render(frame, false);
+        m.seconds = std::min(m.seconds, computeSeconds(r));
+        m.image = std::move(r.image);
+    }
+    return m;
+}
+
+std::string clock(double seconds) {
+    const long s = std::lround(seconds);
+    char buf[32];
+    if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, s / 60 % 60);
+    else std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+    return buf;
+}
+
+// "[=====>      ] 12/39  elapsed 1m02s  left ~3m10s  what"
+class ProgressBar {
+public:
+    ProgressBar(std::ostream& os, bool terminal, size_t total) : os_(os), terminal_(terminal), total_(total) {}
+    // `left_seconds` < 0: not known yet.
+    void show(size_t done, double left_seconds, const std::string& what) {
+        if (!terminal_) return;
+        const int width = 30, filled = total_ ? int(width * done / total_) : width;
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        os_ << "\r\033[K[" << std::string(filled, '=') << (filled < width ? ">" : "") << std::string(std::max(0, width - filled - 1), ' ')
+            << "] " << done << "/" << total_ << "  elapsed " << clock(elapsed)
+            << (left_seconds >= 0 ? "  left ~" + clock(left_seconds) : std::string()) << "  " << what.substr(0, 60)
+            << std::flush;
+    }
+    void finish() {
+        if (terminal_) os_ << "\r\033[K" << std::flush;
+    }
+
+private:
+    std::ostream& os_;
+    bool terminal_;
+    size_t total_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+struct Truth {
+    RenderImage image;
+    StudyTruth info;
+};
+
+// The ground truth: kept in the study folder and reused while the scene and sample count are
+// unchanged. Two halves with their own seeds measure its noise.
+Truth groundTruth(const nlohmann::json& base, const std::string& hash, const StudyOptions& o, std::optional<int> frame,
+                  const glm::mat3& working_to_xyz, ProgressBar& bar, std::ostream& out) {
+    const fs::path dir(o.out_dir);
+    const std::string exr = (dir / "truth.exr").string(), json = (dir / "truth.json").string();
+    if (!o.fresh && fs::exists(exr) && fs::exists(json)) {
+        std::ifstream in(json);
+        const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+        if (!j.is_discarded() && j.value("scene", "") == hash && j.value("spp", 0) == o.truth_spp) {
+            Truth t{readExrRgba(exr), {o.truth_spp, j.value("seconds", 0.0), j.value("noise_rmse", 0.0), j.value("noise_delta_e", 0.0)}};
+            out << "ground truth: " << exr << " (" << o.truth_spp << " spp, kept from an earlier run)\n";
+            return t;
+        }
+    }
+    const int seed = base["render"]["reference"].value("seed", 1);
+    Measured half[2];
+    for (int h = 0; h < 2; ++h) {
+        bar.show(0, -1, "ground truth, half " + std::to_string(h + 1) + " of 2");
+        StudyConfig c{"reference", {"render.method=reference", "render.reference.spp=" + std::to_string(o.truth_spp / 2),
+                                    "render.reference.seed=" + std::to_string(seed + 1000003 * (h + 1))}, o.truth_spp / 2};
+        half[h] = renderTimed(studyScene(base, c), frame, 1);
+    }
+    Truth t;
+    t.image = half[0].image;
+    for (size_t i = 0; i < t.image.pixels.size(); ++i)
+        t.image.pixels[i].rgba = 0.5f * (half[0].image.pixels[i].rgba + half[1].image.pixels[i].rgba);
+    // The mean's error against the noise-free image is half the halves' difference.
+    t.info = {o.truth_spp, half[0].seconds + half[1].seconds, std::sqrt(halvesNoiseMse(half[0].image, half[1].image)),
+              0.5 * meanDeltaEItp(half[0].image, half[1].image, working_to_xyz)};
+    OutputSpec spec;
+    spec.pixel_type = PixelType::Float;
+    writeExr(exr, t.image, spec, ExrMetadata{});
+    writeFileAtomically(json, nlohmann::json({{"scene", hash}, {"spp", o.truth_spp}, {"seconds", t.info.seconds},
+                                               {"noise_rmse", t.info.noise_rmse}, {"noise_delta_e", t.info.noise_delta_e}})
+                                      .dump(2) + "\n");
+    bar.finish();
+    out << "ground truth: " << exr << " (" << o.truth_spp << " spp in " << clock(t.info.seconds) << ", noise RMSE "
+        << t.info.noise_rmse << ")\n";
+    return t;
+}
+
+}  // namespace
+
+void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out, std::ostream& progress, bool terminal) {
+    if (o.truth_spp < 2 || o.truth_spp % 2) throw InputError("--truth-spp " + std::to_string(o.truth_spp) + ": must be even and at least 2");
+    for (int spp : o.spps)
+        if (spp < 1 || spp >= o.truth_spp)
+            throw InputError("--spp-list: " + std::to_string(spp) + " must be at least 1 and below --truth-spp (" +
+                             std::to_string(o.truth_spp) + ")");
+    const nlohmann::json base = studyBase(scene);
+    const Scene base_scene = parseScene(base.dump(), "study scene", "");
+    const std::optional<int> frame = studyFrame(base_scene);
+    const StudyPlan plan = planStudy(base, o.spps, base_scene.render.reference.seed);
+    const std::string hash = sceneHash(base_scene);
+
+    const ColorPipeline color = buildColorPipeline(base_scene.color, false);
+    if (!color.xyz_to_working)
+        throw InputError(color.config_source + ": has no cie_xyz_d65_interchange role, which the study's Delta E ITP needs");
+    const glm::mat3 working_to_xyz = glm::inverse(*color.xyz_to_working);
+
+    std::error_code ec;
+    fs::create_directories(o.out_dir, ec);
+    if (ec) throw InputError(o.out_dir + ": cannot create the study folder (" + ec.message() + ")");
+    const std::string csv = (fs::path(o.out_dir) / "study.csv").string();
+    const std::string header = "voxlux study: scene " + hash + ", truth " + std::to_string(o.truth_spp) + " spp";
+
+    ProgressBar bar(progress, terminal, plan.configs.size());
+    const Truth truth = groundTruth(base, hash, o, frame, working_to_xyz, bar, out);
+
+    std::vector<StudyRow> rows = o.fresh ? std::vector<StudyRow>{} : readStudyCsv(csv, header);
+    std::string kept = studyCsvHeader(header);
+    std::vector<StudyRow> known;
+    for (const auto& c : plan.configs)
+        for (const auto& r : rows)
+            if (r.id == c.id()) known.push_back(r), kept += studyCsvRow(r);
+    rows = known;
+    if (!rows.empty()) out << "resuming: " << rows.size() << " of " << plan.configs.size() << " renders kept from " << csv << "\n";
+    writeFileAtomically(csv, kept);
+
+    // Time left: a reference render costs its share of the truth's time per sample; the others
+    // cost what they have cost on average so far.
+    const double per_sample = truth.info.seconds / truth.info.spp;
+    double approx_sum = 0;
+    int approx_n = 0;
+    auto expected = [&](const StudyConfig& c) { return c.spp ? c.spp * per_sample : approx_n ? approx_sum / approx_n : 2.0; };
+
+    auto measured = [&](const StudyConfig& c) {
+        return std::any_of(rows.begin(), rows.end(), [&](const StudyRow& r) { return r.id == c.id(); });
+    };
+
+    std::ofstream append(csv, std::ios::app);
+    for (size_t i = 0; i < plan.configs.size(); ++i) {
+        const StudyConfig& c = plan.configs[i];
+        if (measured(c)) continue;
+        double left = 0;
+        for (size_t k = i; k < plan.configs.size(); ++k)
+            if (!measured(plan.configs[k])) left += expected(plan.configs[k]) * o.repeats;
+        bar.show(rows.size(), left, c.method + ": " + studySettings(c.id()));
+        const Measured m = renderTimed(studyScene(base, c), frame, o.repeats);
+        StudyRow r{c.id(), c.method, c.spp, m.seconds,
+                   std::sqrt(std::max(0.0, meanSquaredError(m.image, truth.image) - truth.info.noise_rmse * truth.info.noise_rmse)),
+                   meanDeltaEItp(m.image, truth.image, working_to_xyz)};
+        if (!c.spp) approx_sum += m.seconds, ++approx_n;
+        rows.push_back(r);
+        append << studyCsvRow(r) << std::flush;
+        char line[200];
+        std::snprintf(line, sizeof line, "[%2zu/%zu] %8.3f s  RMSE %.4g  Delta E ITP %.3g  ", rows.size(), plan.configs.size(),
+                      r.seconds, r.rmse, r.delta_e);
+        bar.finish();
+        out << line << c.method << ": " << studySettings(c.id()) << "\n" << std::flush;
+    }
+    bar.finish();
+    append.close();
+
+    markParetoFronts(rows);
+    std::string all = studyCsvHeader(header);
+    for (const auto& r : rows) all += studyCsvRow(r);
+    writeFileAtomically(csv, all);
+    StudyContext context{o.title.empty() ? fs::path(scene.volume.path).filename().string() : o.title, o.command,
+                         base_scene.render.width, base_scene.render.height, truth.info};
+    const std::string chart = (fs::path(o.out_dir) / "chart.svg").string();
+    writeStudyChart(chart, context, plan, rows);
+    const std::string report = (fs::path(o.out_dir) / "report.md").string();
+    writeFileAtomically(report, studyReport(context, plan, rows, "chart.svg"));
+    out << "wrote " << csv << ", " << chart << " and " << report << "\n";
+}
+
+}  // namespace voxlux

@@ -1,0 +1,28 @@
+// `voxlux study SCENE.json`: renders the scene with every lighting method and quality knob and
+// with the Monte Carlo reference, measures each against a long-converged reference, and writes
+// the CSV, the chart and the report (docs/accuracy.md). Resumes where a stopped run left off.
+#pragma once
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace voxlux {
+
+struct StudyOptions {
+    std::string out_dir = "study";
+    std::string title;                   // the report's name for the scene ("" = the volume file's name)
+    std::string command;                 // as the report quotes it
+    std::vector<int> spps{1, 4, 16, 64, 256};
+    int truth_spp = 1024;                // the ground truth, in two halves of independent seeds
+    int repeats = 1;                     // renders per config; the fastest counts
+    bool fresh = false;                  // ignore what an earlier run measured
+};
+
+// Writes <out_dir>/study.csv, truth.exr, truth.json, chart.svg and report.md. Progress goes to
+// `progress` (a bar when it is a terminal), one line per render to `out`. Throws InputError.
+void runStudy(const Scene& scene, const StudyOptions& options, std::ostream& out, std::ostream& progress,
+              bool progress_is_terminal);
+
+}  // namespace voxlux

@@ -1,0 +1,60 @@
+#include "volume/page_table.h"
+
+#include <algorithm>
+
+#include "kernel/cpu_kernel.h"
+#include "optics/emission.h"
+#include "optics/transfer_function.h"
+
+namespace voxlux {
+
+std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material,
+                                 const std::vector<EmissionSource>& emission) {
+    const size_t slots = atlas.slots();
+    std::vector<char> visible(slots);
+    const std::vector<glm::vec4> table = bakeTransfer(material.transfer);  // the kernel's own table
+    for (size_t i = 0; i < slots; ++i) {
+        const glm::vec2 r = atlas.density_range[i];
+        float extinction =
+            material.transfer.empty() ? r.y : maxTransferExtinction(table, material.transfer, r.x, r.y);
+        visible[i] = extinction * material.density_scale > 0.0f;
+    }
+    // A brick emits when its largest value passes the value up to which the source's own table
+    // (the kernel's) is zero. Which values emit does not depend on the working space.
+    for (size_t e = 0; e < atlas.emission_sources; ++e) {
+        const float* block_max = atlas.emission_max.data() + e * slots;
+        const float threshold = bakeEmission(emission.at(e), atlas.emissionGridMax(e), kXyzD65ToAcescg).threshold;
+        for (size_t i = 0; i < slots; ++i) visible[i] |= block_max[i] > threshold;
+    }
+    return visible;
+}
+
+PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible) {
+    PageTable t;
+    for (char v : visible) t.occupied += v != 0;
+    size_t capacity = 16;
+    while (capacity < 2 * t.occupied) capacity *= 2;
+    t.entries.assign(capacity, glm::ivec4(0, 0, 0, VX_PAGE_EMPTY));
+    if (t.occupied == 0) return t;
+    t.bricks_min = glm::ivec3(INT32_MAX);
+    t.bricks_max = glm::ivec3(INT32_MIN);
+    kernel::CpuKernel hasher;  // the hash is the kernel's own, so lookups agree by construction
+    const uint32_t mask = uint32_t(capacity - 1);
+    for (size_t slot = 0; slot < coords.size(); ++slot) {
+        if (!visible[slot]) continue;
+        const glm::ivec3 b = coords[slot];
+        t.bricks_min = glm::min(t.bricks_min, b);
+        t.bricks_max = glm::max(t.bricks_max, b);
+        uint32_t h = hasher.vx_brick_hash(b) & mask;
+        int probe = 0;
+        while (t.entries[h].w != VX_PAGE_EMPTY) {
+            h = (h + 1) & mask;
+            ++probe;
+        }
+        t.entries[h] = glm::ivec4(b, int(slot));
+        t.max_probe = std::max(t.max_probe, probe);
+    }
+    return t;
+}
+
+}  // namespace voxlux

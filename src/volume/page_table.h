@@ -1,0 +1,29 @@
+// Classify stage: decide which bricks the material makes visible and build the page table (an
+// open-addressed hash from brick coordinate to atlas slot) over only those. Empty bricks are
+// absent, so the march skips them without reading the atlas.
+#pragma once
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "volume/brick_atlas.h"
+#include "scene/scene.h"
+
+namespace voxlux {
+
+struct PageTable {
+    std::vector<glm::ivec4> entries;   // (brick x, y, z, slot); slot VX_PAGE_EMPTY marks a free entry
+    int max_probe = 0;                 // longest probe sequence of any stored brick
+    glm::ivec3 bricks_min{0}, bricks_max{-1};
+    size_t occupied = 0;
+    bool empty() const { return occupied == 0; }
+};
+
+// True for bricks the material gives non-zero extinction somewhere, or that some emission source
+// (one per atlas emission channel) makes emit.
+std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material,
+                                 const std::vector<EmissionSource>& emission);
+
+PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible);
+
+}  // namespace voxlux

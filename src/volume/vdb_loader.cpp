@@ -1,0 +1,199 @@
+#include "volume/vdb_loader.h"
+
+#include <filesystem>
+#include <cctype>
+#include <mutex>
+
+#include <openvdb/util/logging.h>
+
+#include <openvdb/tools/GridTransformer.h>
+#include <openvdb/tools/LevelSetUtil.h>
+
+#include "volume/brick_set.h"
+#include "core/error.h"
+
+namespace voxlux {
+namespace {
+
+// Exception text on one line: OpenVDB pads some messages with raw bytes from the file.
+std::string oneLine(const char* what) {
+    std::string out;
+    for (const char* p = what; *p; ++p) {
+        const bool space = !std::isgraph(static_cast<unsigned char>(*p));
+        if (space && (out.empty() || out.back() == ' ')) continue;
+        out += space ? ' ' : *p;
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
+}
+
+std::string describe(const openvdb::GridBase& g) { return "'" + g.getName() + "' (" + g.valueType() + ")"; }
+
+// Opens `file` or throws a one-line InputError.
+std::unique_ptr<openvdb::io::File> openFile(const std::string& file) {
+    if (!std::filesystem::exists(file)) throw InputError(file + ": no such file");
+    auto f = std::make_unique<openvdb::io::File>(file);
+    try {
+        f->open(false);  // no delayed loading: we read each grid once and keep no file handle
+    } catch (const std::exception& e) {
+        throw InputError(file + ": not a readable OpenVDB file (" + oneLine(e.what()) + ")");
+    }
+    return f;
+}
+
+// Grid metadata in file order (no voxel data read).
+openvdb::GridPtrVec gridMetadata(openvdb::io::File& f, const std::string& file) {
+    try {
+        return *f.readAllGridMetadata();
+    } catch (const std::exception& e) {
+        throw InputError(file + ": cannot read grid descriptors (" + oneLine(e.what()) + ")");
+    }
+}
+
+std::string listGrids(const openvdb::GridPtrVec& grids) {
+    std::string out;
+    for (const auto& g : grids) out += (out.empty() ? "" : ", ") + describe(*g);
+    return out.empty() ? "none" : out;
+}
+
+openvdb::GridBase::Ptr readGrid(openvdb::io::File& f, const std::string& file,
+                                const openvdb::GridPtrVec& meta, const GridRef& ref,
+                                std::vector<std::string>& warnings) {
+    int count = 0;
+    for (const auto& g : meta) count += g->getName() == ref.name;
+    if (count == 0)
+        throw InputError(file + ": no grid named '" + ref.name + "' (grids: " + listGrids(meta) + ")");
+    if (ref.index >= count)
+        throw InputError(file + ": grid index " + std::to_string(ref.index) + " for '" + ref.name +
+                         "' is out of range (the file has " + std::to_string(count) + ")");
+    if (count > 1)
+        warnings.push_back(file + ": " + std::to_string(count) + " grids are named '" + ref.name +
+                           "'; using index " + std::to_string(ref.index) + " (set the grid's \"index\" to choose)");
+    try {
+        // OpenVDB addresses the n-th grid of a repeated name as "name[n]".
+        return f.readGrid(ref.index == 0 ? ref.name : ref.name + "[" + std::to_string(ref.index) + "]");
+    } catch (const std::exception& e) {
+        throw InputError(file + ": cannot read grid '" + ref.name + "' (" + oneLine(e.what()) + ")");
+    }
+}
+
+// A scalar grid as float, with level sets rejected or converted as the spec says.
+openvdb::FloatGrid::Ptr asFogFloat(openvdb::GridBase::Ptr g, const std::string& file, const VolumeSpec& spec,
+                                   const std::string& role) {
+    openvdb::FloatGrid::Ptr out;
+    if (auto f = openvdb::GridBase::grid<openvdb::FloatGrid>(g)) {
+        out = f;
+    } else if (auto d = openvdb::GridBase::grid<openvdb::DoubleGrid>(g)) {
+        out = openvdb::FloatGrid::create(openvdb::FloatTree::Ptr(new openvdb::FloatTree(d->tree())));
+        out->setTransform(d->transform().copy());
+        out->setGridClass(d->getGridClass());
+        out->setName(d->getName());
+    } else {
+        throw InputError(file + ": grid " + describe(*g) + " cannot be used as " + role +
+                         " (it needs float or double values)");
+    }
+    if (out->getGridClass() == openvdb::GRID_LEVEL_SET) {
+        if (spec.level_set == LevelSetPolicy::Reject)
+            throw InputError(file + ": grid '" + out->getName() + "' is a level set, not a fog volume; "
+                             "set volume.level_set to \"fog\" (or pass --level-set fog) to convert it");
+        openvdb::tools::sdfToFogVolume(*out);
+    }
+    return out;
+}
+
+openvdb::Vec3SGrid::Ptr asColor(openvdb::GridBase::Ptr g, const std::string& file) {
+    if (auto v = openvdb::GridBase::grid<openvdb::Vec3SGrid>(g)) return v;
+    if (auto d = openvdb::GridBase::grid<openvdb::Vec3DGrid>(g)) {
+        auto out = openvdb::Vec3SGrid::create(openvdb::Vec3STree::Ptr(new openvdb::Vec3STree(d->tree())));
+        out->setTransform(d->transform().copy());
+        out->setName(d->getName());
+        return out;
+    }
+    throw InputError(file + ": grid " + describe(*g) + " cannot be used as colour (it needs vec3 values)");
+}
+
+// Emission and colour grids are resampled onto the density grid's index space when they differ.
+template <typename GridT>
+typename GridT::Ptr matchTransform(typename GridT::Ptr g, const openvdb::FloatGrid& density,
+                                   const std::string& file, std::vector<std::string>& warnings) {
+    if (g->transform() == density.transform()) return g;
+    warnings.push_back(file + ": grid '" + g->getName() + "' has a different transform from '" +
+                       density.getName() + "'; resampled onto it");
+    auto out = GridT::create(g->background());
+    out->setTransform(density.transform().copy());
+    out->setName(g->getName());
+    openvdb::tools::resampleToMatch<openvdb::tools::BoxSampler>(*g, *out);
+    return out;
+}
+
+}  // namespace
+
+void initOpenVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        openvdb::initialize();
+        // voxlux reports what matters itself, one line each; OpenVDB's own warnings would repeat it.
+        openvdb::logging::setLevel(openvdb::logging::Level::Error);
+    });
+}
+
+glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file) {
+    const auto& map = *grid.transform().baseMap();
+    if (!map.isLinear())
+        throw InputError(file + ": grid '" + grid.getName() + "' has a non-affine (" + map.type() +
+                         ") transform, which voxlux does not support");
+    openvdb::Mat4d m = map.getAffineMap()->getMat4();
+    // OpenVDB multiplies row vectors (translation in row 3); glm's column m[c][r] is the same array.
+    glm::mat4 out;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) out[c][r] = float(m[c][r]);
+    if (glm::determinant(out) == 0.0f)
+        throw InputError(file + ": grid '" + grid.getName() + "' has a singular index-to-world transform");
+    return out;
+}
+
+LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::vector<EmissionSource>& emission) {
+    initOpenVdb();
+    auto f = openFile(file);
+    auto meta = gridMetadata(*f, file);
+    LoadedVolume v;
+    v.file = file;
+    auto density = asFogFloat(readGrid(*f, file, meta, spec.density, v.warnings), file, spec, "density");
+    v.index_to_world = indexToWorld(*density, file);
+    for (const auto& source : emission)
+        v.emission.push_back(matchTransform<openvdb::FloatGrid>(
+            asFogFloat(readGrid(*f, file, meta, source.grid, v.warnings), file, spec, "emission"), *density, file,
+            v.warnings));
+    if (spec.color)
+        v.color = matchTransform<openvdb::Vec3SGrid>(asColor(readGrid(*f, file, meta, *spec.color, v.warnings), file),
+                                                     *density, file, v.warnings);
+    v.density = density;
+    return v;
+}
+
+std::vector<GridSummary> summarizeFile(const std::string& file) {
+    initOpenVdb();
+    auto f = openFile(file);
+    std::vector<GridSummary> out;
+    openvdb::GridPtrVecPtr grids;
+    try {
+        grids = f->getGrids();
+    } catch (const std::exception& e) {
+        throw InputError(file + ": cannot read grids (" + oneLine(e.what()) + ")");
+    }
+    for (const auto& g : *grids) {
+        GridSummary s;
+        s.name = g->getName();
+        s.value_type = g->valueType();
+        s.grid_class = openvdb::GridBase::gridClassToString(g->getGridClass());
+        s.active_voxels = g->activeVoxelCount();
+        s.active_tiles = g->baseTree().activeTileCount();
+        s.bbox = g->evalActiveVoxelBoundingBox();
+        s.voxel_size = g->voxelSize();
+        s.bricks = countBricks(*g);
+        out.push_back(s);
+    }
+    return out;
+}
+
+}  // namespace voxlux

@@ -1,0 +1,45 @@
+// Load stage: open a .vdb file and pick the grids a VolumeSpec names, with one-line errors for
+// everything a pipeline throws at us (truncated files, wrong names, wrong types, level sets).
+#pragma once
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <openvdb/openvdb.h>
+
+#include "scene/scene.h"
+
+namespace voxlux {
+
+struct LoadedVolume {
+    std::string file;
+    openvdb::FloatGrid::ConstPtr density;
+    std::vector<openvdb::FloatGrid::ConstPtr> emission;  // one per emission source, in its order
+    openvdb::Vec3SGrid::ConstPtr color;      // null unless the spec names one
+    glm::mat4 index_to_world{1.0f};          // affine, from the density grid
+    std::vector<std::string> warnings;
+};
+
+// One grid of a file as `voxlux info` lists it (metadata and tree statistics).
+struct GridSummary {
+    std::string name;
+    std::string value_type;
+    std::string grid_class;
+    openvdb::Index64 active_voxels = 0;
+    openvdb::Index64 active_tiles = 0;
+    openvdb::CoordBBox bbox;                 // of active values, from the tree (never file metadata)
+    openvdb::Vec3d voxel_size;
+    size_t bricks = 0;                       // 8^3 bricks the active values occupy
+};
+
+void initOpenVdb();
+
+// The grids `spec` names and each emission source's grid. Throws InputError "<file>: <problem>".
+LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec,
+                        const std::vector<EmissionSource>& emission = {});
+std::vector<GridSummary> summarizeFile(const std::string& file);
+
+// Index-to-world of a grid as a column-major matrix; throws for non-affine transforms.
+glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file);
+
+}  // namespace voxlux

@@ -1,0 +1,90 @@
+#include "volume/volume_stages.h"
+
+#include "scene/camera.h"
+#include "core/error.h"
+
+namespace voxlux {
+namespace {
+
+std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas) {
+    std::string grid = "grid '" + v.density->getName() + "'";
+    if (atlas.active_voxels == 0) return v.file + ": " + grid + " has no active voxels";
+    std::string why = v.file + ": " + grid + " has nothing visible: its " + std::to_string(atlas.active_voxels) +
+                      " active voxels are all zero";
+    if (atlas.density_fixes.negative) why += " or negative (" + std::to_string(atlas.density_fixes.negative) + " negative)";
+    why += " under the material";
+    for (size_t e = 0; e < v.emission.size(); ++e) why += (e ? ", '" : "; emission from '") + v.emission[e]->getName() + "'";
+    return why + (v.emission.empty() ? "" : " emits nothing");
+}
+
+}  // namespace
+
+StageReads LoadStage::reads() const {
+    return {{"/input/file", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/emission/*/grid"}, {}};
+}
+
+StageActivity LoadStage::activity(const Scene& s) const {
+    std::string grids = "density '" + s.volume.density.name + "'";
+    if (s.volume.color) grids += ", colour '" + s.volume.color->name + "'";
+    for (size_t i = 0; i < s.emission.size(); ++i) grids += (i ? ", '" : ", emission '") + s.emission[i].grid.name + "'";
+    return {true, "reads " + grids + " from " + (given_ ? "grids in memory" : s.volume.path)};
+}
+
+void LoadStage::run(StageRun& run) {
+    volume_ = given_ ? *given_ : loadVolume(run.document["input"]["file"]["path"], run.scene.volume, run.scene.emission);
+    run.warnings = volume_->warnings;
+}
+
+StageActivity BrickStage::activity(const Scene&) const {
+    return {true, "densifies active voxels into 8^3 bricks with a +1 apron"};
+}
+
+void BrickStage::run(StageRun& run) {
+    atlas_ = buildBrickAtlas(load_.volume());
+    run.warnings = sanitizeReport(*atlas_, load_.volume());
+}
+
+StageReads ClassifyStage::reads() const { return {{"/material", "/emission"}, {"load", "brick"}}; }
+
+StageActivity ClassifyStage::activity(const Scene& s) const {
+    return {true, s.material.transfer.empty() ? "drops bricks with zero density and emission"
+                                              : "drops bricks the transfer function makes transparent"};
+}
+
+void ClassifyStage::run(StageRun& run) {
+    const BrickAtlas& atlas = brick_.atlas();
+    pages_ = buildPageTable(atlas.coords, classifyBricks(atlas, run.scene.material, run.scene.emission));
+    empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas) : "";
+}
+
+StageActivity EmptyFrameStage::activity(const Scene&) const {
+    return {true, "refuses a frame with nothing visible, unless a sequence allows empty frames"};
+}
+
+void EmptyFrameStage::run(StageRun& run) {
+    const std::string& why = classify_.emptyReason();
+    if (why.empty()) return;
+    if (!run.document["input"]["allow_empty"].get<bool>()) throw InputError(why);
+    run.warnings.push_back(why + "; rendered as an empty frame");
+}
+
+StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution"}, {"load"}}; }
+
+StageActivity CameraStage::activity(const Scene& s) const {
+    return {true, s.camera ? "the scene's camera" : "frames the density grid's active voxels (no camera in the scene)"};
+}
+
+void CameraStage::run(StageRun& run) {
+    camera_ = run.scene.camera ? *run.scene.camera : frameActiveVoxels(load_.volume(), run.scene.render);
+}
+
+Camera frameActiveVoxels(const LoadedVolume& volume, const RenderSettings& render) {
+    openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
+    glm::vec3 lo(0.0f), hi(1.0f);
+    if (!box.empty())
+        worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
+                    glm::vec3(box.max().x(), box.max().y(), box.max().z()), lo, hi);
+    return frameBox(lo, hi, Camera{}.fov, float(render.width) / float(render.height));
+}
+
+}  // namespace voxlux

@@ -1,0 +1,99 @@
+// The stages that turn a frame's file into what the lighting and the march read: load (the VDB
+// grids), brick (the atlas of 8^3 bricks with aprons), classify (the page table of the bricks the
+// material makes visible) and camera (the scene's, or one framing the active voxels).
+// Cost: load and brick follow the active voxels, never the bounding box; classify is one pass
+// over the bricks' value ranges; camera one bounding-box query of the density tree.
+#pragma once
+#include <optional>
+
+#include "volume/brick_atlas.h"
+#include "volume/page_table.h"
+#include "render/render_graph.h"
+#include "volume/vdb_loader.h"
+
+namespace voxlux {
+
+class LoadStage final : public Stage {
+public:
+    LoadStage() = default;
+    // Renders `given` (grids made in memory) instead of reading the scene's files.
+    explicit LoadStage(LoadedVolume given) : given_(std::move(given)) {}
+    std::string name() const override { return "load"; }
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    void stale() override { volume_.reset(); }
+    bool given() const { return given_.has_value(); }
+    const LoadedVolume& volume() const { return *volume_; }
+
+private:
+    std::optional<LoadedVolume> given_;
+    std::optional<LoadedVolume> volume_;
+};
+
+class BrickStage final : public Stage {
+public:
+    explicit BrickStage(const LoadStage& load) : load_(load) {}
+    std::string name() const override { return "brick"; }
+    StageReads reads() const override { return {{}, {"load"}}; }
+    StageActivity activity(const Scene&) const override;
+    void run(StageRun& run) override;
+    void stale() override { atlas_.reset(); }
+    const BrickAtlas& atlas() const { return *atlas_; }
+
+private:
+    const LoadStage& load_;
+    std::optional<BrickAtlas> atlas_;
+};
+
+class ClassifyStage final : public Stage {
+public:
+    ClassifyStage(const LoadStage& load, const BrickStage& brick) : load_(load), brick_(brick) {}
+    std::string name() const override { return "classify"; }
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    const PageTable& pages() const { return pages_; }
+    const std::string& emptyReason() const { return empty_reason_; }   // why nothing is visible, or ""
+
+private:
+    const LoadStage& load_;
+    const BrickStage& brick_;
+    PageTable pages_;
+    std::string empty_reason_;
+};
+
+// Refuses a frame with nothing visible (InputError), unless the render document's
+// /input/allow_empty says a sequence may have such frames; then it warns. A stage of its own, so
+// that allowing empty frames re-runs nothing but the stages after it.
+class EmptyFrameStage final : public Stage {
+public:
+    explicit EmptyFrameStage(const ClassifyStage& classify) : classify_(classify) {}
+    std::string name() const override { return "empty_check"; }
+    StageReads reads() const override { return {{"/input/allow_empty"}, {"classify"}}; }
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+
+private:
+    const ClassifyStage& classify_;
+};
+
+class CameraStage final : public Stage {
+public:
+    explicit CameraStage(const LoadStage& load) : load_(load) {}
+    std::string name() const override { return "camera"; }
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    const Camera& camera() const { return camera_; }
+
+private:
+    const LoadStage& load_;
+    Camera camera_;
+};
+
+// Camera framing the active voxels of the density grid: what a scene without a camera renders
+// and what `voxlux scene` writes out.
+Camera frameActiveVoxels(const LoadedVolume& volume, const RenderSettings& render);
+
+}  // namespace voxlux

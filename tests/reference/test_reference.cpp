@@ -1,0 +1,298 @@
+// The Monte Carlo reference (render.method "reference") against analytic results and the march:
+// ratio-tracked transmittance, the white furnace, single scattering, emission, energy,
+// determinism, and the scene keys.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "kernel/cpu_kernel.h"
+#include "core/error.h"
+#include "reference/reference_renderer.h"
+#include "scene/scene_json.h"
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+
+constexpr int kN = 64;          // box edge in voxels
+constexpr double kVoxel = 0.5;
+
+Scene referenceScene(int size, int spp) {
+    Scene s;
+    s.render.width = size;
+    s.render.height = size;
+    s.render.method = RenderMethod::Reference;
+    s.render.reference.spp = spp;
+    return s;
+}
+
+Light ambientLight(float radiance) {
+    Light l;
+    l.type = LightType::Ambient;
+    l.intensity = radiance;
+    return l;
+}
+
+// Looking at `centre` along `dir` from `distance` away.
+Camera cameraAlong(glm::vec3 centre, glm::vec3 dir, float distance, float fov) {
+    Camera c;
+    c.look_at = centre;
+    c.position = centre - glm::normalize(dir) * distance;
+    c.up = std::abs(dir.y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    c.fov = fov;
+    return c;
+}
+
+double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+double meanLuminance(const RenderImage& img) {
+    double sum = 0.0;
+    for (const auto& p : img.pixels) sum += luminance(glm::vec3(p.rgba));
+    return sum / double(img.pixels.size());
+}
+
+// Ratio tracking through a homogeneous box along the axes: the mean of independent estimates
+// matches exp(-sigma * d) within 3 standard errors computed from the estimates themselves. Beyond
+// the last voxel centre trilinear reconstruction ramps to zero over one voxel, so an axis ray sees
+// kN voxels of full density (as the march's transmittance test).
+TEST(Reference, RatioTrackedTransmittanceOfAHomogeneousBox) {
+    const double d = kN * kVoxel;
+    const glm::vec3 centre(float((kN - 1) * 0.5 * kVoxel));
+    for (double optical_depth : {0.1, 1.0, 4.0}) {
+        const float sigma = float(optical_depth / d);
+        auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {kN - 1, kN - 1, kN - 1}, sigma, kVoxel)),
+                                referenceScene(1, 1), cameraAlong(centre, {1, 0, 0}, 200.0f, 1.0f));
+        const std::vector<float> majorants = brickMajorants(prepared->inputs);
+        const glm::vec3 axes[] = {{1, 0, 0}, {0, -1, 0}, {0, 0, 1}};
+        for (uint32_t a = 0; a < 3; ++a) {
+            const glm::vec3 start = centre - axes[a] * 100.0f;
+            constexpr int kSamples = 200000;
+            double sum = 0.0, sum2 = 0.0;
+            for (int i = 0; i < kSamples; ++i) {
+                ReferenceRng rng(7, a, uint32_t(i));
+                const double T = ratioTrackedTransmittance(prepared->inputs, majorants, start, axes[a], 200.0f, rng);
+                sum += T;
+                sum2 += T * T;
+            }
+            const double mean = sum / kSamples;
+            const double se = std::sqrt(std::max(0.0, sum2 / kSamples - mean * mean) / (kSamples - 1));
+            const double expected = std::exp(-optical_depth);
+            std::printf("ratio tracking, sigma*d %.1f: T %.5f +- %.5f (exp %.5f)\n", optical_depth, mean, se, expected);
+            EXPECT_NEAR(mean, expected, 3.0 * se + 1e-6) << "sigma*d " << optical_depth;
+        }
+    }
+}
+
+// A box of voxel 1 seen face-on by a narrow camera: every pixel's ray enters the front face.
+struct Furnace {
+    std::unique_ptr<Prepared> prepared;
+    RenderImage image;
+};
+
+Furnace whiteFurnace(float optical_depth, int size, int spp) {
+    constexpr int kEdge = 32;
+    Scene scene = referenceScene(size, spp);
+    scene.material.albedo = glm::vec3(1.0f);
+    scene.render.reference.max_bounces = 1000;  // paths in a thick albedo-1 box scatter long
+    scene.lights = {ambientLight(1.0f)};
+    const glm::vec3 centre((kEdge - 1) * 0.5f);
+    Furnace f;
+    f.prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {kEdge - 1, kEdge - 1, kEdge - 1}, optical_depth / kEdge)),
+                         scene, cameraAlong(centre, {0, 0, -1}, 100.0f, 10.0f));
+    f.image = renderReference(f.prepared->inputs, scene.render.reference);
+    return f;
+}
+
+// A non-absorbing medium under uniform light L returns L wherever a ray meets it: every path
+// that enters leaves again carrying L. Premultiplied, the beauty is alpha * L.
+TEST(Reference, WhiteFurnace) {
+    const Furnace thick = whiteFurnace(8.0f, 4, 1024);
+    double rgb = 0.0, alpha = 0.0;
+    for (const auto& p : thick.image.pixels) {
+        rgb += luminance(glm::vec3(p.rgba));
+        alpha += p.rgba.w;
+    }
+    std::printf("white furnace, thick box: unpremultiplied %.5f, alpha %.5f\n", rgb / alpha, alpha / 16.0);
+    EXPECT_NEAR(rgb / alpha, 1.0, 0.01);
+    EXPECT_GT(alpha / 16.0, 0.999);
+
+    const Furnace thin = whiteFurnace(0.9f, 8, 4096);
+    rgb = alpha = 0.0;
+    for (const auto& p : thin.image.pixels) {
+        rgb += luminance(glm::vec3(p.rgba));
+        alpha += p.rgba.w;
+    }
+    rgb /= 64.0;
+    alpha /= 64.0;
+    std::printf("white furnace, thin box: premultiplied %.5f, alpha %.5f (1 - e^-0.9 = %.5f)\n", rgb, alpha,
+                1.0 - std::exp(-0.9));
+    EXPECT_LT(alpha, 0.7);
+    EXPECT_NEAR(rgb, alpha, 0.01 * alpha);
+}
+
+// A small noisy ball under one directional light.
+struct Ball {
+    Scene scene;
+    LoadedVolume volume;
+};
+
+Ball ball(const std::string& folder) {
+    Ball b;
+    b.scene = referenceScene(12, 1024);
+    b.scene.material.density_scale = 1.5f;
+    b.scene.material.anisotropy = 0.3f;
+    Light key;
+    key.direction = glm::vec3(-1.0f, -0.5f, -0.7f);
+    key.intensity = 3.0f;
+    b.scene.lights = {key};
+    b.scene.camera = cameraAlong(glm::vec3(0.0f), {0.2f, -0.1f, -1.0f}, 8.0f, 32.0f);
+    b.volume = loadVolume(writeBall(tempDir(folder)), b.scene.volume);
+    return b;
+}
+
+// With one bounce the reference estimates the march's single-scattering integral: per pixel
+// within 4 of the reference's own standard deviations (variance AOV) for 95% of pixels, and the
+// image mean within 1%.
+TEST(Reference, SingleScatteringMatchesTheMarch) {
+    Ball b = ball("reference_single");
+    b.scene.render.reference.max_bounces = 1;
+    b.scene.effects.shadows = ShadowMethod::Raymarch;
+    b.scene.render.step = 0.1f;
+    b.scene.render.shadow_step = 0.1f;
+    b.scene.render.transmittance_cutoff = 1e-6f;
+    auto prepared = prepare(b.volume, b.scene, *b.scene.camera);
+    const RenderImage ref = renderReference(prepared->inputs, b.scene.render.reference);
+    const RenderImage march = makeCpuBackend()->march(prepared->inputs);
+    int within = 0, lit = 0;
+    for (size_t i = 0; i < ref.pixels.size(); ++i) {
+        const double r = luminance(glm::vec3(ref.pixels[i].rgba)), m = luminance(glm::vec3(march.pixels[i].rgba));
+        if (m > 0.0) ++lit;
+        within += std::abs(r - m) <= 4.0 * std::sqrt(double(ref.pixels[i].variance)) + 1e-6;
+    }
+    const double mr = meanLuminance(ref), mm = meanLuminance(march);
+    std::printf("single scattering: %d of %zu pixels within 4 sigma (%d lit); image mean %.5f vs march %.5f (%.2f%%)\n",
+                within, ref.pixels.size(), lit, mr, mm, 100.0 * (mr / mm - 1.0));
+    EXPECT_GT(lit, int(ref.pixels.size() / 2));
+    EXPECT_GE(within, int(0.95 * ref.pixels.size()));
+    EXPECT_NEAR(mr, mm, 0.01 * mm);
+}
+
+// The ball glowing with its own density (a constant source from the density grid), unlit. With
+// albedo 0 nothing scatters: the reference's emission is the march's emission integral, per pixel
+// within 4 of its standard deviations and the image mean within 1%. With albedo 0.8 the glow also
+// lights the medium itself (scattered emission, in the indirect AOV), which the march has no term
+// for: the emission AOVs still agree, and the beauty is brighter than the march's.
+TEST(Reference, EmissionMatchesTheMarchAndAlsoLightsTheMedium) {
+    Ball b = ball("reference_emission");
+    b.scene.lights.clear();
+    b.scene.render.reference.spp = 256;
+    b.scene.render.step = 0.1f;
+    b.scene.render.transmittance_cutoff = 1e-6f;
+    EmissionSource glow;
+    glow.grid.name = "density";
+    glow.color = glm::vec3(1.0f, 0.5f, 0.2f);
+    glow.intensity = 2.0f;
+    b.scene.emission = {glow};
+    b.volume = loadVolume(b.volume.file, b.scene.volume, b.scene.emission);
+    for (float albedo : {0.0f, 0.8f}) {
+        b.scene.material.albedo = glm::vec3(albedo);
+        auto prepared = prepare(b.volume, b.scene, *b.scene.camera);
+        const RenderImage ref = renderReference(prepared->inputs, b.scene.render.reference);
+        const RenderImage march = makeCpuBackend()->march(prepared->inputs);
+        int within = 0, glowing = 0;
+        double sr = 0.0, sm = 0.0, indirect = 0.0;
+        for (size_t i = 0; i < ref.pixels.size(); ++i) {
+            const double r = luminance(ref.pixels[i].emission), m = luminance(march.pixels[i].emission);
+            glowing += m > 0.0;
+            sr += r, sm += m, indirect += luminance(ref.pixels[i].indirect);
+            within += std::abs(r - m) <= 4.0 * std::sqrt(double(ref.pixels[i].variance)) + 1e-6;
+        }
+        std::printf("emission, albedo %.1f: %d of %zu pixels within 4 sigma (%d glowing); emission mean %.5f vs march "
+                    "%.5f (%.2f%%); scattered emission %.5f\n",
+                    albedo, within, ref.pixels.size(), glowing, sr / ref.pixels.size(), sm / ref.pixels.size(),
+                    100.0 * (sr / sm - 1.0), indirect / ref.pixels.size());
+        EXPECT_GT(glowing, int(ref.pixels.size() / 2));
+        EXPECT_GE(within, int(0.95 * ref.pixels.size()));
+        EXPECT_NEAR(sr, sm, 0.01 * sm);
+        if (albedo == 0.0f) EXPECT_EQ(indirect, 0.0);
+        else EXPECT_GT(indirect, 0.05 * sm);
+    }
+}
+
+// Less albedo, less light: the mean image falls strictly, with the same seed (and paths).
+TEST(Reference, EnergyFallsWithAlbedo) {
+    Ball b = ball("reference_energy");
+    b.scene.render.reference.spp = 32;
+    b.scene.lights.push_back(ambientLight(0.5f));
+    double previous = INFINITY;
+    for (float albedo : {1.0f, 0.8f, 0.5f, 0.2f}) {
+        b.scene.material.albedo = glm::vec3(albedo);
+        auto prepared = prepare(b.volume, b.scene, *b.scene.camera);
+        const double mean = meanLuminance(renderReference(prepared->inputs, b.scene.render.reference));
+        std::printf("albedo %.1f: mean luminance %.5f\n", albedo, mean);
+        EXPECT_LT(mean, previous) << "albedo " << albedo;
+        previous = mean;
+    }
+}
+
+TEST(Reference, DeterministicPerSeed) {
+    Ball b = ball("reference_seed");
+    b.scene.render.reference.spp = 16;
+    b.scene.lights.push_back(ambientLight(0.5f));
+    auto prepared = prepare(b.volume, b.scene, *b.scene.camera);
+    const RenderImage a = renderReference(prepared->inputs, b.scene.render.reference);
+    const RenderImage again = renderReference(prepared->inputs, b.scene.render.reference);
+    ReferenceSettings other = b.scene.render.reference;
+    other.seed = 2;
+    const RenderImage reseeded = renderReference(prepared->inputs, other);
+    const size_t bytes = a.pixels.size() * sizeof(kernel::VxPixel);
+    EXPECT_EQ(std::memcmp(a.pixels.data(), again.pixels.data(), bytes), 0);
+    EXPECT_NE(std::memcmp(a.pixels.data(), reseeded.pixels.data(), bytes), 0);
+}
+
+// From the command line: --method reference --spp N renders, and the variance AOV is written.
+TEST(Reference, CliWritesTheVarianceAov) {
+    const std::string dir = tempDir("reference_cli");
+    const std::string vdb = writeBall(dir), exr = dir + "/ref.exr";
+    const CliResult r = runCli("render " + vdb + " --method reference --spp 8 --res 8x8 --pixel-type float --aovs variance -o " + exr);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Exr image = readExr(exr);
+    ASSERT_EQ(image.planes.count("variance.Y"), 1u);
+    float largest = 0.0f;
+    for (float v : image.planes.at("variance.Y")) {
+        EXPECT_GE(v, 0.0f);
+        largest = std::max(largest, v);
+    }
+    EXPECT_GT(largest, 0.0f);  // 8 samples of a lit ball are not all equal
+}
+
+TEST(Reference, SceneKeys) {
+    const Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "render": {"method": "reference",
+        "reference": {"spp": 8, "max_bounces": 1, "seed": 5, "roulette_depth": 2}}})", "shot.json", "/shots");
+    EXPECT_EQ(s.render.method, RenderMethod::Reference);
+    EXPECT_EQ(s.render.reference.spp, 8);
+    EXPECT_EQ(s.render.reference.max_bounces, 1);
+    EXPECT_EQ(s.render.reference.seed, 5);
+    EXPECT_EQ(s.render.reference.roulette_depth, 2);
+    const Scene back = parseScene(sceneToJson(s).dump(), "shot.json", "");
+    EXPECT_EQ(back.render.method, RenderMethod::Reference);
+    EXPECT_EQ(back.render.reference.spp, 8);
+    EXPECT_EQ(back.render.reference.seed, 5);
+    const Scene defaults = parseScene(R"({"volume": {"path": "a.vdb"}})", "shot.json", "");
+    EXPECT_EQ(defaults.render.method, RenderMethod::March);
+    EXPECT_EQ(defaults.render.reference.spp, 64);
+    EXPECT_EQ(defaults.render.reference.max_bounces, 16);
+    EXPECT_EQ(defaults.render.reference.roulette_depth, 3);
+
+    const std::string v = R"({"volume": {"path": "a.vdb"}, "render": )";
+    EXPECT_EQ(sceneErrorOf(v + R"({"method": "path"}})"), "shot.json: /render/method: 'path' is not one of march, reference");
+    EXPECT_EQ(sceneErrorOf(v + R"({"method": "reference", "reference": {"spp": 0}}})"),
+              "shot.json: /render/reference/spp: must lie in 1..1000000");
+    EXPECT_EQ(sceneErrorOf(v + R"({"method": "reference", "backend": "gl"}})"),
+              "shot.json: /render/method: reference runs on the cpu backend only (render.backend is \"gl\")");
+    EXPECT_EQ(sceneErrorOf(v + R"({"method": "reference"}, "effects": {"surface": true}})"),
+              "shot.json: /effects: surface and perturbation are march-only effects (render.method is \"reference\")");
+}
+
+}  // namespace
+}  // namespace voxlux::test

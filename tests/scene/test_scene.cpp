@@ -1,0 +1,299 @@
+// Scene files: validation messages name the file and the JSON pointer of the bad key.
+#include "core/error.h"
+#include "scene/scene_json.h"
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+
+TEST(Scene, MinimalSceneGetsDefaults) {
+    Scene s = parseScene(R"({"volume": {"path": "smoke.vdb"}})", "shot.json", "/shots");
+    EXPECT_EQ(s.volume.path, "/shots/smoke.vdb");
+    EXPECT_EQ(s.volume.density, (GridRef{"density", 0}));
+    EXPECT_FALSE(s.camera.has_value());
+    EXPECT_EQ(s.render.width, 512);
+    EXPECT_FLOAT_EQ(s.render.step, 0.5f);
+    EXPECT_EQ(s.effects.shadows, ShadowMethod::Raymarch);
+}
+
+TEST(Scene, ErrorsNameTheKeyAndItsPath) {
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "area"}]})"),
+              "shot.json: /lights/0/type: 'area' is not one of directional, point, spot, ambient");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{}, {"intensity": "lots", "direction": [0,0,1]}]})"),
+              "shot.json: /lights/0/direction: required key is missing");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
+              "shot.json: /render/stepp: unknown key (expected one of resolution, step, shadow_step, "
+              "transmittance_cutoff, backend, method, reference)");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),
+              "shot.json: /render/resolution: expected an array of 2 numbers");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"albedo": [1.5, 0, 0]}})"),
+              "shot.json: /material/albedo: each component must lie in [0, 1]");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "camera": {"position": [0,0,0], "look_at": [0,0,0]}})"),
+              "shot.json: /camera/look_at: must differ from position");
+    EXPECT_EQ(sceneErrorOf(R"({"material": {}})"), "shot.json: /volume: required key is missing");
+    EXPECT_EQ(sceneErrorOf(R"([1, 2])"), "shot.json: /: expected an object, got array");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "density": {"name": "d", "index": -1}}})"),
+              "shot.json: /volume/density/index: must be 0 or more");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
+              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"cone": {"samples": 0}}})"),
+              "shot.json: /effects/cone/samples: must lie in 1..1024");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": {"shells": 3, "radios": 2}}})"),
+              "shot.json: /effects/ambient_occlusion/radios: unknown key (expected one of shells, radius)");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": 3}})"),
+              "shot.json: /effects/ambient_occlusion: expected true, false or an object");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"color_bleeding": 2}})"),
+              "shot.json: /effects/color_bleeding: must be true, false or a strength in [0, 1]");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"light_resolution": 1}})"),
+              "shot.json: /effects/light_resolution: must lie in 2..1024 cells");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "position": [0, 0, 0]}]})"),
+              "shot.json: /lights/0/position: unknown key (expected one of name, enabled, type, color, intensity)");
+}
+
+TEST(Scene, MalformedJsonGivesLineAndColumn) {
+    EXPECT_EQ(sceneErrorOf("{\n  \"volume\": {\"path\": \"a.vdb\"},\n  \"render\": {\"step\": 0.5,}\n}"),
+              "shot.json: malformed JSON at line 3, column 26: unexpected '}'; expected string literal");
+}
+
+TEST(Scene, RoundTripThroughJson) {
+    Scene s = parseScene(R"({
+        "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
+                   "color": "Cd", "level_set": "fog"},
+        "material": {"density_scale": 2.5, "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
+                     "transfer_function": [{"value": 0, "extinction": 0}, {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
+        "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 40, "cone_angle": 25}],
+        "camera": {"position": [0, 1, 10], "look_at": [0, 1, 0], "fov": 35},
+        "render": {"resolution": [320, 240], "step": 0.25, "backend": "cpu"},
+        "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": true,
+                    "cone": {"angle": 4, "samples": 30, "growth": 0.2}, "light_resolution": 96, "light_memory_mb": 512},
+        "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth", "ambient"]}})",
+                         "shot.json", "");
+    // Every key, as written by hand from the scene above and the defaults of docs/scene.md.
+    const nlohmann::json expected = nlohmann::json::parse(R"({
+        "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
+                   "color": "Cd", "level_set": "fog"},
+        "material": {"density_scale": 2.5, "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
+                     "transfer_function": [{"value": 0, "extinction": 0, "albedo": [1, 1, 1]},
+                                           {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
+        "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "color": [1, 1, 1], "intensity": 40,
+                    "cone_angle": 25, "cone_softness": 5}],
+        "emission": [],
+        "camera": {"fov": 35, "position": [0, 1, 10], "look_at": [0, 1, 0], "up": [0, 1, 0]},
+        "render": {"resolution": [320, 240], "step": 0.25, "shadow_step": 1, "transmittance_cutoff": 0.0001,
+                   "backend": "cpu", "method": "march",
+                   "reference": {"spp": 64, "max_bounces": 16, "seed": 1, "roulette_depth": 3}},
+        "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": 1,
+                    "cone": {"angle": 4, "samples": 30, "growth": 0.2},
+                    "propagation": {"blend_axes": false, "eye_pass": false, "chroma_subsampling": false, "coherent": true},
+                    "indirect": false, "surface": false, "perturbation": false,
+                    "light_resolution": 96, "light_memory_mb": 512},
+        "color": {},
+        "output": {"path": "out_####.exr", "pixel_type": "float", "compression": "zip", "aovs": ["depth", "ambient"]}})");
+    EXPECT_EQ(sceneToJson(s), expected) << sceneToJson(s).dump(2);
+    // And the reader takes back every key the writer writes.
+    const Scene again = parseScene(expected.dump(), "again.json", "");
+    EXPECT_EQ(sceneToJson(again), expected);
+    EXPECT_EQ(again.volume.density.index, 2);
+    EXPECT_EQ(again.lights[0].type, LightType::Spot);
+    EXPECT_FLOAT_EQ(again.material.transfer[1].albedo.z, 0.2f);
+    EXPECT_EQ(again.effects.shadows, ShadowMethod::SatCone);
+    EXPECT_EQ(again.effects.ambient_occlusion->shells, 7);
+    EXPECT_EQ(again.effects.color_bleeding, 1.0f);
+    EXPECT_EQ(again.effects.cone.samples, 30);
+    EXPECT_EQ(again.effects.light_resolution, 96);
+}
+
+// AOVs are names or {"name", "pixel_type"} objects; JSON keeps the short form where it can.
+TEST(Scene, OutputAovsWithPixelTypesAndCompressions) {
+    Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "output": {"compression": "dwab",
+        "aovs": ["direct", {"name": "emission", "pixel_type": "float"}, {"name": "depth"}]}})",
+                         "shot.json", "");
+    ASSERT_EQ(s.output.aovs.size(), 3u);
+    EXPECT_EQ(s.output.aovs[0], (AovSpec{"direct", std::nullopt}));
+    EXPECT_EQ(s.output.aovs[1], (AovSpec{"emission", PixelType::Float}));
+    EXPECT_EQ(s.output.aovs[2], (AovSpec{"depth", std::nullopt}));
+    EXPECT_EQ(s.output.compression, "dwab");
+    EXPECT_EQ(sceneToJson(s)["output"].dump(),
+              R"({"aovs":["direct",{"name":"emission","pixel_type":"float"},"depth"],"compression":"dwab","pixel_type":"half"})");
+    for (const std::string& c : knownCompressions())
+        EXPECT_EQ(parseScene(R"({"volume": {"path": "a.vdb"}, "output": {"compression": ")" + c + R"("}})", "s.json", "")
+                      .output.compression,
+                  c);
+}
+
+TEST(Scene, OutputAovsAndCompressionAreValidated) {
+    const std::string v = R"({"volume": {"path": "a.vdb"}, "output": )";
+    EXPECT_EQ(sceneErrorOf(v + R"({"compression": "b44"}})"),
+              "shot.json: /output/compression: 'b44' is not one of none, zip, zips, piz, dwaa, dwab, rle");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": "direct"}})"), "shot.json: /output/aovs: expected an array of AOV names or objects");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [3]}})"),
+              "shot.json: /output/aovs: unknown AOV '3' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": ["direct", {"name": "beauty"}]}})"),
+              "shot.json: /output/aovs/1/name: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, "
+              "transmittance, depth or variance)");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [{"pixel_type": "float"}]}})"), "shot.json: /output/aovs/0/name: required key is missing");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [{"name": "depth", "pixel_type": "double"}]}})"),
+              "shot.json: /output/aovs/0/pixel_type: 'double' is not one of half, float");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [{"name": "depth", "type": "float"}]}})"),
+              "shot.json: /output/aovs/0/type: unknown key (expected one of name, pixel_type)");
+    EXPECT_EQ(sceneErrorOf(v + R"({"aovs": ["direct", "depth", {"name": "direct", "pixel_type": "float"}]}})"),
+              "shot.json: /output/aovs/2: duplicate AOV 'direct' (first at /output/aovs/0)");
+}
+
+TEST(Scene, AmbientOcclusionAndLightsDefaults) {
+    Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "intensity": 0.5}],
+                             "effects": {"ambient_occlusion": true}})",
+                         "shot.json", "");
+    EXPECT_EQ(s.lights[0].type, LightType::Ambient);
+    ASSERT_TRUE(s.effects.ambient_occlusion.has_value());
+    EXPECT_EQ(s.effects.ambient_occlusion->shells, 3);
+    EXPECT_EQ(s.effects.ambient_occlusion->radius, 0.0f);
+    EXPECT_EQ(s.effects.light_resolution, 128);
+    EXPECT_FALSE(parseScene(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": false}})", "s.json", "")
+                     .effects.ambient_occlusion.has_value());
+}
+
+TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
+    Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "effects": {"shadows": "propagation",
+        "propagation": {"eye_pass": true, "chroma_subsampling": true},
+        "indirect": {"angle": 40, "samples": 13, "phase": "henyey_greenstein", "g": 0.7, "transport_color": [1, 0.5, 0.25]},
+        "surface": {"gradient_low": 0.1, "gradient_high": 0.3},
+        "perturbation": {"seed": 7, "scale": 2, "octaves": 4, "density": 0.5, "displacement": 1.5, "velocity": [0.1, 0, 0]}}})",
+                         "shot.json", "");
+    const nlohmann::json expected_effects = nlohmann::json::parse(R"({
+        "shadows": "propagation", "ambient_occlusion": false, "color_bleeding": 0,
+        "cone": {"angle": 2, "samples": 20, "growth": 0.05},
+        "propagation": {"blend_axes": false, "eye_pass": true, "chroma_subsampling": true, "coherent": true},
+        "indirect": {"strength": 1, "angle": 40, "samples": 13, "phase": "henyey_greenstein", "exponent": 4, "g": 0.7,
+                     "transport_color": [1, 0.5, 0.25]},
+        "surface": {"gradient_low": 0.1, "gradient_high": 0.3, "specular": 0.5, "shininess": 32},
+        "perturbation": {"seed": 7, "scale": 2, "octaves": 4, "lacunarity": 2, "gain": 0.5, "density": 0.5,
+                         "transport": 0, "displacement": 1.5, "velocity": [0.1, 0, 0], "time": 0},
+        "light_resolution": 128, "light_memory_mb": 2048})");
+    EXPECT_EQ(sceneToJson(s)["effects"], expected_effects) << sceneToJson(s)["effects"].dump(2);
+    nlohmann::json written = sceneToJson(s);
+    written["effects"] = expected_effects;
+    const Scene again = parseScene(written.dump(), "again.json", "");
+    EXPECT_EQ(sceneToJson(again)["effects"], expected_effects);
+    EXPECT_EQ(again.effects.shadows, ShadowMethod::Propagation);
+    EXPECT_FALSE(again.effects.propagation.blend_axes);
+    EXPECT_TRUE(again.effects.propagation.eye_pass);
+    ASSERT_TRUE(again.effects.indirect.has_value());
+    EXPECT_EQ(again.effects.indirect->phase, BlurPhase::HenyeyGreenstein);
+    EXPECT_EQ(again.effects.indirect->samples, 13);
+    EXPECT_FLOAT_EQ(again.effects.indirect->transport_color.z, 0.25f);
+    EXPECT_FLOAT_EQ(again.effects.indirect->strength, 1.0f);
+    EXPECT_FLOAT_EQ(again.effects.surface->gradient_high, 0.3f);
+    EXPECT_EQ(again.effects.perturbation->seed, 7);
+    EXPECT_EQ(again.effects.perturbation->octaves, 4);
+    EXPECT_FLOAT_EQ(again.effects.perturbation->velocity.x, 0.1f);
+    // `true` takes every default; absent or `false` is off.
+    Scene d = parseScene(R"({"volume": {"path": "a.vdb"}, "effects": {"indirect": true, "perturbation": false}})",
+                         "shot.json", "");
+    EXPECT_EQ(d.effects.indirect->samples, 9);
+    EXPECT_EQ(d.effects.indirect->transport_color, glm::vec3(0.6f));
+    EXPECT_FALSE(d.effects.perturbation.has_value());
+    EXPECT_FALSE(d.effects.surface.has_value());
+}
+
+TEST(Scene, PropagationEffectsAreValidated) {
+    const std::string v = R"({"volume": {"path": "a.vdb"}, "effects": )";
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"transport_color": [1, 0, 0.5]}}})"),
+              "shot.json: /effects/indirect/transport_color: each component must lie in (0, 1]");
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"samples": 33}}})"),
+              "shot.json: /effects/indirect/samples: must lie in 1..32");
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"phase": "mie"}}})"),
+              "shot.json: /effects/indirect/phase: 'mie' is not one of phong, henyey_greenstein");
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": 3}})"), "shot.json: /effects/indirect: expected true, false or an object");
+    EXPECT_EQ(sceneErrorOf(v + R"({"surface": {"gradient_low": 0.5, "gradient_high": 0.2}}})"),
+              "shot.json: /effects/surface/gradient_high: needs 0 <= gradient_low < gradient_high");
+    EXPECT_EQ(sceneErrorOf(v + R"({"perturbation": {"octaves": 0}}})"),
+              "shot.json: /effects/perturbation/octaves: must lie in 1..8");
+    EXPECT_EQ(sceneErrorOf(v + R"({"perturbation": {"displacement": -1}}})"),
+              "shot.json: /effects/perturbation/displacement: must lie in [0, 64] voxels");
+    EXPECT_EQ(sceneErrorOf(v + R"({"propagation": {"eye": true}}})"),
+              "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling, coherent)");
+}
+
+// The emission list: every kind, its defaults and the round trip.
+TEST(EmissionScene, ParsesEveryKindAndRoundTrips) {
+    const Scene s = parseScene(R"({"volume": {"path": "fire.vdb"}, "emission": [
+        {"grid": "flame"},
+        {"grid": {"name": "temperature", "index": 1}, "kind": "blackbody", "intensity": 2, "temperature_scale": 1000,
+         "temperature_offset": -100, "cutoff": 900, "normalization": "physical", "reference_temperature": 1800},
+        {"grid": "heat", "kind": "blackbody"},
+        {"grid": "flame", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]}, {"value": 2, "color": [4, 2, 1]}]}]})",
+                               "shot.json", "");
+    ASSERT_EQ(s.emission.size(), 4u);
+    EXPECT_EQ(s.emission[0].kind, EmissionKind::Constant);   // the default kind, colour and intensity
+    EXPECT_EQ(s.emission[0].color, glm::vec3(1.0f));
+    EXPECT_EQ(s.emission[0].intensity, 1.0f);
+    const EmissionSource& b = s.emission[1];
+    EXPECT_EQ(b.grid, (GridRef{"temperature", 1}));
+    EXPECT_EQ(b.kind, EmissionKind::Blackbody);
+    EXPECT_EQ(b.normalization, BlackbodyNormalization::Physical);
+    EXPECT_EQ(b.temperature_scale, 1000.0f);
+    EXPECT_EQ(b.temperature_offset, -100.0f);
+    EXPECT_EQ(b.cutoff, 900.0f);
+    EXPECT_EQ(b.reference_temperature, 1800.0f);
+    EXPECT_EQ(s.emission[2].normalization, BlackbodyNormalization::Luminance);
+    EXPECT_EQ(s.emission[2].temperature_scale, 1.0f);
+    ASSERT_EQ(s.emission[3].ramp.size(), 2u);
+    EXPECT_EQ(s.emission[3].ramp[1].color, glm::vec3(4, 2, 1));
+    // A luminance-normalised blackbody writes no reference temperature: it has none.
+    const nlohmann::json expected = nlohmann::json::parse(R"([
+        {"grid": "flame", "intensity": 1, "kind": "constant", "color": [1, 1, 1]},
+        {"grid": {"name": "temperature", "index": 1}, "intensity": 2, "kind": "blackbody", "temperature_scale": 1000,
+         "temperature_offset": -100, "cutoff": 900, "normalization": "physical", "reference_temperature": 1800},
+        {"grid": "heat", "intensity": 1, "kind": "blackbody", "temperature_scale": 1, "temperature_offset": 0, "cutoff": 0,
+         "normalization": "luminance"},
+        {"grid": "flame", "intensity": 1, "kind": "ramp",
+         "ramp": [{"value": 0, "color": [0, 0, 0]}, {"value": 2, "color": [4, 2, 1]}]}])");
+    EXPECT_EQ(sceneToJson(s)["emission"], expected) << sceneToJson(s)["emission"].dump(2);
+    const Scene again = parseScene(sceneToJson(s).dump(), "again.json", "");
+    EXPECT_EQ(sceneToJson(again)["emission"], expected);
+}
+
+// Keys of another kind, bad values, too many sources: one line naming the key.
+TEST(EmissionScene, ErrorsNameTheKey) {
+    const std::string v = R"({"volume": {"path": "a.vdb"}, "emission": )";
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "plasma"}]})"),
+              "shot.json: /emission/0/kind: 'plasma' is not one of constant, blackbody, ramp");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t"}, {"grid": "t", "kind": "blackbody", "color": [1, 0, 0]}]})"),
+              "shot.json: /emission/1/color: unknown key (expected one of grid, kind, intensity, temperature_scale, "
+              "temperature_offset, cutoff, normalization)");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "blackbody", "reference_temperature": 1000}]})"),
+              "shot.json: /emission/0/reference_temperature: unknown key (expected one of grid, kind, intensity, "
+              "temperature_scale, temperature_offset, cutoff, normalization)");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "temperature_scale": 2}]})"),
+              "shot.json: /emission/0/temperature_scale: unknown key (expected one of grid, kind, intensity, color)");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]},
+                                                                   {"value": 2, "color": [1, 1, 1]},
+                                                                   {"value": 1, "color": [1, 0, 0]}]}]})"),
+              "shot.json: /emission/0/ramp/2/value: ramp points must have increasing values");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]}]}]})"),
+              "shot.json: /emission/0/ramp: needs at least 2 points");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "f", "kind": "ramp", "ramp": [{"value": 0.2, "color": [1, 0, 0]},
+                                                                   {"value": 1, "color": [1, 1, 0]}]}]})"),
+              "shot.json: /emission/0/ramp: must be black at value 0 (empty space emits nothing)");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "blackbody", "temperature_offset": 300}]})"),
+              "shot.json: /emission/0/temperature_offset: value 0 (empty space) would emit at 300 K: keep the offset "
+              "below cutoff");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "intensity": -1}]})"),
+              "shot.json: /emission/0/intensity: must be a finite number >= 0");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "color": [1, -0.5, 0]}]})"),
+              "shot.json: /emission/0/color: must be finite and >= 0");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "blackbody", "temperature_scale": 0}]})"),
+              "shot.json: /emission/0/temperature_scale: must be a finite number > 0");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "t", "kind": "blackbody", "normalization": "physical", "reference_temperature": 0}]})"),
+              "shot.json: /emission/0/reference_temperature: must be a finite temperature > 0 K");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"kind": "constant"}]})"), "shot.json: /emission/0/grid: required key is missing");
+    EXPECT_EQ(sceneErrorOf(v + R"([{"grid": "a"}, {"grid": "b"}, {"grid": "c"}, {"grid": "d"}, {"grid": "e"}]})"),
+              "shot.json: /emission: at most 4 sources (got 5)");
+    // The old single-grid keys are gone.
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "emission": "heat"}})"),
+              "shot.json: /volume/emission: unknown key (expected one of path, frames, density, color, level_set)");
+}
+
+}  // namespace
+}  // namespace voxlux::test
