@@ -44,7 +44,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench_timing.h"
-#include "scene/light_rig.h"
+#include "render/light_rig.h"
 #include "render/renderer.h"
 #include "volume/vdb_loader.h"
 

@@ -17,7 +17,7 @@
 #include "core/frame_pattern.h"
 #include "volume/make_cloud.h"
 #include "scene/quality_presets.h"
-#include "scene/light_edits.h"
+#include "render/light_edits.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
 #include "volume/vdb_loader.h"

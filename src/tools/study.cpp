@@ -12,7 +12,7 @@
 #include "io/exr_reader.h"
 #include "io/exr_writer.h"
 #include "core/frame_pattern.h"
-#include "core/image_metrics.h"
+#include "tools/image_metrics.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
 #include "tools/study_plan.h"

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/image_metrics.h"
+#include "tools/image_metrics.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
 #include "tools/study.h"

@@ -12,7 +12,7 @@
 #include "lighting/propagation/cpu_propagation.h"
 #include "core/error.h"
 #include "lighting/propagation/propagation_stages.h"
-#include "scene/light_rig.h"
+#include "render/light_rig.h"
 #include "lighting/propagation/light_sweeps.h"
 #include "render/renderer.h"
 #include "test_support.h"

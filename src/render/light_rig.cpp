@@ -1,4 +1,4 @@
-#include "scene/light_rig.h"
+#include "render/light_rig.h"
 
 #include <chrono>
 

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/light_rig.h"
+#include "render/light_rig.h"
 
 namespace voxlux {
 

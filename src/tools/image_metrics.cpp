@@ -1,4 +1,4 @@
-#include "core/image_metrics.h"
+#include "tools/image_metrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "scene/light_edits.h"
+#include "render/light_edits.h"
 
 #include <fstream>
 #include <sstream>
