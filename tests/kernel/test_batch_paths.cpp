@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "kernel/cpu_kernel.h"
@@ -126,7 +127,9 @@ TEST(BatchPaths, LightPassRowsMatchThePerCellQueries) {
         EXPECT_EQ(left, untouched) << c.name;
         // Measured: AO and point-light cones are bit-identical, directional cones 1.8e-7 (the row
         // batches sum the same products in the same order; the compiler fuses some differently).
-        EXPECT_LE(relativeError(batched.values, per_cell), 5e-7) << c.name;
+        const double error = relativeError(batched.values, per_cell);
+        std::printf("  light pass, %-22s max |batch - per cell| / peak %.2g\n", c.name, error);
+        EXPECT_LE(error, 5e-7) << c.name;
     }
 }
 
@@ -201,7 +204,10 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                     std::swap(prev, cur);
                 }
                 // Measured at most 9.9e-7: the batch sums the trapezoid as weights times samples.
-                EXPECT_LE(relativeError(batched.values, per_cell), 2e-6)
+                const double error = relativeError(batched.values, per_cell);
+                std::printf("  sweep, axis %d, sign %+d, %-8s max |batch - per cell| / peak %.2g\n", axis, sign,
+                            indirect ? "indirect" : "direct", error);
+                EXPECT_LE(error, 2e-6)
                     << "axis " << axis << ", sign " << sign << (indirect ? ", indirect" : ", direct");
             }
 }
