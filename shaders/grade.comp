@@ -1,6 +1,6 @@
 // GL entry point of the grade stage: one invocation per pixel of a block of premultiplied RGBA,
 // transformed in place by an OCIO processor's generated function, ocio_transform (assembled just
-// before this file, with its LUT samplers and uniforms; see src/backend/gl/gl_color_transform.cpp), between
+// before this file, with its LUT samplers and uniforms; see src/grade/gl_color_transform.cpp), between
 // the premultiplication rules of vx_grade.h.
 
 layout(local_size_x = 64) in;

@@ -1,8 +1,8 @@
 // Ray marching through the brick atlas: brick-level DDA with empty-space skipping, optical depth
 // accumulated as a sum (tau += sigma * dt, T = exp(-tau)), brute-force shadow rays, compositing.
 #pragma once
-#include "lighting/extinction_sat/vx_cache.h"
-#include "lighting/propagation/vx_illumination.h"
+#include "lighting/extinction_sat/kernel/vx_cache.h"
+#include "lighting/propagation/kernel/vx_illumination.h"
 #include "vx_noise.h"
 
 // Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.

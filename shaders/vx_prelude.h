@@ -68,7 +68,7 @@
 
 // GL binding points of every program, each once (uniform blocks and storage buffers count apart).
 // The GL backend binds buffers by block name; these numbers keep the blocks of one program apart,
-// and grade.comp's pixels are bound by number (src/backend/gl/gl_color_transform.cpp).
+// and grade.comp's pixels are bound by number (src/grade/gl_color_transform.cpp).
 #define VX_BIND_PARAMS 0           // uniform VxParams P
 #define VX_BIND_SAT_PARAMS 1       // uniform VxSatParams S (light passes)
 #define VX_BIND_PROP_PARAMS 2      // uniform VxPropParams Q (propagation sweeps)

@@ -2,12 +2,6 @@
 #pragma once
 #include "vx_types.h"
 
-// Spatial hash of a brick coordinate. The page table is open-addressed with linear probing,
-// so its size follows the number of occupied bricks, never the bounding box.
-VX_INLINE uint vx_brick_hash(ivec3 b) {
-    return (uint(b.x) * 73856093u) ^ (uint(b.y) * 19349663u) ^ (uint(b.z) * 83492791u);
-}
-
 // Atlas slot of brick `b`, or VX_PAGE_EMPTY.
 VX_INLINE int vx_page_lookup(ivec3 b) {
     if (any(lessThan(b, P.bricks_min)) || any(greaterThan(b, P.bricks_max)))

@@ -178,3 +178,11 @@ struct VxPixel {
     float variance;         // of the pixel's luminance estimate (Monte Carlo reference); 0 from the march.
                             // 20 floats: whole vec4s
 };
+
+// The page table's layout: an open-addressed table with linear probing, whose slot for a brick
+// coordinate starts at this hash, so its size follows the number of occupied bricks, never the
+// bounding box. The table's builder (src/volume/page_table.cpp) and the kernel's lookup
+// (vx_page_lookup) both use it.
+VX_INLINE uint vx_brick_hash(ivec3 b) {
+    return (uint(b.x) * 73856093u) ^ (uint(b.y) * 19349663u) ^ (uint(b.z) * 83492791u);
+}

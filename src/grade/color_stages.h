@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "grade/color_pipeline.h"
-#include "render/render_graph.h"
+#include "graph/render_graph.h"
 
 namespace voxlux {
 

@@ -1,6 +1,6 @@
 #include "grade/color_transformer.h"
 
-#include "backend/cpu/cpu_color_transform.h"
+#include "grade/cpu_color_transform.h"
 
 namespace voxlux {
 

@@ -67,8 +67,8 @@ struct CpuKernel {
     float vx_prop_in(int i) const { return prop_in.at(i, "eye-sweep input"); }
 
 #include "vx_march.h"
-#include "lighting/extinction_sat/vx_sat.h"
-#include "lighting/propagation/vx_propagation.h"
+#include "lighting/extinction_sat/kernel/vx_sat.h"
+#include "lighting/propagation/kernel/vx_propagation.h"
 };
 
 }  // namespace voxlux::kernel

@@ -6,9 +6,9 @@
 
 #include "volume/brick_atlas.h"
 #include "optics/emission.h"
-#include "lighting/propagation/illumination_volume.h"
+#include "lighting/propagation/kernel/illumination_volume.h"
 #include "kernel/kernel_types.h"
-#include "lighting/extinction_sat/light_cache.h"
+#include "lighting/extinction_sat/kernel/light_cache.h"
 #include "volume/page_table.h"
 #include "scene/scene.h"
 

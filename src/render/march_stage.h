@@ -7,7 +7,7 @@
 #include "lighting/extinction_sat/extinction_sat_stages.h"
 #include "kernel/kernel_backend.h"
 #include "lighting/propagation/propagation_stages.h"
-#include "render/render_graph.h"
+#include "graph/render_graph.h"
 #include "volume/volume_stages.h"
 
 namespace voxlux {

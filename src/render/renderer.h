@@ -1,4 +1,4 @@
-// Renders frames of a scene through the render graph (src/render/render_graph.h): the stages below, each
+// Renders frames of a scene through the render graph (src/graph/render_graph.h): the stages below, each
 // re-run only when what it reads changed, so a later frame or a scene edit recomputes only what it
 // invalidates. The CLI, the study, the benchmarks and the tests all render through this.
 //
@@ -16,11 +16,11 @@
 
 #include "grade/color_stages.h"
 #include "lighting/extinction_sat/extinction_sat_stages.h"
-#include "grade/grade_stage.h"
+#include "render/grade_stage.h"
 #include "kernel/kernel_backend.h"
 #include "render/march_stage.h"
 #include "lighting/propagation/propagation_stages.h"
-#include "render/render_graph.h"
+#include "graph/render_graph.h"
 #include "scene/scene.h"
 #include "volume/volume_stages.h"
 #include "render/write_stage.h"

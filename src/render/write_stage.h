@@ -6,9 +6,9 @@
 #include <string>
 
 #include "grade/color_stages.h"
-#include "grade/grade_stage.h"
+#include "render/grade_stage.h"
 #include "render/march_stage.h"
-#include "render/render_graph.h"
+#include "graph/render_graph.h"
 #include "volume/volume_stages.h"
 
 namespace voxlux {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "kernel/cpu_kernel.h"
+#include "kernel/kernel_types.h"
 #include "optics/emission.h"
 #include "optics/transfer_function.h"
 
@@ -38,14 +38,13 @@ PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vecto
     if (t.occupied == 0) return t;
     t.bricks_min = glm::ivec3(INT32_MAX);
     t.bricks_max = glm::ivec3(INT32_MIN);
-    kernel::CpuKernel hasher;  // the hash is the kernel's own, so lookups agree by construction
     const uint32_t mask = uint32_t(capacity - 1);
     for (size_t slot = 0; slot < coords.size(); ++slot) {
         if (!visible[slot]) continue;
         const glm::ivec3 b = coords[slot];
         t.bricks_min = glm::min(t.bricks_min, b);
         t.bricks_max = glm::max(t.bricks_max, b);
-        uint32_t h = hasher.vx_brick_hash(b) & mask;
+        uint32_t h = kernel::vx_brick_hash(b) & mask;  // the kernel's own hash: lookups agree
         int probe = 0;
         while (t.entries[h].w != VX_PAGE_EMPTY) {
             h = (h + 1) & mask;

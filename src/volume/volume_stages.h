@@ -8,7 +8,7 @@
 
 #include "volume/brick_atlas.h"
 #include "volume/page_table.h"
-#include "render/render_graph.h"
+#include "graph/render_graph.h"
 #include "volume/vdb_loader.h"
 
 namespace voxlux {

@@ -9,7 +9,7 @@
 #include <ImfStringAttribute.h>
 #include <png.h>
 
-#include "grade/grade_stage.h"
+#include "render/grade_stage.h"
 #include "render/renderer.h"
 #include "test_support.h"
 

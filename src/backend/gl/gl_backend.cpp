@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "backend/gl/gl_buffer.h"
-#include "backend/gl/gl_context.h"
+#include "gl/gl_buffer.h"
+#include "gl/gl_context.h"
 #include "kernel/kernel_backend.h"
 
 namespace voxlux {

@@ -1,4 +1,4 @@
-// CPU light passes: AO shells and shadow cones from the SAT (src/lighting/extinction_sat/vx_sat.h). When every cell of
+// CPU light passes: AO shells and shadow cones from the SAT (src/lighting/extinction_sat/kernel/vx_sat.h). When every cell of
 // a pass uses the same cuboids (AO shells, directional lights) a row of cells along x is
 // evaluated per cuboid as one SIMD batch, the eight corner lookups being contiguous loads across
 // the row; cones towards point and spot lights differ per cell, and run cell by cell within each

@@ -1,6 +1,6 @@
 // The CPU backend's light passes (see cpu_light_pass.cpp).
 #pragma once
-#include "lighting/extinction_sat/light_cache.h"
+#include "lighting/extinction_sat/light_pass.h"
 
 namespace voxlux {
 

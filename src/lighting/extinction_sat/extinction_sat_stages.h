@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "lighting/extinction_sat/light_cache.h"
+#include "lighting/extinction_sat/kernel/light_cache.h"
 #include "lighting/light_grid.h"
-#include "render/render_graph.h"
+#include "graph/render_graph.h"
 #include "lighting/extinction_sat/sat_passes.h"
 #include "lighting/extinction_sat/summed_volume.h"
 #include "volume/volume_stages.h"

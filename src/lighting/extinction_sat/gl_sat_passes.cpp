@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "backend/gl/gl_buffer.h"
-#include "backend/gl/gl_context.h"
+#include "gl/gl_buffer.h"
+#include "gl/gl_context.h"
 #include "lighting/extinction_sat/sat_passes.h"
 
 namespace voxlux {

@@ -2,12 +2,12 @@
 // grid and the light-cache channels, AO shells and shadow cones, queried from it. The CPU runs
 // them with TBB and SIMD row batches (summed_volume.cpp, cpu_light_pass.cpp), GL as the compute
 // programs sat_scan.comp and light_cache.comp (gl_sat_passes.cpp); both give the same integers
-// and, per cell, the same kernel arithmetic (src/lighting/extinction_sat/vx_sat.h).
+// and, per cell, the same kernel arithmetic (src/lighting/extinction_sat/kernel/vx_sat.h).
 #pragma once
 #include <memory>
 
 #include "kernel/kernel_backend.h"
-#include "lighting/extinction_sat/light_cache.h"
+#include "lighting/extinction_sat/light_pass.h"
 #include "lighting/light_grid.h"
 #include "lighting/extinction_sat/summed_volume.h"
 

@@ -3,7 +3,7 @@
 // plane's maximum (values down to 2^-40 of it are exact), and prefix sums are kept modulo 2^96 in
 // three 32-bit words. A box sum is a difference of prefix sums, exact in modular arithmetic as
 // long as the box's own sum is below 2^96 quanta, which holds for any grid of fewer than 2^32
-// cells. The kernel converts it to float once (src/lighting/extinction_sat/vx_sat.h). docs/accuracy-sat.md has the
+// cells. The kernel converts it to float once (src/lighting/extinction_sat/kernel/vx_sat.h). docs/accuracy-sat.md has the
 // error bound.
 #pragma once
 #include <cstdint>

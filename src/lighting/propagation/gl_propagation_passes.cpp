@@ -6,8 +6,8 @@
 #include <string>
 
 #include "kernel/cpu_kernel.h"
-#include "backend/gl/gl_buffer.h"
-#include "backend/gl/gl_context.h"
+#include "gl/gl_buffer.h"
+#include "gl/gl_context.h"
 #include "lighting/propagation/propagation_passes.h"
 
 namespace voxlux {

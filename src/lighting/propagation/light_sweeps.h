@@ -20,7 +20,7 @@ struct Sweep {
 // The sweeps for light flowing along `flow` (grid space, any length; zero counts as +z). The
 // principal axis is the one the flow is closest to (the face with the largest projection). With
 // `blend`, the second closest axis is swept too, with the weights of vx_sweep_weight
-// (src/lighting/propagation/vx_propagation.h): Sunden 2015's Eq. 5a/5b in the plane of two axes, continuous off it.
+// (src/lighting/propagation/kernel/vx_propagation.h): Sunden 2015's Eq. 5a/5b in the plane of two axes, continuous off it.
 // Sweeps of zero weight are left out, so an axis-aligned light costs one sweep; the principal
 // axis comes first.
 std::vector<Sweep> sweepsFor(glm::vec3 flow, bool blend);

@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "lighting/propagation/illumination_volume.h"
+#include "lighting/propagation/kernel/illumination_volume.h"
 #include "lighting/light_grid.h"
 #include "lighting/propagation/propagation_passes.h"
-#include "render/render_graph.h"
+#include "graph/render_graph.h"
 #include "volume/volume_stages.h"
 
 namespace voxlux {

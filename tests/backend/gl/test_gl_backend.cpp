@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "scene/camera.h"
-#include "backend/gl/gl_context.h"
-#include "backend/gl/gl_program.h"
+#include "gl/gl_context.h"
+#include "gl/gl_program.h"
 #include "render/renderer.h"
 #include "kernel/shader_source.h"
 #include "test_support.h"

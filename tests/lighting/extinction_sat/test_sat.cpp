@@ -1,4 +1,4 @@
-// The extinction SAT and its queries (src/lighting/extinction_sat/vx_sat.h) against brute force and closed forms:
+// The extinction SAT and its queries (src/lighting/extinction_sat/kernel/vx_sat.h) against brute force and closed forms:
 // exact box sums on adversarial grids, AO shells in empty and homogeneous media, cone shadows
 // through slabs and from lights inside the volume.
 #include <cmath>

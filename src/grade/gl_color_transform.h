@@ -4,7 +4,7 @@
 // Programs and LUT textures are kept per processor cache ID (the 8 last used), so a sequence
 // compiles each processor once.
 //
-// Where it differs from the CPU processor (src/backend/cpu/cpu_color_transform.cpp): the GPU processor
+// Where it differs from the CPU processor (src/grade/cpu_color_transform.cpp): the GPU processor
 // interpolates 1D LUTs and trilinear 3D LUTs with the texture units, whose filtering weights have
 // as few as 8 fractional bits on hardware GPUs, so a linear LUT there may be off by up to about
 // 1/512 of the step between neighbouring entries; tetrahedral 3D LUTs are interpolated in the

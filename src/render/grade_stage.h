@@ -1,28 +1,19 @@
-// Grade stage: takes the march's premultiplied, scene-linear image in the working space to the
-// output space, with the scene's grade (looks, CDLs, LUTs) applied to the beauty first, and makes
-// the display-referred preview. The processors run on the render's device.
+// Grade stage: the march's image graded (grade/grade_image.h) on the render's device, re-run by a
+// grade edit without the march. It lives with the march because it reads the march's image.
 #pragma once
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "grade/color_pipeline.h"
 #include "grade/color_stages.h"
 #include "grade/color_transformer.h"
+#include "grade/grade_image.h"
+#include "graph/render_graph.h"
 #include "kernel/kernel_backend.h"
 #include "render/march_stage.h"
-#include "render/render_graph.h"
 
 namespace voxlux {
-
-// Grades `image` in place: the beauty through color.grade (unpremultiplied per
-// color.unpremultiply) then color.output; the colour AOVs named in `aovs` (direct, ambient,
-// indirect, emission) through color.output only, so they stay ungraded. Returns the preview's
-// display-referred RGBA (the graded beauty over black through color.preview), or nothing when
-// the pipeline has no preview.
-std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color, const std::vector<std::string>& aovs,
-                                  ColorTransformer& transformer);
 
 // The march's image graded (gradeImage), as a stage: it runs when the scene has grade steps,
 // another output space or a preview, and a grade edit re-runs it without the march.

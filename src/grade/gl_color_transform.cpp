@@ -1,11 +1,11 @@
-#include "backend/gl/gl_color_transform.h"
+#include "grade/gl_color_transform.h"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#include "backend/gl/gl_context.h"
-#include "backend/gl/gl_program.h"
+#include "gl/gl_context.h"
+#include "gl/gl_program.h"
 #include "kernel/kernel_types.h"
 #include "kernel/shader_source.h"
 

@@ -1,4 +1,4 @@
-#include "backend/gl/gl_program.h"
+#include "gl/gl_program.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "backend/cpu/cpu_color_transform.h"
+#include "grade/cpu_color_transform.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

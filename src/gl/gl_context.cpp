@@ -1,4 +1,4 @@
-#include "backend/gl/gl_context.h"
+#include "gl/gl_context.h"
 
 #include <algorithm>
 #include <cstdio>

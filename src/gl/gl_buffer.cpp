@@ -1,10 +1,10 @@
-#include "backend/gl/gl_buffer.h"
+#include "gl/gl_buffer.h"
 
 #include <algorithm>
 #include <map>
 #include <stdexcept>
 
-#include "backend/gl/gl_program.h"
+#include "gl/gl_program.h"
 #include "kernel/shader_source.h"
 
 namespace voxlux {

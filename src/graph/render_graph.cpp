@@ -1,4 +1,4 @@
-#include "render/render_graph.h"
+#include "graph/render_graph.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,0 +1,27 @@
+// One pass of the propagation method (Ropinski 2010, Sunden 2015): the sweeps a device runs
+// (propagation_passes.h) through a grid of extinction into the illumination volume; its cost is one
+// walk over the grid's slices, whatever the number of sweeps it carries.
+#pragma once
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "kernel/kernel_types.h"
+#include "lighting/propagation/kernel/illumination_volume.h"
+
+namespace voxlux {
+
+// One pass of the propagation over a grid of extinction `sigma`: one or more sweeps along the same
+// axis and direction, each carrying its own light (Sunden 2015's propagation group), all adding
+// into the RGB block of `volume.values` that starts at `offset`. The eye sweep is a pass of one
+// sweep that replaces the indirect light with its result, reading the light before it from `input`.
+struct PropagationPass {
+    std::vector<kernel::VxPropParams> sweeps;       // same dims, axis and direction
+    const kernel::VxParams* march = nullptr;        // noise and transport parameters
+    const std::vector<float>* sigma = nullptr;      // the sweeps' dims cells
+    const std::vector<glm::vec4>* noise = nullptr;  // perturbation table (VX_NOISE_SIZE^3)
+    size_t offset = 0;
+    const std::vector<float>* input = nullptr;      // eye sweep only: 3 floats per cell
+};
+
+}  // namespace voxlux

@@ -1,0 +1,46 @@
+#include "render/grade_stage.h"
+
+#include <filesystem>
+
+namespace voxlux {
+
+// What the grade stage does, or why it is skipped. Names are as the scene gives them; the
+// color_transforms stage resolves them (and reports missing ones) before any volume is read.
+StageActivity GradeStage::activity(const Scene& s) const {
+    const ColorSettings& c = s.color;
+    const std::string working = c.working_space.empty() ? "the scene_linear role" : c.working_space;
+    if (!needsGrade(s)) return {false, "skipped: no grade, output in the working space (" + working + "), no preview"};
+    std::string steps;
+    for (const auto& g : c.grade) {
+        std::string step = g.kind == GradeKind::Look  ? "look '" + g.look + "'"
+                           : g.kind == GradeKind::Cdl ? std::string("CDL")
+                                                      : "'" + std::filesystem::path(g.file).filename().string() + "'";
+        if (!g.space.empty()) step += " in " + g.space;
+        if (g.inverse) step += " (inverse)";
+        steps += steps.empty() ? "grade " : ", ";
+        steps += step;
+    }
+    std::vector<std::string> parts;
+    if (!steps.empty()) parts.push_back(steps + (c.unpremultiply ? " on unpremultiplied colour" : ""));
+    if (!c.output_space.empty() && c.output_space != c.working_space) parts.push_back(working + " -> " + c.output_space);
+    if (!s.output.preview.empty())
+        parts.push_back("preview through " + (c.display.empty() ? std::string("the default display") : "'" + c.display + "'") +
+                        (c.view.empty() ? "" : " / '" + c.view + "'"));
+    std::string out;
+    for (const auto& p : parts) out += (out.empty() ? "" : "; ") + p;
+    return {true, out};
+}
+
+void GradeStage::run(StageRun& run) {
+    image_ = march_.image();
+    std::vector<std::string> aovs;
+    for (const auto& aov : run.scene.output.aovs) aovs.push_back(aov.name);
+    preview_ = gradeImage(image_, color_.pipeline(), aovs, transformer_.on(run.backend));
+}
+
+void GradeStage::release() {
+    image_ = RenderImage{};
+    preview_.clear();
+}
+
+}  // namespace voxlux
