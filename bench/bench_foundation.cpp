@@ -16,7 +16,7 @@
 #include "scene/camera.h"
 #include "io/exr_writer.h"
 #include "kernel/kernel_inputs.h"
-#include "kernel/kernel_backend.h"
+#include "backend/backend_choice.h"
 #include "volume/page_table.h"
 #include "render/renderer.h"
 #include "volume/vdb_loader.h"

@@ -1,8 +1,11 @@
 // The source folders are layers, and a file includes only headers of its own layer or lower ones
 // (docs/architecture.md, Source layout), as Chromium's DEPS files check. The test reads every
 // #include of src/ and shaders/ and fails on an upward one, naming both files and their layers.
+// Each layer is also a static library, and a second test reads their symbol tables (nm) and fails
+// when a library needs a voxlux symbol that only a library of a higher layer defines.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -112,6 +115,43 @@ TEST(Layers, NoFileIncludesALayerAboveItsOwn) {
             upward << "\n  " << file << " (" << kLayers[layerOf(file)].name << ") -> " << header << " ("
                    << kLayers[layerOf(header)].name << ")";
     EXPECT_EQ(upward.str(), "") << "upward includes:";
+}
+
+
+// The voxlux symbols (functions, vtables, type infos) an archive defines, or needs from elsewhere.
+std::set<std::string> voxluxSymbols(const std::string& archive, bool defined) {
+    const std::string command = "nm -C " + std::string(defined ? "--defined-only" : "--undefined-only") + " '" + archive + "'";
+    std::set<std::string> out;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return out;
+    static const std::regex symbol_line(R"re(^[0-9a-f]* +[A-Za-z] ((vtable for |typeinfo for )?voxlux::.*)$)re");
+    char buffer[4096];
+    std::smatch m;
+    while (std::fgets(buffer, sizeof buffer, pipe)) {
+        std::string line(buffer);
+        if (!line.empty() && line.back() == '\n') line.pop_back();
+        if (std::regex_match(line, m, symbol_line)) out.insert(m[1].str());
+    }
+    EXPECT_EQ(pclose(pipe), 0) << command;
+    return out;
+}
+
+TEST(Layers, NoLibraryNeedsALayerAboveItsOwn) {
+    // The layers' archives, lowest first (VOXLUX_LAYERS in CMakeLists.txt).
+    std::vector<std::string> archives;
+    std::stringstream list(VOXLUX_LAYER_LIBRARIES);
+    for (std::string archive; std::getline(list, archive, ',');) archives.push_back(archive);
+    ASSERT_GE(archives.size(), 13u);
+    std::set<std::string> below;  // defined by this layer's library or a lower one
+    std::ostringstream upward;
+    for (const std::string& archive : archives) {
+        const std::set<std::string> defined = voxluxSymbols(archive, true);
+        ASSERT_FALSE(defined.empty()) << archive;
+        below.insert(defined.begin(), defined.end());
+        for (const std::string& needed : voxluxSymbols(archive, false))
+            if (!below.count(needed)) upward << "\n  " << fs::path(archive).filename().string() << " needs " << needed;
+    }
+    EXPECT_EQ(upward.str(), "") << "symbols only a higher layer defines:";
 }
 
 }  // namespace

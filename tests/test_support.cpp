@@ -9,6 +9,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfInputFile.h>
 
+#include "backend/backend_choice.h"
 #include "core/error.h"
 #include "scene/scene_json.h"
 

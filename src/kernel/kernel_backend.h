@@ -50,15 +50,4 @@ private:
     Device device_ = Device::Cpu;
 };
 
-std::unique_ptr<KernelBackend> makeCpuBackend();
-
-// Throws std::runtime_error when no OpenGL 4.5 context can be created (EGL, headless).
-std::unique_ptr<KernelBackend> makeGlBackend();
-
-// True when an EGL context exists and runs on a hardware GPU (not llvmpipe/softpipe).
-bool hardwareGlAvailable();
-
-// Picks the backend for `choice`: Auto means GL on a hardware GPU, else CPU.
-std::unique_ptr<KernelBackend> makeBackend(Backend choice);
-
 }  // namespace voxlux

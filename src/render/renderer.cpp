@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "backend/backend_choice.h"
 #include "core/error.h"
 #include "core/frame_pattern.h"
 #include "scene/scene_json.h"

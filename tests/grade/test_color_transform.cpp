@@ -11,6 +11,7 @@
 #include <cstring>
 #include <limits>
 
+#include "backend/backend_choice.h"
 #include "grade/color_transformer.h"
 #include "test_support.h"
 

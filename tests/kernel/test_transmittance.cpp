@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "backend/backend_choice.h"
 #include "scene/camera.h"
 #include "kernel/cpu_kernel.h"
 #include "test_support.h"

@@ -10,6 +10,7 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include "backend/backend_choice.h"
 #include "optics/blackbody.h"
 #include "optics/emission.h"
 #include "render/renderer.h"

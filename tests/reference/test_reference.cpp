@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "backend/backend_choice.h"
 #include "kernel/cpu_kernel.h"
 #include "core/error.h"
 #include "reference/reference_renderer.h"

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "backend/backend_choice.h"
 #include "core/error.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"

@@ -1,14 +1,11 @@
-// CPU backend: the shared kernel with TBB, the march over 16x16 pixel tiles. The lighting
-// methods' CPU passes (cpu_light_pass.cpp, cpu_propagation.cpp) and the grade stage's colour
-// transforms (cpu_color_transform.cpp) use the same kernel binding.
-#include <cstdio>
-#include <cstdlib>
-
+// CPU backend: the shared kernel with TBB, the march over 16x16 pixel tiles, reading the march
+// inputs through the kernel binding (src/kernel/cpu_kernel.cpp) the reference renderer and the
+// light grid use too.
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include "backend/backend_choice.h"
 #include "kernel/cpu_kernel.h"
-#include "kernel/kernel_backend.h"
 
 namespace voxlux {
 namespace {
@@ -35,27 +32,6 @@ public:
 };
 
 }  // namespace
-
-[[noreturn]] void kernel::vx_bounds_trap(const char* what, int index, int size) {
-    std::fprintf(stderr, "voxlux: kernel %s index %d outside [0, %d)\n", what, index, size);
-    std::abort();
-}
-
-kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
-    kernel::CpuKernel k;
-    k.P = in.params;
-    k.density = in.atlas->density;
-    k.emission = in.atlas->emission;
-    k.color = in.atlas->color;
-    k.page = in.pages->entries;
-    k.lights = in.lights;
-    k.tf_lut = in.tf_lut;
-    k.emission_lut = in.emission_lut;
-    if (in.light_cache) k.cache = in.light_cache->values;
-    if (in.illumination) k.illum = in.illumination->values;
-    k.noise = in.noise;
-    return k;
-}
 
 std::unique_ptr<KernelBackend> makeCpuBackend() { return std::make_unique<CpuBackend>(); }
 

@@ -11,7 +11,7 @@
 
 #include "gl/gl_buffer.h"
 #include "gl/gl_context.h"
-#include "kernel/kernel_backend.h"
+#include "backend/backend_choice.h"
 
 namespace voxlux {
 namespace {

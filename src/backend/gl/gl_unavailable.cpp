@@ -1,7 +1,7 @@
 // What a CPU-only build (cmake -DVOXLUX_GL=OFF, for farm nodes without EGL) has in place of the GL
 // backend: asking for it is an input error that says how the build was made.
 #include "core/error.h"
-#include "kernel/kernel_backend.h"
+#include "backend/backend_choice.h"
 
 namespace voxlux {
 

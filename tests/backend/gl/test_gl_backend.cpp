@@ -7,6 +7,7 @@
 #include <cmath>
 #include <utility>
 
+#include "backend/backend_choice.h"
 #include "scene/camera.h"
 #include "gl/gl_context.h"
 #include "gl/gl_program.h"

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <random>
 
+#include "backend/backend_choice.h"
 #include "kernel/cpu_kernel.h"
 #include "lighting/propagation/cpu_propagation.h"
 #include "core/error.h"

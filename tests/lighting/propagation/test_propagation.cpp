@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 
+#include "backend/backend_choice.h"
 #include "kernel/cpu_kernel.h"
 #include "lighting/propagation/propagation_stages.h"
 #include "lighting/propagation/light_sweeps.h"

@@ -1,6 +1,4 @@
-// Backend selection: `auto` prefers a hardware GPU and falls back to the TBB CPU backend, which
-// beats Mesa's software rasteriser (llvmpipe) on every stage.
-#include "kernel/kernel_backend.h"
+#include "backend/backend_choice.h"
 
 namespace voxlux {
 

@@ -1,0 +1,29 @@
+#include "kernel/cpu_kernel.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace voxlux {
+
+[[noreturn]] void kernel::vx_bounds_trap(const char* what, int index, int size) {
+    std::fprintf(stderr, "voxlux: kernel %s index %d outside [0, %d)\n", what, index, size);
+    std::abort();
+}
+
+kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
+    kernel::CpuKernel k;
+    k.P = in.params;
+    k.density = in.atlas->density;
+    k.emission = in.atlas->emission;
+    k.color = in.atlas->color;
+    k.page = in.pages->entries;
+    k.lights = in.lights;
+    k.tf_lut = in.tf_lut;
+    k.emission_lut = in.emission_lut;
+    if (in.light_cache) k.cache = in.light_cache->values;
+    if (in.illumination) k.illum = in.illumination->values;
+    k.noise = in.noise;
+    return k;
+}
+
+}  // namespace voxlux
