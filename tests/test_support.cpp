@@ -125,13 +125,17 @@ void Lit::relight(Scene scene) {
     result = renderer->prepare(std::nullopt, false);
 }
 
-std::string sceneErrorOf(const std::string& json) {
+std::string inputErrorOf(const std::function<void()>& action) {
     try {
-        parseScene(json, "shot.json", "/shots");
+        action();
     } catch (const InputError& e) {
         return e.what();
     }
     return "no error";
+}
+
+std::string sceneErrorOf(const std::string& json) {
+    return inputErrorOf([&] { parseScene(json, "shot.json", "/shots"); });
 }
 
 std::string writeBall(const std::string& dir) {

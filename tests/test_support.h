@@ -1,5 +1,6 @@
 // Helpers shared by the tests: synthetic volumes, the shared real-data folder, running the CLI.
 #pragma once
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -27,6 +28,9 @@ std::string sharedData(const std::string& relative);
 #define VOXLUX_REQUIRE_SHARED(var, relative)                                                   \
     const std::string var = ::voxlux::test::sharedData(relative);                               \
     if (var.empty()) GTEST_SKIP() << "../shared/data/" relative " is absent (fresh clone): skipped"
+
+// The one-line InputError `action` throws, or "no error".
+std::string inputErrorOf(const std::function<void()>& action);
 
 // The one-line InputError parsing `json` as "shot.json" in "/shots" gives, or "no error".
 std::string sceneErrorOf(const std::string& json);

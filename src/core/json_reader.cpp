@@ -1,6 +1,10 @@
 #include "core/json_reader.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
 
 #include "core/error.h"
 
@@ -8,6 +12,16 @@ namespace voxlux {
 namespace {
 
 std::string typeName(const nlohmann::json& v) { return v.type_name(); }
+
+// A JSON number as a float, or nothing when it has none (beyond +-FLT_MAX): converting such a
+// double to float is undefined, and the kernel would see infinity.
+std::optional<float> asFloat(const nlohmann::json& v) {
+    const double d = v.get<double>();
+    if (!(std::fabs(d) <= double(std::numeric_limits<float>::max()))) return std::nullopt;
+    return float(d);
+}
+
+std::string numberText(const nlohmann::json& v) { return v.dump(); }
 
 std::string joined(const std::vector<std::string>& words) {
     std::string out;
@@ -46,7 +60,9 @@ const nlohmann::json& JsonObject::raw(const std::string& key) const {
 float JsonObject::number(const std::string& key) const {
     const auto& v = raw(key);
     if (!v.is_number()) fail(key, "expected a number, got " + typeName(v));
-    return v.get<float>();
+    const std::optional<float> f = asFloat(v);
+    if (!f) fail(key, numberText(v) + " is beyond the float range (+-3.4e38)");
+    return *f;
 }
 
 float JsonObject::number(const std::string& key, float fallback) const {
@@ -57,6 +73,11 @@ int JsonObject::integer(const std::string& key, int fallback) const {
     if (!has(key)) return fallback;
     const auto& v = raw(key);
     if (!v.is_number_integer()) fail(key, "expected an integer, got " + typeName(v));
+    // Read wide and checked: get<int>() would wrap 4294967297 to 1.
+    const bool fits = v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(std::numeric_limits<int>::max())
+                                             : v.get<int64_t>() >= std::numeric_limits<int>::min() &&
+                                                   v.get<int64_t>() <= std::numeric_limits<int>::max();
+    if (!fits) fail(key, numberText(v) + " is beyond the int range");
     return v.get<int>();
 }
 
@@ -92,7 +113,9 @@ std::vector<float> JsonObject::numbers(const std::string& key, size_t count) con
     std::vector<float> out;
     for (const auto& e : v) {
         if (!e.is_number()) fail(key, "expected an array of " + std::to_string(count) + " numbers");
-        out.push_back(e.get<float>());
+        const std::optional<float> f = asFloat(e);
+        if (!f) fail(key, numberText(e) + " is beyond the float range (+-3.4e38)");
+        out.push_back(*f);
     }
     return out;
 }
@@ -129,9 +152,36 @@ void JsonObject::rejectUnknown(const std::vector<std::string>& known) const {
             fail(key, "unknown key (expected one of " + joined(known) + ")");
 }
 
+void checkJsonDepth(const std::string& text, const std::string& source) {
+    int depth = 0, line = 1;
+    bool in_string = false, escaped = false;
+    for (char c : text) {
+        if (c == '\n') ++line;
+        if (in_string) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                throw InputError(source + ": JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels at line " +
+                                 std::to_string(line));
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
 nlohmann::json parseJson(const std::string& text, const std::string& file) {
+    checkJsonDepth(text, file);
     try {
         return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::out_of_range& e) {
+        // A number too large for a double: "number overflow parsing '1e400'".
+        std::string what = e.what();
+        if (auto close = what.find("] "); close != std::string::npos) what = what.substr(close + 2);
+        throw InputError(file + ": malformed JSON: " + what);
     } catch (const nlohmann::json::parse_error& e) {
         // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: syntax error
         // while parsing <what> - <problem>"; keep the position and the problem.

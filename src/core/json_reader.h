@@ -48,7 +48,17 @@ private:
     std::string pointer_;
 };
 
-// Parses `text` (read from `file`); syntax errors give line and column.
+// Deepest nesting of arrays and objects voxlux reads. Scenes need 4 levels; the limit keeps every
+// recursive walk over a document (the reader's, the library's) far from the end of the stack.
+constexpr int kMaxJsonDepth = 64;
+
+// Throws InputError "<source>: JSON nested deeper than 64 levels at line L" when `text` opens more
+// than kMaxJsonDepth arrays or objects at once (text in strings does not count). One pass, no
+// allocation: it runs before the parser ever recurses.
+void checkJsonDepth(const std::string& text, const std::string& source);
+
+// Parses `text` (read from `file`); syntax errors give line and column, nesting past
+// kMaxJsonDepth is refused.
 nlohmann::json parseJson(const std::string& text, const std::string& file);
 
 }  // namespace voxlux

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <glm/gtx/component_wise.hpp>
+
 #include "optics/emission.h"
 #include "core/error.h"
 #include "core/json_reader.h"
@@ -41,7 +43,9 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
     v.path = resolvePath(v.path, base_dir);
     if (o.has("frames")) {
         auto f = o.numbers("frames", 2);
-        if (f[0] > f[1] || f[0] != int(f[0]) || f[1] != int(f[1]))
+        // Checked before converting: a float outside int's range has no int value.
+        const auto frameNumber = [](float x) { return x >= -2147483648.0f && x < 2147483648.0f && x == std::floor(x); };
+        if (!frameNumber(f[0]) || !frameNumber(f[1]) || f[0] > f[1])
             o.fail("frames", "expected [first, last] integers with first <= last");
         v.frames = std::array<int, 2>{int(f[0]), int(f[1])};
     }
@@ -77,6 +81,28 @@ Material readMaterial(const JsonObject& o) {
     return m;
 }
 
+// World coordinates voxlux accepts: beyond them a float has less than a unit of precision left
+// for a ray's steps, and index coordinates would leave int's range.
+constexpr float kMaxWorldCoordinate = 1e9f;
+
+glm::vec3 readPoint(const JsonObject& o, const std::string& key) {
+    const glm::vec3 p = o.vec3(key);
+    if (glm::compMax(glm::abs(p)) > kMaxWorldCoordinate) o.fail(key, "each coordinate must lie within +-1e9");
+    return p;
+}
+
+// A unit vector: kept as written when it is one, so a scene that voxlux wrote reads back to the
+// same floats. A vector whose length overflows or underflows a float is scaled by its largest
+// component before normalising.
+glm::vec3 readDirection(const JsonObject& o, const std::string& key) {
+    const glm::vec3 d = o.vec3(key);
+    const float largest = glm::compMax(glm::abs(d));
+    if (largest == 0) o.fail(key, "must not be zero");
+    const float length = glm::length(d);
+    if (std::abs(length - 1.0f) <= 1e-6f) return d;
+    return std::isfinite(length) && length > 1e-18f ? glm::normalize(d) : glm::normalize(d / largest);
+}
+
 Camera readCamera(const JsonObject& o) {
     o.rejectUnknown({"position", "look_at", "up", "matrix", "fov"});
     Camera c;
@@ -86,12 +112,21 @@ Camera readCamera(const JsonObject& o) {
         auto m = o.numbers("matrix", 16);
         glm::mat4 mat;
         for (int i = 0; i < 16; ++i) mat[i / 4][i % 4] = m[i];  // column-major, as glm and GLSL
+        if (glm::compMax(glm::abs(glm::vec3(mat[3]))) > kMaxWorldCoordinate)
+            o.fail("matrix", "the position (elements 12-14) must lie within +-1e9");
+        // Rays need three independent axes; a determinant near 0 (a matrix of zeros) has none.
+        const glm::mat3 axes(mat);
+        const float scale = glm::compMax(glm::abs(glm::vec3(glm::length(axes[0]), glm::length(axes[1]), glm::length(axes[2]))));
+        if (!(scale > 0) || !(std::abs(glm::determinant(axes / scale)) > 1e-6f))
+            o.fail("matrix", "its rotation part (elements 0-10) must be invertible");
         c.matrix = mat;
         return c;
     }
-    c.position = o.vec3("position");
-    c.look_at = o.vec3("look_at");
+    c.position = readPoint(o, "position");
+    c.look_at = readPoint(o, "look_at");
+    // Kept as written (the camera normalises it), so an edit of `up` is an edit of the scene.
     c.up = o.vec3("up", c.up);
+    if (glm::compMax(glm::abs(c.up)) > kMaxWorldCoordinate) o.fail("up", "each component must lie within +-1e9");
     if (glm::length(c.look_at - c.position) == 0) o.fail("look_at", "must differ from position");
     if (glm::length(glm::cross(c.look_at - c.position, c.up)) < 1e-6f)
         o.fail("up", "must not be parallel to the view direction");
@@ -450,13 +485,8 @@ Light readLight(const JsonObject& o) {
                          "cone_softness"});
     l.name = o.string("name", "");
     l.enabled = o.boolean("enabled", true);
-    if (l.type == LightType::Point || l.type == LightType::Spot) l.position = o.vec3("position");
-    if (l.type == LightType::Directional || l.type == LightType::Spot) {
-        l.direction = o.vec3("direction");
-        if (glm::length(l.direction) == 0) o.fail("direction", "must not be zero");
-        // A unit vector is kept as written, so a scene that voxlux wrote reads back to the same floats.
-        if (std::abs(glm::length(l.direction) - 1.0f) > 1e-6f) l.direction = glm::normalize(l.direction);
-    }
+    if (l.type == LightType::Point || l.type == LightType::Spot) l.position = readPoint(o, "position");
+    if (l.type == LightType::Directional || l.type == LightType::Spot) l.direction = readDirection(o, "direction");
     l.color = o.vec3("color", l.color);
     if (!(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f))) && std::isfinite(l.color.x + l.color.y + l.color.z)))
         o.fail("color", "must be finite and >= 0");

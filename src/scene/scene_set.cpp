@@ -13,6 +13,7 @@ void applySceneSet(nlohmann::json& scene, const std::string& set) {
     const auto eq = set.find('=');
     if (eq == std::string::npos || eq == 0) throw InputError("--set '" + set + "': expected KEY=VALUE");
     const std::string text = set.substr(eq + 1);
+    checkJsonDepth(text, "--set " + set.substr(0, eq));
     nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
     if (value.is_discarded()) value = text;
     nlohmann::json* node = &scene;

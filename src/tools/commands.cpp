@@ -4,9 +4,11 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -49,38 +51,28 @@ glm::vec3 parseVec3(const std::string& text, const std::string& context) {
     return {parseFloat(parts[0], context), parseFloat(parts[1], context), parseFloat(parts[2], context)};
 }
 
-// "directional:dir=1,-1,0:intensity=3" and so on; keys as in docs/cli.md.
-Light parseLight(const std::string& spec) {
-    const std::string context = "--light '" + spec + "'";
+// "directional:dir=1,-1,0:intensity=3" and so on, keys as in docs/cli.md, as the scene's light
+// object. Only the syntax is checked here; the scene's own light reader validates the values.
+nlohmann::json lightSpecJson(const std::string& spec, const std::string& context) {
     auto parts = split(spec, ':');
-    Light l;
-    if (parts.empty() ||
-        (parts[0] != "directional" && parts[0] != "point" && parts[0] != "spot" && parts[0] != "ambient"))
-        throw InputError(context + ": type must be directional, point, spot or ambient");
-    l.type = parts[0] == "point"     ? LightType::Point
-             : parts[0] == "spot"    ? LightType::Spot
-             : parts[0] == "ambient" ? LightType::Ambient
-                                     : LightType::Directional;
-    bool hasPos = false, hasDir = false;
+    nlohmann::json light = {{"type", parts.empty() ? std::string() : parts[0]}};
+    const std::map<std::string, std::string> keys = {{"dir", "direction"}, {"pos", "position"}, {"color", "color"},
+                                                     {"intensity", "intensity"}, {"angle", "cone_angle"},
+                                                     {"softness", "cone_softness"}};
     for (size_t i = 1; i < parts.size(); ++i) {
         auto eq = parts[i].find('=');
         if (eq == std::string::npos) throw InputError(context + ": expected key=value, got '" + parts[i] + "'");
-        std::string key = parts[i].substr(0, eq), value = parts[i].substr(eq + 1);
-        if (key == "dir") { l.direction = parseVec3(value, context); hasDir = true; }
-        else if (key == "pos") { l.position = parseVec3(value, context); hasPos = true; }
-        else if (key == "color") l.color = parseVec3(value, context);
-        else if (key == "intensity") l.intensity = parseFloat(value, context);
-        else if (key == "angle") l.cone_angle = parseFloat(value, context);
-        else if (key == "softness") l.cone_softness = parseFloat(value, context);
-        else throw InputError(context + ": unknown key '" + key + "' (dir, pos, color, intensity, angle, softness)");
+        const std::string key = parts[i].substr(0, eq), value = parts[i].substr(eq + 1);
+        const auto named = keys.find(key);
+        if (named == keys.end()) throw InputError(context + ": unknown key '" + key + "' (dir, pos, color, intensity, angle, softness)");
+        if (key == "dir" || key == "pos" || key == "color") {
+            const glm::vec3 v = parseVec3(value, context);
+            light[named->second] = {v.x, v.y, v.z};
+        } else {
+            light[named->second] = parseFloat(value, context);
+        }
     }
-    const bool positioned = l.type == LightType::Point || l.type == LightType::Spot;
-    const bool aimed = l.type == LightType::Directional || l.type == LightType::Spot;
-    if (positioned && !hasPos) throw InputError(context + ": needs pos=x,y,z");
-    if (aimed && !hasDir) throw InputError(context + ": needs dir=x,y,z");
-    if (!positioned && hasPos) throw InputError(context + ": " + parts[0] + " lights have no pos");
-    if (!aimed && hasDir) throw InputError(context + ": " + parts[0] + " lights have no dir");
-    return l;
+    return light;
 }
 
 // Overrides go through the scene JSON so that they are validated by exactly the same rules.
@@ -116,24 +108,33 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
         if (wh.size() != 2) throw InputError("--res '" + *o.resolution + "': expected WIDTHxHEIGHT");
         j["render"]["resolution"] = {parseFloat(wh[0], "--res"), parseFloat(wh[1], "--res")};
     }
-    if (o.step) j["render"]["step"] = *o.step;
-    if (o.shadow_step) j["render"]["shadow_step"] = *o.shadow_step;
+    // JSON has no NaN or infinity (they would be written as null, which reads as the default).
+    const auto finite = [](const char* flag, float value) {
+        if (!std::isfinite(value)) throw InputError(std::string(flag) + ": " + std::to_string(value) + " is not a finite number");
+        return value;
+    };
+    if (o.step) j["render"]["step"] = finite("--step", *o.step);
+    if (o.shadow_step) j["render"]["shadow_step"] = finite("--shadow-step", *o.shadow_step);
     if (o.backend) j["render"]["backend"] = *o.backend;
     if (o.method) j["render"]["method"] = *o.method;
     if (o.spp) j["render"]["reference"]["spp"] = *o.spp;
-    if (o.density_scale) j["material"]["density_scale"] = *o.density_scale;
+    if (o.density_scale) j["material"]["density_scale"] = finite("--density-scale", *o.density_scale);
     if (o.shadows) j["effects"]["shadows"] = *o.shadows;
     if (o.pixel_type) j["output"]["pixel_type"] = *o.pixel_type;
     if (o.aovs) j["output"]["aovs"] = *o.aovs;
     if (o.output) j["output"]["path"] = *o.output;
     if (o.preview) j["output"]["preview"] = *o.preview;
-    for (const auto& set : o.sets) applySceneSet(j, set);
-    Scene s = parseScene(j.dump(), "command line", "");
     if (!o.lights.empty()) {
-        s.lights.clear();
-        for (const auto& l : o.lights) s.lights.push_back(parseLight(l));
+        // Each light is read as the scene reads its lights, so a bad one is named by its flag.
+        auto& lights = j["lights"] = nlohmann::json::array();
+        for (const auto& spec : o.lights) {
+            const std::string context = "--light '" + spec + "'";
+            lights.push_back(lightSpecJson(spec, context));
+            readLight(JsonObject(lights.back(), context, ""));
+        }
     }
-    return s;
+    for (const auto& set : o.sets) applySceneSet(j, set);
+    return parseScene(j.dump(), "command line", "");
 }
 
 bool isSceneFile(const std::string& path) {
@@ -149,17 +150,25 @@ Scene quickScene(const std::string& vdb) {
     return s;
 }
 
-std::vector<std::optional<int>> framesOf(const Scene& s) {
-    if (!hasFramePattern(s.volume.path)) return {std::nullopt};
+// The frames a render covers, taken one at a time: a range is never expanded up front, so
+// `--frames 1-2000000000` costs nothing before its first frame.
+struct FrameSpan {
+    std::optional<int> first;   // none: one file without a frame pattern
+    int last = 0;
+
+    int64_t count() const { return first ? int64_t(last) - *first + 1 : 1; }
+    std::optional<int> at(int64_t k) const { return first ? std::optional<int>(int(*first + k)) : std::nullopt; }
+};
+
+FrameSpan framesOf(const Scene& s) {
+    if (!hasFramePattern(s.volume.path)) return {};
     if (!s.volume.frames)
         throw InputError(s.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
     if (!hasFramePattern(s.output.path) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
         throw InputError(s.output.path + ": several frames need a #### pattern in the output path");
     if (!s.output.preview.empty() && !hasFramePattern(s.output.preview) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
         throw InputError(s.output.preview + ": several frames need a #### pattern in the preview path");
-    std::vector<std::optional<int>> frames;
-    for (int f = (*s.volume.frames)[0]; f <= (*s.volume.frames)[1]; ++f) frames.push_back(f);
-    return frames;
+    return {(*s.volume.frames)[0], (*s.volume.frames)[1]};
 }
 
 size_t peakRssBytes() {
@@ -242,14 +251,15 @@ int runRender(const RenderCommand& cmd) {
         std::cout << Renderer(scene).graph().explain(scene);
         return 0;
     }
-    auto frames = framesOf(scene);
-    const bool sequence = frames.size() > 1 || frames.front().has_value();
-    if (cmd.light_edits) return runLightEdits(scene, *cmd.light_edits, frames.front(), cmd.stats);
+    const FrameSpan frames = framesOf(scene);
+    const bool sequence = frames.first.has_value();
+    if (cmd.light_edits) return runLightEdits(scene, *cmd.light_edits, frames.first, cmd.stats);
 
     Renderer renderer(scene);
     nlohmann::json stats = {{"backend", renderer.backendName()}, {"frames", nlohmann::json::array()}};
     size_t emptyFrames = 0;
-    for (const auto& frame : frames) {
+    for (int64_t k = 0; k < frames.count(); ++k) {
+        const std::optional<int> frame = frames.at(k);
         FrameResult r = renderer.renderToFile(frame, sequence);
         for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
         emptyFrames += r.empty;

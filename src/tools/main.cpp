@@ -103,7 +103,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version exit 0 with their text; every malformed command line is bad input:
+        // one line, exit 2, as any other.
+        if (e.get_exit_code() == 0) return app.exit(e);
+        std::cerr << "voxlux: error: command line: " << e.what() << "\n";
+        return voxlux::kInputError;
     }
 
     try {

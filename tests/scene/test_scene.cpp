@@ -50,9 +50,53 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
               "shot.json: /lights/0/position: unknown key (expected one of name, enabled, type, color, intensity)");
 }
 
+// Values a float or an int cannot hold, and cameras or lights a ray cannot be traced from, are
+// refused with their key.
+TEST(Scene, NumbersBeyondTheirTypeAndDegenerateCamerasAreRefused) {
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"direction": [1e308, 1, 1]}]})"),
+              "shot.json: /lights/0/direction: 1e+308 is beyond the float range (+-3.4e38)");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"step": 1e400}})"),
+              "shot.json: malformed JSON: number overflow parsing '1e400'");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"cone": {"samples": -4294967296}}})"),
+              "shot.json: /effects/cone/samples: -4294967296 is beyond the int range");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "camera": {"position": [3e38, 0, 0], "look_at": [0, 0, 0]}})"),
+              "shot.json: /camera/position: each coordinate must lie within +-1e9");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "camera": {"position": [0, 0, 5], "look_at": [0, 0, 3.4e38]}})"),
+              "shot.json: /camera/look_at: each coordinate must lie within +-1e9");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "camera": {"matrix": [0,0,0,0, 0,0,0,0, 0,0,0,0, 0,0,0,0]}})"),
+              "shot.json: /camera/matrix: its rotation part (elements 0-10) must be invertible");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "camera": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 5e9,0,0,1]}})"),
+              "shot.json: /camera/matrix: the position (elements 12-14) must lie within +-1e9");
+    // A huge or tiny direction is a direction: normalised without overflow or underflow.
+    for (const char* d : {"[1e30, 1e30, 1e30]", "[1e-40, 1e-40, 1e-40]"}) {
+        const Scene s = parseScene(std::string(R"({"volume": {"path": "a.vdb"}, "lights": [{"direction": )") + d + "}]}",
+                                   "shot.json", "/shots");
+        EXPECT_NEAR(s.lights[0].direction.x, 1 / std::sqrt(3.0f), 1e-6f) << d;
+        EXPECT_NEAR(glm::length(s.lights[0].direction), 1.0f, 1e-6f) << d;
+    }
+}
+
 TEST(Scene, MalformedJsonGivesLineAndColumn) {
     EXPECT_EQ(sceneErrorOf("{\n  \"volume\": {\"path\": \"a.vdb\"},\n  \"render\": {\"step\": 0.5,}\n}"),
               "shot.json: malformed JSON at line 3, column 26: unexpected '}'; expected string literal");
+}
+
+// Nesting past 64 levels is refused before any parser recurses: 100,000 levels used to overflow
+// the stack.
+TEST(Scene, NestingDeeperThan64LevelsIsRefused) {
+    const auto nested = [](int depth) { return std::string(depth, '[') + std::string(depth, ']'); };
+    EXPECT_NO_THROW(checkJsonDepth(nested(64), "f.json"));
+    EXPECT_EQ(inputErrorOf([&] { checkJsonDepth(nested(65), "f.json"); }), "f.json: JSON nested deeper than 64 levels at line 1");
+    EXPECT_EQ(inputErrorOf([&] { checkJsonDepth("{\n\"a\": \n" + nested(1000), "f.json"); }),
+              "f.json: JSON nested deeper than 64 levels at line 3");
+    // Brackets in strings, escaped quotes included, are text.
+    EXPECT_NO_THROW(checkJsonDepth("[\"" + nested(100) + "\\\"" + std::string(100, '{') + "\"]", "f.json"));
+
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": )" + nested(100000) + "}}"),
+              "shot.json: JSON nested deeper than 64 levels at line 1");
+    nlohmann::json scene = {{"volume", {{"path", "a.vdb"}}}};
+    EXPECT_EQ(inputErrorOf([&] { applySceneSet(scene, "render.step=" + nested(5000)); }),
+              "--set render.step: JSON nested deeper than 64 levels at line 1");
 }
 
 TEST(Scene, RoundTripThroughJson) {

@@ -266,6 +266,22 @@ TEST(Cli, ExrHasRequestedLayersAndMetadata) {
         EXPECT_TRUE(stats["frames"][0]["stages"].contains(stage)) << stage;
 }
 
+// A range is walked one frame at a time, never allocated up front: with 2e9 frames the first one
+// renders at once, and the second, missing, stops the run with its name.
+TEST(Cli, AHugeFrameRangeRendersUntilItsFirstMissingFrame) {
+    const std::string dir = tempDir("huge_range");
+    fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud.0001.vdb");
+    CliResult r = runCli("render " + dir + "/cloud.####.vdb --frames 1-2000000000 --res 16x16 --backend cpu --shadows none -o " +
+                         dir + "/out.####.exr");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: " + dir + "/cloud.0002.vdb: no such file\n");
+    EXPECT_TRUE(fs::exists(dir + "/out.0001.exr"));
+    // Frame numbers beyond 32 bits have no int value and are refused.
+    r = runCli("render " + dir + "/cloud.####.vdb --frames 1-3000000000 -o " + dir + "/out.####.exr");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: command line: /volume/frames: expected [first, last] integers with first <= last\n");
+}
+
 TEST(Cli, SequenceWithAnEmptyFrameRendersItTransparent) {
     VOXLUX_REQUIRE_SHARED(frame1, "openusd/smoke_000001.vdb");
     const std::string dir = tempDir("sequence");
@@ -305,18 +321,50 @@ TEST(Cli, RepeatedGridNamesArePickedByIndexWithAWarning) {
 TEST(Cli, BadOptionsAreRefusedWithTheOptionNamed) {
     const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
     expectRejected("render " + cloud + " --res 512", "--res '512': expected WIDTHxHEIGHT");
-    expectRejected("render " + cloud + " --light area:pos=0,0,0",
-                   "--light 'area:pos=0,0,0': type must be directional, point, spot or ambient");
-    expectRejected("render " + cloud + " --light ambient:dir=0,1,0", "--light 'ambient:dir=0,1,0': ambient lights have no dir");
     expectRejected("render " + cloud + " --set effects.cone.samples", "--set 'effects.cone.samples': expected KEY=VALUE");
     expectRejected("render " + cloud + " --set effects.cone.samples=0",
                    "command line: /effects/cone/samples: must lie in 1..1024");
-    expectRejected("render " + cloud + " --light point:intensity=5", "--light 'point:intensity=5': needs pos=x,y,z");
     expectRejected("render " + cloud + " --step 0", "command line: /render/step: must lie in [0.01, 64] voxels");
     expectRejected("render " + cloud + " --shadows sat", "command line: /effects/shadows: 'sat' is not one of none, raymarch, sat_cone, propagation");
     expectRejected("render " + cloud + " --aovs direct,depth,direct",
                    "command line: /output/aovs/2: duplicate AOV 'direct' (first at /output/aovs/0)");
 }
+
+// A light from the command line is read by the scene's light reader, so it gets exactly the
+// scene's checks, and its errors name the flag.
+TEST(Cli, LightFlagsGetTheScenesChecks) {
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    expectRejected("render " + cloud + " --light area:pos=0,0,0",
+                   "--light 'area:pos=0,0,0': /type: 'area' is not one of directional, point, spot, ambient");
+    expectRejected("render " + cloud + " --light ambient:dir=0,1,0",
+                   "--light 'ambient:dir=0,1,0': /direction: unknown key (expected one of name, enabled, type, color, intensity)");
+    expectRejected("render " + cloud + " --light point:intensity=5", "--light 'point:intensity=5': /position: required key is missing");
+    // A zero direction overflowed an int in the march's brick walk.
+    expectRejected("render " + cloud + " --light directional:dir=0,0,0", "--light 'directional:dir=0,0,0': /direction: must not be zero");
+    expectRejected("render " + cloud + " --light point:pos=0,3,0:intensity=-1",
+                   "--light 'point:pos=0,3,0:intensity=-1': /intensity: must be a finite number >= 0");
+    expectRejected("render " + cloud + " --light point:pos=0,3,0:color=-1,1,1",
+                   "--light 'point:pos=0,3,0:color=-1,1,1': /color: must be finite and >= 0");
+    expectRejected("render " + cloud + " --light spot:pos=0,3,0:dir=0,-1,0:angle=90",
+                   "--light 'spot:pos=0,3,0:dir=0,-1,0:angle=90': /cone_angle: must lie in (0, 90) degrees");
+    expectRejected("render " + cloud + " --light point:pos=2e9,0,0", "--light 'point:pos=2e9,0,0': /position: each coordinate must lie within +-1e9");
+}
+
+// Numbers that have no value in the scene are refused, never turned into the default or wrapped.
+TEST(Cli, NonFiniteAndOutOfRangeNumbersAreRefused) {
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    expectRejected("render " + cloud + " --step nan", "--step: nan is not a finite number");
+    expectRejected("render " + cloud + " --density-scale inf", "--density-scale: inf is not a finite number");
+    expectRejected("render " + cloud + " --set effects.cone.samples=4294967316",
+                   "command line: /effects/cone/samples: 4294967316 is beyond the int range");
+    expectRejected("render " + cloud + " --set render.reference.spp=4294967297",
+                   "command line: /render/reference/spp: 4294967297 is beyond the int range");
+    expectRejected("render " + cloud + " --set material.density_scale=1e39",
+                   "command line: /material/density_scale: 1e+39 is beyond the float range (+-3.4e38)");
+    // CLI11's own conversion errors are bad input too: exit 2, one line.
+    expectRejected("render " + cloud + " --step abc", "command line: Could not convert: --step = abc");
+}
+
 
 }  // namespace
 }  // namespace voxlux::test
