@@ -68,8 +68,19 @@ std::string temporaryPathFor(const std::string& path) {
 }  // namespace
 
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-    const std::string tmp = temporaryPathFor(path);
     std::error_code ec;
+    const fs::file_status target = fs::status(path, ec);
+    if (fs::is_directory(target)) throw InputError(path + ": is a folder, not a file");
+    if (fs::exists(target) && !fs::is_regular_file(target)) {
+        // A device or a pipe (/dev/null, a FIFO) is written in place: a rename would replace it.
+        try {
+            write(path);
+        } catch (const std::exception& e) {
+            throw InputError(path + ": cannot write (" + e.what() + ")");
+        }
+        return;
+    }
+    const std::string tmp = temporaryPathFor(path);
     try {
         write(tmp);
     } catch (const std::exception& e) {
@@ -78,8 +89,9 @@ void writeAtomically(const std::string& path, const std::function<void(const std
     }
     fs::rename(tmp, path, ec);
     if (ec) {
+        const std::string problem = ec.message();  // before the clean-up reuses ec
         fs::remove(tmp, ec);
-        throw InputError(path + ": cannot write (" + ec.message() + ")");
+        throw InputError(path + ": cannot write (" + problem + ")");
     }
 }
 

@@ -39,6 +39,8 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& image, const
 
 // Calls `write` with a temporary path in the same folder, then renames it to `path`. On any
 // failure the temporary file is removed and InputError "<path>: cannot write (...)" is thrown.
+// A `path` that exists and is not a regular file is never replaced: a device or pipe
+// (/dev/null) is written in place, a folder is refused.
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
 void writeFileAtomically(const std::string& path, const std::string& bytes);
 

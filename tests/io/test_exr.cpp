@@ -374,5 +374,20 @@ TEST(Png, WriteIntoAMissingFolderThrowsAndLeavesNothing) {
     EXPECT_TRUE(fs::is_empty(dir));  // no file, no temporary, no folder
 }
 
+// The atomic write's rename once replaced /dev/null (as root) with a regular file. A device is
+// written in place and stays a device; a full one gives the write's error; a folder is refused.
+TEST(Exr, DevicesAreWrittenInPlaceAndFoldersRefused) {
+    writeExr("/dev/null", patternImage(), spec(PixelType::Half, "zip", {}), ExrMetadata{});
+    writeFileAtomically("/dev/null", "{}\n");
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+    if (fs::exists("/dev/full")) {
+        EXPECT_EQ(inputErrorOf([] { writeFileAtomically("/dev/full", "{}\n"); }), "/dev/full: cannot write (write failed)");
+        EXPECT_TRUE(fs::is_character_file("/dev/full"));
+    }
+    const std::string dir = tempDir("write_folder");
+    EXPECT_EQ(inputErrorOf([&] { writeFileAtomically(dir, "{}\n"); }), dir + ": is a folder, not a file");
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
 }  // namespace
 }  // namespace voxlux::test

@@ -98,7 +98,7 @@ TEST(Transmittance, AffineTransformCpuAndGl) {
     if (auto gl = glBackendOrSkip()) backends.push_back(std::move(gl));
     for (auto& backend : backends) {
         auto prepared = prepare(volume, boxScene(0.5f), camera);
-        const auto& px = backend->march(prepared->inputs).pixels[4 * 9 + 4];
+        const kernel::VxPixel px = backend->march(prepared->inputs).pixels[4 * 9 + 4];  // a copy: the image is a temporary
         EXPECT_NEAR(px.transmittance, expected, 1e-4) << backend->name();
     }
 }
