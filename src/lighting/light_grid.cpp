@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -11,24 +12,42 @@
 namespace voxlux {
 namespace {
 
-// One voxel's share of one cell along an axis: the voxel (local index `voxel`, spanning
-// [voxel, voxel + 1)) and the length of its overlap with the cell, in voxels.
-struct Overlap {
-    int voxel;
-    double length;
+// The cells along an axis of `voxels` voxels cut into cells of `cell` voxels: cell i spans
+// [i * cell, min((i + 1) * cell, voxels)). The box filter weights a voxel [v, v + 1) by its overlap
+// with a cell, so it is exact for the voxels' piecewise-constant field.
+struct AxisCells {
+    int cells;
+    int voxels;
+    double cell;
+
+    double lo(int i) const { return i * cell; }
+    double hi(int i) const { return std::min((i + 1) * cell, double(voxels)); }
+    // Length of voxel v's overlap with cell i (0 or less: none).
+    double overlap(int i, int v) const { return std::min(double(v + 1), hi(i)) - std::max(double(v), lo(i)); }
+    // Calls f(cell, overlap length) for every cell voxel v overlaps. The search starts one cell
+    // early, so a quotient v / cell rounded up cannot skip a cell.
+    template <class F>
+    void eachCellOf(int v, F&& f) const {
+        for (int i = std::max(int(std::floor(v / cell)) - 1, 0); i < cells && lo(i) < v + 1; ++i)
+            if (const double length = overlap(i, v); length > 0) f(i, length);
+    }
 };
 
-// For each cell along an axis of `voxels` voxels cut into cells of `cell` voxels, the voxels it
-// overlaps. This is the exact box filter of the voxels' piecewise-constant field.
-std::vector<std::vector<Overlap>> axisOverlaps(int cells, int voxels, double cell) {
-    std::vector<std::vector<Overlap>> out(static_cast<size_t>(cells));
-    for (int i = 0; i < cells; ++i) {
-        const double lo = i * cell, hi = std::min((i + 1) * cell, double(voxels));
-        for (int v = int(std::floor(lo)); v < int(std::ceil(hi)) && v < voxels; ++v) {
-            const double length = std::min(double(v + 1), hi) - std::max(double(v), lo);
-            if (length > 0) out[size_t(i)].push_back({v, length});
-        }
-    }
+// An occupied brick: its coordinate relative to the occupied box's lowest brick, and its slot.
+struct OccupiedBrick {
+    glm::ivec3 local;
+    int slot;
+};
+
+// The page table's bricks in (z, y, x) order, so every cell sums its voxels in one fixed order.
+std::vector<OccupiedBrick> occupiedBricks(const PageTable& pages) {
+    std::vector<OccupiedBrick> out;
+    out.reserve(pages.occupied);
+    for (const glm::ivec4& e : pages.entries)
+        if (e.w != VX_PAGE_EMPTY) out.push_back({glm::ivec3(e) - pages.bricks_min, e.w});
+    std::sort(out.begin(), out.end(), [](const OccupiedBrick& a, const OccupiedBrick& b) {
+        return std::tie(a.local.z, a.local.y, a.local.x) < std::tie(b.local.z, b.local.y, b.local.x);
+    });
     return out;
 }
 
@@ -131,55 +150,57 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding)
     // Voxel v's value holds on [v - 1/2, v + 1/2): the grid starts half a voxel below the first.
     g.origin = glm::vec3(bmin * VX_BRICK) - 0.5f;
     g.values.assign(g.cells() * g.planes, 0.0f);
-    auto ox = axisOverlaps(g.dims.x, voxels.x, g.cell);
-    auto oy = axisOverlaps(g.dims.y, voxels.y, g.cell);
-    auto oz = axisOverlaps(g.dims.z, voxels.z, g.cell);
+    const AxisCells ax{g.dims.x, voxels.x, g.cell}, ay{g.dims.y, voxels.y, g.cell}, az{g.dims.z, voxels.z, g.cell};
     const double inv_volume = 1.0 / (double(g.cell) * g.cell * g.cell);
     const size_t plane = g.cells();
     const float cell_world = cellWorldSize(in.atlas->index_to_world * g.lightToIndex());
     const double max_sigma = double(kMaxCellOpticalDepth) / cell_world;
     std::atomic<uint64_t> clamped{0};
 
-    // Atlas slot of every brick in the occupied box: a dense table at brick (not voxel)
-    // resolution, 1/512 of the voxels, so the filter does no hash lookups.
-    const glm::ivec3 nb = bmax - bmin + 1;
-    std::vector<int> slots(size_t(nb.x) * nb.y * nb.z);
-    tbb::parallel_for(0, nb.z, [&](int z) {
-        for (int y = 0; y < nb.y; ++y)
-            for (int x = 0; x < nb.x; ++x)
-                slots[(size_t(z) * nb.y + y) * nb.x + x] = k.vx_page_lookup(bmin + glm::ivec3(x, y, z));
-    });
-
+    // Only occupied bricks are visited, so the cost follows the occupied voxels, never the
+    // occupied box: two small parts far apart cost what the parts cost. Each layer of cells sums
+    // the bricks that reach it, in (z, y, x) order, into sums of its own.
+    const std::vector<OccupiedBrick> bricks = occupiedBricks(*in.pages);
     tbb::parallel_for(0, g.dims.z, [&](int cz) {
-        for (int cy = 0; cy < g.dims.y; ++cy)
-            for (int cx = 0; cx < g.dims.x; ++cx) {
-                double sum[4] = {0, 0, 0, 0};
-                for (const Overlap& z : oz[size_t(cz)])
-                    for (const Overlap& y : oy[size_t(cy)])
-                        for (const Overlap& x : ox[size_t(cx)]) {
-                            const glm::ivec3 local(x.voxel, y.voxel, z.voxel);
-                            const glm::ivec3 b = local / VX_BRICK;
-                            const int slot = slots[(size_t(b.z) * nb.y + b.y) * nb.x + b.x];
-                            if (slot == VX_PAGE_EMPTY) continue;
-                            const glm::ivec3 o = local % VX_BRICK;
-                            kernel::CpuKernel::VxCorners c{
-                                slot * VX_BRICK_VOXELS + (o.z * VX_BRICK_STRIDE + o.y) * VX_BRICK_STRIDE + o.x, 0, 0, 0};
-                            const float sigma = k.vx_value_extinction(k.vx_atlas_density(c.base));
-                            if (sigma <= 0.0f) continue;
-                            const double w = x.length * y.length * z.length * sigma;
-                            sum[0] += w;
-                            if (g.planes == 1) continue;
-                            const glm::vec3 a = k.vx_albedo(c);
-                            for (int ch = 0; ch < 3; ++ch) sum[ch + 1] += w * (1.0 - double(bleeding) * a[ch]);
-                        }
-                const size_t i = (size_t(cz) * g.dims.y + cy) * g.dims.x + cx;
-                if (sum[0] * inv_volume > max_sigma) {
-                    ++clamped;
-                    for (int p = 1; p < g.planes; ++p) sum[p] *= max_sigma / (sum[0] * inv_volume);
-                    sum[0] = max_sigma / inv_volume;
-                }
-                for (int p = 0; p < g.planes; ++p) g.values[p * plane + i] = float(sum[p] * inv_volume);
+        const int z0 = int(std::floor(az.lo(cz))), z1 = int(std::ceil(az.hi(cz)));  // voxels [z0, z1)
+        const auto byZ = [](const OccupiedBrick& b, int z) { return b.local.z < z; };
+        const auto begin = std::lower_bound(bricks.begin(), bricks.end(), z0 / VX_BRICK, byZ);
+        const auto end = std::lower_bound(begin, bricks.end(), (z1 - 1) / VX_BRICK + 1, byZ);
+        std::vector<double> sums(size_t(g.dims.x) * g.dims.y * g.planes, 0.0);
+        for (auto b = begin; b != end; ++b) {
+            const glm::ivec3 first = b->local * VX_BRICK;
+            for (int oz = std::max(z0 - first.z, 0); oz < std::min(z1 - first.z, VX_BRICK); ++oz) {
+                const int vz = first.z + oz;
+                const double z_length = az.overlap(cz, vz);
+                if (z_length <= 0) continue;
+                for (int oy = 0; oy < VX_BRICK; ++oy)
+                    for (int ox = 0; ox < VX_BRICK; ++ox) {
+                        kernel::CpuKernel::VxCorners c{
+                            b->slot * VX_BRICK_VOXELS + (oz * VX_BRICK_STRIDE + oy) * VX_BRICK_STRIDE + ox, 0, 0, 0};
+                        const float sigma = k.vx_value_extinction(k.vx_atlas_density(c.base));
+                        if (sigma <= 0.0f) continue;
+                        const glm::vec3 albedo = g.planes == 1 ? glm::vec3(0.0f) : k.vx_albedo(c);
+                        ay.eachCellOf(first.y + oy, [&](int cy, double y_length) {
+                            ax.eachCellOf(first.x + ox, [&](int cx, double x_length) {
+                                const double w = x_length * y_length * z_length * sigma;
+                                double* sum = &sums[(size_t(cy) * g.dims.x + cx) * g.planes];
+                                sum[0] += w;
+                                for (int ch = 1; ch < g.planes; ++ch) sum[ch] += w * (1.0 - double(bleeding) * albedo[ch - 1]);
+                            });
+                        });
+                    }
             }
+        }
+        for (size_t cell = 0; cell < size_t(g.dims.x) * g.dims.y; ++cell) {
+            double* sum = &sums[cell * g.planes];
+            if (sum[0] * inv_volume > max_sigma) {
+                ++clamped;
+                for (int p = 1; p < g.planes; ++p) sum[p] *= max_sigma / (sum[0] * inv_volume);
+                sum[0] = max_sigma / inv_volume;
+            }
+            const size_t i = size_t(cz) * g.dims.x * g.dims.y + cell;
+            for (int p = 0; p < g.planes; ++p) g.values[p * plane + i] = float(sum[p] * inv_volume);
+        }
     });
     g.clamped_cells = clamped;
     g.needed = neededCells(g);
