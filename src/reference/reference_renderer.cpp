@@ -1,7 +1,9 @@
 #include "reference/reference_renderer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <optional>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -26,6 +28,25 @@ uint32_t pcgHash(uint32_t v) {
 struct Tracker {
     CpuKernel& k;
     const std::vector<float>& majorant;
+    std::atomic<uint64_t>& opaque_segments;
+
+    // Tentative collisions one brick's segment may take: m * length of them are expected, a
+    // handful where the majorant is tight, 65536 at an optical-depth bound of 65536 in one brick
+    // (where any light left is below a float's resolution of the image's values).
+    static constexpr int kMaxSegmentEvents = 1 << 16;
+
+    // The tentative collision after t at majorant m, or nothing when the majorant overflowed a
+    // float (density 3e38: no step could leave t, and no event could collide) or the segment has
+    // taken kMaxSegmentEvents. The medium is then opaque there: the caller stops, and the segment
+    // is counted (a bias towards opaque, reported). A step below t's float resolution (density
+    // 1e6 a hundred units from the camera) moves to the next float, so every event makes progress.
+    std::optional<float> nextCollision(float t, float m, int events_here, ReferenceRng& rng) const {
+        if (!std::isfinite(m) || events_here >= kMaxSegmentEvents) {
+            ++opaque_segments;
+            return std::nullopt;
+        }
+        return std::max(t - std::log(1.0f - rng.next()) / m, std::nextafter(t, INFINITY));
+    }
 
     // Calls visit(slot, brick, o, d, t_begin, t_end, majorant) for each brick of non-zero majorant
     // the ray crosses within [0, t_max), in order, until visit returns false.
@@ -48,8 +69,13 @@ struct Tracker {
     float transmittance(glm::vec3 x, glm::vec3 w, float dist, ReferenceRng& rng, int& events) const {
         float T = 1.0f;
         walk(x, w, dist, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
-            for (;;) {
-                t -= std::log(1.0f - rng.next()) / m;
+            for (int here = 0;; ++here) {
+                const std::optional<float> next = nextCollision(t, m, here, rng);
+                if (!next) {
+                    T = 0.0f;
+                    return false;
+                }
+                t = *next;
                 if (t >= t_end) return true;
                 ++events;
                 T *= std::max(0.0f, 1.0f - k.vx_extinction(k.vx_corners_at(slot, brick, o + d * t)) / m);
@@ -72,11 +98,20 @@ struct Tracker {
         Flight f;
         const bool emits = k.P.emission_sources > 0;
         walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
-            for (;;) {
-                t -= std::log(1.0f - rng.next()) / m;
-                if (t >= t_end) return true;
-                ++events;
+            for (int here = 0;; ++here) {
+                const std::optional<float> next = nextCollision(t, m, here, rng);
+                if (next && *next >= t_end) return true;
+                if (next) {
+                    t = *next;
+                    ++events;
+                }
                 const CpuKernel::VxCorners c = k.vx_corners_at(slot, brick, o + d * t);
+                if (!next) {  // opaque at float precision: the flight ends here
+                    f.collided = true;
+                    f.t = t;
+                    f.cell = c;
+                    return false;
+                }
                 if (emits) f.emitted += k.vx_emission(c) / m;
                 if (rng.next() * m < k.vx_extinction(c)) {
                     f.collided = true;
@@ -180,15 +215,17 @@ float ratioTrackedTransmittance(const KernelInputs& in, const std::vector<float>
                                 float dist, ReferenceRng& rng) {
     CpuKernel k = bindCpuKernel(in);
     int events = 0;
-    return Tracker{k, majorants}.transmittance(x, w, dist, rng, events);
+    std::atomic<uint64_t> opaque{0};
+    return Tracker{k, majorants, opaque}.transmittance(x, w, dist, rng, events);
 }
 
-RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs) {
+RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs, uint64_t* opaque_segments) {
     CpuKernel k = bindCpuKernel(in);
     if (k.P.surface_inv_range > 0.0f || k.P.noise_octaves > 0)
         throw InputError("render.method reference: effects.surface and effects.perturbation are march-only effects");
     const std::vector<float> majorants = brickMajorants(in);
-    const Tracker tracker{k, majorants};
+    std::atomic<uint64_t> opaque{0};
+    const Tracker tracker{k, majorants, opaque};
     RenderImage img;
     img.width = k.P.width;
     img.height = k.P.height;
@@ -233,6 +270,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs)
                 px.variance = rs.spp > 1 ? float(std::max(0.0, lum2 - rs.spp * mean * mean) / (rs.spp - 1) / rs.spp) : 0.0f;
             }
     });
+    if (opaque_segments) *opaque_segments = opaque;
     return img;
 }
 

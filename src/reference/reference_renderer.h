@@ -43,7 +43,10 @@ float ratioTrackedTransmittance(const KernelInputs& inputs, const std::vector<fl
 // direct (first-bounce NEE), indirect (the rest), ambient and emission (seen from the camera)
 // AOVs, depth (mean distance of the first collision), samples (density lookups per path) and the
 // variance of the pixel's luminance estimate (sample variance / spp). Throws InputError for the
-// march-only effects surface and perturbation.
-RenderImage renderReference(const KernelInputs& inputs, const ReferenceSettings& settings);
+// march-only effects surface and perturbation. Tracking stays bounded in any medium: a brick
+// segment whose majorant overflows a float (density 3e38), or that takes over 2^16 tentative
+// collisions, is taken as opaque there; `opaque_segments`, when given, receives their count.
+RenderImage renderReference(const KernelInputs& inputs, const ReferenceSettings& settings,
+                            uint64_t* opaque_segments = nullptr);
 
 }  // namespace voxlux

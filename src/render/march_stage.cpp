@@ -61,8 +61,15 @@ void MarchStage::run(StageRun& run) {
     else if (!lighting_.propagation.volume().values.empty()) sources.illumination = &lighting_.propagation.volume();
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), documentFrame(run.document),
                                                  color_.xyzToWorking(), sources);
-    image_ = scene.render.method == RenderMethod::Reference ? renderReference(inputs, scene.render.reference)
-                                                            : run.backend.march(inputs);
+    if (scene.render.method != RenderMethod::Reference) {
+        image_ = run.backend.march(inputs);
+        return;
+    }
+    uint64_t opaque = 0;
+    image_ = renderReference(inputs, scene.render.reference, &opaque);
+    if (opaque)
+        run.warnings.push_back("reference: " + std::to_string(opaque) +
+                               " brick segments too dense to track (extinction beyond a float, or over 2^16 collisions) taken as opaque");
 }
 
 }  // namespace voxlux
