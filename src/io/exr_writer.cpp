@@ -1,12 +1,15 @@
 #include "io/exr_writer.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <stdexcept>
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <half.h>
@@ -60,9 +63,26 @@ struct Channel {
     std::vector<Imath::half> half_plane;  // filled from `plane` for HALF channels
 };
 
+std::string temporaryPrefixFor(const std::string& path) { return "." + fs::path(path).filename().string() + ".tmp-"; }
+
 std::string temporaryPathFor(const std::string& path) {
-    fs::path p(path);
-    return (p.parent_path() / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()))).string();
+    return (fs::path(path).parent_path() / (temporaryPrefixFor(path) + std::to_string(::getpid()))).string();
+}
+
+// Removes the temporaries a killed voxlux left for `path` (".<name>.tmp-<pid>" whose process no
+// longer runs here). One pass over the folder per write.
+void removeStaleTemporaries(const std::string& path) {
+    const std::string prefix = temporaryPrefixFor(path);
+    const fs::path folder = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        const std::string digits = name.substr(prefix.size());
+        if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+        const pid_t pid = pid_t(std::stol(digits));
+        if (pid != ::getpid() && ::kill(pid, 0) == -1 && errno == ESRCH) fs::remove(entry.path(), ec);
+    }
 }
 
 }  // namespace
@@ -80,6 +100,7 @@ void writeAtomically(const std::string& path, const std::function<void(const std
         }
         return;
     }
+    removeStaleTemporaries(path);
     const std::string tmp = temporaryPathFor(path);
     try {
         write(tmp);
@@ -93,6 +114,14 @@ void writeAtomically(const std::string& path, const std::function<void(const std
         fs::remove(tmp, ec);
         throw InputError(path + ": cannot write (" + problem + ")");
     }
+}
+
+void checkWritable(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError(path + ": is a folder, not a file");
+    const std::string probe = temporaryPathFor(path);
+    if (!std::ofstream(probe, std::ios::binary)) throw InputError(path + ": cannot write (" + std::strerror(errno) + ")");
+    fs::remove(probe, ec);
 }
 
 void writeFileAtomically(const std::string& path, const std::string& bytes) {

@@ -40,8 +40,13 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& image, const
 // Calls `write` with a temporary path in the same folder, then renames it to `path`. On any
 // failure the temporary file is removed and InputError "<path>: cannot write (...)" is thrown.
 // A `path` that exists and is not a regular file is never replaced: a device or pipe
-// (/dev/null) is written in place, a folder is refused.
+// (/dev/null) is written in place, a folder is refused. Temporaries of `path` that a killed
+// voxlux left (their process no longer runs on this machine) are removed first.
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
 void writeFileAtomically(const std::string& path, const std::string& bytes);
+
+// Throws the InputError writeAtomically would give for `path`'s folder, leaving nothing behind:
+// for an output written at the end of a long run (--stats), checked before the run.
+void checkWritable(const std::string& path);
 
 }  // namespace voxlux

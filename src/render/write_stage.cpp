@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "core/error.h"
 #include "scene/camera.h"
 #include "io/exr_writer.h"
 #include "core/frame_pattern.h"
@@ -51,13 +52,22 @@ void WriteStage::run(StageRun& run) {
         const Chromaticities& c = *cp.output_chromaticities;
         meta.chromaticities = {{c.red, c.green, c.blue, c.white}};
     }
-    const ExrWriteReport written = writeExr(path_, image, scene.output, meta);
+    // A frame's outputs are written together or not at all: the preview first, and taken away
+    // again when the EXR cannot be written.
     if (!scene.output.preview.empty()) {
         preview_path_ = framePath(scene.output.preview, frame);
         makeParentFolder(preview_path_);
         const PngWriteReport png = writePng(preview_path_, image.width, image.height, grade_.preview(), false);
         if (png.non_finite)
             run.warnings.push_back(preview_path_ + ": " + std::to_string(png.non_finite) + " non-finite samples written as 0");
+    }
+    ExrWriteReport written;
+    try {
+        written = writeExr(path_, image, scene.output, meta);
+    } catch (const InputError&) {
+        std::error_code ec;
+        if (!preview_path_.empty()) std::filesystem::remove(preview_path_, ec);
+        throw;
     }
     if (written.non_finite)
         run.warnings.push_back(path_ + ": " + std::to_string(written.non_finite) + " non-finite samples written as 0");

@@ -208,6 +208,7 @@ nlohmann::json describeUpdate(const LightRigUpdate& u, const std::string& what) 
 int runLightEdits(const Scene& scene, const std::string& edits_file, std::optional<int> frame,
                   const std::optional<std::string>& stats_file) {
     const std::vector<LightEdit> edits = loadLightEdits(edits_file);
+    if (stats_file) checkWritable(*stats_file);
     Renderer renderer(scene);
     LightRig rig(renderer, scene);
     {   // every edit is checked before anything renders
@@ -255,6 +256,7 @@ int runRender(const RenderCommand& cmd) {
     const bool sequence = frames.first.has_value();
     if (cmd.light_edits) return runLightEdits(scene, *cmd.light_edits, frames.first, cmd.stats);
 
+    if (cmd.stats) checkWritable(*cmd.stats);  // before any frame: every output or none
     Renderer renderer(scene);
     nlohmann::json stats = {{"backend", renderer.backendName()}, {"frames", nlohmann::json::array()}};
     size_t emptyFrames = 0;

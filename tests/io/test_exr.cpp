@@ -389,5 +389,18 @@ TEST(Exr, DevicesAreWrittenInPlaceAndFoldersRefused) {
     EXPECT_TRUE(fs::is_empty(dir));
 }
 
+// A killed render leaves ".out.exr.tmp-PID"; the next write of out.exr removes it when that
+// process is gone, and leaves a running one's alone.
+TEST(Exr, StaleTemporariesOfTheOutputAreRemoved) {
+    const std::string dir = tempDir("stale_tmp");
+    const std::string gone = dir + "/.out.exr.tmp-999999999", running = dir + "/.out.exr.tmp-1", other = dir + "/.other.exr.tmp-999999999";
+    for (const std::string& f : {gone, running, other}) std::ofstream(f) << "partial";
+    writeExr(dir + "/out.exr", patternImage(), spec(PixelType::Half, "zip", {}), ExrMetadata{});
+    EXPECT_FALSE(fs::exists(gone));
+    EXPECT_TRUE(fs::exists(running));   // pid 1 (init) always runs
+    EXPECT_TRUE(fs::exists(other));     // another output's
+    EXPECT_TRUE(fs::exists(dir + "/out.exr"));
+}
+
 }  // namespace
 }  // namespace voxlux::test

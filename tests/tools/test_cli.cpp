@@ -266,6 +266,31 @@ TEST(Cli, ExrHasRequestedLayersAndMetadata) {
         EXPECT_TRUE(stats["frames"][0]["stages"].contains(stage)) << stage;
 }
 
+// A frame's outputs are all written or none is: a preview or stats file that cannot be written
+// leaves no EXR behind (it used to exit 2 with the EXR written).
+TEST(Cli, AnOutputThatCannotBeWrittenLeavesNoOther) {
+    const std::string dir = tempDir("all_or_none");
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    std::ofstream(dir + "/a_file") << "not a folder";
+    const std::string args = "render " + cloud + " --res 16x16 --backend cpu --shadows none -o " + dir + "/out.exr";
+    CliResult r = runCli(args + " --preview " + dir + "/a_file/preview.png");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: " + dir + "/a_file/preview.png: cannot write (Not a directory)\n");
+    EXPECT_FALSE(fs::exists(dir + "/out.exr"));
+    r = runCli(args + " --stats " + dir + "/a_file/stats.json");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: " + dir + "/a_file/stats.json: cannot write (Not a directory)\n");
+    EXPECT_FALSE(fs::exists(dir + "/out.exr"));
+    // The preview goes when the EXR cannot be written.
+    r = runCli("render " + cloud + " --res 16x16 --backend cpu --shadows none -o " + dir + "/a_file/out.exr --preview " + dir +
+               "/preview.png");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_FALSE(fs::exists(dir + "/preview.png"));
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+    EXPECT_EQ(left, std::vector<std::string>{"a_file"});
+}
+
 // A range is walked one frame at a time, never allocated up front: with 2e9 frames the first one
 // renders at once, and the second, missing, stops the run with its name.
 TEST(Cli, AHugeFrameRangeRendersUntilItsFirstMissingFrame) {
