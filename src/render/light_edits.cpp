@@ -101,7 +101,7 @@ std::string applyLightEdit(LightRig& rig, const LightEdit& e) {
     nlohmann::json merged = lightToJson(rig.light(id));
     if (!rig.light(id).enabled) merged["enabled"] = false;
     merged.merge_patch(o.raw("set"));
-    if (merged.value("type", "") == "ambient")
+    if (merged.contains("type") && merged["type"] == "ambient")  // any JSON type: the light reader names a bad one
         for (const char* key : {"position", "direction", "cone_angle", "cone_softness"})
             if (!o.raw("set").contains(key)) merged.erase(key);
     rig.update(id, readEditedLight(merged, e, "set"));

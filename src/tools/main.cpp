@@ -1,4 +1,5 @@
 // voxlux command line: render, scene, study, info, make-cloud. Errors are one line on stderr.
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -122,6 +123,10 @@ int main(int argc, char** argv) {
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
     } catch (const voxlux::InputError& e) {
         std::cerr << "voxlux: error: " << e.what() << "\n";
+        return voxlux::kInputError;
+    } catch (const std::filesystem::filesystem_error& e) {
+        // A path the user gave that the system refuses (too long, a file where a folder must be).
+        std::cerr << "voxlux: error: " << e.path1().string() << ": " << e.code().message() << "\n";
         return voxlux::kInputError;
     } catch (const std::exception& e) {
         std::cerr << "voxlux: internal error: " << e.what() << "\n";

@@ -266,6 +266,18 @@ TEST(Cli, ExrHasRequestedLayersAndMetadata) {
         EXPECT_TRUE(stats["frames"][0]["stages"].contains(stage)) << stage;
 }
 
+// Bad input that used to exit 1 ("internal error"): a path the system refuses, and a light edit
+// whose type is not a string.
+TEST(Cli, RefusedPathsAndMistypedEditsAreBadInput) {
+    const std::string dir = tempDir("bad_input");
+    const std::string long_path = dir + "/" + std::string(5000, 'a') + ".vdb";
+    expectRejected("render " + long_path, long_path + ": File name too long");
+    std::ofstream(dir + "/edit.json") << R"({"edits": [{"light": 0, "set": {"type": 5}}]})";
+    expectRejected("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_multilight.json --res 16x16 --light-edit " + dir +
+                       "/edit.json",
+                   dir + "/edit.json: /edits/0/set/type: expected a string, got number");
+}
+
 // A frame's outputs are all written or none is: a preview or stats file that cannot be written
 // leaves no EXR behind (it used to exit 2 with the EXR written).
 TEST(Cli, AnOutputThatCannotBeWrittenLeavesNoOther) {
