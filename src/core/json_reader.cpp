@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <optional>
 
@@ -150,6 +151,52 @@ void JsonObject::rejectUnknown(const std::vector<std::string>& known) const {
     for (const auto& [key, _] : value_.items())
         if (std::find(known.begin(), known.end(), key) == known.end())
             fail(key, "unknown key (expected one of " + joined(known) + ")");
+}
+
+namespace {
+
+// Length of the UTF-8 sequence starting at s[i], or 0 when the bytes there are not one.
+size_t utf8Length(const std::string& s, size_t i) {
+    const unsigned char lead = static_cast<unsigned char>(s[i]);
+    const size_t n = lead < 0x80 ? 1 : lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
+                                     : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
+    if (n == 0 || i + n > s.size()) return 0;
+    for (size_t k = 1; k < n; ++k)
+        if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 0;
+    return n;
+}
+
+std::string escapedBytes(const std::string& s) {
+    std::string out;
+    for (size_t i = 0; i < s.size();) {
+        if (const size_t n = utf8Length(s, i)) {
+            out.append(s, i, n);
+            i += n;
+        } else {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned char>(s[i++]));
+            out += hex;
+        }
+    }
+    return out;
+}
+
+void escapeStrings(nlohmann::json& j) {
+    if (j.is_string()) j = escapedBytes(j.get_ref<const std::string&>());
+    else if (j.is_structured())
+        for (auto& child : j) escapeStrings(child);
+}
+
+}  // namespace
+
+std::string jsonText(const nlohmann::json& json, int indent) {
+    try {
+        return json.dump(indent);
+    } catch (const nlohmann::json::type_error&) {  // a string that is not UTF-8
+        nlohmann::json escaped = json;
+        escapeStrings(escaped);
+        return escaped.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+    }
 }
 
 void checkJsonDepth(const std::string& text, const std::string& source) {

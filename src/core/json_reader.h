@@ -57,6 +57,10 @@ constexpr int kMaxJsonDepth = 64;
 // allocation: it runs before the parser ever recurses.
 void checkJsonDepth(const std::string& text, const std::string& source);
 
+// `json` as text for keys, hashes and printing; never throws. File names are bytes, not always
+// UTF-8 (a Latin-1 "caf\xe9.vdb"): bytes that are not UTF-8 are written as the text \xHH.
+std::string jsonText(const nlohmann::json& json, int indent = -1);
+
 // Parses `text` (read from `file`); syntax errors give line and column, nesting past
 // kMaxJsonDepth is refused.
 nlohmann::json parseJson(const std::string& text, const std::string& file);

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/json_reader.h"
+
 namespace voxlux {
 namespace {
 
@@ -24,7 +26,7 @@ std::vector<std::string> tokensOf(const std::string& pointer) {
 void collect(const nlohmann::json& node, const std::vector<std::string>& tokens, size_t i, const std::string& path,
              std::string& out) {
     if (i == tokens.size()) {
-        out += path + "=" + node.dump() + ";";
+        out += path + "=" + jsonText(node) + ";";
         return;
     }
     const std::string& t = tokens[i];

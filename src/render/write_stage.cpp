@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "scene/camera.h"
 #include "io/exr_writer.h"
 #include "core/frame_pattern.h"
@@ -76,6 +77,6 @@ void WriteStage::run(StageRun& run) {
                                " samples above the half-float range clamped to 65504 (use output.pixel_type \"float\")");
 }
 
-std::string sceneHash(const Scene& scene) { return hashText(sceneToJson(scene).dump()); }
+std::string sceneHash(const Scene& scene) { return hashText(jsonText(sceneToJson(scene))); }
 
 }  // namespace voxlux

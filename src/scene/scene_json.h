@@ -14,6 +14,8 @@ namespace voxlux {
 // file's folder. Throws InputError naming the file and the JSON pointer of the bad key.
 Scene loadSceneFile(const std::string& path);
 Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir);
+// The same, from parsed JSON: strings stay bytes (a Latin-1 file name), never re-encoded as text.
+Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const std::string& base_dir);
 
 // One light of a scene's "lights" array, and back.
 Light readLight(const JsonObject& o);

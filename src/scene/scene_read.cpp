@@ -317,7 +317,7 @@ AovSpec readAov(const JsonObject& output, size_t index) {
     const std::string expected = " (expected direct, ambient, indirect, emission, transmittance, depth or variance)";
     const auto& a = output.raw("aovs")[index];
     if (!a.is_object()) {
-        const std::string name = a.is_string() ? a.get<std::string>() : a.dump();
+        const std::string name = a.is_string() ? a.get<std::string>() : jsonText(a);
         if (!known(name)) output.fail("aovs", "unknown AOV '" + name + "'" + expected);
         return {name, std::nullopt};
     }
@@ -501,7 +501,10 @@ Light readLight(const JsonObject& o) {
 }
 
 Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir) {
-    const nlohmann::json json = parseJson(text, file);
+    return sceneFromJson(parseJson(text, file), file, base_dir);
+}
+
+Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const std::string& base_dir) {
     JsonObject root(json, file, "");
     root.rejectUnknown({"volume", "material", "lights", "camera", "render", "effects", "emission", "color", "output"});
     Scene s;

@@ -32,7 +32,7 @@ std::string effectOnSet(const nlohmann::json& scene, const std::string& key) {
     pointer.insert(pointer.begin(), '/');
     const nlohmann::json::json_pointer at(pointer);
     const bool has_settings = scene.contains(at) && scene[at].is_object();
-    return key + "=" + (has_settings ? scene[at].dump() : std::string("true"));
+    return key + "=" + (has_settings ? jsonText(scene[at]) : std::string("true"));
 }
 
 }  // namespace voxlux

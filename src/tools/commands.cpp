@@ -134,7 +134,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
         }
     }
     for (const auto& set : o.sets) applySceneSet(j, set);
-    return parseScene(j.dump(), "command line", "");
+    return sceneFromJson(j, "command line", "");
 }
 
 bool isSceneFile(const std::string& path) {
@@ -237,9 +237,9 @@ int runLightEdits(const Scene& scene, const std::string& edits_file, std::option
     for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
     std::cout << "wrote " << r.path << " (" << renderer.backendName() << ", " << edits.size() << " light edits)\n";
     if (stats_file)
-        writeFileAtomically(*stats_file, nlohmann::json({{"backend", renderer.backendName()}, {"light_edits", log},
-                                                         {"peak_rss_bytes", peakRssBytes()}})
-                                                 .dump(2) + "\n");
+        writeFileAtomically(*stats_file, jsonText(nlohmann::json({{"backend", renderer.backendName()}, {"light_edits", log},
+                                                                  {"peak_rss_bytes", peakRssBytes()}}),
+                                                  2) + "\n");
     return 0;
 }
 
@@ -282,7 +282,7 @@ int runRender(const RenderCommand& cmd) {
     }
     if (emptyFrames) std::cerr << "voxlux: warning: " << emptyFrames << " empty frame(s) rendered transparent\n";
     stats["peak_rss_bytes"] = peakRssBytes();
-    if (cmd.stats) writeFileAtomically(*cmd.stats, stats.dump(2) + "\n");
+    if (cmd.stats) writeFileAtomically(*cmd.stats, jsonText(stats, 2) + "\n");
     return 0;
 }
 
@@ -296,7 +296,7 @@ int runStudyCommand(const StudyCommand& cmd) {
 int runScene(const std::string& vdb, const SceneOverrides& overrides) {
     Scene scene = applyOverrides(quickScene(vdb), overrides);
     scene.camera = frameVolumeCamera(vdb, scene);
-    std::cout << sceneToJson(scene).dump(2) << "\n";
+    std::cout << jsonText(sceneToJson(scene), 2) << "\n";
     return 0;
 }
 
@@ -315,7 +315,7 @@ int runInfo(const std::string& vdb, bool json) {
             }
             out["grids"].push_back(gj);
         }
-        std::cout << out.dump(2) << "\n";
+        std::cout << jsonText(out, 2) << "\n";
         return 0;
     }
     std::cout << vdb << ": " << grids.size() << (grids.size() == 1 ? " grid\n" : " grids\n");

@@ -99,6 +99,14 @@ TEST(Scene, NestingDeeperThan64LevelsIsRefused) {
               "--set render.step: JSON nested deeper than 64 levels at line 1");
 }
 
+// Keys and hashes take file names as bytes: what is not UTF-8 is written as \xHH, distinctly.
+TEST(Scene, JsonTextEscapesBytesThatAreNotUtf8) {
+    const std::string utf8 = "caf\xc3\xa9.vdb", latin1 = "caf\xe9.vdb";
+    EXPECT_EQ(jsonText(nlohmann::json{{"path", utf8}}), "{\"path\":\"" + utf8 + "\"}");
+    EXPECT_EQ(jsonText(nlohmann::json{{"path", latin1}, {"n", 1}}), "{\"n\":1,\"path\":\"caf\\\\xE9.vdb\"}");
+    EXPECT_NE(jsonText(nlohmann::json(latin1)), jsonText(nlohmann::json("caf\xe8.vdb")));
+}
+
 TEST(Scene, RoundTripThroughJson) {
     Scene s = parseScene(R"({
         "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},

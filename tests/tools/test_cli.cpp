@@ -266,13 +266,19 @@ TEST(Cli, ExrHasRequestedLayersAndMetadata) {
         EXPECT_TRUE(stats["frames"][0]["stages"].contains(stage)) << stage;
 }
 
-// Bad input that used to exit 1 ("internal error"): a path the system refuses, and a light edit
-// whose type is not a string.
-TEST(Cli, RefusedPathsAndMistypedEditsAreBadInput) {
+// Input that used to exit 1 ("internal error"): a path the system refuses and a light edit whose
+// type is not a string are bad input; a file name that is not UTF-8 is a file name.
+TEST(Cli, OddPathsAndMistypedEditsAreNeverInternalErrors) {
     const std::string dir = tempDir("bad_input");
     const std::string long_path = dir + "/" + std::string(5000, 'a') + ".vdb";
     expectRejected("render " + long_path, long_path + ": File name too long");
     std::ofstream(dir + "/edit.json") << R"({"edits": [{"light": 0, "set": {"type": 5}}]})";
+    // File names are bytes: a Latin-1 name (not UTF-8) renders, keys and hashes escape it.
+    const std::string latin1 = dir + "/caf\xe9";
+    fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", latin1 + ".vdb");
+    const CliResult r = runCli("render '" + latin1 + ".vdb' --res 16x16 --backend cpu --shadows none -o '" + latin1 + ".exr'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(latin1 + ".exr"));
     expectRejected("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_multilight.json --res 16x16 --light-edit " + dir +
                        "/edit.json",
                    dir + "/edit.json: /edits/0/set/type: expected a string, got number");
