@@ -30,6 +30,38 @@ std::string joined(const std::vector<std::string>& words) {
     return out;
 }
 
+// Length of the UTF-8 sequence starting at s[i], or 0 when the bytes there are not one.
+size_t utf8Length(const std::string& s, size_t i) {
+    const unsigned char lead = static_cast<unsigned char>(s[i]);
+    const size_t n = lead < 0x80 ? 1 : lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
+                                     : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
+    if (n == 0 || i + n > s.size()) return 0;
+    for (size_t k = 1; k < n; ++k)
+        if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 0;
+    return n;
+}
+
+std::string escapedBytes(const std::string& s) {
+    std::string out;
+    for (size_t i = 0; i < s.size();) {
+        if (const size_t n = utf8Length(s, i)) {
+            out.append(s, i, n);
+            i += n;
+        } else {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned char>(s[i++]));
+            out += hex;
+        }
+    }
+    return out;
+}
+
+void escapeStrings(nlohmann::json& j) {
+    if (j.is_string()) j = escapedBytes(j.get_ref<const std::string&>());
+    else if (j.is_structured())
+        for (auto& child : j) escapeStrings(child);
+}
+
 }  // namespace
 
 JsonObject::JsonObject(const nlohmann::json& value, std::string file, std::string pointer)
@@ -152,42 +184,6 @@ void JsonObject::rejectUnknown(const std::vector<std::string>& known) const {
         if (std::find(known.begin(), known.end(), key) == known.end())
             fail(key, "unknown key (expected one of " + joined(known) + ")");
 }
-
-namespace {
-
-// Length of the UTF-8 sequence starting at s[i], or 0 when the bytes there are not one.
-size_t utf8Length(const std::string& s, size_t i) {
-    const unsigned char lead = static_cast<unsigned char>(s[i]);
-    const size_t n = lead < 0x80 ? 1 : lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
-                                     : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
-    if (n == 0 || i + n > s.size()) return 0;
-    for (size_t k = 1; k < n; ++k)
-        if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 0;
-    return n;
-}
-
-std::string escapedBytes(const std::string& s) {
-    std::string out;
-    for (size_t i = 0; i < s.size();) {
-        if (const size_t n = utf8Length(s, i)) {
-            out.append(s, i, n);
-            i += n;
-        } else {
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned char>(s[i++]));
-            out += hex;
-        }
-    }
-    return out;
-}
-
-void escapeStrings(nlohmann::json& j) {
-    if (j.is_string()) j = escapedBytes(j.get_ref<const std::string&>());
-    else if (j.is_structured())
-        for (auto& child : j) escapeStrings(child);
-}
-
-}  // namespace
 
 std::string jsonText(const nlohmann::json& json, int indent) {
     try {

@@ -63,6 +63,14 @@ struct Channel {
     std::vector<Imath::half> half_plane;  // filled from `plane` for HALF channels
 };
 
+// The status of an output path, refused when it is a folder: no write may replace one.
+fs::file_status refuseFolder(const std::string& path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a file");
+    return status;
+}
+
 std::string temporaryPrefixFor(const std::string& path) { return "." + fs::path(path).filename().string() + ".tmp-"; }
 
 std::string temporaryPathFor(const std::string& path) {
@@ -89,8 +97,7 @@ void removeStaleTemporaries(const std::string& path) {
 
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
     std::error_code ec;
-    const fs::file_status target = fs::status(path, ec);
-    if (fs::is_directory(target)) throw InputError(path + ": is a folder, not a file");
+    const fs::file_status target = refuseFolder(path);
     if (fs::exists(target) && !fs::is_regular_file(target)) {
         // A device or a pipe (/dev/null, a FIFO) is written in place: a rename would replace it.
         try {
@@ -117,8 +124,8 @@ void writeAtomically(const std::string& path, const std::function<void(const std
 }
 
 void checkWritable(const std::string& path) {
+    refuseFolder(path);
     std::error_code ec;
-    if (fs::is_directory(path, ec)) throw InputError(path + ": is a folder, not a file");
     const std::string probe = temporaryPathFor(path);
     if (!std::ofstream(probe, std::ios::binary)) throw InputError(path + ": cannot write (" + std::strerror(errno) + ")");
     fs::remove(probe, ec);
