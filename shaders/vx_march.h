@@ -175,8 +175,8 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxGridCell cell, VxSurface sur
         float shadow = 1.0f;
         if (P.shadow_mode == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
         if (P.shadow_mode == VX_SHADOWS_SAT_CONE && P.shadow_channel >= 0) shadow = vx_exp(-vx_cache_value(cell, P.shadow_channel + i));
-        unshadowed += e;
-        sum += e * (shadow * vx_phase_hg(dot(wi, dir), P.anisotropy) * vx_surface_factor(surface, wi, dir));
+        unshadowed = vx_radiance_add(unshadowed, e);
+        sum = vx_radiance_add(sum, e * (shadow * vx_phase_hg(dot(wi, dir), P.anisotropy) * vx_surface_factor(surface, wi, dir)));
     }
     // The illumination volume holds the lights' attenuated RGB together: each light keeps its
     // phase, scaled per channel by the fraction of the lights' unshadowed radiance that arrives.
@@ -309,8 +309,8 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
             px.samples += float(n);
             if (constant_light) {
                 float T_after = chunk.T[n - 1];
-                px.direct += P.albedo * directional * (T - T_after);
-                px.ambient += P.albedo * ambient * (T - T_after);
+                px.direct = vx_radiance_add(px.direct, P.albedo * directional * (T - T_after));
+                px.ambient = vx_radiance_add(px.ambient, P.albedo * ambient * (T - T_after));
                 depth_weighted += vx_chunk_depth(T, k, n, lanes, dt, chunk) * cos_forward;
                 tau = chunk.tau[n - 1];
                 T = T_after;
@@ -333,9 +333,11 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                     vec3 albedo = plain_albedo || !occupied ? P.albedo : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
                     VxGridCell cell = cached ? vx_cache_cell(x) : no_cell;
                     VxSurface surface = shaded_surface ? vx_surface(o + d * t) : vx_no_surface();
-                    px.direct += albedo * (directional + vx_in_scattered(x, dir, per_sample_lights, cell, surface)) * absorbed;
-                    if (P.indirect_weight > 0.0f) px.indirect += albedo * vx_illum_indirect(x) * (P.indirect_weight * absorbed);
-                    px.ambient += albedo * ambient * vx_ambient_occlusion(cell) * absorbed;
+                    vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, cell, surface));
+                    px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
+                    if (P.indirect_weight > 0.0f)
+                        px.indirect = vx_radiance_add(px.indirect, albedo * vx_illum_indirect(x) * (P.indirect_weight * absorbed));
+                    px.ambient = vx_radiance_add(px.ambient, albedo * ambient * vx_ambient_occlusion(cell) * absorbed);
                     depth_weighted += absorbed * t * cos_forward;
                 }
                 px.emission += le * (sigma > 1e-6f ? absorbed / sigma : T * dt);
@@ -345,7 +347,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
         vx_dda_advance(s);
     }
     float alpha = 1.0f - T;
-    px.rgba = vec4(px.direct + px.ambient + px.emission + px.indirect, alpha);
+    px.rgba = vec4(vx_radiance_add(vx_radiance_add(px.direct, px.ambient), vx_radiance_add(px.emission, px.indirect)), alpha);
     px.transmittance = T;
     px.depth = alpha > 0.0f ? depth_weighted / alpha : 0.0f;
     return px;

@@ -91,10 +91,14 @@ vec3 vx_light_incident(VxLight L, vec3 x, VX_OUT(vec3) wi, VX_OUT(float) dist) {
 VX_INLINE float vx_luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 
 // Henyey-Greenstein phase function; cos_theta is between the direction light travels and the
-// direction it leaves towards the eye.
+// direction it leaves towards the eye. 1 + g^2 - 2 g cos_theta is summed from two non-negative
+// terms, so it stays at least (1 - |g|)^2 > 0 in float for every legal g (|g| < 1): written
+// directly it cancels to 0 or below for g = 0.9999999 and the phase turned infinite.
 VX_INLINE float vx_phase_hg(float cos_theta, float g) {
-    float denom = 1.0f + g * g - 2.0f * g * cos_theta;
-    return (1.0f - g * g) / (4.0f * VX_PI * denom * sqrt(denom));
+    cos_theta = clamp(cos_theta, -1.0f, 1.0f);   // a dot of unit vectors can round past 1
+    float denom = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * (1.0f - cos_theta)
+                            : (1.0f + g) * (1.0f + g) - 2.0f * g * (1.0f + cos_theta);
+    return (1.0f - g) * (1.0f + g) / (4.0f * VX_PI * denom * sqrt(denom));
 }
 
 // A direction in which a path goes on after scattering, for one travelling along unit `dir`:

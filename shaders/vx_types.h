@@ -186,3 +186,10 @@ struct VxPixel {
 VX_INLINE uint vx_brick_hash(ivec3 b) {
     return (uint(b.x) * 73856093u) ^ (uint(b.y) * 19349663u) ^ (uint(b.z) * 83492791u);
 }
+
+// Radiance sums stop at the largest float rather than overflow to infinity, so HDR lights up to
+// 3.4e38 stay finite wherever their light adds up (docs/scene.md, "Extreme values"); the terms
+// are never negative, so such a sum is never NaN either.
+#define VX_FLOAT_MAX 3.402823466e38f
+VX_INLINE float vx_radiance_add(float sum, float term) { return min(sum + term, VX_FLOAT_MAX); }
+VX_INLINE vec3 vx_radiance_add(vec3 sum, vec3 term) { return min(sum + term, vec3(VX_FLOAT_MAX)); }

@@ -81,9 +81,9 @@ void JsonObject::fail(const std::string& problem) const {
     throw InputError(file_ + ": " + (pointer_.empty() ? "/" : pointer_) + ": " + problem);
 }
 
-bool JsonObject::has(const std::string& key) const {
-    return value_.contains(key) && !value_.at(key).is_null();
-}
+// A key set to null is present: it is refused by type ("expected a number, got null"), never read
+// as its default, so a NaN that became null on its way is caught.
+bool JsonObject::has(const std::string& key) const { return value_.contains(key); }
 
 const nlohmann::json& JsonObject::raw(const std::string& key) const {
     if (!has(key)) fail(key, "required key is missing");

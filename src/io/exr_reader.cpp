@@ -11,8 +11,14 @@
 
 namespace voxlux {
 
+// voxlux renders at most 16384 pixels a side (render.resolution). A larger data window in a file
+// given to `study` is refused by OpenEXR's header check before anything is allocated for it.
+constexpr int kMaxSide = 16384;
+
 RenderImage readExrRgba(const std::string& path) {
     try {
+        Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
+        Imf::Header::setMaxTileSize(kMaxSide, kMaxSide);
         Imf::InputFile file(path.c_str());
         const Imath::Box2i window = file.header().dataWindow();
         RenderImage image;

@@ -26,7 +26,7 @@ kernel::VxLight packLight(const Light& l) {
     k.type = type;
     k.direction = point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::normalize(l.direction);
     k.cos_outer = point ? 1.0f : std::cos(glm::radians(l.cone_angle));
-    k.color = l.color * l.intensity;
+    k.color = kernel::vx_radiance_add(glm::vec3(0.0f), l.color * l.intensity);   // at most the float maximum
     k.cos_inner = point ? 1.0f : std::cos(glm::radians(std::max(0.0f, l.cone_angle - l.cone_softness)));
     return k;
 }
@@ -74,7 +74,7 @@ void setLights(const Scene& scene, KernelInputs& in) {
     for (const auto& l : scene.lights) {
         if (!l.enabled) continue;
         if (l.type == LightType::Ambient) {
-            ambient += l.color * l.intensity;
+            ambient = kernel::vx_radiance_add(ambient, l.color * l.intensity);
             continue;
         }
         in.lights.push_back(packLight(l));
@@ -125,7 +125,8 @@ void setKnissEffects(const Effects& fx, float edge, float frame, KernelInputs& i
     auto& P = in.params;
     if (const auto& sf = fx.surface) {
         P.surface_low = sf->gradient_low;
-        P.surface_inv_range = 1.0f / (sf->gradient_high - sf->gradient_low);
+        // At most the float maximum: a range of 1e-45 made it infinite, and 0 x inf is NaN.
+        P.surface_inv_range = std::min(1.0f / (sf->gradient_high - sf->gradient_low), std::numeric_limits<float>::max());
         P.specular = sf->specular;
         P.shininess = sf->shininess;
     }

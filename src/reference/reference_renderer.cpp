@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include <tbb/blocked_range2d.h>
@@ -126,6 +127,10 @@ struct Tracker {
 };
 
 // One path's contributions.
+// A sum of radiance as float, at most the float maximum (the sum is never NaN: its terms are >= 0).
+float toFloat(double v) { return float(std::min(v, double(std::numeric_limits<float>::max()))); }
+glm::vec3 toFloat(const glm::dvec3& v) { return {toFloat(v.x), toFloat(v.y), toFloat(v.z)}; }
+
 struct PathSample {
     glm::vec3 direct{0.0f}, indirect{0.0f}, ambient{0.0f}, emission{0.0f};
     float transmittance = 1.0f;
@@ -230,7 +235,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
     img.width = k.P.width;
     img.height = k.P.height;
     img.pixels.resize(size_t(img.width) * img.height);
-    const float n = float(rs.spp);
+    const double n = rs.spp;
     // Small tiles: a reference render is often a few pixels at many samples.
     tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 4, 0, img.width, 4), [&](const tbb::blocked_range2d<int>& r) {
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
@@ -238,36 +243,38 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 const uint32_t pixel = uint32_t(y) * uint32_t(img.width) + uint32_t(x);
                 glm::vec3 origin, dir, forward;
                 k.vx_camera_ray(x, y, origin, dir, forward);
-                PathSample sum;
-                sum.transmittance = 0.0f;
-                double lum = 0.0, lum2 = 0.0;
+                // Sums in double, written clamped to the float maximum: HDR lights up to 3.4e38 are
+                // legal, and a float sum of several such samples (or a luminance squared) overflows.
+                glm::dvec3 direct(0.0), indirect(0.0), ambient(0.0), emission(0.0);
+                double transmittance = 0.0, depth = 0.0, lum = 0.0, lum2 = 0.0;
+                int64_t events = 0;
                 int hits = 0;
                 for (int s = 0; s < rs.spp; ++s) {
                     ReferenceRng rng(uint32_t(rs.seed), pixel, uint32_t(s));
                     const PathSample p = tracePath(tracker, rs, origin, dir, forward, rng);
-                    sum.direct += p.direct;
-                    sum.indirect += p.indirect;
-                    sum.ambient += p.ambient;
-                    sum.emission += p.emission;
-                    sum.transmittance += p.transmittance;
-                    sum.depth += p.depth;
-                    sum.events += p.events;
+                    direct += p.direct;
+                    indirect += p.indirect;
+                    ambient += p.ambient;
+                    emission += p.emission;
+                    transmittance += p.transmittance;
+                    depth += p.depth;
+                    events += p.events;
                     hits += p.hit;
                     const double l = k.vx_luminance(p.direct + p.indirect + p.ambient + p.emission);
                     lum += l;
                     lum2 += l * l;
                 }
                 kernel::VxPixel& px = img.pixels[pixel];
-                px.direct = sum.direct / n;
-                px.indirect = sum.indirect / n;
-                px.ambient = sum.ambient / n;
-                px.emission = sum.emission / n;
-                px.transmittance = sum.transmittance / n;
-                px.rgba = glm::vec4(px.direct + px.indirect + px.ambient + px.emission, 1.0f - px.transmittance);
-                px.depth = hits ? sum.depth / float(hits) : 0.0f;
-                px.samples = float(sum.events) / n;
+                px.direct = toFloat(direct / n);
+                px.indirect = toFloat(indirect / n);
+                px.ambient = toFloat(ambient / n);
+                px.emission = toFloat(emission / n);
+                px.transmittance = float(transmittance / n);
+                px.rgba = glm::vec4(toFloat((direct + indirect + ambient + emission) / n), 1.0f - px.transmittance);
+                px.depth = hits ? float(depth / hits) : 0.0f;
+                px.samples = float(double(events) / n);
                 const double mean = lum / rs.spp;
-                px.variance = rs.spp > 1 ? float(std::max(0.0, lum2 - rs.spp * mean * mean) / (rs.spp - 1) / rs.spp) : 0.0f;
+                px.variance = rs.spp > 1 ? toFloat(std::max(0.0, lum2 - rs.spp * mean * mean) / (rs.spp - 1) / rs.spp) : 0.0f;
             }
     });
     if (opaque_segments) *opaque_segments = opaque;

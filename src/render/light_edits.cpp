@@ -59,7 +59,11 @@ std::vector<LightEdit> loadLightEdits(const std::string& path) {
     if (!in) throw InputError(path + ": cannot open the light-edit file");
     std::stringstream text;
     text << in.rdbuf();
-    const nlohmann::json root = parseJson(text.str(), path);
+    return parseLightEdits(text.str(), path);
+}
+
+std::vector<LightEdit> parseLightEdits(const std::string& text, const std::string& path) {
+    const nlohmann::json root = parseJson(text, path);
     const JsonObject o(root, path, "");
     if (!root.is_object()) throw InputError(path + ": a light-edit file is an object with an \"edits\" array");
     o.rejectUnknown({"edits"});

@@ -19,6 +19,8 @@ struct LightEdit {
 // Reads the file's edits and checks that each is well formed. Throws InputError naming the file
 // and the edit.
 std::vector<LightEdit> loadLightEdits(const std::string& path);
+// The same from the file's text; `path` names it in messages.
+std::vector<LightEdit> parseLightEdits(const std::string& text, const std::string& path);
 
 // Applies one edit to `rig` (not yet to its renderer) and returns a short description of it, e.g.
 // "update key". Throws InputError naming the file and the edit when its light does not exist or

@@ -151,11 +151,11 @@ RenderSettings readRender(const JsonObject& o) {
     RenderSettings r;
     if (o.has("resolution")) {
         auto res = o.numbers("resolution", 2);
+        // Checked before converting: a float outside int's range has no int value.
+        const auto pixels = [](float x) { return x >= 1 && x <= 16384 && x == std::floor(x); };
+        if (!pixels(res[0]) || !pixels(res[1])) o.fail("resolution", "expected [width, height], integers in 1..16384");
         r.width = int(res[0]);
         r.height = int(res[1]);
-        if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384 || res[0] != r.width ||
-            res[1] != r.height)
-            o.fail("resolution", "expected [width, height], integers in 1..16384");
     }
     r.step = o.number("step", r.step);
     if (!(r.step >= 0.01f && r.step <= 64)) o.fail("step", "must lie in [0.01, 64] voxels");

@@ -4,12 +4,10 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -18,7 +16,6 @@
 #include "io/exr_writer.h"
 #include "core/frame_pattern.h"
 #include "volume/make_cloud.h"
-#include "scene/quality_presets.h"
 #include "render/light_edits.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
@@ -26,116 +23,6 @@
 
 namespace voxlux {
 namespace {
-
-std::vector<std::string> split(const std::string& s, char sep) {
-    std::vector<std::string> out;
-    std::stringstream in(s);
-    std::string part;
-    while (std::getline(in, part, sep)) out.push_back(part);
-    return out;
-}
-
-float parseFloat(const std::string& text, const std::string& context) {
-    try {
-        size_t used = 0;
-        float v = std::stof(text, &used);
-        if (used == text.size() && std::isfinite(v)) return v;
-    } catch (const std::exception&) {
-    }
-    throw InputError(context + ": '" + text + "' is not a number");
-}
-
-glm::vec3 parseVec3(const std::string& text, const std::string& context) {
-    auto parts = split(text, ',');
-    if (parts.size() != 3) throw InputError(context + ": expected three numbers x,y,z, got '" + text + "'");
-    return {parseFloat(parts[0], context), parseFloat(parts[1], context), parseFloat(parts[2], context)};
-}
-
-// "directional:dir=1,-1,0:intensity=3" and so on, keys as in docs/cli.md, as the scene's light
-// object. Only the syntax is checked here; the scene's own light reader validates the values.
-nlohmann::json lightSpecJson(const std::string& spec, const std::string& context) {
-    auto parts = split(spec, ':');
-    nlohmann::json light = {{"type", parts.empty() ? std::string() : parts[0]}};
-    const std::map<std::string, std::string> keys = {{"dir", "direction"}, {"pos", "position"}, {"color", "color"},
-                                                     {"intensity", "intensity"}, {"angle", "cone_angle"},
-                                                     {"softness", "cone_softness"}};
-    for (size_t i = 1; i < parts.size(); ++i) {
-        auto eq = parts[i].find('=');
-        if (eq == std::string::npos) throw InputError(context + ": expected key=value, got '" + parts[i] + "'");
-        const std::string key = parts[i].substr(0, eq), value = parts[i].substr(eq + 1);
-        const auto named = keys.find(key);
-        if (named == keys.end()) throw InputError(context + ": unknown key '" + key + "' (dir, pos, color, intensity, angle, softness)");
-        if (key == "dir" || key == "pos" || key == "color") {
-            const glm::vec3 v = parseVec3(value, context);
-            light[named->second] = {v.x, v.y, v.z};
-        } else {
-            light[named->second] = parseFloat(value, context);
-        }
-    }
-    return light;
-}
-
-// Overrides go through the scene JSON so that they are validated by exactly the same rules.
-Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
-    nlohmann::json j = sceneToJson(base);
-    if (o.quality) applyQualityPreset(j, *o.quality);
-    auto& v = j["volume"];
-    auto setGrid = [&](const char* key, const std::optional<std::string>& name) {
-        if (name) v[key] = *name;
-    };
-    setGrid("density", o.grid);
-    if (o.grid_index) v["density"] = {{"name", o.grid.value_or(base.volume.density.name)}, {"index", *o.grid_index}};
-    setGrid("color", o.color_grid);
-    if (o.level_set) v["level_set"] = *o.level_set;
-    if (o.emission_grid || o.blackbody_grid) {
-        auto& sources = j["emission"] = nlohmann::json::array();
-        if (o.emission_grid) sources.push_back({{"grid", *o.emission_grid}, {"kind", "constant"}, {"color", {1, 1, 1}}});
-        // Mantaflow (Blender) temperature: 0 ambient, 1.5 at ignition to 3 at the flames' maximum
-        // (Blender's defaults), x 1000 K as Blender's Principled Volume renders it at its default
-        // 1000 K. Brightness follows Planck's luminance, 1 at ignition; gas below 1000 K is dark.
-        if (o.blackbody_grid)
-            sources.push_back({{"grid", *o.blackbody_grid}, {"kind", "blackbody"}, {"temperature_scale", 1000},
-                               {"cutoff", 1000}, {"normalization", "physical"}, {"reference_temperature", 1500}});
-    }
-    if (o.frames) {
-        auto range = split(*o.frames, '-');
-        if (range.size() == 1) range.push_back(range[0]);
-        if (range.size() != 2) throw InputError("--frames '" + *o.frames + "': expected FIRST-LAST");
-        v["frames"] = {parseFloat(range[0], "--frames"), parseFloat(range[1], "--frames")};
-    }
-    if (o.resolution) {
-        auto wh = split(*o.resolution, 'x');
-        if (wh.size() != 2) throw InputError("--res '" + *o.resolution + "': expected WIDTHxHEIGHT");
-        j["render"]["resolution"] = {parseFloat(wh[0], "--res"), parseFloat(wh[1], "--res")};
-    }
-    // JSON has no NaN or infinity (they would be written as null, which reads as the default).
-    const auto finite = [](const char* flag, float value) {
-        if (!std::isfinite(value)) throw InputError(std::string(flag) + ": " + std::to_string(value) + " is not a finite number");
-        return value;
-    };
-    if (o.step) j["render"]["step"] = finite("--step", *o.step);
-    if (o.shadow_step) j["render"]["shadow_step"] = finite("--shadow-step", *o.shadow_step);
-    if (o.backend) j["render"]["backend"] = *o.backend;
-    if (o.method) j["render"]["method"] = *o.method;
-    if (o.spp) j["render"]["reference"]["spp"] = *o.spp;
-    if (o.density_scale) j["material"]["density_scale"] = finite("--density-scale", *o.density_scale);
-    if (o.shadows) j["effects"]["shadows"] = *o.shadows;
-    if (o.pixel_type) j["output"]["pixel_type"] = *o.pixel_type;
-    if (o.aovs) j["output"]["aovs"] = *o.aovs;
-    if (o.output) j["output"]["path"] = *o.output;
-    if (o.preview) j["output"]["preview"] = *o.preview;
-    if (!o.lights.empty()) {
-        // Each light is read as the scene reads its lights, so a bad one is named by its flag.
-        auto& lights = j["lights"] = nlohmann::json::array();
-        for (const auto& spec : o.lights) {
-            const std::string context = "--light '" + spec + "'";
-            lights.push_back(lightSpecJson(spec, context));
-            readLight(JsonObject(lights.back(), context, ""));
-        }
-    }
-    for (const auto& set : o.sets) applySceneSet(j, set);
-    return sceneFromJson(j, "command line", "");
-}
 
 bool isSceneFile(const std::string& path) {
     auto ext = std::filesystem::path(path).extension().string();

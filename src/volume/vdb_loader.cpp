@@ -1,7 +1,6 @@
 #include "volume/vdb_loader.h"
 
 #include <filesystem>
-#include <cctype>
 #include <mutex>
 
 #include <openvdb/util/logging.h>
@@ -10,71 +9,41 @@
 #include <openvdb/tools/LevelSetUtil.h>
 
 #include "volume/brick_set.h"
+#include "volume/vdb_file.h"
 #include "core/error.h"
 
 namespace voxlux {
 namespace {
 
-// Exception text on one line: OpenVDB pads some messages with raw bytes from the file.
-std::string oneLine(const char* what) {
-    std::string out;
-    for (const char* p = what; *p; ++p) {
-        const bool space = !std::isgraph(static_cast<unsigned char>(*p));
-        if (space && (out.empty() || out.back() == ' ')) continue;
-        out += space ? ' ' : *p;
-    }
-    while (!out.empty() && out.back() == ' ') out.pop_back();
-    return out;
-}
-
 std::string describe(const openvdb::GridBase& g) { return "'" + g.getName() + "' (" + g.valueType() + ")"; }
 
 // Opens `file` or throws a one-line InputError.
-std::unique_ptr<openvdb::io::File> openFile(const std::string& file) {
+VdbFile openFile(const std::string& file) {
     if (!std::filesystem::exists(file)) throw InputError(file + ": no such file");
-    auto f = std::make_unique<openvdb::io::File>(file);
-    try {
-        f->open(false);  // no delayed loading: we read each grid once and keep no file handle
-    } catch (const std::exception& e) {
-        throw InputError(file + ": not a readable OpenVDB file (" + oneLine(e.what()) + ")");
-    }
-    return f;
+    return VdbFile(file);
 }
 
-// Grid metadata in file order (no voxel data read).
-openvdb::GridPtrVec gridMetadata(openvdb::io::File& f, const std::string& file) {
-    try {
-        return *f.readAllGridMetadata();
-    } catch (const std::exception& e) {
-        throw InputError(file + ": cannot read grid descriptors (" + oneLine(e.what()) + ")");
-    }
-}
-
-std::string listGrids(const openvdb::GridPtrVec& grids) {
+std::string listGrids(const VdbFile& f) {
     std::string out;
-    for (const auto& g : grids) out += (out.empty() ? "" : ", ") + describe(*g);
+    for (const auto& g : f.grids()) out += (out.empty() ? "" : ", ") + ("'" + g.name + "' (" + g.value_type + ")");
     return out.empty() ? "none" : out;
 }
 
-openvdb::GridBase::Ptr readGrid(openvdb::io::File& f, const std::string& file,
-                                const openvdb::GridPtrVec& meta, const GridRef& ref,
+openvdb::GridBase::Ptr readGrid(VdbFile& f, const std::string& file, const GridRef& ref,
                                 std::vector<std::string>& warnings) {
-    int count = 0;
-    for (const auto& g : meta) count += g->getName() == ref.name;
+    std::vector<size_t> named;
+    for (size_t k = 0; k < f.grids().size(); ++k)
+        if (f.grids()[k].name == ref.name) named.push_back(k);
+    const int count = int(named.size());
     if (count == 0)
-        throw InputError(file + ": no grid named '" + ref.name + "' (grids: " + listGrids(meta) + ")");
+        throw InputError(file + ": no grid named '" + ref.name + "' (grids: " + listGrids(f) + ")");
     if (ref.index >= count)
         throw InputError(file + ": grid index " + std::to_string(ref.index) + " for '" + ref.name +
                          "' is out of range (the file has " + std::to_string(count) + ")");
     if (count > 1)
         warnings.push_back(file + ": " + std::to_string(count) + " grids are named '" + ref.name +
                            "'; using index " + std::to_string(ref.index) + " (set the grid's \"index\" to choose)");
-    try {
-        // OpenVDB addresses the n-th grid of a repeated name as "name[n]".
-        return f.readGrid(ref.index == 0 ? ref.name : ref.name + "[" + std::to_string(ref.index) + "]");
-    } catch (const std::exception& e) {
-        throw InputError(file + ": cannot read grid '" + ref.name + "' (" + oneLine(e.what()) + ")");
-    }
+    return f.read(named[size_t(ref.index)]);
 }
 
 // A scalar grid as float, with level sets rejected or converted as the spec says.
@@ -154,18 +123,17 @@ glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file) {
 
 LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::vector<EmissionSource>& emission) {
     initOpenVdb();
-    auto f = openFile(file);
-    auto meta = gridMetadata(*f, file);
+    VdbFile f = openFile(file);
     LoadedVolume v;
     v.file = file;
-    auto density = asFogFloat(readGrid(*f, file, meta, spec.density, v.warnings), file, spec, "density");
+    auto density = asFogFloat(readGrid(f, file, spec.density, v.warnings), file, spec, "density");
     v.index_to_world = indexToWorld(*density, file);
     for (const auto& source : emission)
         v.emission.push_back(matchTransform<openvdb::FloatGrid>(
-            asFogFloat(readGrid(*f, file, meta, source.grid, v.warnings), file, spec, "emission"), *density, file,
+            asFogFloat(readGrid(f, file, source.grid, v.warnings), file, spec, "emission"), *density, file,
             v.warnings));
     if (spec.color)
-        v.color = matchTransform<openvdb::Vec3SGrid>(asColor(readGrid(*f, file, meta, *spec.color, v.warnings), file),
+        v.color = matchTransform<openvdb::Vec3SGrid>(asColor(readGrid(f, file, *spec.color, v.warnings), file),
                                                      *density, file, v.warnings);
     v.density = density;
     return v;
@@ -173,15 +141,10 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const s
 
 std::vector<GridSummary> summarizeFile(const std::string& file) {
     initOpenVdb();
-    auto f = openFile(file);
+    VdbFile f = openFile(file);
     std::vector<GridSummary> out;
-    openvdb::GridPtrVecPtr grids;
-    try {
-        grids = f->getGrids();
-    } catch (const std::exception& e) {
-        throw InputError(file + ": cannot read grids (" + oneLine(e.what()) + ")");
-    }
-    for (const auto& g : *grids) {
+    for (size_t k = 0; k < f.grids().size(); ++k) {
+        const openvdb::GridBase::Ptr g = f.read(k);
         GridSummary s;
         s.name = g->getName();
         s.value_type = g->valueType();

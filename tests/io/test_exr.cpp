@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -22,6 +23,7 @@
 #include <png.h>
 
 #include "core/error.h"
+#include "io/exr_reader.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
 #include "test_support.h"
@@ -400,6 +402,25 @@ TEST(Exr, StaleTemporariesOfTheOutputAreRemoved) {
     EXPECT_TRUE(fs::exists(running));   // pid 1 (init) always runs
     EXPECT_TRUE(fs::exists(other));     // another output's
     EXPECT_TRUE(fs::exists(dir + "/out.exr"));
+}
+
+// A data window beyond the 16384 pixels a side voxlux renders is refused before anything is
+// allocated for it (fuzz_exr: a window of 30000 x 6 80-byte pixels in a 1 kB file).
+TEST(Exr, AHugeDataWindowIsRefusedBeforeItIsAllocated) {
+    const std::string dir = tempDir("huge_window");
+    writeExr(dir + "/small.exr", patternImage(), spec(PixelType::Half, "zip", {}), ExrMetadata{});
+    EXPECT_EQ(readExrRgba(dir + "/small.exr").width, patternImage().width);
+    std::ifstream in(dir + "/small.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string attribute("dataWindow\0box2i\0", 17);
+    const size_t at = bytes.find(attribute);
+    ASSERT_NE(at, std::string::npos);
+    const int32_t xmax = 29999;   // after the attribute's size, xmin and ymin
+    std::memcpy(bytes.data() + at + attribute.size() + 12, &xmax, sizeof xmax);
+    std::ofstream(dir + "/huge.exr", std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    const std::string error = inputErrorOf([&] { readExrRgba(dir + "/huge.exr"); });
+    EXPECT_EQ(error.rfind(dir + "/huge.exr: cannot read EXR (", 0), 0u) << error;
+    EXPECT_NE(error.find("16384"), std::string::npos) << error;
 }
 
 }  // namespace

@@ -112,7 +112,7 @@ public:
 #pragma omp simd
                     for (int q = 0; q < n; ++q) {
                         const size_t i = size_t(base + q) * channels;
-                        acc[q] += w * VX_BILERP(p0[i], p0[i + channels], p1[i], p1[i + channels], ta, tb);
+                        acc[q] = kernel::vx_radiance_add(acc[q], w * VX_BILERP(p0[i], p0[i + channels], p1[i], p1[i + channels], ta, tb));
                     }
                 }
                 const float kc = atten_[c];
@@ -229,7 +229,10 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
                             for (int ch = 0; ch < channels; ++ch) slot[ch] = value[ch];
                         }
                         const float w = eye ? 1.0f : per_cell_weight ? k.vx_prop_weight(i, j) : k.Q.weight;
-                        for (int ch = 0; ch < 3; ++ch) rgb[size_t(i) * 3 + ch] += w * tint[ch] * slot[channels == 1 ? 0 : ch];
+                        for (int ch = 0; ch < 3; ++ch) {
+                            float& sum = rgb[size_t(i) * 3 + ch];
+                            sum = kernel::vx_radiance_add(sum, w * tint[ch] * slot[channels == 1 ? 0 : ch]);
+                        }
                     }
                 }
                 glm::ivec3 c;
@@ -240,7 +243,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
                     // Integer offsets: a float dot product is exact only below 2^24 cells.
                     float* cell = out + (size_t(c.x) * stride.x + size_t(c.y) * stride.y + size_t(c.z) * stride.z) * 3;
                     for (int ch = 0; ch < 3; ++ch)
-                        cell[ch] = x_major || eye ? rgb[size_t(i) * 3 + ch] : cell[ch] + rgb[size_t(i) * 3 + ch];
+                        cell[ch] = x_major || eye ? rgb[size_t(i) * 3 + ch] : kernel::vx_radiance_add(cell[ch], rgb[size_t(i) * 3 + ch]);
                 }
             }
         });
@@ -250,7 +253,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
     layout.forEachCell([&](size_t n, size_t s) {
         for (int ch = 0; ch < 3; ++ch) {
             float& cell = block[n * 3 + ch];
-            cell = eye ? result[s * 3 + ch] : cell + result[s * 3 + ch];
+            cell = eye ? result[s * 3 + ch] : kernel::vx_radiance_add(cell, result[s * 3 + ch]);
         }
     });
 }

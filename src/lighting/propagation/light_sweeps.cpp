@@ -94,11 +94,11 @@ kernel::VxTap tap(glm::vec2 offset, float weight) {
 
 std::vector<kernel::VxTap> blurTaps(const Indirect& in) {
     const float tan_half = std::tan(glm::radians(0.5f * in.angle));
+    kernel::CpuKernel k;   // for its phase function
     auto weight = [&](float r) {
         const float cos_a = 1.0f / std::sqrt(1.0f + r * r * tan_half * tan_half);
         if (in.phase == BlurPhase::Phong) return std::pow(cos_a, in.exponent);
-        const float g = in.g, denom = 1.0f + g * g - 2.0f * g * cos_a;
-        return (1.0f - g * g) / (denom * std::sqrt(denom));
+        return k.vx_phase_hg(cos_a, in.g);   // the taps are normalised below: 4 pi cancels
     };
     std::vector<kernel::VxTap> taps;
     if (in.samples % 2 == 1) taps.push_back(tap(glm::vec2(0.0f), weight(0.0f)));

@@ -26,5 +26,5 @@ void main() {
     vec3 rgb = (Q.channels == 1 ? vec3(value.x) : value) * Q.tint;
     float weight = vx_prop_weight(i, j);
     for (int ch = 0; ch < 3; ++ch)
-        vx_volume[cell + ch] = Q.eye_sweep != 0 ? rgb[ch] : vx_volume[cell + ch] + weight * rgb[ch];
+        vx_volume[cell + ch] = Q.eye_sweep != 0 ? rgb[ch] : vx_radiance_add(vx_volume[cell + ch], weight * rgb[ch]);
 }

@@ -140,8 +140,8 @@ vec3 vx_prop_outside(vec3 q) {
     vec3 wi;
     float dist;
     vec3 e = vx_light_radiance(Q.light, vec3(Q.grid_to_world * vec4(q, 1.0f)), vx_prop_r_min(), wi, dist);
-    if (Q.per_cell_flow != 0) e *= vx_prop_distance2(q);
-    return Q.channels == 1 ? vec3(vx_luminance(e), 0.0f, 0.0f) : e;
+    if (Q.per_cell_flow != 0) e = vx_radiance_add(vec3(0.0f), e * vx_prop_distance2(q));
+    return Q.channels == 1 ? vec3(vx_radiance_add(0.0f, vx_luminance(e)), 0.0f, 0.0f) : e;
 }
 
 // The previous slice's value at cell (i, j) of the slice; `prev` is that slice's index (-1: the
@@ -270,13 +270,13 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     float radius = vx_prop_blur_radius(back);
     vec3 incoming = vec3(0.0f);
     for (int t = 0; t < Q.tap_count; ++t)
-        incoming += Q.taps[t].weight * vx_prop_prev_at(p[u] + radius * Q.taps[t].offset.x, p[v] + radius * Q.taps[t].offset.y, prev);
+        incoming = vx_radiance_add(incoming, Q.taps[t].weight * vx_prop_prev_at(p[u] + radius * Q.taps[t].offset.x, p[v] + radius * Q.taps[t].offset.y, prev));
 
     if (Q.eye_sweep != 0) {
         // Eye sweep (Ropinski Sec. 4.1, last paragraphs): the cell keeps its own indirect light in
         // proportion to its opacity and passes on the light from behind it for the rest.
         float alpha = 1.0f - vx_exp(-tau);
-        return alpha * vx_prop_outside(x) + (1.0f - alpha) * incoming;
+        return vx_radiance_add(alpha * vx_prop_outside(x), (1.0f - alpha) * incoming);
     }
     return incoming * transmitted;
 }

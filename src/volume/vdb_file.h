@@ -1,0 +1,45 @@
+// A .vdb file read safely. OpenVDB trusts every length and count in a file, and reads past its end
+// without complaint: a name length of 3.6e9 allocates 3.6 GB, a tile count of 4e9 loops on a short
+// file, and a file cut short leaves the rest of a grid's voxels unset. So the file's structure is
+// walked first (header, file metadata, each grid's descriptor and metadata: a few hundred bytes per
+// grid, no voxel data), every length checked against the bytes left and every offset against the
+// file; then a grid is read by OpenVDB's own reader from a stream that throws on a short read.
+#pragma once
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <openvdb/io/Archive.h>
+#include <openvdb/io/GridDescriptor.h>
+#include <openvdb/openvdb.h>
+
+namespace voxlux {
+
+class VdbFile : private openvdb::io::Archive {
+public:
+    struct Grid {
+        std::string name;
+        std::string value_type;                // "float", "vec3s", ...
+    };
+
+    // Opens and checks `file`; throws InputError "<file>: truncated: ..." or "<file>: damaged: ...".
+    // OpenVDB must be initialised (initOpenVdb).
+    explicit VdbFile(const std::string& file);
+
+    // The grids in file order.
+    const std::vector<Grid>& grids() const { return grids_; }
+    // Grid `k` with its metadata, transform and voxels. Throws InputError.
+    openvdb::GridBase::Ptr read(size_t k);
+
+private:
+    void walk();
+    openvdb::GridBase::Ptr readInstance(size_t k, int depth);
+
+    std::string file_;
+    std::ifstream in_;
+    std::vector<Grid> grids_;
+    std::vector<std::streamoff> descriptors_;  // where each grid's descriptor starts
+    openvdb::io::StreamMetadata::Ptr metadata_;
+};
+
+}  // namespace voxlux
