@@ -11,6 +11,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
   libopencolorio-dev opencolorio-tools libpng-dev
   libgtest-dev
+  clang libclang-rt-14-dev   # the sanitizer build and its libFuzzer targets (tests/run.sh)
 )
 missing=()
 for p in "${packages[@]}"; do
