@@ -74,7 +74,7 @@ vec3 vx_light_radiance(VxLight L, vec3 x, float r_min, VX_OUT(vec3) wi, VX_OUT(f
     float d2 = dot(to_light, to_light);
     dist = sqrt(d2);
     wi = dist > 0.0f ? to_light / dist : vec3(0.0f, 1.0f, 0.0f);
-    vec3 e = L.color / max(d2, r_min * r_min);
+    vec3 e = vx_radiance_add(vec3(0.0f), L.color / max(d2, r_min * r_min));   // a 3.4e38 light near x: inf * 0 is NaN
     if (L.type == VX_LIGHT_SPOT) {
         float cos_angle = dot(-wi, L.direction);
         e *= smoothstep(L.cos_outer, L.cos_inner, cos_angle);

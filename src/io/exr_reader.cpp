@@ -5,6 +5,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <exception>
+#include <mutex>
 #include <vector>
 
 #include "core/error.h"
@@ -17,8 +18,11 @@ constexpr int kMaxSide = 16384;
 
 RenderImage readExrRgba(const std::string& path) {
     try {
-        Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
-        Imf::Header::setMaxTileSize(kMaxSide, kMaxSide);
+        static std::once_flag limits;   // OpenEXR's limits are process-wide
+        std::call_once(limits, [] {
+            Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
+            Imf::Header::setMaxTileSize(kMaxSide, kMaxSide);
+        });
         Imf::InputFile file(path.c_str());
         const Imath::Box2i window = file.header().dataWindow();
         RenderImage image;

@@ -126,7 +126,7 @@ void setKnissEffects(const Effects& fx, float edge, float frame, KernelInputs& i
     if (const auto& sf = fx.surface) {
         P.surface_low = sf->gradient_low;
         // At most the float maximum: a range of 1e-45 made it infinite, and 0 x inf is NaN.
-        P.surface_inv_range = std::min(1.0f / (sf->gradient_high - sf->gradient_low), std::numeric_limits<float>::max());
+        P.surface_inv_range = std::min(1.0f / (sf->gradient_high - sf->gradient_low), VX_FLOAT_MAX);
         P.specular = sf->specular;
         P.shininess = sf->shininess;
     }

@@ -260,7 +260,9 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                     depth += p.depth;
                     events += p.events;
                     hits += p.hit;
-                    const double l = k.vx_luminance(p.direct + p.indirect + p.ambient + p.emission);
+                    // Luminance is linear: per term, so that no float sum overflows.
+                    const double l = double(k.vx_luminance(p.direct)) + k.vx_luminance(p.indirect) +
+                                     k.vx_luminance(p.ambient) + k.vx_luminance(p.emission);
                     lum += l;
                     lum2 += l * l;
                 }

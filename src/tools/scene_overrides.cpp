@@ -1,8 +1,9 @@
-// Flags to scene keys. Each flag's change is read back through the scene reader at once (a
-// millisecond at most), so a value the scene refuses is named by the flag that brought it.
+// Flags to scene keys, read back through the scene reader together; a refused result is replayed
+// flag by flag (a millisecond each at most), so the error names the flag that brought the value.
 #include "tools/scene_overrides.h"
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -74,14 +75,12 @@ nlohmann::json blackbodySource(const std::string& grid) {
 }  // namespace
 
 Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
-    nlohmann::json j = sceneToJson(base);
-    const auto apply = [&j](const std::string& flag, const auto& change) {
-        change(j);
-        sceneFromJson(j, flag, "");
-    };
+    using Change = std::function<void(nlohmann::json&)>;
+    std::vector<std::pair<std::string, Change>> changes;   // flag, what it does to the scene's JSON
+    const auto apply = [&changes](const std::string& flag, Change change) { changes.emplace_back(flag, std::move(change)); };
     using Pointer = nlohmann::json::json_pointer;
     const auto setKey = [&](const std::string& flag, const char* key, const auto& value) {
-        if (value) apply(flag, [&](nlohmann::json& s) { s[Pointer(key)] = *value; });
+        if (value) apply(flag, [key, v = *value](nlohmann::json& s) { s[Pointer(key)] = v; });
     };
     const auto finite = [](const char* flag, const std::optional<float>& value) {
         // JSON has no NaN or infinity (they would be written as null).
@@ -89,16 +88,16 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
             throw InputError(std::string(flag) + ": " + std::to_string(*value) + " is not a finite number");
         return value;
     };
-    if (o.quality) apply("--quality " + *o.quality, [&](nlohmann::json& s) { applyQualityPreset(s, *o.quality); });
+    if (o.quality) apply("--quality " + *o.quality, [quality = *o.quality](nlohmann::json& s) { applyQualityPreset(s, quality); });
     setKey("--grid", "/volume/density", o.grid);
     if (o.grid_index)
-        apply("--grid-index", [&](nlohmann::json& s) {
-            s["volume"]["density"] = {{"name", o.grid.value_or(base.volume.density.name)}, {"index", *o.grid_index}};
+        apply("--grid-index", [name = o.grid.value_or(base.volume.density.name), index = *o.grid_index](nlohmann::json& s) {
+            s["volume"]["density"] = {{"name", name}, {"index", index}};
         });
     setKey("--color-grid", "/volume/color", o.color_grid);
     setKey("--level-set", "/volume/level_set", o.level_set);
     if (o.emission_grid || o.blackbody_grid)
-        apply(o.emission_grid ? "--emission-grid" : "--blackbody-grid", [&](nlohmann::json& s) {
+        apply(o.emission_grid ? "--emission-grid" : "--blackbody-grid", [o](nlohmann::json& s) {
             auto& sources = s["emission"] = nlohmann::json::array();
             if (o.emission_grid) sources.push_back({{"grid", *o.emission_grid}, {"kind", "constant"}, {"color", {1, 1, 1}}});
             if (o.blackbody_grid) sources.push_back(blackbodySource(*o.blackbody_grid));
@@ -108,13 +107,15 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
         auto range = split(*o.frames, '-');
         if (range.size() == 1) range.push_back(range[0]);
         if (range.size() != 2) throw InputError(flag + ": expected FIRST-LAST");
-        apply(flag, [&](nlohmann::json& s) { s["volume"]["frames"] = {parseFloat(range[0], flag), parseFloat(range[1], flag)}; });
+        const nlohmann::json frames = {parseFloat(range[0], flag), parseFloat(range[1], flag)};
+        apply(flag, [frames](nlohmann::json& s) { s["volume"]["frames"] = frames; });
     }
     if (o.resolution) {
         const std::string flag = "--res " + *o.resolution;
         auto wh = split(*o.resolution, 'x');
         if (wh.size() != 2) throw InputError(flag + ": expected WIDTHxHEIGHT");
-        apply(flag, [&](nlohmann::json& s) { s["render"]["resolution"] = {parseFloat(wh[0], flag), parseFloat(wh[1], flag)}; });
+        const nlohmann::json resolution = {parseFloat(wh[0], flag), parseFloat(wh[1], flag)};
+        apply(flag, [resolution](nlohmann::json& s) { s["render"]["resolution"] = resolution; });
     }
     setKey("--step", "/render/step", finite("--step", o.step));
     setKey("--shadow-step", "/render/shadow_step", finite("--shadow-step", o.shadow_step));
@@ -134,10 +135,25 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
             lights.push_back(lightSpecJson(spec, flag));
             readLight(JsonObject(lights.back(), flag, ""));
         }
-        apply("--light", [&](nlohmann::json& s) { s["lights"] = lights; });
+        apply("--light", [lights](nlohmann::json& s) { s["lights"] = lights; });
     }
-    for (const auto& set : o.sets) apply("--set '" + set + "'", [&](nlohmann::json& s) { applySceneSet(s, set); });
-    return sceneFromJson(j, "command line", "");
+    for (const auto& set : o.sets) apply("--set '" + set + "'", [set](nlohmann::json& s) { applySceneSet(s, set); });
+
+    // The flags are read together, so flags that only make sense together pass (--method march
+    // with --backend gl on a reference scene); when the result is refused, they are replayed one
+    // at a time to name the flag that made it so.
+    nlohmann::json j = sceneToJson(base);
+    for (const auto& [flag, change] : changes) change(j);
+    try {
+        return sceneFromJson(j, "command line", "");
+    } catch (const InputError&) {
+        nlohmann::json replay = sceneToJson(base);
+        for (const auto& [flag, change] : changes) {
+            change(replay);
+            sceneFromJson(replay, flag, "");
+        }
+        throw;
+    }
 }
 
 }  // namespace voxlux

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <set>
 
+#include <openvdb/io/DelayedLoadMetadata.h>
 #include <openvdb/io/io.h>
 
 #include "core/error.h"
@@ -31,28 +32,14 @@ std::string oneLine(const char* what) {
     return out;
 }
 
-// A name read from the file, for a message: bytes that are not printable ASCII as \xHH.
-std::string printable(const std::string& name) {
-    std::string out;
-    for (unsigned char c : name) {
-        if (std::isprint(c)) {
-            out += char(c);
-        } else {
-            const char* hex = "0123456789abcdef";
-            out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
-        }
-    }
-    return out;
-}
-
-// Metadata types whose value OpenVDB reads as sizeof(T) bytes whatever the stored size says (and
-// would then misread everything after); strings, delayed-load tables and unknown types read the
-// size stored.
-bool fixedSize(const std::string& type) {
-    static const std::set<std::string> fixed = {"bool", "int32", "int64", "float", "double", "vec2i", "vec2s",
-                                                "vec2d", "vec3i", "vec3s", "vec3d", "vec4i", "vec4s", "vec4d",
-                                                "mat4s", "mat4d"};
-    return fixed.count(type) && openvdb::Metadata::isRegisteredType(type);
+// The grid types voxlux reads: volumes of scalars and vectors. Point grids are listed but not
+// read (their attribute tables hold lengths of their own).
+bool isVolumeType(const std::string& type) {
+    static const std::set<std::string> volumes = {
+        openvdb::FloatGrid::gridType(), openvdb::DoubleGrid::gridType(), openvdb::Int32Grid::gridType(),
+        openvdb::Int64Grid::gridType(), openvdb::BoolGrid::gridType(),   openvdb::MaskGrid::gridType(),
+        openvdb::Vec3SGrid::gridType(), openvdb::Vec3DGrid::gridType(), openvdb::Vec3IGrid::gridType()};
+    return volumes.count(type) > 0;
 }
 
 // Bounded reads of the file's structure: `end` is the file's size or the end of the grid being read.
@@ -86,21 +73,40 @@ public:
         return s;
     }
 
-    // A MetaMap (the file's or a grid's).
+    // A MetaMap (the file's or a grid's). OpenVDB reads a registered type's value as its own size
+    // whatever the stored size says (and would misread everything after), so the two must agree;
+    // strings and unknown types are read as stored, and a delayed-load table by its own counts.
     void metadata(const std::string& what, int64_t end) {
         const uint32_t count = read<uint32_t>(what + " count", end);
         for (uint32_t k = 0; k < count; ++k) {
             const std::string name = string(what + " name", end);
-            const std::string item = what + " '" + printable(name) + "'";
+            const std::string item = what + " '" + printableName(name) + "'";
             const std::string type = string(item + " type", end);
             const uint32_t bytes = read<uint32_t>(item + " size", end);
-            if (fixedSize(type) && bytes != openvdb::Metadata::createMetadata(type)->size())
-                damaged(item + " (" + type + ") has " + std::to_string(bytes) + " bytes");
-            skip(bytes, item, end);
+            need(bytes, end, item);
+            const int64_t value_end = at() + bytes;
+            if (type == openvdb::io::DelayedLoadMetadata::staticTypeName()) {
+                delayedLoadTable(item, bytes);
+            } else if (type != openvdb::StringMetadata::staticTypeName() && openvdb::Metadata::isRegisteredType(type) &&
+                       bytes != openvdb::Metadata::createMetadata(type)->size()) {
+                damaged(item + " (" + printableName(type) + ") has " + std::to_string(bytes) + " bytes");
+            }
+            in_.seekg(value_end);
         }
     }
 
 private:
+    // A delayed-load table: a mask entry per leaf (count) and its compressed form (bytes). Both
+    // are allocated before they are read, so each must fit the file and the item.
+    void delayedLoadTable(const std::string& item, uint32_t size) {
+        if (size == 0) return;
+        const int64_t end = at() + size;
+        const uint32_t count = read<uint32_t>(item + " count", end);
+        const uint32_t compressed = read<uint32_t>(item + " compressed size", end);
+        if (int64_t(count) > size_) damaged(item + " has " + std::to_string(count) + " entries, more than the file's bytes");
+        need(compressed, end, item + " compressed table");
+    }
+
     void need(int64_t bytes, int64_t end, const std::string& what) {
         if (bytes >= 0 && bytes <= end - at()) return;
         if (end == size_)
@@ -116,7 +122,21 @@ private:
 
 }  // namespace
 
+std::string printableName(const std::string& name) {
+    std::string out;
+    for (unsigned char c : name) {
+        if (c >= 0x20 && c != 0x7f) {
+            out += char(c);
+        } else {
+            const char* hex = "0123456789abcdef";
+            out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+        }
+    }
+    return out;
+}
+
 VdbFile::VdbFile(const std::string& file) : file_(file), in_(file, std::ios::binary) {
+    if (!std::filesystem::is_regular_file(file)) throw InputError(file + ": not a file");
     if (!in_) throw InputError(file + ": cannot open");
     walk();
     try {
@@ -155,10 +175,10 @@ void VdbFile::walk() {
     for (int32_t g = 0; g < count; ++g) {
         descriptors_.push_back(w.at());
         const std::string unique_name = w.string("grid name", end);
-        const std::string grid = "grid '" + printable(unique_name) + "'";
+        const std::string grid = "grid '" + printableName(unique_name) + "'";
         std::string type = w.string(grid + " type", end);
         if (type.size() > 10 && type.compare(type.size() - 10, 10, "_HalfFloat") == 0) type.resize(type.size() - 10);
-        if (!openvdb::GridBase::isRegistered(type)) w.damaged(grid + " has type '" + printable(type) + "', which OpenVDB does not know");
+        if (!openvdb::GridBase::isRegistered(type)) w.damaged(grid + " has type '" + printableName(type) + "', which OpenVDB does not know");
         w.string(grid + " instance parent", end);
         const auto grid_pos = w.read<int64_t>(grid + " offsets", end);
         const auto block_pos = w.read<int64_t>(grid + " offsets", end);
@@ -174,41 +194,49 @@ void VdbFile::walk() {
         w.metadata(grid + " metadata", end_pos);
         w.string(grid + " transform type", end_pos);
         in_.seekg(end_pos);
-        grids_.push_back({openvdb::io::GridDescriptor::stripSuffix(unique_name), openvdb::GridBase::createGrid(type)->valueType()});
+        grids_.push_back({openvdb::io::GridDescriptor::stripSuffix(unique_name),
+                          openvdb::GridBase::createGrid(type)->valueType(), isVolumeType(type)});
     }
 }
 
-openvdb::GridBase::Ptr VdbFile::read(size_t k) { return readInstance(k, 0); }
-
-openvdb::GridBase::Ptr VdbFile::readInstance(size_t k, int depth) {
-    openvdb::io::GridDescriptor gd;
-    openvdb::GridBase::Ptr grid;
+openvdb::GridBase::Ptr VdbFile::read(size_t k) {
+    if (!grids_[k].volume)
+        throw InputError(file_ + ": grid '" + printableName(grids_[k].name) + "' (" + grids_[k].value_type +
+                         ") is not a volume; voxlux reads float, double, integer, bool and vector grids");
     try {
-        in_.seekg(descriptors_[k]);
-        grid = gd.read(in_);
-        gd.seekToGrid(in_);
-        Archive::readGrid(grid, gd, in_);
+        return readGrid(k, 0);
     } catch (const InputError&) {
         throw;
+    } catch (const std::ios_base::failure&) {
+        // A short read throws here instead of leaving voxels unset.
+        throw InputError(file_ + ": damaged: grid '" + printableName(grids_[k].name) +
+                         "' reads past the end of the file (a count or size in its tree is wrong)");
     } catch (const std::exception& e) {
-        // A short read throws here (std::ios_base::failure) instead of leaving voxels unset.
-        throw InputError(file_ + ": cannot read grid '" + grids_[k].name + "' (" + oneLine(e.what()) + ")");
+        throw InputError(file_ + ": cannot read grid '" + printableName(grids_[k].name) + "' (" + oneLine(e.what()) + ")");
     }
-    if (gd.isInstance()) {
-        // An instance shares its parent's tree: the file holds only its metadata and transform.
-        size_t parent = descriptors_.size();
-        for (size_t p = 0; p < grids_.size(); ++p) {
-            in_.seekg(descriptors_[p]);
-            openvdb::io::GridDescriptor other;
-            other.read(in_);
-            if (other.uniqueName() == gd.instanceParentName()) parent = p;
-        }
-        if (parent == descriptors_.size() || depth > 0)
-            throw InputError(file_ + ": damaged: grid '" + grids_[k].name + "' is an instance of '" +
-                             gd.instanceParentName() + "', which the file does not hold as a grid");
-        grid->setTree(readInstance(parent, depth + 1)->baseTreePtr());
+}
+
+openvdb::GridBase::Ptr VdbFile::readGrid(size_t k, int depth) {
+    in_.clear();   // after a failed read
+    in_.seekg(descriptors_[k]);
+    openvdb::io::GridDescriptor gd;
+    openvdb::GridBase::Ptr grid = gd.read(in_);
+    gd.seekToGrid(in_);
+    Archive::readGrid(grid, gd, in_);
+    if (!gd.isInstance()) return grid;
+    // An instance shares its parent's tree: the file holds only its metadata and transform.
+    for (size_t p = 0; p < descriptors_.size() && depth == 0; ++p) {
+        in_.seekg(descriptors_[p]);
+        openvdb::io::GridDescriptor other;
+        other.read(in_);
+        if (other.uniqueName() != gd.instanceParentName() || other.isInstance()) continue;
+        openvdb::GridBase::Ptr parent = readGrid(p, depth + 1);
+        if (parent->type() != grid->type()) break;
+        grid->setTree(parent->baseTreePtr());
+        return grid;
     }
-    return grid;
+    throw InputError(file_ + ": damaged: grid '" + printableName(grids_[k].name) + "' is an instance of '" +
+                     printableName(gd.instanceParentName()) + "', which is not a grid of its type in the file");
 }
 
 }  // namespace voxlux

@@ -15,25 +15,33 @@
 
 namespace voxlux {
 
+// `name` (read from a file) for a one-line message: control bytes as \xHH.
+std::string printableName(const std::string& name);
+
 class VdbFile : private openvdb::io::Archive {
 public:
     struct Grid {
         std::string name;
         std::string value_type;                // "float", "vec3s", ...
+        bool volume = true;                    // a grid voxlux reads (not points)
     };
 
     // Opens and checks `file`; throws InputError "<file>: truncated: ..." or "<file>: damaged: ...".
     // OpenVDB must be initialised (initOpenVdb).
     explicit VdbFile(const std::string& file);
+    // The stream is tagged with a pointer to metadata_: a VdbFile stays where it was made.
+    VdbFile(const VdbFile&) = delete;
+    VdbFile& operator=(const VdbFile&) = delete;
 
     // The grids in file order.
     const std::vector<Grid>& grids() const { return grids_; }
-    // Grid `k` with its metadata, transform and voxels. Throws InputError.
+    // Grid `k` with its metadata, transform and voxels. Throws InputError, also for a grid that is
+    // not a volume.
     openvdb::GridBase::Ptr read(size_t k);
 
 private:
     void walk();
-    openvdb::GridBase::Ptr readInstance(size_t k, int depth);
+    openvdb::GridBase::Ptr readGrid(size_t k, int depth);
 
     std::string file_;
     std::ifstream in_;

@@ -15,7 +15,10 @@
 namespace voxlux {
 namespace {
 
-std::string describe(const openvdb::GridBase& g) { return "'" + g.getName() + "' (" + g.valueType() + ")"; }
+std::string describe(const std::string& name, const std::string& value_type) {
+    return "'" + printableName(name) + "' (" + value_type + ")";
+}
+std::string describe(const openvdb::GridBase& g) { return describe(g.getName(), g.valueType()); }
 
 // Opens `file` or throws a one-line InputError.
 VdbFile openFile(const std::string& file) {
@@ -25,7 +28,7 @@ VdbFile openFile(const std::string& file) {
 
 std::string listGrids(const VdbFile& f) {
     std::string out;
-    for (const auto& g : f.grids()) out += (out.empty() ? "" : ", ") + ("'" + g.name + "' (" + g.value_type + ")");
+    for (const auto& g : f.grids()) out += (out.empty() ? "" : ", ") + describe(g.name, g.value_type);
     return out.empty() ? "none" : out;
 }
 
@@ -144,6 +147,10 @@ std::vector<GridSummary> summarizeFile(const std::string& file) {
     VdbFile f = openFile(file);
     std::vector<GridSummary> out;
     for (size_t k = 0; k < f.grids().size(); ++k) {
+        if (!f.grids()[k].volume) {   // listed, not read
+            out.push_back({f.grids()[k].name, f.grids()[k].value_type, "points (not read)"});
+            continue;
+        }
         const openvdb::GridBase::Ptr g = f.read(k);
         GridSummary s;
         s.name = g->getName();

@@ -92,12 +92,15 @@ public:
             const int n = std::min(kMaxRow, hi_ - base);
             std::fill(tau, tau + n, 0.0f);
             for (const SigmaRead& r : sigma_) {
-                const float* a0 = k_.prop_sigma.data + size_t(prev) * sa + size_t(j + r.at.dj) * sv + r.at.di;
-                const float* b0 = k_.prop_sigma.data + size_t(Q.slice) * sa + size_t(j + r.at.dj) * sv + r.at.di;
+                // Row starts; the offset di (negative at a row's start) goes into the index, so
+                // that no pointer is formed outside the arrays.
+                const float* a0 = k_.prop_sigma.data + size_t(prev) * sa + size_t(j + r.at.dj) * sv;
+                const float* b0 = k_.prop_sigma.data + size_t(Q.slice) * sa + size_t(j + r.at.dj) * sv;
                 const float ta = r.at.ta, tb = r.at.tb, f = r.slice, w = r.at.w;
+                const int di = r.at.di;
 #pragma omp simd
                 for (int q = 0; q < n; ++q) {
-                    const int i = base + q;
+                    const int i = base + q + di;
                     const float in_prev = VX_BILERP(a0[i], a0[i + 1], a0[i + sv], a0[i + sv + 1], ta, tb);
                     const float in_here = VX_BILERP(b0[i], b0[i + 1], b0[i + sv], b0[i + sv + 1], ta, tb);
                     tau[q] += w * glm::mix(in_prev, in_here, f);
@@ -106,12 +109,13 @@ public:
             for (int c = 0; c < channels; ++c) {
                 float acc[kMaxRow] = {};
                 for (const Read& r : taps_) {
-                    const float* p0 = k_.prop_prev.data + (size_t(j + r.dj) * nu_ + r.di) * channels + c;
+                    const float* p0 = k_.prop_prev.data + size_t(j + r.dj) * nu_ * channels + c;
                     const float* p1 = p0 + size_t(nu_) * channels;
                     const float ta = r.ta, tb = r.tb, w = r.w;
+                    const int di = r.di;
 #pragma omp simd
                     for (int q = 0; q < n; ++q) {
-                        const size_t i = size_t(base + q) * channels;
+                        const size_t i = size_t(base + q + di) * channels;
                         acc[q] = kernel::vx_radiance_add(acc[q], w * VX_BILERP(p0[i], p0[i + channels], p1[i], p1[i + channels], ta, tb));
                     }
                 }
