@@ -16,6 +16,7 @@
 #include <openvdb/io/io.h>
 
 #include "core/error.h"
+#include "volume/vdb_loader.h"
 
 namespace voxlux {
 namespace {
@@ -136,6 +137,7 @@ std::string printableName(const std::string& name) {
 }
 
 VdbFile::VdbFile(const std::string& file) : file_(file), in_(file, std::ios::binary) {
+    initOpenVdb();   // the walk asks which grid and metadata types are registered
     if (!std::filesystem::is_regular_file(file)) throw InputError(file + ": not a file");
     if (!in_) throw InputError(file + ": cannot open");
     walk();

@@ -27,7 +27,6 @@ public:
     };
 
     // Opens and checks `file`; throws InputError "<file>: truncated: ..." or "<file>: damaged: ...".
-    // OpenVDB must be initialised (initOpenVdb).
     explicit VdbFile(const std::string& file);
     // The stream is tagged with a pointer to metadata_: a VdbFile stays where it was made.
     VdbFile(const VdbFile&) = delete;
