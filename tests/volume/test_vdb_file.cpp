@@ -90,11 +90,18 @@ TEST(VdbFile, AFileCutShortIsRefusedWhereverItIsCut) {
     }
 }
 
-// A count inside a grid's tree that runs past the file (a tile count of 4e9, found by fuzz_vdb)
-// is a short read, which throws: before, OpenVDB looped on it.
+// A count inside a grid's tree that runs past the file (a root tile count of 4e9, as fuzz_vdb
+// found) is a short read, which throws: before, OpenVDB looped on it.
 TEST(VdbFile, AShortReadInsideAGridIsRefused) {
-    const std::string file = std::string(VOXLUX_SOURCE_DIR) + "/tests/fuzz/corpus/vdb/found_tile_count_past_the_end.vdb";
-    EXPECT_EQ(openError(file), file + ": damaged: grid 'empty' reads past the end of the file (a count or size in its tree is wrong)");
+    const std::string dir = tempDir("vdb_file");
+    const std::string bytes = boxFileBytes(dir + "/box.vdb");
+    // The root's topology: buffer count 1, background 0, 0 tiles, 1 child.
+    const std::string root("\1\0\0\0\0\0\0\0\0\0\0\0\1\0\0\0", 16);
+    const size_t at = bytes.find(root);
+    ASSERT_NE(at, std::string::npos);
+    ASSERT_EQ(bytes.find(root, at + 1), std::string::npos);
+    EXPECT_EQ(openError(patched(dir + "/tiles.vdb", bytes, at + 8, 0xffffffffu)),
+              dir + "/tiles.vdb: damaged: grid 'density' reads past the end of the file (a count or size in its tree is wrong)");
 }
 
 }  // namespace
