@@ -28,8 +28,8 @@ for target in scene light_edits cli_specs vdb exr; do
   for seed in $(seeds $target); do cp "$seed" "$work/seed-$(basename "$seed")"; done
   log="$build/fuzz/$target.log"
   # -seed: the same sequence of inputs on every run of a build (how far it gets follows the speed).
-  # -max_len: mutations of the first 16 kB, where the structure is (a cache's voxels are not).
-  if ! "$build/tests/fuzz/fuzz_$target" -seed=1 -max_total_time="$seconds" -max_len=16384 -timeout=20 -rss_limit_mb=4096 \
+  # -max_len: mutations of the first 8 kB, where the structure is (a cache's voxels are not).
+  if ! "$build/tests/fuzz/fuzz_$target" -seed=1 -max_total_time="$seconds" -max_len=8192 -timeout=20 -rss_limit_mb=4096 \
        -print_final_stats=1 -artifact_prefix="$build/fuzz/$target-" "$work" >"$log" 2>&1; then
     tail -n 40 "$log"
     echo "fuzz: fuzz_$target failed; its input is $build/fuzz/$target-*" >&2
