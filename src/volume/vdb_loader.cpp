@@ -1,5 +1,6 @@
 #include "volume/vdb_loader.h"
 
+#include <cmath>
 #include <filesystem>
 #include <mutex>
 
@@ -114,12 +115,19 @@ glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file) {
     if (!map.isLinear())
         throw InputError(file + ": grid '" + grid.getName() + "' has a non-affine (" + map.type() +
                          ") transform, which voxlux does not support");
-    openvdb::Mat4d m = map.getAffineMap()->getMat4();
-    // OpenVDB multiplies row vectors (translation in row 3); glm's column m[c][r] is the same array.
-    glm::mat4 out;
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) out[c][r] = float(m[c][r]);
-    if (glm::determinant(out) == 0.0f)
+    // Built from the map's images of the origin and the unit axes: getAffineMap() of a singular
+    // map throws from a noexcept path in OpenVDB and aborts (fuzz_vdb found a zero scale).
+    const openvdb::Vec3d origin = map.applyMap(openvdb::Vec3d(0.0));
+    glm::mat4 out(1.0f);
+    for (int c = 0; c < 3; ++c) {
+        openvdb::Vec3d axis(0.0);
+        axis[c] = 1.0;
+        const openvdb::Vec3d image = map.applyMap(axis) - origin;
+        out[c] = glm::vec4(float(image[0]), float(image[1]), float(image[2]), 0.0f);
+    }
+    out[3] = glm::vec4(float(origin[0]), float(origin[1]), float(origin[2]), 1.0f);
+    const float det = glm::determinant(out);
+    if (!(std::isfinite(det) && det != 0.0f) || !std::isfinite(out[3].x + out[3].y + out[3].z))
         throw InputError(file + ": grid '" + grid.getName() + "' has a singular index-to-world transform");
     return out;
 }

@@ -4,6 +4,7 @@
 // count at 61, the first descriptor's name length at 65.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -102,6 +103,20 @@ TEST(VdbFile, AShortReadInsideAGridIsRefused) {
     ASSERT_EQ(bytes.find(root, at + 1), std::string::npos);
     EXPECT_EQ(openError(patched(dir + "/tiles.vdb", bytes, at + 8, 0xffffffffu)),
               dir + "/tiles.vdb: damaged: grid 'density' reads past the end of the file (a count or size in its tree is wrong)");
+}
+
+// A zero scale in the grid's transform: OpenVDB's getAffineMap() aborted the process on it
+// (fuzz_vdb found it); the loader refuses the grid.
+TEST(VdbFile, ASingularTransformIsRefusedNotAnAbort) {
+    const std::string dir = tempDir("vdb_file");
+    std::string bytes = boxFileBytes(dir + "/box.vdb");
+    const size_t map = bytes.find("UniformScaleMap");
+    ASSERT_NE(map, std::string::npos);
+    std::fill_n(bytes.begin() + std::ptrdiff_t(map + 15), 24, '\0');   // its three scale values
+    const std::string path = dir + "/zero_scale.vdb";
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(bytes.size()));
+    EXPECT_EQ(inputErrorOf([&] { loadVolume(path, VolumeSpec{}); }),
+              path + ": grid 'density' has a singular index-to-world transform");
 }
 
 }  // namespace
