@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     const double tLoad = best(repeats, [&] { volume = loadVolume(cache, scene.volume); });
     const double tBrick = best(repeats, [&] { atlas = buildBrickAtlas(volume); });
     const double tClassify = best(repeats, [&] { pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material, scene.emission)); });
-    const Camera camera = frameActiveVoxels(volume, scene.render);
+    const Camera camera = frameActiveVoxels(volume, scene);
 
     std::printf("voxlux_bench: %s, %dx%d, step %.2f voxel, 1 directional light\n", cache.c_str(), res, res,
                 scene.render.step);

@@ -383,7 +383,7 @@ void sweep(const Dataset& d, bool quick, std::vector<PlotSeries>& plot, const ch
 
     // A fixed camera: the default three-quarter framing, turned to Z up for the Blender cache.
     const LoadedVolume volume = loadVolume(d.file, base.volume);
-    Camera cam = frameActiveVoxels(volume, base.render);
+    Camera cam = frameActiveVoxels(volume, base);
     Light key;
     key.intensity = 6.0f;
     if (d.z_up) {

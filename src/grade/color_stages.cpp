@@ -8,7 +8,8 @@ namespace voxlux {
 
 bool needsGrade(const Scene& s) {
     const ColorSettings& c = s.color;
-    return !c.grade.empty() || (!c.output_space.empty() && c.output_space != c.working_space) || !s.output.preview.empty();
+    return !c.grade.empty() || (!c.output_space.empty() && c.output_space != c.working_space) || !s.output.preview.empty() ||
+           s.render.exposure != 0.0f;
 }
 
 StageActivity ColorSpaceStage::activity(const Scene& s) const {

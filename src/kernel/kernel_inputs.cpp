@@ -43,7 +43,9 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     P.transmittance_cutoff = r.transmittance_cutoff;
     P.anisotropy = m.anisotropy;
     P.albedo = m.albedo;
-    P.density_scale = m.density_scale;
+    // Per voxel length: the same look on a cache saved at any scale (at most the float maximum).
+    P.density_scale = m.density_units == DensityUnits::Voxel ? std::min(m.density_scale / edge, std::numeric_limits<float>::max())
+                                                             : m.density_scale;
     // Each source's table spans its grid's values in this frame's atlas. When none emits anywhere
     // (all-zero grids) the march runs as without emission, to the bit.
     bool emits = false;

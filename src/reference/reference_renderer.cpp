@@ -9,6 +9,8 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include "core/progress.h"
+
 #include "kernel/cpu_kernel.h"
 #include "core/error.h"
 
@@ -236,6 +238,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
     img.height = k.P.height;
     img.pixels.resize(size_t(img.width) * img.height);
     const double n = rs.spp;
+    ProgressTask progress("reference", int64_t(img.width) * img.height * rs.spp, "samples");
     // Small tiles: a reference render is often a few pixels at many samples.
     tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 4, 0, img.width, 4), [&](const tbb::blocked_range2d<int>& r) {
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
@@ -277,6 +280,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 px.samples = float(double(events) / n);
                 const double mean = lum / rs.spp;
                 px.variance = rs.spp > 1 ? toFloat(std::max(0.0, lum2 - rs.spp * mean * mean) / (rs.spp - 1) / rs.spp) : 0.0f;
+                progress.advance(rs.spp);
             }
     });
     if (opaque_segments) *opaque_segments = opaque;

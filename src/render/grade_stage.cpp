@@ -1,6 +1,8 @@
 #include "render/grade_stage.h"
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 
 namespace voxlux {
 
@@ -21,6 +23,7 @@ StageActivity GradeStage::activity(const Scene& s) const {
         steps += step;
     }
     std::vector<std::string> parts;
+    if (s.render.exposure != 0.0f) parts.push_back("exposure " + std::to_string(s.render.exposure) + " stops");
     if (!steps.empty()) parts.push_back(steps + (c.unpremultiply ? " on unpremultiplied colour" : ""));
     if (!c.output_space.empty() && c.output_space != c.working_space) parts.push_back(working + " -> " + c.output_space);
     if (!s.output.preview.empty())
@@ -31,8 +34,29 @@ StageActivity GradeStage::activity(const Scene& s) const {
     return {true, out};
 }
 
+namespace {
+
+// Exposure scales light, so the beauty's colour, the light AOVs and the variance (by the square);
+// alpha, transmittance and depth stay. Results above the float maximum stay at it.
+void expose(RenderImage& image, float stops) {
+    if (stops == 0.0f) return;
+    const float gain = std::exp2(stops);
+    const auto scale = [](glm::vec3 v, float g) { return glm::min(v * g, glm::vec3(std::numeric_limits<float>::max())); };
+    for (kernel::VxPixel& p : image.pixels) {
+        p.rgba = glm::vec4(scale(glm::vec3(p.rgba), gain), p.rgba.w);
+        p.direct = scale(p.direct, gain);
+        p.ambient = scale(p.ambient, gain);
+        p.emission = scale(p.emission, gain);
+        p.indirect = scale(p.indirect, gain);
+        p.variance = std::min(p.variance * gain * gain, std::numeric_limits<float>::max());
+    }
+}
+
+}  // namespace
+
 void GradeStage::run(StageRun& run) {
     image_ = march_.image();
+    expose(image_, run.scene.render.exposure);
     std::vector<std::string> aovs;
     for (const auto& aov : run.scene.output.aovs) aovs.push_back(aov.name);
     preview_ = gradeImage(image_, color_.pipeline(), aovs, transformer_.on(run.backend));

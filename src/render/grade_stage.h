@@ -15,13 +15,13 @@
 
 namespace voxlux {
 
-// The march's image graded (gradeImage), as a stage: it runs when the scene has grade steps,
-// another output space or a preview, and a grade edit re-runs it without the march.
+// The march's image exposed and graded (gradeImage), as a stage: it runs when the scene has an
+// exposure, grade steps, another output space or a preview, and a grade edit re-runs it without the march.
 class GradeStage final : public Stage {
 public:
     GradeStage(const MarchStage& march, const ColorTransformsStage& color) : march_(march), color_(color) {}
     std::string name() const override { return "grade"; }
-    StageReads reads() const override { return {{"/output/aovs", "/render/backend"}, {"march", "color_transforms"}}; }
+    StageReads reads() const override { return {{"/output/aovs", "/render/backend", "/render/exposure"}, {"march", "color_transforms"}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     void release() override;

@@ -27,13 +27,6 @@ nlohmann::json fileIdentity(const std::string& file) {
 
 }  // namespace
 
-Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
-    auto volume = loadVolume(file, scene.volume);
-    if (volume.density->activeVoxelCount() == 0)
-        throw InputError(file + ": grid '" + volume.density->getName() + "' has no active voxels");
-    return frameActiveVoxels(volume, scene.render);
-}
-
 Renderer::Renderer(Scene scene) : scene_(std::move(scene)) {}
 
 Renderer::Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend)

@@ -43,8 +43,6 @@ struct FrameResult {
     std::string preview_path;                               // the PNG written (renderToFile)
 };
 
-Camera frameVolumeCamera(const std::string& file, const Scene& scene);
-
 class Renderer {
 public:
     explicit Renderer(Scene scene);

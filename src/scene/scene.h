@@ -19,12 +19,16 @@ struct GridRef {
 
 enum class LevelSetPolicy { Reject, ConvertToFog };
 
+// The world axis that points up in the cache. Auto: as the file says (src/volume/up_axis.h), else Y.
+enum class UpAxis { Auto, X, Y, Z };
+
 struct VolumeSpec {
     std::string path;                      // may contain a #### frame pattern
     std::optional<std::array<int, 2>> frames;  // inclusive range for a #### pattern
     GridRef density{"density", 0};
     std::optional<GridRef> color;          // Cd, vec3
     LevelSetPolicy level_set = LevelSetPolicy::Reject;
+    UpAxis up = UpAxis::Auto;              // frames the default camera and orients the quick form's light
 };
 
 struct TransferPoint {
@@ -33,8 +37,13 @@ struct TransferPoint {
     glm::vec3 albedo{1.0f};
 };
 
+// What density_scale's extinction is per: a world unit, or the length of a voxel (the smallest
+// edge), so that a look carries over between caches of different scales.
+enum class DensityUnits { World, Voxel };
+
 struct Material {
-    float density_scale = 1.0f;            // grid value -> extinction per world unit
+    float density_scale = 1.0f;            // grid value -> extinction per density_units length
+    DensityUnits density_units = DensityUnits::World;
     glm::vec3 albedo{0.9f};
     float anisotropy = 0.0f;               // Henyey-Greenstein g
     std::vector<TransferPoint> transfer;   // empty: extinction = density * density_scale
@@ -83,6 +92,7 @@ struct RenderSettings {
     float step = 0.5f;                     // voxels (of the smallest voxel edge)
     float shadow_step = 1.0f;              // voxels, for ray-marched shadows
     float transmittance_cutoff = 1e-4f;
+    float exposure = 0.0f;                 // stops, applied to the beauty and light AOVs before the output transform
     Backend backend = Backend::Auto;
     RenderMethod method = RenderMethod::March;
     ReferenceSettings reference;           // read only with method reference

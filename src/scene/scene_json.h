@@ -21,6 +21,9 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
 Light readLight(const JsonObject& o);
 nlohmann::json lightToJson(const Light& light);
 
+// "auto", "x", "y" or "z", as volume.up spells it.
+const char* upAxisName(UpAxis up);
+
 // The JSON a scene file would need to reproduce `scene` (used by `voxlux scene`).
 nlohmann::json sceneToJson(const Scene& scene);
 

@@ -3,6 +3,7 @@
 #include "scene/scene_json.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -37,7 +38,7 @@ std::string resolvePath(const std::string& path, const std::string& base_dir) {
 }
 
 VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
-    o.rejectUnknown({"path", "frames", "density", "color", "level_set"});
+    o.rejectUnknown({"path", "frames", "density", "color", "level_set", "up"});
     VolumeSpec v;
     v.path = o.string("path");
     v.path = resolvePath(v.path, base_dir);
@@ -54,14 +55,17 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
     v.level_set = o.choice("level_set", {"reject", "fog"}, "reject") == "fog"
                       ? LevelSetPolicy::ConvertToFog
                       : LevelSetPolicy::Reject;
+    const std::string up = o.choice("up", {"auto", "x", "y", "z"}, "auto");
+    v.up = up == "x" ? UpAxis::X : up == "y" ? UpAxis::Y : up == "z" ? UpAxis::Z : UpAxis::Auto;
     return v;
 }
 
 Material readMaterial(const JsonObject& o) {
-    o.rejectUnknown({"density_scale", "albedo", "anisotropy", "transfer_function"});
+    o.rejectUnknown({"density_scale", "density_units", "albedo", "anisotropy", "transfer_function"});
     Material m;
     m.density_scale = o.number("density_scale", m.density_scale);
     if (m.density_scale < 0) o.fail("density_scale", "must be 0 or more");
+    m.density_units = o.choice("density_units", {"world", "voxel"}, "world") == "voxel" ? DensityUnits::Voxel : DensityUnits::World;
     m.albedo = o.vec3("albedo", m.albedo);
     if (glm::any(glm::lessThan(m.albedo, glm::vec3(0))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1))))
         o.fail("albedo", "each component must lie in [0, 1]");
@@ -147,7 +151,7 @@ ReferenceSettings readReference(const JsonObject& o) {
 }
 
 RenderSettings readRender(const JsonObject& o) {
-    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "backend", "method", "reference"});
+    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "exposure", "backend", "method", "reference"});
     RenderSettings r;
     if (o.has("resolution")) {
         auto res = o.numbers("resolution", 2);
@@ -164,6 +168,8 @@ RenderSettings readRender(const JsonObject& o) {
     r.transmittance_cutoff = o.number("transmittance_cutoff", r.transmittance_cutoff);
     if (!(r.transmittance_cutoff > 0 && r.transmittance_cutoff < 1))
         o.fail("transmittance_cutoff", "must lie in (0, 1)");
+    r.exposure = o.number("exposure", r.exposure);
+    if (!(std::abs(r.exposure) <= 64)) o.fail("exposure", "must lie in [-64, 64] stops");
     std::string b = o.choice("backend", {"auto", "cpu", "gl"}, "auto");
     r.backend = b == "cpu" ? Backend::Cpu : b == "gl" ? Backend::Gl : Backend::Auto;
     r.method = o.choice("method", {"march", "reference"}, "march") == "reference" ? RenderMethod::Reference : RenderMethod::March;
@@ -334,6 +340,16 @@ OutputSpec readOutput(const JsonObject& o) {
     OutputSpec out;
     out.path = o.string("path", "");
     out.preview = o.string("preview", "");
+    // The extension never lies: the image is OpenEXR, the preview PNG.
+    const auto endsWith = [](std::string name, const std::string& ext) {
+        std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        return name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0;
+    };
+    if (!out.path.empty() && !endsWith(out.path, ".exr"))
+        o.fail("path", "'" + out.path + "' does not end in .exr: the image is written as OpenEXR (an sRGB PNG is the "
+                       "preview: output.preview, or --preview FILE.png)");
+    if (!out.preview.empty() && !endsWith(out.preview, ".png"))
+        o.fail("preview", "'" + out.preview + "' does not end in .png: the preview is written as PNG");
     out.pixel_type = readPixelType(o);
     out.compression = o.choice("compression", knownCompressions(), "zip");
     if (o.has("aovs")) {

@@ -13,6 +13,14 @@ nlohmann::json gridRefToJson(const GridRef& g) {
     return {{"name", g.name}, {"index", g.index}};
 }
 
+}  // namespace
+
+const char* upAxisName(UpAxis up) {
+    return up == UpAxis::X ? "x" : up == UpAxis::Y ? "y" : up == UpAxis::Z ? "z" : "auto";
+}
+
+namespace {
+
 const char* pixelTypeName(PixelType t) { return t == PixelType::Float ? "float" : "half"; }
 
 // Floats as the shortest decimal that reads back to the same float (0.9f prints as 0.9).
@@ -113,9 +121,11 @@ nlohmann::json sceneToJson(const Scene& s) {
     v["density"] = gridRefToJson(s.volume.density);
     if (s.volume.color) v["color"] = gridRefToJson(*s.volume.color);
     v["level_set"] = s.volume.level_set == LevelSetPolicy::ConvertToFog ? "fog" : "reject";
+    v["up"] = upAxisName(s.volume.up);
 
     auto& m = j["material"];
     m["density_scale"] = decimal(s.material.density_scale);
+    m["density_units"] = s.material.density_units == DensityUnits::Voxel ? "voxel" : "world";
     m["albedo"] = vec(s.material.albedo);
     m["anisotropy"] = decimal(s.material.anisotropy);
     for (const auto& p : s.material.transfer)
@@ -144,6 +154,7 @@ nlohmann::json sceneToJson(const Scene& s) {
     r["step"] = decimal(s.render.step);
     r["shadow_step"] = decimal(s.render.shadow_step);
     r["transmittance_cutoff"] = decimal(s.render.transmittance_cutoff);
+    r["exposure"] = decimal(s.render.exposure);
     r["backend"] = s.render.backend == Backend::Cpu ? "cpu" : s.render.backend == Backend::Gl ? "gl" : "auto";
     r["method"] = s.render.method == RenderMethod::Reference ? "reference" : "march";
     const ReferenceSettings& ref = s.render.reference;

@@ -3,11 +3,14 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -15,11 +18,15 @@
 #include "core/error.h"
 #include "io/exr_writer.h"
 #include "core/frame_pattern.h"
+#include "core/progress.h"
 #include "volume/make_cloud.h"
 #include "render/light_edits.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
+#include "volume/vdb_file.h"
 #include "volume/vdb_loader.h"
+#include "render/framing.h"
+#include "tools/quick_form.h"
 
 namespace voxlux {
 namespace {
@@ -27,14 +34,6 @@ namespace {
 bool isSceneFile(const std::string& path) {
     auto ext = std::filesystem::path(path).extension().string();
     return ext == ".json";
-}
-
-// The quick form: a .vdb with default light and framing (a camera is filled in by `scene`).
-Scene quickScene(const std::string& vdb) {
-    Scene s;
-    s.volume.path = vdb;
-    s.lights.push_back(defaultKeyLight());
-    return s;
 }
 
 // The frames a render covers, taken one at a time: a range is never expanded up front, so
@@ -51,7 +50,7 @@ FrameSpan framesOf(const Scene& s) {
     if (!hasFramePattern(s.volume.path)) return {};
     if (!s.volume.frames)
         throw InputError(s.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
-    if (!hasFramePattern(s.output.path) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
+    if (!s.output.path.empty() && !hasFramePattern(s.output.path) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
         throw InputError(s.output.path + ": several frames need a #### pattern in the output path");
     if (!s.output.preview.empty() && !hasFramePattern(s.output.preview) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
         throw InputError(s.output.preview + ": several frames need a #### pattern in the preview path");
@@ -130,26 +129,113 @@ int runLightEdits(const Scene& scene, const std::string& edits_file, std::option
     return 0;
 }
 
+// The scene a command renders: the scene file, or the quick form's, with the flags applied. A
+// sequence without a camera gets one for all its frames (or --frame-on's), and the quick form
+// reads its choices from the fullest frame; `notes` says what it chose.
+Scene sceneFor(const std::string& input, const SceneOverrides& overrides, std::vector<std::string>& notes) {
+    const bool quick = !isSceneFile(input);
+    Scene scene = applyOverrides(quick ? quickScene(input) : loadSceneFile(input), overrides);
+    const FrameSpan frames = framesOf(scene);
+    std::optional<int> reference = overrides.frame_on;
+    if (!scene.camera && frames.first) {
+        if (overrides.frame_on) {
+            scene.camera = frameVolumeCamera(expandFramePattern(scene.volume.path, *overrides.frame_on), scene);
+        } else {
+            const SequenceFraming framing = frameSequence(scene, *frames.first, frames.last);
+            scene.camera = framing.camera;
+            reference = framing.fullest_frame;
+            notes.push_back("camera framed on frames " + std::to_string(*frames.first) + "-" + std::to_string(frames.last) +
+                            " together (--frame-on N for one frame)");
+        }
+    }
+    if (quick) scene = completeQuickScene(scene, overrides, reference, notes);
+    return scene;
+}
+
+// Notes go out once the command has succeeded: a failing command prints its one error line only.
+void printNotes(const std::vector<std::string>& notes, std::ostream& out) {
+    for (const auto& n : notes) out << "voxlux: " << n << "\n";
+}
+
+// What `--explain` can check without rendering: the output path, the frame pattern, and that each
+// file the first and last frames read exists and has the grids the scene names.
+std::vector<std::string> missingInputs(const Scene& scene) {
+    std::vector<std::string> problems;
+    if (scene.output.path.empty()) problems.push_back("no output path: pass -o FILE.exr or set output.path in the scene");
+    std::vector<std::string> files{scene.volume.path};
+    try {
+        const FrameSpan frames = framesOf(scene);
+        if (frames.first) files = {expandFramePattern(scene.volume.path, *frames.first), expandFramePattern(scene.volume.path, frames.last)};
+    } catch (const InputError& e) {
+        problems.push_back(e.what());
+        return problems;
+    }
+    std::vector<std::string> grids{scene.volume.density.name};
+    if (scene.volume.color) grids.push_back(scene.volume.color->name);
+    for (const auto& e : scene.emission) grids.push_back(e.grid.name);
+    for (size_t k = 0; k < files.size() && (k == 0 || files[k] != files[0]); ++k) {
+        try {
+            if (!std::filesystem::exists(files[k])) throw InputError(files[k] + ": no such file");
+            const VdbFile file(files[k]);
+            for (const auto& name : grids) {
+                const bool found = std::any_of(file.grids().begin(), file.grids().end(),
+                                               [&](const VdbFile::Grid& g) { return g.name == name; });
+                if (!found) problems.push_back(files[k] + ": no grid named '" + name + "'");
+            }
+        } catch (const InputError& e) {
+            problems.push_back(e.what());
+        }
+    }
+    return problems;
+}
+
+int explainRender(const RenderCommand& cmd) {
+    Scene scene;
+    std::vector<std::string> problems, notes;
+    try {
+        scene = sceneFor(cmd.input, cmd.overrides, notes);
+    } catch (const InputError& e) {
+        // The quick form reads its cache to choose its defaults: explain without them.
+        if (isSceneFile(cmd.input)) throw;
+        problems.push_back(e.what());
+        scene = applyOverrides(quickScene(cmd.input), cmd.overrides);
+    }
+    for (const auto& p : missingInputs(scene))
+        if (std::find(problems.begin(), problems.end(), p) == problems.end()) problems.push_back(p);
+    std::cout << Renderer(scene).graph().explain(scene);
+    if (problems.empty()) {
+        printNotes(notes, std::cout);
+        return 0;
+    }
+    std::cout << "\ncannot render:\n";
+    for (const auto& p : problems) std::cout << "  " << p << "\n";
+    std::cerr << "voxlux: error: " << problems.front()
+              << (problems.size() > 1 ? " (and " + std::to_string(problems.size() - 1) + " more, listed above)" : "") << "\n";
+    return kInputError;
+}
+
 }  // namespace
 
 int runRender(const RenderCommand& cmd) {
-    Scene scene = isSceneFile(cmd.input) ? loadSceneFile(cmd.input) : quickScene(cmd.input);
-    scene = applyOverrides(scene, cmd.overrides);
-    if (cmd.explain) {
-        std::cout << Renderer(scene).graph().explain(scene);
-        return 0;
-    }
+    if (cmd.explain) return explainRender(cmd);
+    std::vector<std::string> notes;
+    const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
     const FrameSpan frames = framesOf(scene);
     const bool sequence = frames.first.has_value();
     if (cmd.light_edits) return runLightEdits(scene, *cmd.light_edits, frames.first, cmd.stats);
 
     if (cmd.stats) checkWritable(*cmd.stats);  // before any frame: every output or none
+    if (scene.output.path.empty()) throw InputError("no output path: pass -o FILE.exr or set output.path in the scene");
     Renderer renderer(scene);
     nlohmann::json stats = {{"backend", renderer.backendName()}, {"frames", nlohmann::json::array()}};
     size_t emptyFrames = 0;
+    const auto progress = sequence ? std::make_unique<ProgressTask>("sequence", frames.count(), "frames") : nullptr;
     for (int64_t k = 0; k < frames.count(); ++k) {
         const std::optional<int> frame = frames.at(k);
+        if (progress) progress->describe("frame " + std::to_string(*frame));
         FrameResult r = renderer.renderToFile(frame, sequence);
+        if (progress) progress->advance();
+        clearProgressLine();
         for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
         emptyFrames += r.empty;
         std::cout << "wrote " << r.path << (r.preview_path.empty() ? "" : " and " + r.preview_path) << " ("
@@ -170,36 +256,58 @@ int runRender(const RenderCommand& cmd) {
     if (emptyFrames) std::cerr << "voxlux: warning: " << emptyFrames << " empty frame(s) rendered transparent\n";
     stats["peak_rss_bytes"] = peakRssBytes();
     if (cmd.stats) writeFileAtomically(*cmd.stats, jsonText(stats, 2) + "\n");
+    printNotes(notes, std::cout);
     return 0;
 }
 
 int runStudyCommand(const StudyCommand& cmd) {
-    Scene scene = isSceneFile(cmd.input) ? loadSceneFile(cmd.input) : quickScene(cmd.input);
-    scene = applyOverrides(scene, cmd.overrides);
-    runStudy(scene, cmd.options, std::cout, std::cerr, isatty(STDERR_FILENO));
+    std::vector<std::string> notes;
+    const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
+    runStudy(scene, cmd.options, std::cout);
+    printNotes(notes, std::cout);
     return 0;
 }
 
-int runScene(const std::string& vdb, const SceneOverrides& overrides) {
-    Scene scene = applyOverrides(quickScene(vdb), overrides);
-    scene.camera = frameVolumeCamera(vdb, scene);
-    std::cout << jsonText(sceneToJson(scene), 2) << "\n";
+int runScene(const SceneCommand& cmd) {
+    std::vector<std::string> notes;
+    Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
+    if (!scene.camera) scene.camera = frameVolumeCamera(scene.volume.path, scene);
+    // The image is named after the cache (#### kept), in the folder the render runs in.
+    if (scene.output.path.empty()) scene.output.path = std::filesystem::path(cmd.input).stem().string() + ".exr";
+    // The volume path as the scene file's reader resolves it: relative to the file's folder, or
+    // absolute when the scene goes to standard output and may be saved anywhere.
+    const std::filesystem::path volume = std::filesystem::absolute(scene.volume.path).lexically_normal();
+    if (cmd.output) {
+        const auto folder = std::filesystem::absolute(*cmd.output).parent_path();
+        scene.volume.path = volume.lexically_relative(folder).string();
+        writeFileAtomically(*cmd.output, jsonText(sceneToJson(scene), 2) + "\n");
+        std::cout << "wrote " << *cmd.output << "\n";
+    } else {
+        scene.volume.path = volume.string();
+        std::cout << jsonText(sceneToJson(scene), 2) << "\n";
+    }
+    printNotes(notes, std::cerr);   // standard output may be the scene
     return 0;
 }
 
 int runInfo(const std::string& vdb, bool json) {
-    auto grids = summarizeFile(vdb);
+    const auto grids = summarizeFile(vdb);
+    const auto triple = [](auto v) { return nlohmann::json::array({v[0], v[1], v[2]}); };
+    const char* axis_names[] = {"x", "y", "z"};
     if (json) {
         nlohmann::json out = {{"file", vdb}, {"grids", nlohmann::json::array()}};
         for (const auto& g : grids) {
-            nlohmann::json gj = {{"name", g.name}, {"type", g.value_type}, {"class", g.grid_class},
+            nlohmann::json gj = {{"name", g.name}, {"index", g.index}, {"type", g.value_type}, {"class", g.grid_class},
                                  {"active_voxels", g.active_voxels}, {"active_tiles", g.active_tiles},
-                                 {"voxel_size", {g.voxel_size.x(), g.voxel_size.y(), g.voxel_size.z()}},
-                                 {"bricks", g.bricks}};
+                                 {"voxel_size", triple(g.voxel_size)}, {"bricks", g.bricks},
+                                 {"brick_bytes", g.brick_bytes}, {"up", axis_names[g.up.axis]}, {"up_reason", g.up.reason}};
             if (g.active_voxels > 0) {
-                gj["bbox_min"] = {g.bbox.min().x(), g.bbox.min().y(), g.bbox.min().z()};
-                gj["bbox_max"] = {g.bbox.max().x(), g.bbox.max().y(), g.bbox.max().z()};
+                gj["bbox_min"] = triple(g.bbox.min());
+                gj["bbox_max"] = triple(g.bbox.max());
+                gj["world_min"] = triple(g.world_min);
+                gj["world_max"] = triple(g.world_max);
             }
+            if (g.has_range) gj[g.vector ? "length_range" : "value_range"] = {g.min_value, g.max_value};
             out["grids"].push_back(gj);
         }
         std::cout << jsonText(out, 2) << "\n";
@@ -207,7 +315,8 @@ int runInfo(const std::string& vdb, bool json) {
     }
     std::cout << vdb << ": " << grids.size() << (grids.size() == 1 ? " grid\n" : " grids\n");
     for (const auto& g : grids) {
-        std::cout << "  " << g.name << "  " << g.value_type << "  " << g.grid_class << "\n"
+        std::cout << "  " << g.name << (g.index > 0 ? " (index " + std::to_string(g.index) + ")" : "") << "  " << g.value_type
+                  << "  " << g.grid_class << "\n"
                   << "    active voxels " << g.active_voxels << " (" << g.active_tiles << " active tiles)\n";
         if (g.active_voxels == 0) {
             std::cout << "    empty\n";
@@ -217,8 +326,13 @@ int runInfo(const std::string& vdb, bool json) {
         std::cout << "    bbox (index) [" << b.min().x() << ", " << b.min().y() << ", " << b.min().z() << "] -> ["
                   << b.max().x() << ", " << b.max().y() << ", " << b.max().z() << "]  (" << b.dim().x() << " x "
                   << b.dim().y() << " x " << b.dim().z() << ")\n"
-                  << "    voxel size " << g.voxel_size.x() << " " << g.voxel_size.y() << " " << g.voxel_size.z() << "\n"
-                  << "    bricks (8^3) " << g.bricks << "\n";
+                  << "    bbox (world) [" << g.world_min.x << ", " << g.world_min.y << ", " << g.world_min.z << "] -> ["
+                  << g.world_max.x << ", " << g.world_max.y << ", " << g.world_max.z << "]\n"
+                  << "    voxel size " << g.voxel_size.x() << " " << g.voxel_size.y() << " " << g.voxel_size.z() << "\n";
+        if (g.has_range) std::cout << (g.vector ? "    length range " : "    value range ") << g.min_value << " .. " << g.max_value << "\n";
+        std::cout << "    bricks (8^3) " << g.bricks << ", " << std::fixed << std::setprecision(1)
+                  << double(g.brick_bytes) / (1024.0 * 1024.0) << std::defaultfloat << " MiB in the atlas per channel\n"
+                  << "    up axis " << g.up.reason << "\n";
     }
     return 0;
 }

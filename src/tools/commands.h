@@ -25,7 +25,13 @@ struct StudyCommand {
 
 int runRender(const RenderCommand& cmd);
 int runStudyCommand(const StudyCommand& cmd);
-int runScene(const std::string& vdb, const SceneOverrides& overrides);
+struct SceneCommand {
+    std::string input;                          // volume .vdb (#### with --frames)
+    SceneOverrides overrides;
+    std::optional<std::string> output;          // write the scene here, else to standard output
+};
+
+int runScene(const SceneCommand& cmd);
 int runInfo(const std::string& vdb, bool json);
 int runMakeCloud(const std::string& output, int resolution, unsigned seed);
 

@@ -1,4 +1,6 @@
 // voxlux command line: render, scene, study, info, make-cloud. Errors are one line on stderr.
+#include <unistd.h>
+
 #include <filesystem>
 #include <iostream>
 
@@ -6,6 +8,7 @@
 
 #include "tools/commands.h"
 #include "core/error.h"
+#include "core/progress.h"
 
 namespace {
 
@@ -17,6 +20,10 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
                    "blackbody emission from a Mantaflow temperature grid, value x 1000 K (emission)");
     cmd.add_option("--color-grid", o.color_grid, "vec3 colour grid, e.g. Cd (volume.color)");
     cmd.add_option("--level-set", o.level_set, "reject|fog: convert a level set to fog (volume.level_set)");
+    cmd.add_option("--up", o.up, "x|y|z|auto: the cache's up axis (volume.up; auto: as the file says)");
+    cmd.add_option("--frame-on", o.frame_on,
+                   "frame the camera on this frame of a sequence, and read the quick form's defaults from it "
+                   "(default: every frame framed together, defaults from the middle one)");
     cmd.add_option("--res", o.resolution, "WIDTHxHEIGHT (render.resolution)");
     cmd.add_option("--step", o.step, "march step in voxels (render.step)");
     cmd.add_option("--shadow-step", o.shadow_step, "shadow-ray step in voxels (render.shadow_step)");
@@ -65,12 +72,14 @@ int main(int argc, char** argv) {
                           "EDITS.json: replay light edits (selective updates), print each one's time, write the last frame");
     addSceneOverrides(*renderCmd, render.overrides);
 
-    std::string sceneInput;
-    voxlux::SceneOverrides sceneOverrides;
-    auto* sceneCmd = app.add_subcommand("scene", "print the scene the quick form of render would use");
-    sceneCmd->add_option("volume", sceneInput, "volume .vdb")->required();
-    sceneCmd->add_option("-o,--output", sceneOverrides.output, "output.path to put in the scene");
-    addSceneOverrides(*sceneCmd, sceneOverrides);
+    voxlux::SceneCommand scene;
+    auto* sceneCmd = app.add_subcommand("scene", "write the scene the quick form of render would use, to edit");
+    sceneCmd->add_option("volume", scene.input, "volume .vdb (#### with --frames)")->required();
+    sceneCmd->add_option("-o,--output", scene.output,
+                         "write the scene to this .json (volume path relative to it) instead of standard output");
+    sceneCmd->add_option("--image", scene.overrides.output, "output.path to put in the scene (default: the cache's name, .exr)");
+    sceneCmd->add_option("--preview", scene.overrides.preview, "output.preview to put in the scene");
+    addSceneOverrides(*sceneCmd, scene.overrides);
 
     std::string infoInput;
     bool infoJson = false;
@@ -101,6 +110,11 @@ int main(int argc, char** argv) {
     cloudCmd->add_option("--res", cloudResolution, "voxels across")->check(CLI::Range(8, 1024));
     cloudCmd->add_option("--seed", cloudSeed, "noise seed");
 
+    bool progressLines = false;
+    for (auto* cmd : {renderCmd, studyCmd})
+        cmd->add_flag("--progress", progressLines,
+                      "print a progress line every 10 s to stderr when it is not a terminal (a terminal gets a bar)");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -111,9 +125,12 @@ int main(int argc, char** argv) {
         return voxlux::kInputError;
     }
 
+    voxlux::installInterruptHandler();
+    if (isatty(STDERR_FILENO)) voxlux::setProgressDisplay(voxlux::ProgressDisplay::Bar, std::cerr);
+    else if (progressLines) voxlux::setProgressDisplay(voxlux::ProgressDisplay::Lines, std::cerr);
     try {
         if (*renderCmd) return voxlux::runRender(render);
-        if (*sceneCmd) return voxlux::runScene(sceneInput, sceneOverrides);
+        if (*sceneCmd) return voxlux::runScene(scene);
         if (*studyCmd) {
             study.options.command = "voxlux";
             for (int i = 1; i < argc; ++i) study.options.command += " " + shellQuoted(argv[i]);
@@ -121,7 +138,12 @@ int main(int argc, char** argv) {
         }
         if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
+    } catch (const voxlux::Interrupted&) {
+        voxlux::clearProgressLine();
+        std::cerr << "voxlux: interrupted: stopped before the next output; every file written is whole\n";
+        return 130;   // as a shell reports a process ended by SIGINT
     } catch (const voxlux::InputError& e) {
+        voxlux::clearProgressLine();
         std::cerr << "voxlux: error: " << e.what() << "\n";
         return voxlux::kInputError;
     } catch (const std::filesystem::filesystem_error& e) {

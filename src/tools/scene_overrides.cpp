@@ -96,6 +96,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
         });
     setKey("--color-grid", "/volume/color", o.color_grid);
     setKey("--level-set", "/volume/level_set", o.level_set);
+    setKey("--up", "/volume/up", o.up);
     if (o.emission_grid || o.blackbody_grid)
         apply(o.emission_grid ? "--emission-grid" : "--blackbody-grid", [o](nlohmann::json& s) {
             auto& sources = s["emission"] = nlohmann::json::array();

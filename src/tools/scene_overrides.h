@@ -26,6 +26,9 @@ struct SceneOverrides {
     std::optional<std::string> output, preview;
     std::optional<std::string> quality;         // draft|preview|final: applied before every other override
     std::vector<std::string> sets;              // "dotted.key=JSON value", any scene key
+    std::optional<std::string> up;              // x|y|z|auto (volume.up)
+    std::optional<int> frame_on;                // not a key: the frame a sequence is framed on, and the quick
+                                                // form's choices read (default: all frames; the middle one)
 };
 
 // `base` with the overrides applied: the quality preset first, then the flags, then each --set in

@@ -9,6 +9,7 @@
 
 #include "grade/color_pipeline.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "io/exr_reader.h"
 #include "io/exr_writer.h"
 #include "core/frame_pattern.h"
@@ -66,39 +67,6 @@ Measured renderTimed(const Scene& scene, std::optional<int> frame, int repeats) 
     return m;
 }
 
-std::string clock(double seconds) {
-    const long s = std::lround(seconds);
-    char buf[32];
-    if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, s / 60 % 60);
-    else std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-    return buf;
-}
-
-// "[=====>      ] 12/39  elapsed 1m02s  left ~3m10s  what"
-class ProgressBar {
-public:
-    ProgressBar(std::ostream& os, bool terminal, size_t total) : os_(os), terminal_(terminal), total_(total) {}
-    // `left_seconds` < 0: not known yet.
-    void show(size_t done, double left_seconds, const std::string& what) {
-        if (!terminal_) return;
-        const int width = 30, filled = total_ ? int(width * done / total_) : width;
-        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-        os_ << "\r\033[K[" << std::string(filled, '=') << (filled < width ? ">" : "") << std::string(std::max(0, width - filled - 1), ' ')
-            << "] " << done << "/" << total_ << "  elapsed " << clock(elapsed)
-            << (left_seconds >= 0 ? "  left ~" + clock(left_seconds) : std::string()) << "  " << what.substr(0, 60)
-            << std::flush;
-    }
-    void finish() {
-        if (terminal_) os_ << "\r\033[K" << std::flush;
-    }
-
-private:
-    std::ostream& os_;
-    bool terminal_;
-    size_t total_;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
 struct Truth {
     RenderImage image;
     StudyTruth info;
@@ -107,7 +75,7 @@ struct Truth {
 // The ground truth: kept in the study folder and reused while the scene and sample count are
 // unchanged. Two halves with their own seeds measure its noise.
 Truth groundTruth(const nlohmann::json& base, const std::string& hash, const StudyOptions& o, std::optional<int> frame,
-                  const glm::mat3& working_to_xyz, ProgressBar& bar, std::ostream& out) {
+                  const glm::mat3& working_to_xyz, ProgressTask& progress, std::ostream& out) {
     const fs::path dir(o.out_dir);
     const std::string exr = (dir / "truth.exr").string(), json = (dir / "truth.json").string();
     if (!o.fresh && fs::exists(exr) && fs::exists(json)) {
@@ -122,7 +90,7 @@ Truth groundTruth(const nlohmann::json& base, const std::string& hash, const Stu
     const int seed = base["render"]["reference"].value("seed", 1);
     Measured half[2];
     for (int h = 0; h < 2; ++h) {
-        bar.show(0, -1, "ground truth, half " + std::to_string(h + 1) + " of 2");
+        progress.describe("ground truth, half " + std::to_string(h + 1) + " of 2");
         StudyConfig c{"reference", {"render.method=reference", "render.reference.spp=" + std::to_string(o.truth_spp / 2),
                                     "render.reference.seed=" + std::to_string(seed + 1000003 * (h + 1))}, o.truth_spp / 2};
         half[h] = renderTimed(studyScene(base, c), frame, 1);
@@ -140,15 +108,15 @@ Truth groundTruth(const nlohmann::json& base, const std::string& hash, const Stu
     writeFileAtomically(json, nlohmann::json({{"scene", hash}, {"spp", o.truth_spp}, {"seconds", t.info.seconds},
                                                {"noise_rmse", t.info.noise_rmse}, {"noise_delta_e", t.info.noise_delta_e}})
                                       .dump(2) + "\n");
-    bar.finish();
-    out << "ground truth: " << exr << " (" << o.truth_spp << " spp in " << clock(t.info.seconds) << ", noise RMSE "
+    clearProgressLine();
+    out << "ground truth: " << exr << " (" << o.truth_spp << " spp in " << clockText(t.info.seconds) << ", noise RMSE "
         << t.info.noise_rmse << ")\n";
     return t;
 }
 
 }  // namespace
 
-void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out, std::ostream& progress, bool terminal) {
+void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out) {
     if (o.truth_spp < 2 || o.truth_spp % 2) throw InputError("--truth-spp " + std::to_string(o.truth_spp) + ": must be even and at least 2");
     for (int spp : o.spps)
         if (spp < 1 || spp >= o.truth_spp)
@@ -171,8 +139,8 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out, std:
     const std::string csv = (fs::path(o.out_dir) / "study.csv").string();
     const std::string header = "voxlux study: scene " + hash + ", truth " + std::to_string(o.truth_spp) + " spp";
 
-    ProgressBar bar(progress, terminal, plan.configs.size());
-    const Truth truth = groundTruth(base, hash, o, frame, working_to_xyz, bar, out);
+    ProgressTask progress("study", int64_t(plan.configs.size()), "renders");
+    const Truth truth = groundTruth(base, hash, o, frame, working_to_xyz, progress, out);
 
     std::vector<StudyRow> rows = o.fresh ? std::vector<StudyRow>{} : readStudyCsv(csv, header);
     std::string kept = studyCsvHeader(header);
@@ -183,6 +151,7 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out, std:
     rows = known;
     if (!rows.empty()) out << "resuming: " << rows.size() << " of " << plan.configs.size() << " renders kept from " << csv << "\n";
     writeFileAtomically(csv, kept);
+    progress.advance(int64_t(rows.size()));
 
     // Time left: a reference render costs its share of the truth's time per sample; the others
     // cost what they have cost on average so far.
@@ -202,7 +171,8 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out, std:
         double left = 0;
         for (size_t k = i; k < plan.configs.size(); ++k)
             if (!measured(plan.configs[k])) left += expected(plan.configs[k]) * o.repeats;
-        bar.show(rows.size(), left, c.method + ": " + studySettings(c.id()));
+        progress.estimateLeft(left);
+        progress.describe(c.method + ": " + studySettings(c.id()));
         const Measured m = renderTimed(studyScene(base, c), frame, o.repeats);
         StudyRow r{c.id(), c.method, c.spp, m.seconds,
                    std::sqrt(std::max(0.0, meanSquaredError(m.image, truth.image) - truth.info.noise_rmse * truth.info.noise_rmse)),
@@ -213,10 +183,10 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out, std:
         char line[200];
         std::snprintf(line, sizeof line, "[%2zu/%zu] %8.3f s  RMSE %.4g  Delta E ITP %.3g  ", rows.size(), plan.configs.size(),
                       r.seconds, r.rmse, r.delta_e);
-        bar.finish();
+        progress.advance();
+        clearProgressLine();
         out << line << c.method << ": " << studySettings(c.id()) << "\n" << std::flush;
     }
-    bar.finish();
     append.close();
 
     markParetoFronts(rows);

@@ -20,9 +20,8 @@ struct StudyOptions {
     bool fresh = false;                  // ignore what an earlier run measured
 };
 
-// Writes <out_dir>/study.csv, truth.exr, truth.json, chart.svg and report.md. Progress goes to
-// `progress` (a bar when it is a terminal), one line per render to `out`. Throws InputError.
-void runStudy(const Scene& scene, const StudyOptions& options, std::ostream& out, std::ostream& progress,
-              bool progress_is_terminal);
+// Writes <out_dir>/study.csv, truth.exr, truth.json, chart.svg and report.md, and one line per
+// render to `out`; progress through core/progress.h. Throws InputError.
+void runStudy(const Scene& scene, const StudyOptions& options, std::ostream& out);
 
 }  // namespace voxlux

@@ -152,6 +152,7 @@ VdbFile::VdbFile(const std::string& file) : file_(file), in_(file, std::ios::bin
         setFormatVersion(in_);
         setLibraryVersion(in_);
         setDataCompression(in_);
+        file_metadata_.readMeta(in_);   // checked by the walk
     } catch (const std::exception& e) {
         throw InputError(file + ": not a readable OpenVDB file (" + std::string(e.what()) + ")");
     }

@@ -32,8 +32,9 @@ public:
     VdbFile(const VdbFile&) = delete;
     VdbFile& operator=(const VdbFile&) = delete;
 
-    // The grids in file order.
+    // The grids in file order, and the file's own metadata (creator and so on).
     const std::vector<Grid>& grids() const { return grids_; }
+    const openvdb::MetaMap& fileMetadata() const { return file_metadata_; }
     // Grid `k` with its metadata, transform and voxels. Throws InputError, also for a grid that is
     // not a volume.
     openvdb::GridBase::Ptr read(size_t k);
@@ -47,6 +48,7 @@ private:
     std::vector<Grid> grids_;
     std::vector<std::streamoff> descriptors_;  // where each grid's descriptor starts
     openvdb::io::StreamMetadata::Ptr metadata_;
+    openvdb::MetaMap file_metadata_;
 };
 
 }  // namespace voxlux

@@ -12,6 +12,8 @@
 #include "volume/brick_set.h"
 #include "volume/vdb_file.h"
 #include "core/error.h"
+#include "kernel/kernel_types.h"
+#include "scene/camera.h"
 
 namespace voxlux {
 namespace {
@@ -99,6 +101,30 @@ typename GridT::Ptr matchTransform(typename GridT::Ptr g, const openvdb::FloatGr
     return out;
 }
 
+// The range of a grid's active values (of their lengths for vectors); false for other types.
+bool activeValueRange(const openvdb::GridBase& g, double& lo, double& hi, bool& vector) {
+    lo = INFINITY, hi = -INFINITY;
+    const auto scan = [&](const auto& grid, auto value_of) {
+        for (auto it = grid.cbeginValueOn(); it; ++it) {
+            const double v = value_of(*it);
+            lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+        return true;
+    };
+    const auto scalar = [](auto v) { return double(v); };
+    const auto length = [](const auto& v) { return double(v.length()); };
+    vector = false;
+    if (g.isType<openvdb::FloatGrid>()) return scan(static_cast<const openvdb::FloatGrid&>(g), scalar);
+    if (g.isType<openvdb::DoubleGrid>()) return scan(static_cast<const openvdb::DoubleGrid&>(g), scalar);
+    if (g.isType<openvdb::Int32Grid>()) return scan(static_cast<const openvdb::Int32Grid&>(g), scalar);
+    if (g.isType<openvdb::Int64Grid>()) return scan(static_cast<const openvdb::Int64Grid&>(g), scalar);
+    vector = true;
+    if (g.isType<openvdb::Vec3SGrid>()) return scan(static_cast<const openvdb::Vec3SGrid&>(g), length);
+    if (g.isType<openvdb::Vec3DGrid>()) return scan(static_cast<const openvdb::Vec3DGrid&>(g), length);
+    vector = false;
+    return false;
+}
+
 }  // namespace
 
 void initOpenVdb() {
@@ -139,6 +165,7 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const s
     v.file = file;
     auto density = asFogFloat(readGrid(f, file, spec.density, v.warnings), file, spec, "density");
     v.index_to_world = indexToWorld(*density, file);
+    v.up = detectUpAxis(f.fileMetadata(), *density);
     for (const auto& source : emission)
         v.emission.push_back(matchTransform<openvdb::FloatGrid>(
             asFogFloat(readGrid(f, file, source.grid, v.warnings), file, spec, "emission"), *density, file,
@@ -169,6 +196,15 @@ std::vector<GridSummary> summarizeFile(const std::string& file) {
         s.bbox = g->evalActiveVoxelBoundingBox();
         s.voxel_size = g->voxelSize();
         s.bricks = countBricks(*g);
+        s.brick_bytes = s.bricks * VX_BRICK_VOXELS * sizeof(float);
+        s.up = detectUpAxis(f.fileMetadata(), *g);
+        for (const auto& earlier : out) s.index += earlier.name == s.name;
+        if (s.active_voxels > 0) {
+            s.has_range = activeValueRange(*g, s.min_value, s.max_value, s.vector);
+            const openvdb::CoordBBox& b = s.bbox;
+            worldBounds(indexToWorld(*g, file), glm::vec3(b.min().x(), b.min().y(), b.min().z()),
+                        glm::vec3(b.max().x(), b.max().y(), b.max().z()), s.world_min, s.world_max);
+        }
         out.push_back(s);
     }
     return out;

@@ -8,6 +8,7 @@
 #include <openvdb/openvdb.h>
 
 #include "scene/scene.h"
+#include "volume/up_axis.h"
 
 namespace voxlux {
 
@@ -17,6 +18,7 @@ struct LoadedVolume {
     std::vector<openvdb::FloatGrid::ConstPtr> emission;  // one per emission source, in its order
     openvdb::Vec3SGrid::ConstPtr color;      // null unless the spec names one
     glm::mat4 index_to_world{1.0f};          // affine, from the density grid
+    UpAxisGuess up;                          // as the file says, from the density grid
     std::vector<std::string> warnings;
 };
 
@@ -30,6 +32,13 @@ struct GridSummary {
     openvdb::CoordBBox bbox;                 // of active values, from the tree (never file metadata)
     openvdb::Vec3d voxel_size;
     size_t bricks = 0;                       // 8^3 bricks the active values occupy
+    size_t brick_bytes = 0;                  // what those bricks take in the atlas, one float channel
+    UpAxisGuess up;
+    int index = 0;                           // among the file's grids of the same name (volume.density.index)
+    bool has_range = false;                  // scalar and vector grids with active values
+    bool vector = false;                     // the range is of the vectors' lengths
+    double min_value = 0.0, max_value = 0.0; // of the active values (tiles included)
+    glm::vec3 world_min{0.0f}, world_max{0.0f};   // the active bbox's world-space box
 };
 
 void initOpenVdb();

@@ -68,23 +68,27 @@ void EmptyFrameStage::run(StageRun& run) {
     run.warnings.push_back(why + "; rendered as an empty frame");
 }
 
-StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution"}, {"load"}}; }
+StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution", "/volume/up"}, {"load"}}; }
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera ? "the scene's camera" : "frames the density grid's active voxels (no camera in the scene)"};
 }
 
 void CameraStage::run(StageRun& run) {
-    camera_ = run.scene.camera ? *run.scene.camera : frameActiveVoxels(load_.volume(), run.scene.render);
+    camera_ = run.scene.camera ? *run.scene.camera : frameActiveVoxels(load_.volume(), run.scene);
 }
 
-Camera frameActiveVoxels(const LoadedVolume& volume, const RenderSettings& render) {
+int upAxisOf(const Scene& scene, const LoadedVolume& volume) {
+    return scene.volume.up == UpAxis::Auto ? volume.up.axis : int(scene.volume.up) - int(UpAxis::X);
+}
+
+Camera frameActiveVoxels(const LoadedVolume& volume, const Scene& scene) {
     openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
     glm::vec3 lo(0.0f), hi(1.0f);
     if (!box.empty())
         worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
                     glm::vec3(box.max().x(), box.max().y(), box.max().z()), lo, hi);
-    return frameBox(lo, hi, Camera{}.fov, float(render.width) / float(render.height));
+    return frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), upAxisOf(scene, volume));
 }
 
 }  // namespace voxlux

@@ -92,8 +92,11 @@ private:
     Camera camera_;
 };
 
+// The up axis (0 x, 1 y, 2 z): the scene's volume.up, else what the file says.
+int upAxisOf(const Scene& scene, const LoadedVolume& volume);
+
 // Camera framing the active voxels of the density grid: what a scene without a camera renders
 // and what `voxlux scene` writes out.
-Camera frameActiveVoxels(const LoadedVolume& volume, const RenderSettings& render);
+Camera frameActiveVoxels(const LoadedVolume& volume, const Scene& scene);
 
 }  // namespace voxlux

@@ -23,7 +23,7 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
               "shot.json: /lights/0/direction: required key is missing");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
               "shot.json: /render/stepp: unknown key (expected one of resolution, step, shadow_step, "
-              "transmittance_cutoff, backend, method, reference)");
+              "transmittance_cutoff, exposure, backend, method, reference)");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),
               "shot.json: /render/resolution: expected an array of 2 numbers");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"albedo": [1.5, 0, 0]}})"),
@@ -110,12 +110,12 @@ TEST(Scene, JsonTextEscapesBytesThatAreNotUtf8) {
 TEST(Scene, RoundTripThroughJson) {
     Scene s = parseScene(R"({
         "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
-                   "color": "Cd", "level_set": "fog"},
-        "material": {"density_scale": 2.5, "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
+                   "color": "Cd", "level_set": "fog", "up": "z"},
+        "material": {"density_scale": 2.5, "density_units": "voxel", "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
                      "transfer_function": [{"value": 0, "extinction": 0}, {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
         "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 40, "cone_angle": 25}],
         "camera": {"position": [0, 1, 10], "look_at": [0, 1, 0], "fov": 35},
-        "render": {"resolution": [320, 240], "step": 0.25, "backend": "cpu"},
+        "render": {"resolution": [320, 240], "step": 0.25, "exposure": 1.5, "backend": "cpu"},
         "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": true,
                     "cone": {"angle": 4, "samples": 30, "growth": 0.2}, "light_resolution": 96, "light_memory_mb": 512},
         "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth", "ambient"]}})",
@@ -123,8 +123,8 @@ TEST(Scene, RoundTripThroughJson) {
     // Every key, as written by hand from the scene above and the defaults of docs/scene.md.
     const nlohmann::json expected = nlohmann::json::parse(R"({
         "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
-                   "color": "Cd", "level_set": "fog"},
-        "material": {"density_scale": 2.5, "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
+                   "color": "Cd", "level_set": "fog", "up": "z"},
+        "material": {"density_scale": 2.5, "density_units": "voxel", "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
                      "transfer_function": [{"value": 0, "extinction": 0, "albedo": [1, 1, 1]},
                                            {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
         "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "color": [1, 1, 1], "intensity": 40,
@@ -132,7 +132,7 @@ TEST(Scene, RoundTripThroughJson) {
         "emission": [],
         "camera": {"fov": 35, "position": [0, 1, 10], "look_at": [0, 1, 0], "up": [0, 1, 0]},
         "render": {"resolution": [320, 240], "step": 0.25, "shadow_step": 1, "transmittance_cutoff": 0.0001,
-                   "backend": "cpu", "method": "march",
+                   "exposure": 1.5, "backend": "cpu", "method": "march",
                    "reference": {"spp": 64, "max_bounces": 16, "seed": 1, "roulette_depth": 3}},
         "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": 1,
                     "cone": {"angle": 4, "samples": 30, "growth": 0.2},
@@ -344,7 +344,7 @@ TEST(EmissionScene, ErrorsNameTheKey) {
               "shot.json: /emission: at most 4 sources (got 5)");
     // The old single-grid keys are gone.
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "emission": "heat"}})"),
-              "shot.json: /volume/emission: unknown key (expected one of path, frames, density, color, level_set)");
+              "shot.json: /volume/emission: unknown key (expected one of path, frames, density, color, level_set, up)");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <openvdb/tools/LevelSetSphere.h>
 
+#include "optics/blackbody.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -145,14 +146,19 @@ TEST(Cli, EmissionQuickForms) {
     openvdb::io::File(file).write({density, heat});
     CliResult r = runCli("scene " + file + " --emission-grid temperature --blackbody-grid temperature");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto emission = nlohmann::json::parse(r.out)["emission"];
+    auto emission = nlohmann::json::parse(r.out)["emission"];
     ASSERT_EQ(emission.size(), 2u);
     EXPECT_EQ(emission[0], nlohmann::json::parse(
                                R"({"grid": "temperature", "kind": "constant", "color": [1, 1, 1], "intensity": 1})"));
-    EXPECT_EQ(emission[1], nlohmann::json::parse(R"({"grid": "temperature", "kind": "blackbody", "intensity": 1,
+    // The quick form scales the blackbody so the brightest columns do not clip: the heat box is
+    // 8 voxels of 1 unit deep at 2000 K, whose luminance is Planck's ratio to 1500 K's.
+    const double ratio = blackbodyXYZ(2000.0).y / blackbodyXYZ(1500.0).y;
+    EXPECT_NEAR(emission[1]["intensity"].get<double>(), 1.0 / (8.0 * ratio), 2e-3 / (8.0 * ratio));
+    emission[1].erase("intensity");
+    EXPECT_EQ(emission[1], nlohmann::json::parse(R"({"grid": "temperature", "kind": "blackbody",
         "temperature_scale": 1000, "temperature_offset": 0, "cutoff": 1000, "normalization": "physical",
         "reference_temperature": 1500})"));
-    r = runCli("render " + file + " --blackbody-grid temperature --explain");
+    r = runCli("render " + file + " --blackbody-grid temperature --explain -o " + file + ".exr");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("reads density 'density', emission 'temperature' from " + file), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(", emission: blackbody from 'temperature'  [after:"), std::string::npos) << r.out;
@@ -332,13 +338,19 @@ TEST(Cli, AnOutputThatCannotBeWrittenLeavesNoOther) {
     EXPECT_EQ(left, std::vector<std::string>{"a_file"});
 }
 
-// A range is walked one frame at a time, never allocated up front: with 2e9 frames the first one
-// renders at once, and the second, missing, stops the run with its name.
-TEST(Cli, AHugeFrameRangeRendersUntilItsFirstMissingFrame) {
+// A range is walked one frame at a time, never allocated up front: the sequence is framed on
+// its frames in order, and with 2e9 frames the second, missing, stops the run with its name
+// before any frame renders. With --frame-on, nothing is read ahead: frame 1 renders first.
+TEST(Cli, AHugeFrameRangeStopsAtItsFirstMissingFrame) {
     const std::string dir = tempDir("huge_range");
     fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud.0001.vdb");
-    CliResult r = runCli("render " + dir + "/cloud.####.vdb --frames 1-2000000000 --res 16x16 --backend cpu --shadows none -o " +
-                         dir + "/out.####.exr");
+    const std::string command = "render " + dir + "/cloud.####.vdb --frames 1-2000000000 --res 16x16 --backend cpu --shadows none -o " +
+                                dir + "/out.####.exr";
+    CliResult r = runCli(command);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: " + dir + "/cloud.0002.vdb: no such file\n");
+    EXPECT_FALSE(fs::exists(dir + "/out.0001.exr"));
+    r = runCli(command + " --frame-on 1");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: " + dir + "/cloud.0002.vdb: no such file\n");
     EXPECT_TRUE(fs::exists(dir + "/out.0001.exr"));

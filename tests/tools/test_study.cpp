@@ -239,9 +239,8 @@ TEST(Study, MeasuresEveryConfigAndResumes) {
     o.spps = {1, 4};
     o.truth_spp = 64;
     o.command = "voxlux study s.json";
-    std::ostringstream out, progress;
-    runStudy(scene, o, out, progress, false);
-    EXPECT_EQ(progress.str(), "");   // no bar when it is not a terminal
+    std::ostringstream out;
+    runStudy(scene, o, out);
     for (const char* f : {"study.csv", "chart.svg", "report.md", "truth.exr", "truth.json"})
         EXPECT_TRUE(std::filesystem::exists(o.out_dir + "/" + f)) << f;
 
@@ -289,7 +288,7 @@ TEST(Study, MeasuresEveryConfigAndResumes) {
 
     // Run again: nothing is rendered.
     std::ostringstream again;
-    runStudy(scene, o, again, progress, false);
+    runStudy(scene, o, again);
     EXPECT_NE(again.str().find("kept from an earlier run"), std::string::npos) << again.str();
     EXPECT_NE(again.str().find("resuming: " + std::to_string(rows.size()) + " of " + std::to_string(rows.size())),
               std::string::npos) << again.str();
@@ -299,7 +298,7 @@ TEST(Study, MeasuresEveryConfigAndResumes) {
     Scene denser = scene;
     denser.material.density_scale = 12.0f;
     std::ostringstream other;
-    runStudy(denser, o, other, progress, false);
+    runStudy(denser, o, other);
     EXPECT_EQ(other.str().find("resuming"), std::string::npos) << other.str();
     EXPECT_EQ(other.str().find("kept from an earlier run"), std::string::npos);
 }

@@ -1,0 +1,54 @@
+#include "render/framing.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/frame_pattern.h"
+#include "scene/camera.h"
+#include "volume/vdb_loader.h"
+#include "volume/volume_stages.h"
+
+namespace voxlux {
+namespace {
+
+// Only the density grid: the other grids do not move the framing.
+VolumeSpec densityOnly(const VolumeSpec& spec) {
+    VolumeSpec v = spec;
+    v.color.reset();
+    return v;
+}
+
+}  // namespace
+
+Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
+    const LoadedVolume volume = loadVolume(file, densityOnly(scene.volume));
+    if (volume.density->activeVoxelCount() == 0)
+        throw InputError(file + ": grid '" + volume.density->getName() + "' has no active voxels");
+    return frameActiveVoxels(volume, scene);
+}
+
+SequenceFraming frameSequence(const Scene& scene, int first, int last) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    int up = -1;
+    SequenceFraming out;
+    openvdb::Index64 most = 0;
+    for (int64_t frame = first; frame <= last; ++frame) {
+        const LoadedVolume volume = loadVolume(expandFramePattern(scene.volume.path, int(frame)), densityOnly(scene.volume));
+        const openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
+        if (box.empty()) continue;
+        if (volume.density->activeVoxelCount() > most) most = volume.density->activeVoxelCount(), out.fullest_frame = int(frame);
+        glm::vec3 frame_lo, frame_hi;
+        worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
+                    glm::vec3(box.max().x(), box.max().y(), box.max().z()), frame_lo, frame_hi);
+        lo = glm::min(lo, frame_lo);
+        hi = glm::max(hi, frame_hi);
+        if (up < 0) up = upAxisOf(scene, volume);
+    }
+    if (up < 0)
+        throw InputError(scene.volume.path + ": frames " + std::to_string(first) + "-" + std::to_string(last) +
+                         " have no active voxels in grid '" + scene.volume.density.name + "' to frame");
+    out.camera = frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), up);
+    return out;
+}
+
+}  // namespace voxlux
