@@ -195,6 +195,7 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         header.insert("voxlux/colorSpace", Imf::StringAttribute(meta.color_space));
     }
     if (!meta.color_config.empty()) header.insert("voxlux/config", Imf::StringAttribute(meta.color_config));
+    header.insert("voxlux/exposure", Imf::FloatAttribute(meta.exposure));
     if (const auto& c = meta.chromaticities) {
         auto xy = [](glm::vec2 v) { return Imath::V2f(v.x, v.y); };
         Imf::addChromaticities(header, Imf::Chromaticities(xy((*c)[0]), xy((*c)[1]), xy((*c)[2]), xy((*c)[3])));

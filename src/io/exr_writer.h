@@ -25,6 +25,7 @@ struct ExrMetadata {
     // OpenImageIO-based tools) and voxlux/colorSpace; "" writes neither.
     std::string color_space;
     std::string color_config;              // the OCIO config's name or path, as voxlux/config; "" = none
+    float exposure = 0.0f;                 // stops applied before the output transform, as voxlux/exposure
     std::optional<std::array<glm::vec2, 4>> chromaticities;  // CIE xy of red, green, blue, white
 };
 

@@ -25,7 +25,9 @@ std::string emissionDescription(const EmissionSource& e) {
 }  // namespace
 
 StageReads MarchStage::reads() const {
-    return {{"/render", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
+    // Every render key but exposure, which only the grade applies.
+    return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/backend",
+             "/render/method", "/render/reference", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
              "/emission", "/input/frame"},
             {"color_space", "brick", "classify", "empty_check", "camera", "light_cache", "propagation", "eye_pass"}};

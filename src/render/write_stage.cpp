@@ -49,6 +49,7 @@ void WriteStage::run(StageRun& run) {
     const ColorPipeline& cp = color_.pipeline();
     meta.color_space = cp.output_space;
     meta.color_config = cp.config_source;
+    meta.exposure = run.scene.render.exposure;
     if (cp.output_chromaticities) {
         const Chromaticities& c = *cp.output_chromaticities;
         meta.chromaticities = {{c.red, c.green, c.blue, c.white}};

@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -66,6 +65,13 @@ size_t peakRssBytes() {
 std::string secondsText(double s) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.3f s", s);
+    return buf;
+}
+
+std::string bytesText(size_t bytes) {
+    char buf[32];
+    if (bytes < 1024 * 1024) std::snprintf(buf, sizeof buf, "%.1f KiB", double(bytes) / 1024.0);
+    else std::snprintf(buf, sizeof buf, "%.1f MiB", double(bytes) / (1024.0 * 1024.0));
     return buf;
 }
 
@@ -180,7 +186,7 @@ std::vector<std::string> missingInputs(const Scene& scene) {
             for (const auto& name : grids) {
                 const bool found = std::any_of(file.grids().begin(), file.grids().end(),
                                                [&](const VdbFile::Grid& g) { return g.name == name; });
-                if (!found) problems.push_back(files[k] + ": no grid named '" + name + "'");
+                if (!found) problems.push_back(files[k] + ": no grid named '" + name + "' (grids: " + file.gridList() + ")");
             }
         } catch (const InputError& e) {
             problems.push_back(e.what());
@@ -330,8 +336,7 @@ int runInfo(const std::string& vdb, bool json) {
                   << g.world_max.x << ", " << g.world_max.y << ", " << g.world_max.z << "]\n"
                   << "    voxel size " << g.voxel_size.x() << " " << g.voxel_size.y() << " " << g.voxel_size.z() << "\n";
         if (g.has_range) std::cout << (g.vector ? "    length range " : "    value range ") << g.min_value << " .. " << g.max_value << "\n";
-        std::cout << "    bricks (8^3) " << g.bricks << ", " << std::fixed << std::setprecision(1)
-                  << double(g.brick_bytes) / (1024.0 * 1024.0) << std::defaultfloat << " MiB in the atlas per channel\n"
+        std::cout << "    bricks (8^3) " << g.bricks << ", " << bytesText(g.brick_bytes) << " in the atlas per channel\n"
                   << "    up axis " << g.up.reason << "\n";
     }
     return 0;

@@ -202,6 +202,12 @@ void VdbFile::walk() {
     }
 }
 
+std::string VdbFile::gridList() const {
+    std::string out;
+    for (const auto& g : grids_) out += (out.empty() ? "'" : ", '") + printableName(g.name) + "' (" + g.value_type + ")";
+    return out.empty() ? "none" : out;
+}
+
 openvdb::GridBase::Ptr VdbFile::read(size_t k) {
     if (!grids_[k].volume)
         throw InputError(file_ + ": grid '" + printableName(grids_[k].name) + "' (" + grids_[k].value_type +

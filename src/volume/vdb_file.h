@@ -35,6 +35,8 @@ public:
     // The grids in file order, and the file's own metadata (creator and so on).
     const std::vector<Grid>& grids() const { return grids_; }
     const openvdb::MetaMap& fileMetadata() const { return file_metadata_; }
+    // "'density' (float), 'vel' (vec3s)" for messages, or "none".
+    std::string gridList() const;
     // Grid `k` with its metadata, transform and voxels. Throws InputError, also for a grid that is
     // not a volume.
     openvdb::GridBase::Ptr read(size_t k);

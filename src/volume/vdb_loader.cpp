@@ -29,12 +29,6 @@ VdbFile openFile(const std::string& file) {
     return VdbFile(file);
 }
 
-std::string listGrids(const VdbFile& f) {
-    std::string out;
-    for (const auto& g : f.grids()) out += (out.empty() ? "" : ", ") + describe(g.name, g.value_type);
-    return out.empty() ? "none" : out;
-}
-
 openvdb::GridBase::Ptr readGrid(VdbFile& f, const std::string& file, const GridRef& ref,
                                 std::vector<std::string>& warnings) {
     std::vector<size_t> named;
@@ -42,7 +36,7 @@ openvdb::GridBase::Ptr readGrid(VdbFile& f, const std::string& file, const GridR
         if (f.grids()[k].name == ref.name) named.push_back(k);
     const int count = int(named.size());
     if (count == 0)
-        throw InputError(file + ": no grid named '" + ref.name + "' (grids: " + listGrids(f) + ")");
+        throw InputError(file + ": no grid named '" + ref.name + "' (grids: " + f.gridList() + ")");
     if (ref.index >= count)
         throw InputError(file + ": grid index " + std::to_string(ref.index) + " for '" + ref.name +
                          "' is out of range (the file has " + std::to_string(count) + ")");

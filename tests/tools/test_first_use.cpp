@@ -1,0 +1,293 @@
+// What a new user meets first: the quick form's choices (up axis, density, blackbody brightness),
+// one camera per sequence, exposure, `voxlux scene`, `--explain`, output extensions, `info`,
+// progress and Ctrl-C.
+#include <sys/wait.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <ImfFloatAttribute.h>
+#include <ImfStandardAttributes.h>
+#include <nlohmann/json.hpp>
+
+#include "optics/blackbody.h"
+#include "test_support.h"
+#include "tools/quick_form.h"
+#include "volume/up_axis.h"
+
+namespace voxlux::test {
+namespace {
+namespace fs = std::filesystem;
+
+std::string writeGrids(const std::string& path, const openvdb::GridPtrVec& grids) {
+    openvdb::io::File(path).write(grids);
+    return path;
+}
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(FirstUse, UpAxisIsReadFromWhatEachWriterLeaves) {
+    openvdb::MetaMap file, grid;
+    EXPECT_EQ(detectUpAxis(file, grid).axis, 1);
+    EXPECT_EQ(detectUpAxis(file, grid).reason, "y (the file does not say; OpenVDB's convention)");
+    grid.insertMeta("file_base_resolution", openvdb::Vec3IMetadata(openvdb::Vec3i(43, 43, 64)));
+    EXPECT_EQ(detectUpAxis(file, grid).axis, 2);
+    EXPECT_EQ(detectUpAxis(file, grid).reason, "z (a Blender Mantaflow cache: grids carry file_base_resolution)");
+    openvdb::MetaMap local;
+    local.insertMeta("is_local_space", openvdb::BoolMetadata(true));
+    EXPECT_EQ(detectUpAxis(file, local).axis, 2);
+    file.insertMeta("creator", openvdb::StringMetadata("Houdini/SOP_OpenVDB_Write"));
+    EXPECT_EQ(detectUpAxis(file, local).axis, 1);   // Houdini names itself: its local space is Y-up
+    EXPECT_EQ(detectUpAxis(file, local).reason, "y (creator 'Houdini/SOP_OpenVDB_Write')");
+    openvdb::MetaMap blender;
+    blender.insertMeta("creator", openvdb::StringMetadata("Blender/Smoke"));
+    EXPECT_EQ(detectUpAxis(blender, openvdb::MetaMap()).axis, 2);
+}
+
+// A 10-voxel-deep box of 0.5 along the view: every column sums to 5, so the density scale that
+// puts an optical depth of 2 in the median column is 0.4 per voxel, whatever the voxel size.
+TEST(FirstUse, QuickFormDensityComesFromTheDataInVoxelUnits) {
+    const std::string dir = tempDir("quick_density");
+    for (double voxel : {0.01, 1.0, 30.0}) {
+        const std::string file = writeGrids(dir + "/box" + std::to_string(int(voxel * 100)) + ".vdb",
+                                            {boxGrid({0, 0, 0}, {19, 19, 9}, 0.5f, voxel)});
+        std::vector<std::string> notes;
+        const Scene s = completeQuickScene(quickScene(file), SceneOverrides{}, std::nullopt, notes);
+        EXPECT_EQ(s.material.density_units, DensityUnits::Voxel);
+        EXPECT_NEAR(s.material.density_scale, 0.4f, 1e-6f) << voxel;
+        ASSERT_EQ(notes.size(), 2u);
+        EXPECT_EQ(notes[1], "quick form: density_scale 0.4 per voxel: the median column along the view holds an optical "
+                            "depth of 2 (--density-scale to change, in voxel units)");
+    }
+    // A value the user gave is kept.
+    SceneOverrides given;
+    given.density_scale = 3.0f;
+    std::vector<std::string> notes;
+    const Scene s = completeQuickScene(applyOverrides(quickScene(dir + "/box100.vdb"), given), given, std::nullopt, notes);
+    EXPECT_EQ(s.material.density_units, DensityUnits::World);
+    EXPECT_EQ(s.material.density_scale, 3.0f);
+}
+
+// In voxel units a look carries over between caches of any scale: the same voxels at voxel size
+// 0.02 and 50 give the same image (the default camera frames each the same way).
+TEST(FirstUse, DensityInVoxelUnitsGivesTheSameLookAtAnyScale) {
+    const std::string dir = tempDir("voxel_units");
+    std::vector<std::vector<float>> alphas;
+    for (double voxel : {0.02, 50.0}) {
+        const std::string tag = std::to_string(int(voxel * 100));
+        const std::string file = writeGrids(dir + "/ball" + tag + ".vdb", {boxGrid({0, 0, 0}, {15, 11, 7}, 0.3f, voxel)});
+        const std::string out = dir + "/out" + tag + ".exr";
+        CliResult r = runCli("render " + file + " --res 32x32 --backend cpu --shadows none --density-scale 0.25 "
+                             "--set material.density_units=voxel -o " + out);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        alphas.push_back(readExr(out).planes.at("A"));
+    }
+    float peak = 0.0f;
+    for (size_t i = 0; i < alphas[0].size(); ++i) {
+        EXPECT_NEAR(alphas[0][i], alphas[1][i], 2e-3f) << i;
+        peak = std::max(peak, alphas[0][i]);
+    }
+    // 16 voxels of 0.3 x 0.25 through the thickest part: 1 - e^-1.2 = 0.70 at most, seen obliquely.
+    EXPECT_GT(peak, 0.5f);
+    EXPECT_LT(peak, 0.95f);
+}
+
+// Exposure scales light by 2^stops before the output transform, never alpha, and is recorded.
+TEST(FirstUse, ExposureScalesLightByStopsAndIsRecorded) {
+    const std::string dir = tempDir("exposure");
+    const std::string base = "render " + std::string(VOXLUX_SOURCE_DIR) +
+                             "/grids/default.json --res 40x25 --backend cpu --pixel-type float --aovs direct";
+    ASSERT_EQ(runCli(base + " -o " + dir + "/zero.exr").exit_code, 0);
+    CliResult r = runCli(base + " --set render.exposure=1.5 -o " + dir + "/lifted.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Exr zero = readExr(dir + "/zero.exr"), lifted = readExr(dir + "/lifted.exr");
+    const float gain = std::exp2(1.5f);
+    for (const char* channel : {"R", "G", "B", "direct.R"})
+        for (size_t i = 0; i < zero.planes.at(channel).size(); ++i)
+            ASSERT_NEAR(lifted.planes.at(channel)[i], gain * zero.planes.at(channel)[i], 1e-5f + 1e-5f * lifted.planes.at(channel)[i]);
+    EXPECT_EQ(lifted.planes.at("A"), zero.planes.at("A"));
+    EXPECT_EQ(lifted.header.typedAttribute<Imf::FloatAttribute>("voxlux/exposure").value(), 1.5f);
+    EXPECT_EQ(zero.header.typedAttribute<Imf::FloatAttribute>("voxlux/exposure").value(), 0.0f);
+}
+
+TEST(FirstUse, OutputExtensionsNeverLie) {
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string dir = tempDir("extensions");
+    CliResult r = runCli("render " + cloud + " -o " + dir + "/out.png");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: -o: /output/path: '" + dir + "/out.png' does not end in .exr: the image is written as "
+                     "OpenEXR (an sRGB PNG is the preview: output.preview, or --preview FILE.png)\n");
+    r = runCli("render " + cloud + " -o " + dir + "/out.exr --preview " + dir + "/out.exr.jpg");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: --preview: /output/preview: '" + dir + "/out.exr.jpg' does not end in .png: the preview "
+                     "is written as PNG\n");
+    EXPECT_TRUE(fs::is_empty(dir));
+    r = runCli("render " + cloud + " --res 16x16 --backend cpu -o " + dir + "/OUT.EXR --preview " + dir + "/out.PNG");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+// `voxlux scene` writes a scene that renders as written, from any folder, for files and sequences.
+TEST(FirstUse, SceneWritesARenderableScene) {
+    const std::string dir = tempDir("scene_cmd");
+    fs::create_directories(dir + "/shots/a");
+    fs::create_directories(dir + "/caches");
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    for (int f : {1, 2}) fs::copy_file(cloud, dir + "/caches/cloud." + std::to_string(f) + ".vdb", fs::copy_options::overwrite_existing);
+    CliResult r = runCli("scene " + dir + "/caches/cloud.#.vdb --frames 1-2 --res 16x16 -o " + dir + "/shots/a/shot.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "wrote " + dir + "/shots/a/shot.json\n");
+    EXPECT_NE(r.err.find("voxlux: camera framed on frames 1-2 together"), std::string::npos) << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir + "/shots/a/shot.json"));
+    EXPECT_EQ(j["volume"]["path"], "../../caches/cloud.#.vdb");
+    EXPECT_EQ(j["output"]["path"], "cloud.#.exr");
+    EXPECT_TRUE(j.contains("camera"));
+    // Rendered from another folder: the volume is found beside the scene, the image lands here.
+    const std::string render = "cd " + dir + " && " + VOXLUX_BINARY + " render shots/a/shot.json --backend cpu >/dev/null";
+    ASSERT_EQ(std::system(render.c_str()), 0);
+    EXPECT_TRUE(fs::exists(dir + "/cloud.1.exr"));
+    EXPECT_TRUE(fs::exists(dir + "/cloud.2.exr"));
+    // To standard output the volume path is absolute, and the image is named after the cache.
+    r = runCli("scene " + cloud);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto printed = nlohmann::json::parse(r.out);
+    EXPECT_EQ(printed["volume"]["path"], fs::absolute(cloud).lexically_normal().string());
+    EXPECT_EQ(printed["output"]["path"], "cloud.exr");
+}
+
+// --explain prints the graph, then what stops the render, without reading voxels.
+TEST(FirstUse, ExplainSaysWhatIsMissing) {
+    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    CliResult r = runCli("render " + cloud + " --explain");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.out.find("\ncannot render:\n  no output path: pass -o FILE.exr or set output.path in the scene\n"),
+              std::string::npos) << r.out;
+    EXPECT_EQ(r.err, "voxlux: error: no output path: pass -o FILE.exr or set output.path in the scene\n");
+    r = runCli("render " + cloud + " --explain --grid smoke --color-grid Cd -o x.exr");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.out.find("cannot render:\n  " + cloud + ": no grid named 'smoke' (grids: 'density' (float))\n  " + cloud +
+                         ": no grid named 'Cd' (grids: 'density' (float))\n"),
+              std::string::npos) << r.out;
+    r = runCli("render /nonexistent/cache.vdb --explain -o x.exr");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: /nonexistent/cache.vdb: no such file\n");
+    r = runCli("render " + cloud + " --explain -o x.exr");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.find("cannot render"), std::string::npos);
+}
+
+TEST(FirstUse, InfoReportsWhatATdChecksFirst) {
+    const std::string dir = tempDir("info");
+    auto a = boxGrid({0, 0, 0}, {9, 19, 4}, 0.25f, 0.5);
+    auto b = boxGrid({-8, 0, 0}, {-1, 7, 7}, 2.0f, 2.0);
+    b->tree().setValueOn(openvdb::Coord(-8, 0, 0), -1.0f);
+    const std::string file = writeGrids(dir + "/two.vdb", {a, b});
+    CliResult r = runCli("info " + file + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto grids = nlohmann::json::parse(r.out)["grids"];
+    ASSERT_EQ(grids.size(), 2u);
+    EXPECT_EQ(grids[0]["index"], 0);
+    EXPECT_EQ(grids[1]["index"], 1);   // both are named density
+    EXPECT_EQ(grids[0]["value_range"], nlohmann::json::parse("[0.25, 0.25]"));
+    EXPECT_EQ(grids[1]["value_range"], nlohmann::json::parse("[-1.0, 2.0]"));
+    EXPECT_EQ(grids[0]["world_min"], nlohmann::json::parse("[0.0, 0.0, 0.0]"));
+    EXPECT_EQ(grids[0]["world_max"], nlohmann::json::parse("[4.5, 9.5, 2.0]"));
+    EXPECT_EQ(grids[1]["world_min"], nlohmann::json::parse("[-16.0, 0.0, 0.0]"));
+    EXPECT_EQ(grids[1]["voxel_size"], nlohmann::json::parse("[2.0, 2.0, 2.0]"));
+    EXPECT_EQ(grids[0]["bricks"], 6);   // 10 x 20 x 5 voxels: 2 x 3 x 1 bricks of 8^3
+    EXPECT_EQ(grids[0]["brick_bytes"], 6 * 9 * 9 * 9 * 4);
+    EXPECT_EQ(grids[0]["up"], "y");
+    r = runCli("info " + file);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("  density (index 1)  float  fog volume\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("    value range -1 .. 2\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("    bbox (world) [-16, 0, 0] -> [-2, 14, 14]\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("    up axis y (the file does not say; OpenVDB's convention)\n"), std::string::npos) << r.out;
+}
+
+// Without a terminal, --progress prints lines; Ctrl-C stops the render with exit 130 and leaves
+// no file, not even a temporary.
+TEST(FirstUse, ProgressLinesAndCtrlCLeaveNothingBehind) {
+    const std::string dir = tempDir("interrupt");
+    const std::string scene = std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json";
+    CliResult r = runCli("render " + scene + " --res 8x8 --method reference --spp 4 --progress -o " + dir + "/small.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.rfind("voxlux: progress: [>                   ] reference 0/256 samples  elapsed 0m00s", 0), 0u) << r.err;
+    r = runCli("render " + scene + " --res 8x8 --method reference --spp 4 -o " + dir + "/quiet.exr");
+    EXPECT_EQ(r.err, "");
+    fs::remove(dir + "/small.exr");
+    fs::remove(dir + "/quiet.exr");
+
+    const std::string command = std::string(VOXLUX_BINARY) + " render " + scene + " --res 256x256 --method reference --spp 4096 -o " +
+                                dir + "/long.exr --preview " + dir + "/long.png 2>" + dir + "/err.txt & pid=$!; sleep 2; kill -INT $pid; "
+                                "wait $pid; echo $? >" + dir + "/rc.txt";
+    ASSERT_EQ(std::system(("bash -c '" + command + "'").c_str()), 0);
+    EXPECT_EQ(slurp(dir + "/rc.txt"), "130\n");
+    EXPECT_EQ(slurp(dir + "/err.txt"), "voxlux: interrupted: stopped before the next output; every file written is whole\n");
+    fs::remove(dir + "/rc.txt");
+    fs::remove(dir + "/err.txt");
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
+// The shared Blender fire, as a new user renders it with the quick form.
+TEST(FirstUse, BlenderFireSequenceHasOneCameraAndStandsUpright) {
+    VOXLUX_REQUIRE_SHARED(fire, "blender/fire");
+    const std::string dir = tempDir("fire_sequence");
+    CliResult r = runCli("render " + fire + "/fluid_data_####.vdb --frames 1-60 --res 24x24 --backend cpu --shadows none "
+                         "--blackbody-grid temperature --aovs emission -o " + dir + "/fire.####.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("voxlux: quick form: up axis z (a Blender Mantaflow cache"), std::string::npos) << r.out;
+    const auto cameraOf = [&](int frame) {
+        char name[64];
+        std::snprintf(name, sizeof name, "/fire.%04d.exr", frame);
+        return Imf::worldToCameraAttribute(readExr(dir + name).header).value();
+    };
+    const Imath::M44f first = cameraOf(1);
+    for (int frame = 2; frame <= 60; ++frame) ASSERT_EQ(cameraOf(frame), first) << "frame " << frame;
+
+    // Upright: the plume is taller than wide in the image, and its flame (the emission) sits
+    // below the smoke's centre, at the burner.
+    const Exr e = readExr(dir + "/fire.0040.exr");
+    int top = e.height, bottom = -1, left = e.width, right = -1;
+    double alpha_rows = 0, alpha_sum = 0, flame_rows = 0, flame_sum = 0;
+    for (int y = 0; y < e.height; ++y)
+        for (int x = 0; x < e.width; ++x) {
+            const size_t i = size_t(y) * e.width + x;
+            const float a = e.planes.at("A")[i], flame = e.planes.at("emission.R")[i];
+            if (a > 0.1f) top = std::min(top, y), bottom = std::max(bottom, y), left = std::min(left, x), right = std::max(right, x);
+            alpha_rows += a * y, alpha_sum += a;
+            flame_rows += flame * y, flame_sum += flame;
+        }
+    EXPECT_GT(bottom - top, (right - left) * 5 / 4) << "rows " << top << "-" << bottom << ", columns " << left << "-" << right;
+    ASSERT_GT(flame_sum, 0.0);
+    EXPECT_GT(flame_rows / flame_sum, alpha_rows / alpha_sum + 1.0);
+}
+
+// The quick form's blackbody brightness does not clip a typical Blender fire: frames 10-50 keep
+// at most 1% of their pixels above 1.0.
+TEST(FirstUse, BlenderFireDoesNotClip) {
+    VOXLUX_REQUIRE_SHARED(fire, "blender/fire");
+    const std::string dir = tempDir("fire_clip");
+    CliResult r = runCli("render " + fire + "/fluid_data_####.vdb --frames 10-50 --res 48x48 --backend cpu "
+                         "--blackbody-grid temperature --pixel-type float -o " + dir + "/fire.####.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (int frame = 10; frame <= 50; ++frame) {
+        char name[64];
+        std::snprintf(name, sizeof name, "/fire.%04d.exr", frame);
+        const Exr e = readExr(dir + name);
+        size_t clipped = 0, lit = 0;
+        for (size_t i = 0; i < e.planes.at("R").size(); ++i) {
+            const float peak = std::max({e.planes.at("R")[i], e.planes.at("G")[i], e.planes.at("B")[i]});
+            clipped += peak > 1.0f;
+            lit += peak > 0.01f;
+        }
+        EXPECT_LE(clipped, e.planes.at("R").size() / 100) << "frame " << frame;
+        EXPECT_GT(lit, e.planes.at("R").size() / 50) << "frame " << frame << " is not dark";
+    }
+}
+
+}  // namespace
+}  // namespace voxlux::test
