@@ -314,6 +314,7 @@ int runInfo(const std::string& vdb, bool json) {
                 gj["world_max"] = triple(g.world_max);
             }
             if (g.has_range) gj[g.vector ? "length_range" : "value_range"] = {g.min_value, g.max_value};
+            if (!g.damaged_metadata.empty()) gj["damaged_metadata"] = g.damaged_metadata;
             out["grids"].push_back(gj);
         }
         std::cout << jsonText(out, 2) << "\n";
@@ -324,6 +325,7 @@ int runInfo(const std::string& vdb, bool json) {
         std::cout << "  " << g.name << (g.index > 0 ? " (index " + std::to_string(g.index) + ")" : "") << "  " << g.value_type
                   << "  " << g.grid_class << "\n"
                   << "    active voxels " << g.active_voxels << " (" << g.active_tiles << " active tiles)\n";
+        if (!g.damaged_metadata.empty()) std::cout << "    damaged metadata: " << g.damaged_metadata << "\n";
         if (g.active_voxels == 0) {
             std::cout << "    empty\n";
             continue;

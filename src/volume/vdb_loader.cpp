@@ -119,6 +119,22 @@ bool activeValueRange(const openvdb::GridBase& g, double& lo, double& hi, bool& 
     return false;
 }
 
+// OpenVDB writes file_bbox_min/max from the tree when it saves a grid; a file whose metadata says
+// otherwise was altered or damaged after it was written. voxlux reads the tree, never these.
+std::string bboxMetadataMismatch(const openvdb::GridBase& g, const openvdb::CoordBBox& tree_box) {
+    const auto lo = g.getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+    const auto hi = g.getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+    if (!lo || !hi) return "";
+    const openvdb::CoordBBox claimed(openvdb::Coord(lo->value()), openvdb::Coord(hi->value()));
+    if (claimed == tree_box) return "";
+    const auto text = [](const openvdb::Coord& c) {
+        return "[" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + "]";
+    };
+    return "file_bbox " + text(claimed.min()) + " -> " + text(claimed.max()) + " but the voxels' bbox is " +
+           (tree_box.empty() ? std::string("empty") : text(tree_box.min()) + " -> " + text(tree_box.max())) +
+           " (the metadata is ignored)";
+}
+
 }  // namespace
 
 void initOpenVdb() {
@@ -188,6 +204,7 @@ std::vector<GridSummary> summarizeFile(const std::string& file) {
         s.active_voxels = g->activeVoxelCount();
         s.active_tiles = g->baseTree().activeTileCount();
         s.bbox = g->evalActiveVoxelBoundingBox();
+        s.damaged_metadata = bboxMetadataMismatch(*g, s.bbox);
         s.voxel_size = g->voxelSize();
         s.bricks = countBricks(*g);
         s.brick_bytes = s.bricks * VX_BRICK_VOXELS * sizeof(float);

@@ -39,6 +39,7 @@ struct GridSummary {
     bool vector = false;                     // the range is of the vectors' lengths
     double min_value = 0.0, max_value = 0.0; // of the active values (tiles included)
     glm::vec3 world_min{0.0f}, world_max{0.0f};   // the active bbox's world-space box
+    std::string damaged_metadata;            // how the file's bbox metadata contradicts the voxels, or ""
 };
 
 void initOpenVdb();

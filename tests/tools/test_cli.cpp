@@ -2,6 +2,7 @@
 // and leaves no file behind, and the EXR carries the layers and metadata asked for.
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <ImfHeader.h>
 #include <ImfStandardAttributes.h>
@@ -53,6 +54,24 @@ TEST(Cli, DamagedFilesAreRefused) {
     }
     expectRejected("render " + dir + "/truncated.vdb",
                    dir + "/truncated.vdb: truncated: grid 'huge' type needs 16 bytes at byte 77 but the file has 80");
+    // info names the metadata that contradicts the voxels, and reads the voxels.
+    const std::map<std::string, std::string> claims = {
+        {"bomb", "[0, 0, 0] -> [200000, 200000, 200000]"}, {"huge", "[0, 0, 0] -> [1000000000, 1000000000, 1000000000]"},
+        {"inverted", "[100, 100, 100] -> [-100, -100, -100]"},
+        {"overflow", "[-2147483648, -2147483648, -2147483648] -> [2147483647, 2147483647, 2147483647]"},
+        {"roundup", "[0, 0, 0] -> [2147483647, 8, 8]"}};
+    for (const auto& [name, claim] : claims) {
+        CliResult r = runCli("info " + dir + "/bad-bbox-" + name + ".vdb");
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_NE(r.out.find("    damaged metadata: file_bbox " + claim + " but the voxels' bbox is empty (the metadata is ignored)\n"),
+                  std::string::npos) << r.out;
+    }
+    CliResult r = runCli("info " + dir + "/bad-bbox-empty.vdb");   // no bbox metadata: nothing to contradict
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.find("damaged metadata"), std::string::npos) << r.out;
+    r = runCli("info " + dir + "/truncated.vdb");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: " + dir + "/truncated.vdb: truncated: grid 'huge' type needs 16 bytes at byte 77 but the file has 80\n");
 }
 
 // OpenVDB reads a file cut short without complaint; voxlux refuses it, wherever it was cut.
