@@ -232,25 +232,32 @@ TEST(FirstUse, ProgressLinesAndCtrlCLeaveNothingBehind) {
     EXPECT_TRUE(fs::is_empty(dir));
 }
 
+// Renders frames first..last of the shared Blender fire with the quick form into `dir`.
+void renderFire(const std::string& fire, const std::string& dir, const std::string& frames, const std::string& flags) {
+    CliResult r = runCli("render " + fire + "/fluid_data_####.vdb --frames " + frames + " --backend cpu --blackbody-grid temperature " +
+                         flags + " -o " + dir + "/fire.####.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("voxlux: quick form: up axis z (a Blender Mantaflow cache"), std::string::npos) << r.out;
+}
+
+Exr fireFrame(const std::string& dir, int frame) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/fire.%04d.exr", frame);
+    return readExr(dir + name);
+}
+
 // The shared Blender fire, as a new user renders it with the quick form.
 TEST(FirstUse, BlenderFireSequenceHasOneCameraAndStandsUpright) {
     VOXLUX_REQUIRE_SHARED(fire, "blender/fire");
     const std::string dir = tempDir("fire_sequence");
-    CliResult r = runCli("render " + fire + "/fluid_data_####.vdb --frames 1-60 --res 24x24 --backend cpu --shadows none "
-                         "--blackbody-grid temperature --aovs emission -o " + dir + "/fire.####.exr");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("voxlux: quick form: up axis z (a Blender Mantaflow cache"), std::string::npos) << r.out;
-    const auto cameraOf = [&](int frame) {
-        char name[64];
-        std::snprintf(name, sizeof name, "/fire.%04d.exr", frame);
-        return Imf::worldToCameraAttribute(readExr(dir + name).header).value();
-    };
+    renderFire(fire, dir, "1-60", "--res 24x24 --shadows none --aovs emission");
+    const auto cameraOf = [&](int frame) { return Imf::worldToCameraAttribute(fireFrame(dir, frame).header).value(); };
     const Imath::M44f first = cameraOf(1);
     for (int frame = 2; frame <= 60; ++frame) ASSERT_EQ(cameraOf(frame), first) << "frame " << frame;
 
     // Upright: the plume is taller than wide in the image, and its flame (the emission) sits
     // below the smoke's centre, at the burner.
-    const Exr e = readExr(dir + "/fire.0040.exr");
+    const Exr e = fireFrame(dir, 40);
     int top = e.height, bottom = -1, left = e.width, right = -1;
     double alpha_rows = 0, alpha_sum = 0, flame_rows = 0, flame_sum = 0;
     for (int y = 0; y < e.height; ++y)
@@ -271,13 +278,9 @@ TEST(FirstUse, BlenderFireSequenceHasOneCameraAndStandsUpright) {
 TEST(FirstUse, BlenderFireDoesNotClip) {
     VOXLUX_REQUIRE_SHARED(fire, "blender/fire");
     const std::string dir = tempDir("fire_clip");
-    CliResult r = runCli("render " + fire + "/fluid_data_####.vdb --frames 10-50 --res 48x48 --backend cpu "
-                         "--blackbody-grid temperature --pixel-type float -o " + dir + "/fire.####.exr");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
+    renderFire(fire, dir, "10-50", "--res 48x48 --pixel-type float");
     for (int frame = 10; frame <= 50; ++frame) {
-        char name[64];
-        std::snprintf(name, sizeof name, "/fire.%04d.exr", frame);
-        const Exr e = readExr(dir + name);
+        const Exr e = fireFrame(dir, frame);
         size_t clipped = 0, lit = 0;
         for (size_t i = 0; i < e.planes.at("R").size(); ++i) {
             const float peak = std::max({e.planes.at("R")[i], e.planes.at("G")[i], e.planes.at("B")[i]});
