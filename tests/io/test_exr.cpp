@@ -208,6 +208,7 @@ TEST(Exr, EveryMetadataAttributeWithItsValue) {
     EXPECT_EQ(stringAttribute(e, "voxlux/version"), VOXLUX_VERSION);
     EXPECT_EQ(stringAttribute(e, "voxlux/sceneHash"), "0123456789abcdef");
     EXPECT_EQ(e.header.typedAttribute<Imf::IntAttribute>("voxlux/frame").value(), 42);
+    EXPECT_EQ(e.header.typedAttribute<Imf::FloatAttribute>("voxlux/exposure").value(), 0.0f);
     EXPECT_EQ(e.header.typedAttribute<Imf::FloatAttribute>("voxlux/seconds/load").value(), 0.25f);
     EXPECT_EQ(e.header.typedAttribute<Imf::FloatAttribute>("voxlux/seconds/march").value(), 1.5f);
 
@@ -217,15 +218,16 @@ TEST(Exr, EveryMetadataAttributeWithItsValue) {
                                          "screenWindowCenter", "screenWindowWidth"};
     std::set<std::string> all = required;
     all.insert({"worldToCamera", "worldToNDC", "chromaticities", "oiio:ColorSpace", "voxlux/colorSpace",
-                "voxlux/config", "voxlux/version", "voxlux/sceneHash", "voxlux/frame", "voxlux/seconds/load",
+                "voxlux/config", "voxlux/version", "voxlux/sceneHash", "voxlux/frame", "voxlux/exposure", "voxlux/seconds/load",
                 "voxlux/seconds/march"});
     EXPECT_EQ(attributeNames(e.header), all);
 
-    // Unset fields write nothing: no empty colour space, no frame outside a sequence.
+    // Unset fields write nothing: no empty colour space, no frame outside a sequence (exposure 0 is
+    // written: it says the image was not exposed).
     const std::string bare = tempDir("exr_layers") + "/bare.exr";
     writeExr(bare, patternImage(), spec(PixelType::Half, "zip", {}), ExrMetadata{});
     std::set<std::string> minimal = required;
-    minimal.insert({"worldToCamera", "worldToNDC", "voxlux/version", "voxlux/sceneHash"});
+    minimal.insert({"worldToCamera", "worldToNDC", "voxlux/version", "voxlux/sceneHash", "voxlux/exposure"});
     EXPECT_EQ(attributeNames(readExr(bare).header), minimal);
 }
 

@@ -212,11 +212,14 @@ TEST(Cli, InfoAsJson) {
 }
 
 TEST(Cli, ExplainShowsThePlan) {
-    CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --explain");
+    // The quick form: one key light, ray-marched shadows.
+    CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb --explain -o x.exr");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("run   load"), std::string::npos);
     EXPECT_NE(r.out.find("run   march             1 light, ray-marched shadow rays per sample (reference)  [after: "
-                         "color_space brick classify empty_check camera light_cache propagation eye_pass; reads: /render /material"),
+                         "color_space brick classify empty_check camera light_cache propagation eye_pass; reads: "
+                         "/render/resolution /render/step /render/shadow_step /render/transmittance_cutoff /render/backend "
+                         "/render/method /render/reference /material"),
               std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("skip  light_cache       skipped: no effect in the scene needs a precomputed light cache"),
@@ -246,7 +249,7 @@ TEST(Cli, ExplainShowsThePlan) {
                          "noise-perturbed"),
               std::string::npos)
         << r.out;
-    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --explain --set effects.indirect=true");
+    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --explain --shadows raymarch");
     EXPECT_NE(r.out.find("skip  illumination_grid skipped: no effect in the scene needs an illumination volume (indirect light "
                          "needs effects.shadows = propagation)"),
               std::string::npos)
