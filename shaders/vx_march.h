@@ -109,7 +109,7 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
             for (int k = vx_first_sample(s.t, inv_dt); k < k_end; ++k) {
                 float t = (float(k) + 0.5f) * dt;
                 tau += (vx_perturbed() ? vx_perturbed_extinction(o + d * t, x + wi * t)
-                                       : vx_extinction(vx_corners_at(slot, s.brick, o + d * t))) * dt;
+                                       : vx_extinction(vx_taps_at(slot, s.brick, o + d * t))) * dt;
             }
             if (tau > tau_cut) return 0.0f;
         }
@@ -192,7 +192,8 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxGridCell cell, VxSurface sur
 
 // Extinction at the first `lanes` (a multiple of VX_LANES, at most VX_CHUNK) of the consecutive
 // samples t_j = (k + j + 0.5) * dt inside one brick. The samples are independent, so the C++
-// build evaluates them as one SIMD batch (gathers from the atlas); a GPU thread runs the loop.
+// build evaluates trilinear ones as one SIMD batch (gathers from the atlas); a GPU thread runs the
+// loop. Tricubic samples are looked up one by one (their taps may cross into other bricks).
 // Samples past the brick read clamped, in-bounds voxels and are ignored by the caller. Under a
 // perturbation every sample is looked up on its own (its displaced point may lie in any brick);
 // wo + wd * t is the sample's world point.
@@ -208,6 +209,13 @@ VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 w
         for (int j = 0; j < lanes; ++j) {
             float t = (float(k + j) + 0.5f) * dt;
             c.sigma[j] = vx_perturbed_extinction(o + d * t, wo + wd * t);
+        }
+        return;
+    }
+    if (VX_VOXEL_FILTER != VX_FILTER_TRILINEAR) {
+        for (int j = 0; j < lanes; ++j) {
+            float t = (float(k + j) + 0.5f) * dt;
+            c.sigma[j] = vx_extinction(vx_taps_at(slot, brick, o + d * t));
         }
         return;
     }
@@ -320,7 +328,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                 float sigma = chunk.sigma[j];
                 float t = (float(k + j) + 0.5f) * dt;
                 vec3 le = vec3(0.0f);
-                if (emits && occupied) le = vx_emission(vx_corners_at(slot, s.brick, o + d * t));
+                if (emits && occupied) le = vx_emission(vx_taps_at(slot, s.brick, o + d * t));
                 if (sigma <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
                 // Exact integral of a constant segment: the light scattered in a segment of
                 // extinction sigma is albedo * L_in * (T_k - T_k+1); emission integrates to
@@ -330,7 +338,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                 float absorbed = T - T_next;
                 if (absorbed > 0.0f) {
                     vec3 x = origin + dir * t;
-                    vec3 albedo = plain_albedo || !occupied ? P.albedo : vx_albedo(vx_corners_at(slot, s.brick, o + d * t));
+                    vec3 albedo = plain_albedo || !occupied ? P.albedo : vx_albedo(vx_taps_at(slot, s.brick, o + d * t));
                     VxGridCell cell = cached ? vx_cache_cell(x) : no_cell;
                     VxSurface surface = shaded_surface ? vx_surface(o + d * t) : vx_no_surface();
                     vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, cell, surface));

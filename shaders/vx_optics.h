@@ -32,27 +32,26 @@ VX_INLINE float vx_value_extinction(float v) {
     return v * P.density_scale;
 }
 
-VX_INLINE float vx_extinction(VxCorners c) {
-    return vx_value_extinction(VX_TRILINEAR(vx_atlas_density, c));
+VX_INLINE float vx_extinction(VxTaps r) {
+    return vx_value_extinction(vx_density_at(r));
 }
 
 // Albedo at a sample: the material's, tinted by the transfer function and the colour grid.
-vec3 vx_albedo(VxCorners c) {
+vec3 vx_albedo(VxTaps r) {
     vec3 a = P.albedo;
-    if (P.use_transfer != 0) a *= vec3(vx_tf_eval(VX_TRILINEAR(vx_atlas_density, c)));
-    if (P.use_color_grid != 0) a *= VX_TRILINEAR(vx_atlas_color, c);
+    if (P.use_transfer != 0) a *= vec3(vx_tf_eval(vx_density_at(r)));
+    if (P.use_color_grid != 0) a *= vx_color_at(r);
     return a;
 }
 
 // Emitted radiance per world unit at a sample: each source's grid value through its own table
 // (linear between rows, clamped to the grid's range), summed over the sources. The atlas holds
-// the sources' channels one after another, so a source's corners are the density's shifted.
-vec3 vx_emission(VxCorners c) {
+// the sources' channels one after another, so a source's taps are the density's shifted.
+vec3 vx_emission(VxTaps r) {
     vec3 sum = vec3(0.0f);
-    VxCorners cs = c;
     for (int s = 0; s < P.emission_sources; ++s) {
-        cs.base = c.base + s * P.emission_source_floats;
-        float x = clamp(VX_TRILINEAR(vx_atlas_emission, cs) * P.emission_domain[s], 0.0f, 1.0f) *
+        VxTaps rs = vx_taps_offset(r, s * P.emission_source_floats);
+        float x = clamp(vx_emission_value_at(rs) * P.emission_domain[s], 0.0f, 1.0f) *
                   float(VX_EMISSION_LUT_SIZE - 1);
         int i = min(int(x), VX_EMISSION_LUT_SIZE - 2);
         int row = s * VX_EMISSION_LUT_SIZE + i;

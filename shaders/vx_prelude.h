@@ -66,6 +66,9 @@
 #define VX_SHADOWS_SAT_CONE 2      // shadow optical depth read from the light cache
 #define VX_SHADOWS_PROPAGATION 3   // direct and indirect light read from the illumination volume
 
+#define VX_FILTER_TRILINEAR 0      // P.voxel_filter: how the atlas is reconstructed between voxels
+#define VX_FILTER_TRICUBIC 1
+
 // GL binding points of every program, each once (uniform blocks and storage buffers count apart).
 // The GL backend binds buffers by block name; these numbers keep the blocks of one program apart,
 // and grade.comp's pixels are bound by number (src/grade/gl_color_transform.cpp).

@@ -1,4 +1,6 @@
-// Brick addressing and reconstruction: page-table lookup and trilinear fetch from the atlas.
+// Brick addressing and reconstruction: page-table lookup, and the atlas filtered between voxels
+// (P.voxel_filter): trilinear, 8 voxel reads per sample, or the cubic B-spline, 8 trilinear taps (64
+// reads) and up to 7 page-table lookups where the taps cross into neighbouring bricks.
 #pragma once
 #include "vx_types.h"
 
@@ -61,11 +63,98 @@ VX_INLINE VxCorners vx_corners_at(int slot, ivec3 b, vec3 p) {
                FETCH((c).base + 81), FETCH((c).base + 82), FETCH((c).base + 90), FETCH((c).base + 91), \
                (c).fx, (c).fy, (c).fz)
 
+// A sample's reconstruction: the trilinear cells it reads and how it weighs them. Trilinear is
+// one cell. The cubic B-spline (Sigg and Hadwiger 2005, GPU Gems 2 ch. 20) folds the 4 B-spline
+// weights per axis into 2 trilinear taps, at i - 1 + w1 / (w0 + w1) and i + 1 + w3 / (w2 + w3),
+// weighted w0 + w1 and w2 + w3: 8 taps combined trilinearly with fractions s. A tap in a brick
+// that is not stored reads 0 (present = 0), as the march reads an empty brick. The B-spline is a
+// convex combination of the 4^3 voxels around the sample: smooth (C2), never overshooting, and a
+// little softer than the data (it does not interpolate it).
+struct VxTaps {
+    VxCorners tap[8];    // tap j at (h[j & 1].x, h[(j >> 1) & 1].y, h[(j >> 2) & 1].z)
+    float present[8];    // 1, or 0 for a tap in a brick that is not stored
+    float sx;            // weight of the second tap per axis
+    float sy;
+    float sz;
+    int count;           // 1 (trilinear) or 8
+};
+
+// The single trilinear cell c as a reconstruction.
+VX_INLINE VxTaps vx_single_tap(VxCorners c) {
+    VxTaps r;
+    r.tap[0] = c;
+    r.present[0] = 1.0f;
+    r.sx = 0.0f;
+    r.sy = 0.0f;
+    r.sz = 0.0f;
+    r.count = 1;
+    return r;
+}
+
+// The filter a kernel build runs. GL compiles one march program per filter, with VX_ATLAS_FILTER
+// defined (src/backend/gl), so that a program holds only its own filter's code: llvmpipe takes
+// minutes to compile both into one. The C++ build follows P.voxel_filter.
+#ifdef VX_GLSL
+#ifndef VX_ATLAS_FILTER
+#define VX_ATLAS_FILTER VX_FILTER_TRILINEAR
+#endif
+#define VX_VOXEL_FILTER VX_ATLAS_FILTER
+#else
+#define VX_VOXEL_FILTER P.voxel_filter
+#endif
+
+// Reconstruction of the atlas at index point p inside stored brick b (atlas slot `slot`).
+VX_INLINE VxTaps vx_taps_at(int slot, ivec3 b, vec3 p) {
+    if (VX_VOXEL_FILTER == VX_FILTER_TRILINEAR) return vx_single_tap(vx_corners_at(slot, b, p));
+    vec3 i = floor(p);
+    vec3 t = p - i;
+    vec3 t2 = t * t;
+    vec3 t3 = t2 * t;
+    vec3 w0 = (1.0f - 3.0f * t + 3.0f * t2 - t3) / 6.0f;
+    vec3 w1 = (4.0f - 6.0f * t2 + 3.0f * t3) / 6.0f;
+    vec3 w3 = t3 / 6.0f;
+    vec3 g1 = 1.0f - w0 - w1;    // w2 + w3, at least 1/6
+    vec3 h0 = i - 1.0f + w1 / (w0 + w1);
+    vec3 h1 = i + 1.0f + w3 / g1;
+    VxTaps r;
+    r.sx = g1.x;
+    r.sy = g1.y;
+    r.sz = g1.z;
+    r.count = 8;
+    for (int j = 0; j < 8; ++j) {
+        vec3 q = vec3((j & 1) != 0 ? h1.x : h0.x, (j & 2) != 0 ? h1.y : h0.y, (j & 4) != 0 ? h1.z : h0.z);
+        ivec3 qb = ivec3(floor(q / float(VX_BRICK)));
+        int qs = all(equal(qb, b)) ? slot : vx_page_lookup(qb);
+        r.present[j] = qs == VX_PAGE_EMPTY ? 0.0f : 1.0f;
+        r.tap[j] = vx_corners_at(qs == VX_PAGE_EMPTY ? slot : qs, qb, q);    // absent: any stored cell, weighted 0
+    }
+    return r;
+}
+
+// The same reconstruction shifted to another channel block of the atlas (emission sources).
+VX_INLINE VxTaps vx_taps_offset(VxTaps r, int offset) {
+    for (int j = 0; j < r.count; ++j) r.tap[j].base += offset;
+    return r;
+}
+
+// A function NAME(VxTaps) returning atlas channel FETCH (as for VX_TRILINEAR) of type T,
+// reconstructed: one per channel, so each expands the taps once.
+#define VX_DEFINE_RECONSTRUCT(T, NAME, FETCH)                                                         \
+    VX_INLINE T NAME(VxTaps r) {                                                                      \
+        if (r.count == 1) return VX_TRILINEAR(FETCH, r.tap[0]);                                       \
+        T v[8];                                                                                       \
+        for (int j = 0; j < 8; ++j) v[j] = r.present[j] * VX_TRILINEAR(FETCH, r.tap[j]);             \
+        return VX_TRILERP(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], r.sx, r.sy, r.sz);         \
+    }
+VX_DEFINE_RECONSTRUCT(float, vx_density_at, vx_atlas_density)
+VX_DEFINE_RECONSTRUCT(float, vx_emission_value_at, vx_atlas_emission)
+VX_DEFINE_RECONSTRUCT(vec3, vx_color_at, vx_atlas_color)
+
 // Raw density at index point p from whichever brick holds it (0 in empty bricks): for lookups
 // that may leave the brick being marched (displaced samples, gradients).
 float vx_density_index(vec3 p) {
     ivec3 b = ivec3(floor(p / float(VX_BRICK)));
     int slot = vx_page_lookup(b);
     if (slot == VX_PAGE_EMPTY) return 0.0f;
-    return VX_TRILINEAR(vx_atlas_density, vx_corners_at(slot, b, p));
+    return vx_density_at(vx_taps_at(slot, b, p));
 }

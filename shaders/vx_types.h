@@ -91,8 +91,8 @@ struct VxParams {
     float gain;
     float noise_density;    // extinction amplitude
     float noise_transport;  // transport-colour amplitude
+    int voxel_filter;       // VX_FILTER_* (filter is a GLSL reserved word)
     int pad0;
-    int pad1;
 };
 
 // The light passes' parameters (Schlegel 2011): the extinction SAT over the light grid and the

@@ -45,11 +45,13 @@ void GlBuffer::bind(GLuint program, GLenum interface, const char* name) const {
     glBindBufferBase(target, GLuint(binding), id_);
 }
 
-GLuint kernelProgram(const std::string& entry) {
-    // One program per entry point and process, like the context they belong to.
+GLuint kernelProgram(const std::string& entry, const std::string& defines) {
+    // One program per entry point, defines and process, like the context they belong to.
     static std::map<std::string, GLuint> programs;
-    auto it = programs.find(entry);
-    if (it == programs.end()) it = programs.emplace(entry, compileComputeProgram(assembleComputeShader(entry), entry)).first;
+    const std::string key = entry + "\n" + defines;
+    auto it = programs.find(key);
+    if (it == programs.end())
+        it = programs.emplace(key, compileComputeProgram(assembleComputeShader(entry, defines), entry)).first;
     return it->second;
 }
 

@@ -31,8 +31,9 @@ private:
     GLuint id_ = 0;
 };
 
-// The program of kernel entry point `entry` ("march.comp", ...), compiled on first use.
-GLuint kernelProgram(const std::string& entry);
+// The program of kernel entry point `entry` ("march.comp", ...) compiled with `defines` (lines of
+// "#define NAME VALUE"), on first use.
+GLuint kernelProgram(const std::string& entry, const std::string& defines = "");
 
 // Throws when `bytes` is more than one shader storage block may address on this GL (atlases can
 // outgrow it), naming `block` and pointing to the CPU backend.

@@ -9,8 +9,8 @@ const std::map<std::string, std::string>& embeddedShaders();  // generated at bu
 
 // "#version 450" + "#define VX_GLSL" + the shared kernel headers in dependency order (with the GL
 // data bindings, vx_gl_bindings.glsl, right after vx_types.h) + `entry` (e.g. "march.comp"), with
-// the C++-only #include / #pragma once lines removed.
-std::string assembleComputeShader(const std::string& entry);
+// the C++-only #include / #pragma once lines removed. `defines` goes right after the header.
+std::string assembleComputeShader(const std::string& entry, const std::string& defines = "");
 
 // The grade stage's program: the same header + vx_prelude.h + vx_grade.h + `ocio_shader` (an OCIO
 // processor's generated GLSL, declaring ocio_transform) + grade.comp.

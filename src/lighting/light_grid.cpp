@@ -179,7 +179,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding)
                             b->slot * VX_BRICK_VOXELS + (oz * VX_BRICK_STRIDE + oy) * VX_BRICK_STRIDE + ox, 0, 0, 0};
                         const float sigma = k.vx_value_extinction(k.vx_atlas_density(c.base));
                         if (sigma <= 0.0f) continue;
-                        const glm::vec3 albedo = g.planes == 1 ? glm::vec3(0.0f) : k.vx_albedo(c);
+                        const glm::vec3 albedo = g.planes == 1 ? glm::vec3(0.0f) : k.vx_albedo(k.vx_single_tap(c));
                         ay.eachCellOf(first.y + oy, [&](int cy, double y_length) {
                             ax.eachCellOf(first.x + ox, [&](int cx, double x_length) {
                                 const double w = x_length * y_length * z_length * sigma;

@@ -81,7 +81,7 @@ struct Tracker {
                 t = *next;
                 if (t >= t_end) return true;
                 ++events;
-                T *= std::max(0.0f, 1.0f - k.vx_extinction(k.vx_corners_at(slot, brick, o + d * t)) / m);
+                T *= std::max(0.0f, 1.0f - k.vx_extinction(k.vx_taps_at(slot, brick, o + d * t)) / m);
                 if (T <= 0.0f) return false;
             }
         });
@@ -91,7 +91,7 @@ struct Tracker {
     struct Flight {
         bool collided = false;
         float t = 0.0f;
-        CpuKernel::VxCorners cell{};
+        CpuKernel::VxTaps cell{};
         glm::vec3 emitted{0.0f};  // emission collected up to the collision or the exit
     };
 
@@ -108,7 +108,7 @@ struct Tracker {
                     t = *next;
                     ++events;
                 }
-                const CpuKernel::VxCorners c = k.vx_corners_at(slot, brick, o + d * t);
+                const CpuKernel::VxTaps c = k.vx_taps_at(slot, brick, o + d * t);
                 if (!next) {  // opaque at float precision: the flight ends here
                     f.collided = true;
                     f.t = t;
@@ -202,17 +202,32 @@ std::vector<float> brickMajorants(const KernelInputs& in) {
     const bool tf = k.P.use_transfer != 0;
     const float floor_emitting = 1.0f / voxelEdge(atlas.index_to_world);
     std::vector<float> m(slots, 0.0f);
+    // The slots a sample in slot s reads: s itself, and under the B-spline its 26 neighbours
+    // (absent ones read 0).
+    const int reach = k.P.voxel_filter == VX_FILTER_TRICUBIC ? 27 : 1;
     for (size_t s = 0; s < slots; ++s) {
-        // Trilinear values stay within the block's range; the transfer function is linear between
-        // its table rows, so its largest extinction over the range is at an end or at a row.
-        const float lo = atlas.density_range[s].x, hi = atlas.density_range[s].y;
+        // Filtered values stay within the range of the blocks they read (both filters are convex
+        // combinations of voxels); the transfer function is linear between its table rows, so its
+        // largest extinction over the range is at an end or at a row.
+        float lo = atlas.density_range[s].x, hi = atlas.density_range[s].y;
+        bool emitting = false;
+        for (int n = 0; n < reach; ++n) {
+            const glm::ivec3 offset = reach == 1 ? glm::ivec3(0) : glm::ivec3(n % 3 - 1, n / 3 % 3 - 1, n / 9 - 1);
+            const int read = k.vx_page_lookup(atlas.coords[s] + offset);
+            if (read == VX_PAGE_EMPTY) {
+                lo = std::min(lo, 0.0f);
+                continue;
+            }
+            lo = std::min(lo, atlas.density_range[size_t(read)].x);
+            hi = std::max(hi, atlas.density_range[size_t(read)].y);
+            for (int e = 0; e < k.P.emission_sources; ++e) emitting |= atlas.emission_max[size_t(e) * slots + size_t(read)] > 0.0f;
+        }
         float sigma = std::max(k.vx_value_extinction(lo), k.vx_value_extinction(hi));
         for (int i = 0; tf && i < VX_TF_LUT_SIZE; ++i) {
             const float v = k.P.transfer_lo + float(i) / (float(VX_TF_LUT_SIZE - 1) * k.P.transfer_inv_range);
             if (v > lo && v < hi) sigma = std::max(sigma, k.vx_value_extinction(v));
         }
-        for (int e = 0; e < k.P.emission_sources; ++e)
-            if (atlas.emission_max[size_t(e) * slots + s] > 0.0f) sigma = std::max(sigma, floor_emitting);
+        if (emitting) sigma = std::max(sigma, floor_emitting);
         m[s] = sigma;
     }
     return m;

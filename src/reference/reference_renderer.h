@@ -28,8 +28,9 @@ private:
 };
 
 // The largest extinction (per world unit) anywhere in each atlas slot: the majorant of delta and
-// ratio tracking there, from the slot's density range through the material (pbrt-v4's majorant
-// grid at brick resolution). Emitting slots get at least one event per voxel, so their emission
+// ratio tracking there, from the density range of the blocks a sample there reads (the slot, and
+// its neighbours under the tricubic filter) through the material (pbrt-v4's majorant grid at
+// brick resolution). Emitting slots get at least one event per voxel, so their emission
 // is sampled even where they do not attenuate.
 std::vector<float> brickMajorants(const KernelInputs& inputs);
 

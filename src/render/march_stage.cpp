@@ -26,7 +26,7 @@ std::string emissionDescription(const EmissionSource& e) {
 
 StageReads MarchStage::reads() const {
     // Every render key but exposure, which only the grade applies.
-    return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/backend",
+    return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
              "/render/method", "/render/reference", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
              "/emission", "/input/frame"},
@@ -48,6 +48,7 @@ StageActivity MarchStage::activity(const Scene& s) const {
         if (enabledLightCount(s, true) > 0)
             march += s.effects.ambient_occlusion ? ", occluded ambient" : ", unoccluded ambient";
     }
+    if (s.render.filter == Filter::Tricubic) march += ", tricubic B-spline filter";
     if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation && !reference) march += ", noise-perturbed";
     for (size_t i = 0; i < s.emission.size(); ++i) march += (i ? ", " : ", emission: ") + emissionDescription(s.emission[i]);

@@ -86,6 +86,10 @@ struct ReferenceSettings {
     int roulette_depth = 3;                // bounces before Russian roulette may end a path
 };
 
+// How the grids are reconstructed between voxels: trilinear, or the smoother cubic B-spline
+// (shaders/vx_sample.h), which hides the voxel staircase of a low-resolution cache.
+enum class Filter { Trilinear, Tricubic };
+
 struct RenderSettings {
     int width = 512;
     int height = 512;
@@ -93,6 +97,7 @@ struct RenderSettings {
     float shadow_step = 1.0f;              // voxels, for ray-marched shadows
     float transmittance_cutoff = 1e-4f;
     float exposure = 0.0f;                 // stops, applied to the beauty and light AOVs before the output transform
+    Filter filter = Filter::Trilinear;     // reconstruction of the grids between voxels
     Backend backend = Backend::Auto;
     RenderMethod method = RenderMethod::March;
     ReferenceSettings reference;           // read only with method reference

@@ -151,7 +151,7 @@ ReferenceSettings readReference(const JsonObject& o) {
 }
 
 RenderSettings readRender(const JsonObject& o) {
-    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "exposure", "backend", "method", "reference"});
+    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "exposure", "filter", "backend", "method", "reference"});
     RenderSettings r;
     if (o.has("resolution")) {
         auto res = o.numbers("resolution", 2);
@@ -170,6 +170,7 @@ RenderSettings readRender(const JsonObject& o) {
         o.fail("transmittance_cutoff", "must lie in (0, 1)");
     r.exposure = o.number("exposure", r.exposure);
     if (!(std::abs(r.exposure) <= 64)) o.fail("exposure", "must lie in [-64, 64] stops");
+    r.filter = o.choice("filter", {"trilinear", "tricubic"}, "trilinear") == "tricubic" ? Filter::Tricubic : Filter::Trilinear;
     std::string b = o.choice("backend", {"auto", "cpu", "gl"}, "auto");
     r.backend = b == "cpu" ? Backend::Cpu : b == "gl" ? Backend::Gl : Backend::Auto;
     r.method = o.choice("method", {"march", "reference"}, "march") == "reference" ? RenderMethod::Reference : RenderMethod::March;

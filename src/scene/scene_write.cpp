@@ -155,6 +155,7 @@ nlohmann::json sceneToJson(const Scene& s) {
     r["shadow_step"] = decimal(s.render.shadow_step);
     r["transmittance_cutoff"] = decimal(s.render.transmittance_cutoff);
     r["exposure"] = decimal(s.render.exposure);
+    r["filter"] = s.render.filter == Filter::Tricubic ? "tricubic" : "trilinear";
     r["backend"] = s.render.backend == Backend::Cpu ? "cpu" : s.render.backend == Backend::Gl ? "gl" : "auto";
     r["method"] = s.render.method == RenderMethod::Reference ? "reference" : "march";
     const ReferenceSettings& ref = s.render.reference;

@@ -26,6 +26,7 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
                    "(default: every frame framed together, defaults from the middle one)");
     cmd.add_option("--res", o.resolution, "WIDTHxHEIGHT (render.resolution)");
     cmd.add_option("--step", o.step, "march step in voxels (render.step)");
+    cmd.add_option("--filter", o.filter, "trilinear|tricubic: reconstruction between voxels (render.filter)");
     cmd.add_option("--shadow-step", o.shadow_step, "shadow-ray step in voxels (render.shadow_step)");
     cmd.add_option("--density-scale", o.density_scale, "density to extinction (material.density_scale)");
     cmd.add_option("--light", o.lights,

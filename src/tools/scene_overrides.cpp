@@ -119,6 +119,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
         apply(flag, [resolution](nlohmann::json& s) { s["render"]["resolution"] = resolution; });
     }
     setKey("--step", "/render/step", finite("--step", o.step));
+    setKey("--filter", "/render/filter", o.filter);
     setKey("--shadow-step", "/render/shadow_step", finite("--shadow-step", o.shadow_step));
     setKey("--density-scale", "/material/density_scale", finite("--density-scale", o.density_scale));
     setKey("--backend", "/render/backend", o.backend);

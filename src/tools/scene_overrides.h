@@ -27,6 +27,7 @@ struct SceneOverrides {
     std::optional<std::string> quality;         // draft|preview|final: applied before every other override
     std::vector<std::string> sets;              // "dotted.key=JSON value", any scene key
     std::optional<std::string> up;              // x|y|z|auto (volume.up)
+    std::optional<std::string> filter;          // trilinear|tricubic (render.filter)
     std::optional<int> frame_on;                // not a key: the frame a sequence is framed on, and the quick
                                                 // form's choices read (default: all frames; the middle one)
 };

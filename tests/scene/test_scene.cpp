@@ -23,7 +23,9 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
               "shot.json: /lights/0/direction: required key is missing");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
               "shot.json: /render/stepp: unknown key (expected one of resolution, step, shadow_step, "
-              "transmittance_cutoff, exposure, backend, method, reference)");
+              "transmittance_cutoff, exposure, filter, backend, method, reference)");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"filter": "cubic"}})"),
+              "shot.json: /render/filter: 'cubic' is not one of trilinear, tricubic");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),
               "shot.json: /render/resolution: expected an array of 2 numbers");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"albedo": [1.5, 0, 0]}})"),
@@ -115,7 +117,7 @@ TEST(Scene, RoundTripThroughJson) {
                      "transfer_function": [{"value": 0, "extinction": 0}, {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
         "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 40, "cone_angle": 25}],
         "camera": {"position": [0, 1, 10], "look_at": [0, 1, 0], "fov": 35},
-        "render": {"resolution": [320, 240], "step": 0.25, "exposure": 1.5, "backend": "cpu"},
+        "render": {"resolution": [320, 240], "step": 0.25, "exposure": 1.5, "filter": "tricubic", "backend": "cpu"},
         "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": true,
                     "cone": {"angle": 4, "samples": 30, "growth": 0.2}, "light_resolution": 96, "light_memory_mb": 512},
         "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth", "ambient"]}})",
@@ -132,7 +134,7 @@ TEST(Scene, RoundTripThroughJson) {
         "emission": [],
         "camera": {"fov": 35, "position": [0, 1, 10], "look_at": [0, 1, 0], "up": [0, 1, 0]},
         "render": {"resolution": [320, 240], "step": 0.25, "shadow_step": 1, "transmittance_cutoff": 0.0001,
-                   "exposure": 1.5, "backend": "cpu", "method": "march",
+                   "exposure": 1.5, "filter": "tricubic", "backend": "cpu", "method": "march",
                    "reference": {"spp": 64, "max_bounces": 16, "seed": 1, "roulette_depth": 3}},
         "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": 1,
                     "cone": {"angle": 4, "samples": 30, "growth": 0.2},
@@ -148,6 +150,7 @@ TEST(Scene, RoundTripThroughJson) {
     EXPECT_EQ(again.volume.density.index, 2);
     EXPECT_EQ(again.lights[0].type, LightType::Spot);
     EXPECT_FLOAT_EQ(again.material.transfer[1].albedo.z, 0.2f);
+    EXPECT_EQ(again.render.filter, Filter::Tricubic);
     EXPECT_EQ(again.effects.shadows, ShadowMethod::SatCone);
     EXPECT_EQ(again.effects.ambient_occlusion->shells, 7);
     EXPECT_EQ(again.effects.color_bleeding, 1.0f);

@@ -29,10 +29,8 @@ constexpr int kGroupSize = 8;  // local_size_x/y in march.comp
 
 class GlBackend final : public KernelBackend {
 public:
-    GlBackend()
-        : context_(ensureGlContext()),
-          program_(kernelProgram("march.comp")),
-          row_offset_(glGetUniformLocation(program_, "vx_row_offset")) {}
+    // Compiles the trilinear program up front, so a GL that cannot run the kernel fails here.
+    GlBackend() : context_(ensureGlContext()) { marchProgram(VX_FILTER_TRILINEAR); }
 
     std::string name() const override { return "gl (" + context_.renderer + ")"; }
     Device device() const override { return Device::Gl; }
@@ -45,8 +43,10 @@ public:
         img.pixels.resize(size_t(img.width) * img.height);
         if (img.pixels.empty()) return img;
 
+        const GLuint program = marchProgram(in.params.voxel_filter);
+        const GLint row_offset = glGetUniformLocation(program, "vx_row_offset");
         params_.upload(&in.params, sizeof in.params, GL_STREAM_DRAW, "parameter");
-        params_.bind(program_, GL_UNIFORM_BLOCK, "Params");
+        params_.bind(program, GL_UNIFORM_BLOCK, "Params");
         const BrickAtlas& atlas = *in.atlas;
         const struct {
             GlBuffer& buffer;
@@ -70,19 +70,19 @@ public:
         for (const auto& a : arrays) {
             checkStorageSize(a.block, a.bytes);
             a.buffer.upload(a.data, a.bytes, GL_STATIC_DRAW, a.block);
-            a.buffer.bind(program_, GL_SHADER_STORAGE_BLOCK, a.block);
+            a.buffer.bind(program, GL_SHADER_STORAGE_BLOCK, a.block);
         }
 
         const size_t row_bytes = size_t(img.width) * sizeof(kernel::VxPixel);
         const int band_rows = std::min(kBandRows, img.height);
         checkStorageSize("Band", row_bytes * band_rows);
         band_.upload(nullptr, row_bytes * band_rows, GL_STREAM_READ, "Band");
-        band_.bind(program_, GL_SHADER_STORAGE_BLOCK, "Band");
+        band_.bind(program, GL_SHADER_STORAGE_BLOCK, "Band");
 
-        glUseProgram(program_);
+        glUseProgram(program);
         for (int y0 = 0; y0 < img.height; y0 += band_rows) {
             const int rows = std::min(band_rows, img.height - y0);
-            glProgramUniform1i(program_, row_offset_, y0);
+            glProgramUniform1i(program, row_offset, y0);
             glDispatchCompute(GLuint((img.width + kGroupSize - 1) / kGroupSize),
                               GLuint((rows + kGroupSize - 1) / kGroupSize), 1);
             // Reading the band back waits for the dispatch, so only one band is ever in flight.
@@ -96,9 +96,13 @@ public:
     }
 
 private:
+    // The march program of a filter: one each, as the filter is a compile-time constant in GLSL
+    // (shaders/vx_sample.h).
+    static GLuint marchProgram(int filter) {
+        return kernelProgram("march.comp", filter == VX_FILTER_TRICUBIC ? "#define VX_ATLAS_FILTER VX_FILTER_TRICUBIC\n" : "");
+    }
+
     const GlContextInfo& context_;
-    const GLuint program_;
-    const GLint row_offset_;
     GlBuffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, emission_lut_, cache_, illum_, noise_, band_;
 };
 
