@@ -1,5 +1,6 @@
 // Stage timings of the foundation pipeline on one cache (default: the shared Houdini smoke),
-// for both backends: load, brick, classify, march without and with ray-marched shadows, write.
+// for both backends: load, brick, classify, march without and with ray-marched shadows (and on the
+// CPU with the tricubic filter), write.
 // Prints figures; it asserts nothing. docs/performance.md quotes its output.
 //
 //   build/voxlux_bench [cache.vdb] [--res 512] [--backends cpu,gl] [--repeats 3]
@@ -110,6 +111,23 @@ int main(int argc, char** argv) {
             if (shadows == ShadowMethod::None) std::printf("  %7.1f M samples/s", samples / t / 1e6);
             std::printf("\n");
         }
+    }
+
+    // The tricubic filter's cost on the CPU (the GL rows would take minutes on llvmpipe), against
+    // the trilinear rows above.
+    for (ShadowMethod shadows : {ShadowMethod::None, ShadowMethod::Raymarch}) {
+        Scene cubic = scene;
+        cubic.effects.shadows = shadows;
+        auto cpu = makeCpuBackend();
+        const auto time = [&](Filter filter) {
+            cubic.render.filter = filter;
+            KernelInputs inputs = makeKernelInputs(cubic, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
+            return best(shadows == ShadowMethod::None ? repeats : 1, [&] { image = cpu->march(inputs); });
+        };
+        const double trilinear = time(Filter::Trilinear), tricubic = time(Filter::Tricubic);
+        const std::string label = std::string("march cpu, tricubic, ") + (shadows == ShadowMethod::None ? "no shadows" : "shadows");
+        std::printf("  %-34s %9.4f s  %5.2fx trilinear (%.4f s, same run)\n", label.c_str(), tricubic, tricubic / trilinear,
+                    trilinear);
     }
 
     // Where the CPU march's time goes: a huge step leaves only ray setup and brick traversal; the

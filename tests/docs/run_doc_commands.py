@@ -100,7 +100,7 @@ def first_frames(value):
 
 REDUCTIONS = [
     (("render", "study"), "--res", smaller_res, f"{MAX_RES}x{MAX_RES}"),     # 64x64 images
-    (("voxlux_bench",), "--res", smaller_res, None),
+    (("voxlux_bench",), "--res", smaller_res, str(MAX_RES)),
     (("render", "study"), "--spp", lambda v: str(min(int(v), 4)) if v.isdigit() else v, None),
     (("render", "study"), "--frames", first_frames, None),                  # 3 frames of a sequence
     (("study",), "--spp-list", lambda v: "1,2", "1,2"),                     # 2 reference renders,
