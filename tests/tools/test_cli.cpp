@@ -218,7 +218,7 @@ TEST(Cli, ExplainShowsThePlan) {
     EXPECT_NE(r.out.find("run   load"), std::string::npos);
     EXPECT_NE(r.out.find("run   march             1 light, ray-marched shadow rays per sample (reference)  [after: "
                          "color_space brick classify empty_check camera light_cache propagation eye_pass; reads: "
-                         "/render/resolution /render/step /render/shadow_step /render/transmittance_cutoff /render/backend "
+                         "/render/resolution /render/step /render/shadow_step /render/transmittance_cutoff /render/filter /render/backend "
                          "/render/method /render/reference /material"),
               std::string::npos)
         << r.out;
