@@ -93,8 +93,13 @@ FrameResult Renderer::prepare(std::optional<int> frame, bool allow_empty) {
     return runGraph(frame, allow_empty, {"color_transforms", "empty_check", "camera", "light_cache", "eye_pass"});
 }
 
+std::optional<std::string> outputPathProblem(const Scene& scene) {
+    if (!scene.output.path.empty()) return std::nullopt;
+    return "no output path: pass -o FILE.exr or set output.path in the scene";
+}
+
 FrameResult Renderer::renderToFile(std::optional<int> frame, bool allow_empty) {
-    if (scene_.output.path.empty()) throw InputError("no output path: pass -o FILE.exr or set output.path in the scene");
+    if (const auto problem = outputPathProblem(scene_)) throw InputError(*problem);
     FrameResult r = runGraph(frame, allow_empty, {"write"});
     r.image = grade_.result();
     r.preview = grade_.preview();

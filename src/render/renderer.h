@@ -43,6 +43,9 @@ struct FrameResult {
     std::string preview_path;                               // the PNG written (renderToFile)
 };
 
+// What keeps `scene` from being written: a missing output path (its message), or nothing.
+std::optional<std::string> outputPathProblem(const Scene& scene);
+
 class Renderer {
 public:
     explicit Renderer(Scene scene);
@@ -65,7 +68,8 @@ public:
     // after an edit, as a light-edit replay does between frames.
     FrameResult prepare(std::optional<int> frame, bool allow_empty);
 
-    // Renders and writes the EXR for `frame` to the scene's output path (#### expanded).
+    // Renders and writes the EXR for `frame` to the scene's output path (#### expanded); throws
+    // outputPathProblem's message when the scene has none.
     FrameResult renderToFile(std::optional<int> frame, bool allow_empty);
 
     // What the march read last: the illumination volume (with the eye pass's indirect light when

@@ -167,7 +167,7 @@ void printNotes(const std::vector<std::string>& notes, std::ostream& out) {
 // file the first and last frames read exists and has the grids the scene names.
 std::vector<std::string> missingInputs(const Scene& scene) {
     std::vector<std::string> problems;
-    if (scene.output.path.empty()) problems.push_back("no output path: pass -o FILE.exr or set output.path in the scene");
+    if (const auto problem = outputPathProblem(scene)) problems.push_back(*problem);
     std::vector<std::string> files{scene.volume.path};
     try {
         const FrameSpan frames = framesOf(scene);
@@ -231,7 +231,7 @@ int runRender(const RenderCommand& cmd) {
     if (cmd.light_edits) return runLightEdits(scene, *cmd.light_edits, frames.first, cmd.stats);
 
     if (cmd.stats) checkWritable(*cmd.stats);  // before any frame: every output or none
-    if (scene.output.path.empty()) throw InputError("no output path: pass -o FILE.exr or set output.path in the scene");
+    if (const auto problem = outputPathProblem(scene)) throw InputError(*problem);
     Renderer renderer(scene);
     nlohmann::json stats = {{"backend", renderer.backendName()}, {"frames", nlohmann::json::array()}};
     size_t emptyFrames = 0;
