@@ -38,8 +38,7 @@ SequenceFraming frameSequence(const Scene& scene, int first, int last) {
         if (box.empty()) continue;
         if (volume.density->activeVoxelCount() > most) most = volume.density->activeVoxelCount(), out.fullest_frame = int(frame);
         glm::vec3 frame_lo, frame_hi;
-        worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
-                    glm::vec3(box.max().x(), box.max().y(), box.max().z()), frame_lo, frame_hi);
+        voxelBoxWorldBounds(volume.index_to_world, box, frame_lo, frame_hi);
         lo = glm::min(lo, frame_lo);
         hi = glm::max(hi, frame_hi);
         if (up < 0) up = upAxisOf(scene, volume);

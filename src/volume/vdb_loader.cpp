@@ -146,6 +146,11 @@ void initOpenVdb() {
     });
 }
 
+void voxelBoxWorldBounds(const glm::mat4& index_to_world, const openvdb::CoordBBox& box, glm::vec3& lo, glm::vec3& hi) {
+    worldBounds(index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
+                glm::vec3(box.max().x(), box.max().y(), box.max().z()), lo, hi);
+}
+
 glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file) {
     const auto& map = *grid.transform().baseMap();
     if (!map.isLinear())
@@ -193,7 +198,11 @@ std::vector<GridSummary> summarizeFile(const std::string& file) {
     std::vector<GridSummary> out;
     for (size_t k = 0; k < f.grids().size(); ++k) {
         if (!f.grids()[k].volume) {   // listed, not read
-            out.push_back({f.grids()[k].name, f.grids()[k].value_type, "points (not read)"});
+            GridSummary listed;
+            listed.name = f.grids()[k].name;
+            listed.value_type = f.grids()[k].value_type;
+            listed.grid_class = "points (not read)";
+            out.push_back(listed);
             continue;
         }
         const openvdb::GridBase::Ptr g = f.read(k);
@@ -212,9 +221,7 @@ std::vector<GridSummary> summarizeFile(const std::string& file) {
         for (const auto& earlier : out) s.index += earlier.name == s.name;
         if (s.active_voxels > 0) {
             s.has_range = activeValueRange(*g, s.min_value, s.max_value, s.vector);
-            const openvdb::CoordBBox& b = s.bbox;
-            worldBounds(indexToWorld(*g, file), glm::vec3(b.min().x(), b.min().y(), b.min().z()),
-                        glm::vec3(b.max().x(), b.max().y(), b.max().z()), s.world_min, s.world_max);
+            voxelBoxWorldBounds(indexToWorld(*g, file), s.bbox, s.world_min, s.world_max);
         }
         out.push_back(s);
     }

@@ -52,4 +52,8 @@ std::vector<GridSummary> summarizeFile(const std::string& file);
 // Index-to-world of a grid as a column-major matrix; throws for non-affine transforms.
 glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file);
 
+// World-space axis-aligned box of the voxels of index box `box` (OpenVDB's inclusive bounds, as
+// evalActiveVoxelBoundingBox gives them) under `index_to_world`.
+void voxelBoxWorldBounds(const glm::mat4& index_to_world, const openvdb::CoordBBox& box, glm::vec3& lo, glm::vec3& hi);
+
 }  // namespace voxlux

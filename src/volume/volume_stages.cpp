@@ -85,9 +85,7 @@ int upAxisOf(const Scene& scene, const LoadedVolume& volume) {
 Camera frameActiveVoxels(const LoadedVolume& volume, const Scene& scene) {
     openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
     glm::vec3 lo(0.0f), hi(1.0f);
-    if (!box.empty())
-        worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),
-                    glm::vec3(box.max().x(), box.max().y(), box.max().z()), lo, hi);
+    if (!box.empty()) voxelBoxWorldBounds(volume.index_to_world, box, lo, hi);
     return frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), upAxisOf(scene, volume));
 }
 
