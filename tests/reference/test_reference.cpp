@@ -257,7 +257,9 @@ TEST(Reference, ExtremeDensityStaysBoundedAndFinite) {
             EXPECT_EQ(p.rgba.w, 1.0f) << sigma;
         }
         std::printf("density %g: %llu brick segments taken as opaque\n", double(sigma), (unsigned long long)opaque);
-        if (sigma > 1e37f) EXPECT_GT(opaque, 0u);
+        if (sigma > 1e37f) {
+            EXPECT_GT(opaque, 0u);
+        }
     }
 }
 

@@ -250,7 +250,7 @@ Exr fireFrame(const std::string& dir, int frame) {
 TEST(FirstUse, BlenderFireSequenceHasOneCameraAndStandsUpright) {
     VOXLUX_REQUIRE_SHARED(fire, "blender/fire");
     const std::string dir = tempDir("fire_sequence");
-    renderFire(fire, dir, "1-60", "--res 24x24 --shadows none --aovs emission");
+    ASSERT_NO_FATAL_FAILURE(renderFire(fire, dir, "1-60", "--res 24x24 --shadows none --aovs emission"));
     const auto cameraOf = [&](int frame) { return Imf::worldToCameraAttribute(fireFrame(dir, frame).header).value(); };
     const Imath::M44f first = cameraOf(1);
     for (int frame = 2; frame <= 60; ++frame) ASSERT_EQ(cameraOf(frame), first) << "frame " << frame;
@@ -278,7 +278,7 @@ TEST(FirstUse, BlenderFireSequenceHasOneCameraAndStandsUpright) {
 TEST(FirstUse, BlenderFireDoesNotClip) {
     VOXLUX_REQUIRE_SHARED(fire, "blender/fire");
     const std::string dir = tempDir("fire_clip");
-    renderFire(fire, dir, "10-50", "--res 48x48 --pixel-type float");
+    ASSERT_NO_FATAL_FAILURE(renderFire(fire, dir, "10-50", "--res 48x48 --pixel-type float"));
     for (int frame = 10; frame <= 50; ++frame) {
         const Exr e = fireFrame(dir, frame);
         size_t clipped = 0, lit = 0;
