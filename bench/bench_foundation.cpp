@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     PageTable pages;
     const double tLoad = best(repeats, [&] { volume = loadVolume(cache, scene.volume); });
     const double tBrick = best(repeats, [&] { atlas = buildBrickAtlas(volume); });
-    const double tClassify = best(repeats, [&] { pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material, scene.emission)); });
+    const double tClassify = best(repeats, [&] { pages = buildPageTable(atlas.coords, pageTableBricks(atlas, scene)); });
     const Camera camera = frameActiveVoxels(volume, scene);
 
     std::printf("voxlux_bench: %s, %dx%d, step %.2f voxel, 1 directional light\n", cache.c_str(), res, res,
@@ -121,7 +121,8 @@ int main(int argc, char** argv) {
         auto cpu = makeCpuBackend();
         const auto time = [&](Filter filter) {
             cubic.render.filter = filter;
-            KernelInputs inputs = makeKernelInputs(cubic, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
+            const PageTable filter_pages = buildPageTable(atlas.coords, pageTableBricks(atlas, cubic));
+            KernelInputs inputs = makeKernelInputs(cubic, atlas, filter_pages, 0.0f, kXyzD65ToAcescg, {&camera});
             return best(shadows == ShadowMethod::None ? repeats : 1, [&] { image = cpu->march(inputs); });
         };
         const double trilinear = time(Filter::Trilinear), tricubic = time(Filter::Tricubic);

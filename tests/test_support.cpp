@@ -59,7 +59,7 @@ std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const
     auto p = std::make_unique<Prepared>();
     p->volume = std::move(volume);
     p->atlas = buildBrickAtlas(p->volume);
-    p->pages = buildPageTable(p->atlas.coords, classifyBricks(p->atlas, scene.material, scene.emission));
+    p->pages = buildPageTable(p->atlas.coords, pageTableBricks(p->atlas, scene));
     p->inputs = makeKernelInputs(scene, p->atlas, p->pages, 0.0f, kXyzD65ToAcescg, {&camera});
     return p;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "kernel/kernel_types.h"
+#include "volume/brick_set.h"
 #include "optics/emission.h"
 #include "optics/transfer_function.h"
 
@@ -27,6 +28,30 @@ std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& materi
         for (size_t i = 0; i < slots; ++i) visible[i] |= block_max[i] > threshold;
     }
     return visible;
+}
+
+namespace {
+
+// `visible` with every stored neighbour of a visible brick added; `coords` sorted (brickLess), as
+// the atlas keeps them.
+std::vector<char> withNeighbours(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible) {
+    std::vector<char> out = visible;
+    for (size_t i = 0; i < coords.size(); ++i) {
+        if (!visible[i]) continue;
+        for (int n = 0; n < 27; ++n) {
+            const glm::ivec3 c = coords[i] + glm::ivec3(n % 3 - 1, n / 3 % 3 - 1, n / 9 - 1);
+            const auto it = std::lower_bound(coords.begin(), coords.end(), c, brickLess);
+            if (it != coords.end() && *it == c) out[size_t(it - coords.begin())] = 1;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<char> pageTableBricks(const BrickAtlas& atlas, const Scene& scene) {
+    const std::vector<char> visible = classifyBricks(atlas, scene.material, scene.emission);
+    return scene.render.filter == Filter::Tricubic ? withNeighbours(atlas.coords, visible) : visible;
 }
 
 PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible) {

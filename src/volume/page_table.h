@@ -24,6 +24,12 @@ struct PageTable {
 std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material,
                                  const std::vector<EmissionSource>& emission);
 
+// The bricks the page table holds for `scene`: classifyBricks, and under the tricubic filter the
+// stored neighbours (of the 26 around) of every visible brick too. That filter reads them and
+// must find their real values (colour, density a transfer function makes transparent), not the 0
+// of a brick missing from the page table.
+std::vector<char> pageTableBricks(const BrickAtlas& atlas, const Scene& scene);
+
 PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible);
 
 }  // namespace voxlux

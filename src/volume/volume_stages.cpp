@@ -44,16 +44,18 @@ void BrickStage::run(StageRun& run) {
     run.warnings = sanitizeReport(*atlas_, load_.volume());
 }
 
-StageReads ClassifyStage::reads() const { return {{"/material", "/emission"}, {"load", "brick"}}; }
+StageReads ClassifyStage::reads() const { return {{"/material", "/emission", "/render/filter"}, {"load", "brick"}}; }
 
 StageActivity ClassifyStage::activity(const Scene& s) const {
-    return {true, s.material.transfer.empty() ? "drops bricks with zero density and emission"
-                                              : "drops bricks the transfer function makes transparent"};
+    std::string what = s.material.transfer.empty() ? "drops bricks with zero density and emission"
+                                                   : "drops bricks the transfer function makes transparent";
+    if (s.render.filter == Filter::Tricubic) what += "; keeps the neighbours of visible ones, which the tricubic filter reads";
+    return {true, what};
 }
 
 void ClassifyStage::run(StageRun& run) {
     const BrickAtlas& atlas = brick_.atlas();
-    pages_ = buildPageTable(atlas.coords, classifyBricks(atlas, run.scene.material, run.scene.emission));
+    pages_ = buildPageTable(atlas.coords, pageTableBricks(atlas, run.scene));
     empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas) : "";
 }
 

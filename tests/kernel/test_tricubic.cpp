@@ -110,6 +110,25 @@ TEST(Tricubic, MajorantsBoundEverySample) {
     EXPECT_GT(own_range_ratio, 2.0f);
 }
 
+// A colour grid wider than the density: the B-spline reproduces a constant colour exactly, also
+// next to a brick the classify stage would drop for having no density (its colour is read, not 0).
+TEST(Tricubic, ReadsTheColourOfBricksWithoutDensity) {
+    const glm::vec3 tint(0.2f, 0.5f, 0.8f);
+    auto color = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    color->setName("Cd");
+    color->denseFill(openvdb::CoordBBox({0, 0, 0}, {23, 23, 23}), openvdb::Vec3s(tint.x, tint.y, tint.z));
+    auto prepared = prepare(volumeFromGrid(boxGrid({8, 8, 8}, {15, 15, 15}, 1.0f), {}, color), tricubicScene(),
+                            cameraOn(glm::vec3(12), {0, 0, -1}, 30));
+    kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
+    ASSERT_NE(k.vx_page_lookup(glm::ivec3(0, 1, 1)), VX_PAGE_EMPTY) << "a brick of colour only, next to the density";
+    for (float x : {8.05f, 8.5f, 12.0f, 15.5f}) {
+        const glm::vec3 p(x, 12.3f, 11.7f);
+        const glm::ivec3 b(glm::floor(p / float(VX_BRICK)));
+        const glm::vec3 albedo = k.vx_albedo(k.vx_taps_at(k.vx_page_lookup(b), b, p));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(albedo[c], k.P.albedo[c] * tint[c], 1e-5) << "x " << x << " channel " << c;
+    }
+}
+
 // The B-spline is a partition of unity, so it keeps a box's optical depth: a ray across the box
 // along x meets sigma * 63 voxels, as with trilinear. The box ends at voxel 62 so that its fade
 // stays inside stored bricks. The march and the reference's ratio tracking agree with it.
