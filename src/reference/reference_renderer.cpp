@@ -12,6 +12,7 @@
 #include "core/progress.h"
 
 #include "kernel/cpu_kernel.h"
+#include "volume/brick_set.h"
 #include "core/error.h"
 
 namespace voxlux {
@@ -204,16 +205,15 @@ std::vector<float> brickMajorants(const KernelInputs& in) {
     std::vector<float> m(slots, 0.0f);
     // The slots a sample in slot s reads: s itself, and under the B-spline its 26 neighbours
     // (absent ones read 0).
-    const int reach = k.P.voxel_filter == VX_FILTER_TRICUBIC ? 27 : 1;
+    const bool tricubic = k.P.voxel_filter == VX_FILTER_TRICUBIC;
     for (size_t s = 0; s < slots; ++s) {
         // Filtered values stay within the range of the blocks they read (both filters are convex
         // combinations of voxels); the transfer function is linear between its table rows, so its
         // largest extinction over the range is at an end or at a row.
         float lo = atlas.density_range[s].x, hi = atlas.density_range[s].y;
         bool emitting = false;
-        for (int n = 0; n < reach; ++n) {
-            const glm::ivec3 offset = reach == 1 ? glm::ivec3(0) : glm::ivec3(n % 3 - 1, n / 3 % 3 - 1, n / 9 - 1);
-            const int read = k.vx_page_lookup(atlas.coords[s] + offset);
+        for (int n = tricubic ? 0 : 13; n < (tricubic ? 27 : 14); ++n) {
+            const int read = k.vx_page_lookup(atlas.coords[s] + brickNeighbourOffset(n));
             if (read == VX_PAGE_EMPTY) {
                 lo = std::min(lo, 0.0f);
                 continue;

@@ -35,6 +35,10 @@ void collectBricks(const TreeT& tree, std::vector<glm::ivec3>& out, const std::s
     }
 }
 
+// Offset n in [0, 27) of the 3x3x3 block of bricks around one (n = 13 is the brick itself): the
+// bricks the tricubic filter's taps can reach.
+inline glm::ivec3 brickNeighbourOffset(int n) { return {n % 3 - 1, n / 3 % 3 - 1, n / 9 - 1}; }
+
 // z-major order, which keeps neighbouring bricks close in the atlas.
 inline bool brickLess(const glm::ivec3& a, const glm::ivec3& b) {
     return a.z != b.z ? a.z < b.z : a.y != b.y ? a.y < b.y : a.x < b.x;

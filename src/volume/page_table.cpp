@@ -39,7 +39,7 @@ std::vector<char> withNeighbours(const std::vector<glm::ivec3>& coords, const st
     for (size_t i = 0; i < coords.size(); ++i) {
         if (!visible[i]) continue;
         for (int n = 0; n < 27; ++n) {
-            const glm::ivec3 c = coords[i] + glm::ivec3(n % 3 - 1, n / 3 % 3 - 1, n / 9 - 1);
+            const glm::ivec3 c = coords[i] + brickNeighbourOffset(n);
             const auto it = std::lower_bound(coords.begin(), coords.end(), c, brickLess);
             if (it != coords.end() && *it == c) out[size_t(it - coords.begin())] = 1;
         }
