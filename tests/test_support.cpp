@@ -55,6 +55,15 @@ openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigm
     return g;
 }
 
+Camera cameraAlong(glm::vec3 centre, glm::vec3 dir, float distance, float fov) {
+    Camera c;
+    c.look_at = centre;
+    c.position = centre - glm::normalize(dir) * distance;
+    c.up = std::abs(dir.y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    c.fov = fov;
+    return c;
+}
+
 std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const Camera& camera) {
     auto p = std::make_unique<Prepared>();
     p->volume = std::move(volume);

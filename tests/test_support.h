@@ -55,6 +55,9 @@ openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigm
 // file, since the renderer keys its caches on it.
 std::string writeBall(const std::string& dir);
 
+// A camera `distance` from `centre`, looking at it along `dir`, with field of view `fov` (degrees).
+Camera cameraAlong(glm::vec3 centre, glm::vec3 dir, float distance, float fov);
+
 // Everything one render needs, kept alive together.
 struct Prepared {
     LoadedVolume volume;

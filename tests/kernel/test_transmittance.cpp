@@ -32,14 +32,8 @@ Scene boxScene(float step) {
 }
 
 // Camera 200 world units from the box centre, looking along `dir`: pixel (4, 4) is that ray.
-Camera cameraAlong(glm::vec3 dir) {
-    glm::vec3 centre(float((kN - 1) * 0.5 * kVoxel));
-    Camera c;
-    c.look_at = centre;
-    c.position = centre - glm::normalize(dir) * 200.0f;
-    c.up = std::abs(dir.y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    c.fov = 1.0f;
-    return c;
+Camera cameraOnBox(glm::vec3 dir) {
+    return cameraAlong(glm::vec3(float((kN - 1) * 0.5 * kVoxel)), dir, 200.0f, 1.0f);
 }
 
 struct Case {
@@ -49,7 +43,7 @@ struct Case {
 
 void checkBox(KernelBackend& backend, const Case& c, float sigma) {
     auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {kN - 1, kN - 1, kN - 1}, sigma, kVoxel)),
-                            boxScene(c.step), cameraAlong(c.dir));
+                            boxScene(c.step), cameraOnBox(c.dir));
     RenderImage img = backend.march(prepared->inputs);
     const auto& px = img.pixels[4 * 9 + 4];
     const double expected = std::exp(-expectedTau(sigma, glm::normalize(c.dir)));
@@ -104,7 +98,7 @@ TEST(Transmittance, AffineTransformCpuAndGl) {
 }
 
 TEST(Stability, DenseMediumIsOpaqueAndFinite) {
-    auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {31, 31, 31}, 1e6f)), boxScene(0.5f), cameraAlong({1, 0, 0}));
+    auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {31, 31, 31}, 1e6f)), boxScene(0.5f), cameraOnBox({1, 0, 0}));
     RenderImage img = makeCpuBackend()->march(prepared->inputs);
     const auto& px = img.pixels[4 * 9 + 4];
     EXPECT_LT(px.transmittance, 1e-30f);  // e^-87, where the kernel's exponential saturates
@@ -120,7 +114,7 @@ TEST(Stability, NanAndNegativeVoxelsAreCountedAndZeroed) {
     Scene scene = boxScene(0.5f);
     scene.lights.push_back(defaultKeyLight());
     scene.effects.shadows = ShadowMethod::Raymarch;
-    auto prepared = prepare(volumeFromGrid(g), scene, cameraAlong({1, 0.2f, 0.1f}));
+    auto prepared = prepare(volumeFromGrid(g), scene, cameraOnBox({1, 0.2f, 0.1f}));
     EXPECT_EQ(prepared->atlas.density_fixes.non_finite, 2u);
     EXPECT_EQ(prepared->atlas.density_fixes.negative, 1u);
     for (float v : prepared->atlas.density) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
@@ -139,7 +133,7 @@ TEST(Stability, PointLightInsideAndOnFaceStaysFinite) {
         l.position = pos;
         l.intensity = 1e6f;  // HDR
         scene.lights = {l};
-        auto prepared = prepare(volumeFromGrid(g), scene, cameraAlong({1, 0.1f, 0.05f}));
+        auto prepared = prepare(volumeFromGrid(g), scene, cameraOnBox({1, 0.1f, 0.05f}));
         RenderImage img = makeCpuBackend()->march(prepared->inputs);
         float peak = 0.0f;
         for (const auto& px : img.pixels) {
@@ -155,7 +149,7 @@ TEST(Stability, PointLightInsideAndOnFaceStaysFinite) {
 TEST(Shadows, SlabShadowRayMatchesBeerLambert) {
     const float sigma = 0.1f;
     auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {63, 63, 63}, sigma)), boxScene(0.5f),
-                            cameraAlong({1, 0, 0}));
+                            cameraOnBox({1, 0, 0}));
     kernel::CpuKernel k;
     k.P = prepared->inputs.params;
     k.density = prepared->atlas.density;
@@ -202,7 +196,7 @@ TEST(March, TelescopedLightingEqualsPerSampleLighting) {
     scene.render.width = 24;
     scene.render.height = 20;
     scene.lights = {defaultKeyLight()};
-    Camera camera = cameraAlong({1, -0.3f, 0.4f});
+    Camera camera = cameraOnBox({1, -0.3f, 0.4f});
     camera.fov = 30.0f;
     auto telescoped = prepare(volumeFromGrid(g), scene, camera);
     Light black;

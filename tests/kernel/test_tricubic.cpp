@@ -59,15 +59,6 @@ Scene tricubicScene() {
     return s;
 }
 
-Camera cameraOn(glm::vec3 centre, glm::vec3 dir, float fov) {
-    Camera c;
-    c.look_at = centre;
-    c.position = centre - glm::normalize(dir) * 200.0f;
-    c.up = std::abs(dir.y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    c.fov = fov;
-    return c;
-}
-
 // Points spread through [0, 16)^3 (the grid with its - border, away from its + border, where
 // the march stops at the last stored brick).
 glm::vec3 samplePoint(int i) {
@@ -76,7 +67,7 @@ glm::vec3 samplePoint(int i) {
 }
 
 TEST(Tricubic, EqualsTheBSplineSumOverItsVoxels) {
-    auto prepared = prepare(volumeFromGrid(noisyGrid()), tricubicScene(), cameraOn(glm::vec3(10), {0, 0, -1}, 30));
+    auto prepared = prepare(volumeFromGrid(noisyGrid()), tricubicScene(), cameraAlong(glm::vec3(10), {0, 0, -1}, 200, 30));
     kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
     double worst = 0;
     for (int i = 0; i < 2000; ++i) {
@@ -93,7 +84,7 @@ TEST(Tricubic, EqualsTheBSplineSumOverItsVoxels) {
 // Reference: every extinction a sample can read lies under its slot's majorant, although the
 // B-spline reads neighbouring bricks (the slot's own range would be exceeded at brick 0's + face).
 TEST(Tricubic, MajorantsBoundEverySample) {
-    auto prepared = prepare(volumeFromGrid(noisyGrid()), tricubicScene(), cameraOn(glm::vec3(10), {0, 0, -1}, 30));
+    auto prepared = prepare(volumeFromGrid(noisyGrid()), tricubicScene(), cameraAlong(glm::vec3(10), {0, 0, -1}, 200, 30));
     const std::vector<float> majorant = brickMajorants(prepared->inputs);
     kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
     float worst_ratio = 0, own_range_ratio = 0;
@@ -118,7 +109,7 @@ TEST(Tricubic, ReadsTheColourOfBricksWithoutDensity) {
     color->setName("Cd");
     color->denseFill(openvdb::CoordBBox({0, 0, 0}, {23, 23, 23}), openvdb::Vec3s(tint.x, tint.y, tint.z));
     auto prepared = prepare(volumeFromGrid(boxGrid({8, 8, 8}, {15, 15, 15}, 1.0f), {}, color), tricubicScene(),
-                            cameraOn(glm::vec3(12), {0, 0, -1}, 30));
+                            cameraAlong(glm::vec3(12), {0, 0, -1}, 200, 30));
     kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
     ASSERT_NE(k.vx_page_lookup(glm::ivec3(0, 1, 1)), VX_PAGE_EMPTY) << "a brick of colour only, next to the density";
     for (float x : {8.05f, 8.5f, 12.0f, 15.5f}) {
@@ -139,7 +130,7 @@ TEST(Tricubic, KeepsTheOpticalDepthOfABox) {
     Scene scene = tricubicScene();
     scene.render.width = scene.render.height = 9;
     scene.render.step = 0.25f;
-    auto prepared = prepare(volumeFromGrid(grid), scene, cameraOn(centre, {1, 0, 0}, 1));
+    auto prepared = prepare(volumeFromGrid(grid), scene, cameraAlong(centre, {1, 0, 0}, 200, 1));
     const double expected = std::exp(-double(sigma) * 63 * voxel);
     EXPECT_NEAR(makeCpuBackend()->march(prepared->inputs).pixels[4 * 9 + 4].transmittance, expected, 1e-4);
 
@@ -163,7 +154,7 @@ TEST(Tricubic, CpuAndGlAgreeOnGl) {
     key.direction = glm::normalize(glm::vec3(-1, -2, -1));
     key.intensity = 3;
     scene.lights.push_back(key);
-    auto prepared = prepare(volumeFromGrid(noisyGrid()), scene, cameraOn(glm::vec3(10), {0.3f, -0.2f, -1}, 40));
+    auto prepared = prepare(volumeFromGrid(noisyGrid()), scene, cameraAlong(glm::vec3(10), {0.3f, -0.2f, -1}, 200, 40));
     const RenderImage cpu = makeCpuBackend()->march(prepared->inputs), gpu = gl->march(prepared->inputs);
     double worst = 0, lit = 0;
     for (size_t i = 0; i < cpu.pixels.size(); ++i) {

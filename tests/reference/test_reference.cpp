@@ -34,16 +34,6 @@ Light ambientLight(float radiance) {
     return l;
 }
 
-// Looking at `centre` along `dir` from `distance` away.
-Camera cameraAlong(glm::vec3 centre, glm::vec3 dir, float distance, float fov) {
-    Camera c;
-    c.look_at = centre;
-    c.position = centre - glm::normalize(dir) * distance;
-    c.up = std::abs(dir.y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    c.fov = fov;
-    return c;
-}
-
 double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 double meanLuminance(const RenderImage& img) {
