@@ -45,6 +45,7 @@ const std::vector<Layer> kLayers = {
     {"reference", {"src/reference/"}},
     {"grade", {"src/grade/"}},
     {"render", {"src/render/"}},
+    {"viewer", {"src/viewer/"}},
     {"tools", {"src/tools/"}},
 };
 

@@ -140,7 +140,8 @@ bool RenderGraph::reads(const std::string& stage, const std::string& pointer) co
 
 std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::json& document,
                                           KernelBackend& backend, const std::vector<std::string>& targets, std::vector<std::string>& reused,
-                                          std::vector<std::string>& warnings) {
+                                          std::vector<std::string>& warnings, const std::function<bool()>& cancelled) {
+    const auto stop = [&] { return cancelled && cancelled(); };
     const std::map<std::string, std::string> keys = this->keys(scene, document);
     std::vector<StageReport> reports;
     std::vector<std::string> kept_inside;
@@ -153,6 +154,7 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
         }
     }
     for (Stage* s : stages) {
+        if (stop()) throw Cancelled();
         StageReport report{s->name()};
         const std::string& key = keys.at(s->name());
         if (key.empty() || s->idle()) {
@@ -169,6 +171,11 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
             const auto start = std::chrono::steady_clock::now();
             s->run(run);
             report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (stop()) {
+                s->release();
+                s->output_warnings_.clear();
+                throw Cancelled();
+            }
             report.status = StageStatus::Ran;
             last_keys_[s->name()] = key;
         }

@@ -6,7 +6,9 @@
 // prints this graph, and --stats and the EXR timings name the stages as it does.
 // Cost: a hash of each stage's declared JSON values per frame, microseconds next to any stage.
 #pragma once
+#include <functional>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -71,6 +73,11 @@ protected:
 
 enum class StageStatus { Ran, Reused, Skipped };
 
+// Thrown by RenderGraph::run when its `cancelled` test says so (the viewer's next edit).
+struct Cancelled : std::runtime_error {
+    Cancelled() : std::runtime_error("render cancelled") {}
+};
+
 struct StageReport {
     std::string name;
     StageStatus status = StageStatus::Skipped;
@@ -106,9 +113,12 @@ public:
     // take part release their outputs. A stage that throws keeps no key, so it runs next time.
     // Appends the stages' output warnings to `warnings`, and the parts kept inside stages that ran
     // to `reused` (after the names of the stages reused whole).
+    // `cancelled`, when given, is asked before each stage and after each run: once it is true the
+    // run throws Cancelled, and a stage that ran meanwhile (its parallel loops may have stopped
+    // early under a cancelled TBB context) releases its output and keeps no key, so it runs again.
     std::vector<StageReport> run(const Scene& scene, const nlohmann::json& document, KernelBackend& backend,
                                  const std::vector<std::string>& targets, std::vector<std::string>& reused,
-                                 std::vector<std::string>& warnings);
+                                 std::vector<std::string>& warnings, const std::function<bool()>& cancelled = {});
 
     // Each stage's key for this scene and document ("" for stages that do not take part).
     std::map<std::string, std::string> keys(const Scene& scene, const nlohmann::json& document) const;

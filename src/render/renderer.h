@@ -8,6 +8,7 @@
 //       |                 \-> illumination_grid -> propagation -> eye_pass -------------+
 //        `-> camera --------------------------------------------------------------------'
 #pragma once
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -57,6 +58,9 @@ public:
     // Replaces the scene; the next render recomputes only what the change invalidates.
     void setScene(Scene scene);
     const Scene& scene() const { return scene_; }
+    // Asked between stages while rendering (RenderGraph::run): the viewer cancels a render its
+    // next edit makes stale. Renders then throw Cancelled.
+    void setCancellation(std::function<bool()> cancelled) { cancelled_ = std::move(cancelled); }
     const RenderGraph& graph() const { return graph_; }
     std::string backendName() { return backend().name(); }
 
@@ -86,6 +90,7 @@ private:
     KernelBackend& backend();   // the scene's, made on first use (--explain needs none)
 
     Scene scene_;
+    std::function<bool()> cancelled_;
     std::unique_ptr<KernelBackend> owned_backend_;
     KernelBackend* backend_ = nullptr;
     ColorSpaceStage color_space_;

@@ -27,6 +27,10 @@ const char* upAxisName(UpAxis up);
 // The JSON a scene file would need to reproduce `scene` (used by `voxlux scene`).
 nlohmann::json sceneToJson(const Scene& scene);
 
+// `scene` with the paths a scene file resolves against its folder (volume, colour config, grade
+// files) made relative to `folder`, so the scene reads back the same when saved there.
+Scene scenePathsRelativeTo(Scene scene, const std::string& folder);
+
 // Sets one dotted key of a scene's JSON from "KEY=VALUE", as `--set effects.cone.samples=50` does.
 // Throws InputError quoting `set` when it has no '=' or an empty key.
 void applySceneSet(nlohmann::json& scene, const std::string& set);

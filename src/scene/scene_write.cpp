@@ -2,6 +2,7 @@
 // renderer reads, floats as the shortest decimal that reads back to the same float).
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "scene/scene_json.h"
 
@@ -211,6 +212,17 @@ nlohmann::json sceneToJson(const Scene& s) {
         o["aovs"].push_back(a.pixel_type ? nlohmann::json{{"name", a.name}, {"pixel_type", pixelTypeName(*a.pixel_type)}}
                                          : nlohmann::json(a.name));
     return j;
+}
+
+Scene scenePathsRelativeTo(Scene scene, const std::string& folder) {
+    const auto base = std::filesystem::absolute(folder);
+    const auto relative = [&](std::string& path) {
+        if (!path.empty()) path = std::filesystem::absolute(path).lexically_normal().lexically_relative(base).string();
+    };
+    relative(scene.volume.path);
+    relative(scene.color.config);
+    for (GradeStep& g : scene.color.grade) relative(g.file);
+    return scene;
 }
 
 }  // namespace voxlux

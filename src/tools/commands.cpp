@@ -26,6 +26,9 @@
 #include "volume/vdb_loader.h"
 #include "render/framing.h"
 #include "tools/quick_form.h"
+#if VOXLUX_HAS_VIEWER
+#include "viewer/viewer_app.h"
+#endif
 
 namespace voxlux {
 namespace {
@@ -284,8 +287,7 @@ int runScene(const SceneCommand& cmd) {
     // absolute when the scene goes to standard output and may be saved anywhere.
     const std::filesystem::path volume = std::filesystem::absolute(scene.volume.path).lexically_normal();
     if (cmd.output) {
-        const auto folder = std::filesystem::absolute(*cmd.output).parent_path();
-        scene.volume.path = volume.lexically_relative(folder).string();
+        scene = scenePathsRelativeTo(scene, std::filesystem::absolute(*cmd.output).parent_path().string());
         writeFileAtomically(*cmd.output, jsonText(sceneToJson(scene), 2) + "\n");
         std::cout << "wrote " << *cmd.output << "\n";
     } else {
@@ -294,6 +296,21 @@ int runScene(const SceneCommand& cmd) {
     }
     printNotes(notes, std::cerr);   // standard output may be the scene
     return 0;
+}
+
+int runView(const ViewCommand& cmd) {
+#if VOXLUX_HAS_VIEWER
+    std::vector<std::string> notes;
+    const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
+    printNotes(notes, std::cout);
+    ViewerOptions options;
+    options.source = cmd.input;
+    options.script = cmd.script;
+    options.bench = cmd.bench;
+    return runViewer(scene, options);
+#else
+    throw InputError("voxlux view: this build has no viewer (configured with VOXLUX_VIEWER=OFF)");
+#endif
 }
 
 int runInfo(const std::string& vdb, bool json) {

@@ -32,6 +32,16 @@ struct SceneCommand {
 };
 
 int runScene(const SceneCommand& cmd);
+
+struct ViewCommand {
+    std::string input;                          // scene .json, or a .vdb for the quick form
+    SceneOverrides overrides;
+    std::optional<std::string> script;          // replay these UI actions
+    bool bench = false;
+};
+
+// `voxlux view`; in a build without the viewer, an error saying so.
+int runView(const ViewCommand& cmd);
 int runInfo(const std::string& vdb, bool json);
 int runMakeCloud(const std::string& output, int resolution, unsigned seed);
 

@@ -103,6 +103,13 @@ int main(int argc, char** argv) {
     studyCmd->add_flag("--fresh", study.options.fresh, "measure everything again instead of resuming");
     addSceneOverrides(*studyCmd, study.overrides);
 
+    voxlux::ViewCommand view;
+    auto* viewCmd = app.add_subcommand("view", "open the interactive look-dev viewer on a scene .json or a .vdb (docs/viewer.md)");
+    viewCmd->add_option("input", view.input, "scene .json or volume .vdb")->required();
+    viewCmd->add_option("--script", view.script, "ACTIONS.json: replay UI actions (set keys, move lights, screenshots, save)");
+    viewCmd->add_flag("--bench", view.bench, "time a light edit, a camera orbit and a material change, print the figures, quit");
+    addSceneOverrides(*viewCmd, view.overrides);
+
     std::string cloudOutput;
     int cloudResolution = 96;
     unsigned cloudSeed = 1;
@@ -138,6 +145,7 @@ int main(int argc, char** argv) {
             return voxlux::runStudyCommand(study);
         }
         if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
+        if (*viewCmd) return voxlux::runView(view);
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
     } catch (const voxlux::Interrupted&) {
         voxlux::clearProgressLine();

@@ -1,0 +1,204 @@
+#include "viewer/progressive_render.h"
+
+#include <algorithm>
+#include <exception>
+
+#include "core/error.h"
+
+namespace voxlux {
+
+glm::ivec2 levelResolution(glm::ivec2 full, int divisor) {
+    return glm::max(glm::ivec2(1), (full + glm::ivec2(divisor - 1)) / divisor);
+}
+
+ProgressiveRender::ProgressiveRender(Scene scene, std::optional<int> frame) {
+    submit(std::move(scene), frame);
+    worker_ = std::thread([this] { work(); });
+}
+
+ProgressiveRender::~ProgressiveRender() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_ = true;
+        cancelled_ = true;
+        if (march_context_) march_context_->cancel_group_execution();
+    }
+    wake_.notify_all();
+    worker_.join();
+}
+
+uint64_t ProgressiveRender::submit(Scene scene, std::optional<int> frame) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_scene_ = std::move(scene);
+    pending_frame_ = frame;
+    submit_time_ = std::chrono::steady_clock::now();
+    ++stats_.submitted;
+    if (march_context_) {   // the march in flight is for an older edit
+        cancelled_ = true;
+        march_context_->cancel_group_execution();
+    }
+    wake_.notify_all();
+    return ++submitted_;
+}
+
+std::shared_ptr<const ViewFrame> ProgressiveRender::latest() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return latest_;
+}
+
+std::optional<ProgressiveRender::Failure> ProgressiveRender::failure() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return failure_;
+}
+
+ViewStatistics ProgressiveRender::statistics() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stats_;
+}
+
+bool ProgressiveRender::waitConverged(double seconds) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return settled_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return settled_edit_ == submitted_; });
+}
+
+bool ProgressiveRender::settled() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return settled_edit_ == submitted_;
+}
+
+bool ProgressiveRender::newerEdit() const { return stop_ || started_ != submitted_; }
+
+void ProgressiveRender::work() {
+    std::unique_ptr<Renderer> renderer;   // made here, so a GL backend's context belongs to this thread
+    for (;;) {
+        Scene scene;
+        std::optional<int> frame;
+        uint64_t edit = 0;
+        std::chrono::steady_clock::time_point since;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            wake_.wait(lock, [this] { return stop_ || started_ != submitted_; });
+            if (stop_) return;
+            scene = pending_scene_;
+            frame = pending_frame_;
+            edit = started_ = submitted_;
+            since = submit_time_;
+        }
+        if (!renderer) {
+            renderer = std::make_unique<Renderer>(scene);
+            renderer->setCancellation([this] { return cancelled_.load(); });
+        }
+        try {
+            renderEdit(*renderer, scene, frame, edit, since);
+        } catch (const std::exception& e) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            failure_ = Failure{edit, e.what(), last_good_.value_or(scene)};
+            // Show the last good state again, unless the user has moved on already.
+            if (last_good_ && started_ == submitted_) {
+                pending_scene_ = *last_good_;
+                ++submitted_;
+            }
+            settled_edit_ = edit;
+            settled_.notify_all();
+        }
+    }
+}
+
+void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::optional<int> frame, uint64_t edit,
+                                   std::chrono::steady_clock::time_point since) {
+    const glm::ivec2 full(scene.render.width, scene.render.height);
+    std::vector<int> divisors;
+    for (int d : kProgressiveDivisors)   // a level is worth its march when it is at least 32 pixels wide
+        if (d == 1 || full.x / d >= 32) divisors.push_back(d);
+
+    // The grade stage makes the display-referred image only for a scene with a preview; the
+    // path is never written (the viewer runs no write stage).
+    Scene shown = scene;
+    if (shown.output.preview.empty()) shown.output.preview = "viewer.png";
+
+    // The lighting first, at full resolution, never cancelled: a light drag's next edit then
+    // starts from this one's illumination and stays a selective update.
+    renderer.setScene(shown);
+    const FrameResult prepared = renderer.prepare(frame, true);
+    ViewFrame base;
+    base.edit = edit;
+    base.levels = int(divisors.size());
+    base.light_update = prepared.light_update;
+    for (const StageReport& s : prepared.stages)
+        if (s.status == StageStatus::Ran) base.edit_stages.push_back(s);
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (prepared.light_update) {
+            stats_.selective_updates += prepared.light_update->mode == LightUpdate::Mode::Selective;
+            stats_.entire_updates += prepared.light_update->mode == LightUpdate::Mode::Entire;
+            stats_.kept_updates += prepared.light_update->mode == LightUpdate::Mode::Kept;
+        }
+    }
+
+    for (size_t k = 0; k < divisors.size(); ++k) {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (newerEdit()) return;
+            cancelled_ = false;
+        }
+        Scene level = shown;
+        const glm::ivec2 size = levelResolution(full, divisors[k]);
+        level.render.width = size.x;
+        level.render.height = size.y;
+        renderer.setScene(level);
+
+        FrameResult r;
+        std::exception_ptr error;
+        tbb::task_group_context context;
+        tbb::task_group group(context);
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            march_context_ = &context;
+        }
+        // Exceptions are caught inside: TBB drops one thrown in a group that was cancelled.
+        group.run_and_wait([&] {
+            try {
+                r = renderer.render(frame, true);
+            } catch (...) {
+                error = std::current_exception();
+            }
+        });
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            march_context_ = nullptr;
+            if (cancelled_) {
+                ++stats_.cancelled;
+                return;
+            }
+        }
+        if (error) std::rethrow_exception(error);
+
+        auto out = std::make_shared<ViewFrame>(base);
+        out->level = int(k);
+        out->converged = divisors[k] == 1;
+        out->camera = r.camera;
+        out->image = std::move(r.image);
+        out->display = std::move(r.preview);
+        out->warnings = std::move(r.warnings);
+        if (k == 0)
+            for (const StageReport& s : r.stages)
+                if (s.status == StageStatus::Ran) out->edit_stages.push_back(s);
+        std::lock_guard<std::mutex> lock(mutex_);
+        out->seconds_to_image = std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+        if (k == 0) {
+            base.edit_stages = out->edit_stages;
+            ++stats_.rendered;
+            stats_.first_image_seconds = out->seconds_to_image;
+            last_good_ = scene;
+        }
+        latest_ = out;
+        if (out->converged) {
+            ++stats_.converged;
+            stats_.converged_seconds = out->seconds_to_image;
+            settled_edit_ = edit;
+            settled_.notify_all();
+        }
+    }
+}
+
+}  // namespace voxlux

@@ -1,0 +1,125 @@
+#include "viewer/scene_editor.h"
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/json_reader.h"
+#include "io/exr_writer.h"
+#include "scene/scene_json.h"
+
+namespace voxlux {
+
+SceneEditor::SceneEditor(Scene scene) : scene_(std::move(scene)), json_(sceneToJson(scene_)) {}
+
+bool SceneEditor::edit(const std::string& what, const std::function<void(nlohmann::json&)>& change) {
+    nlohmann::json changed = json_;
+    try {
+        change(changed);
+        // Paths in the JSON are already resolved: read it back with no folder to resolve against.
+        Scene read = sceneFromJson(changed, what, "");
+        scene_ = std::move(read);
+        json_ = sceneToJson(scene_);
+        error_.clear();
+        ++version_;
+        return true;
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        return false;
+    }
+}
+
+bool SceneEditor::set(const std::string& assignment) {
+    return edit("set " + assignment, [&](nlohmann::json& j) { applySceneSet(j, assignment); });
+}
+
+void SceneEditor::adopt(const Scene& scene) {
+    scene_ = scene;
+    json_ = sceneToJson(scene_);
+    ++version_;
+}
+
+int SceneEditor::lightIndex(const nlohmann::json& name_or_index) const {
+    const int count = int(scene_.lights.size());
+    if (name_or_index.is_number_integer()) {
+        const int i = name_or_index.get<int>();
+        if (i < 0 || i >= count) throw InputError("no light " + std::to_string(i) + " (the scene has " + std::to_string(count) + ")");
+        return i;
+    }
+    if (!name_or_index.is_string()) throw InputError("a light is named by its name or its index");
+    for (int i = 0; i < count; ++i)
+        if (scene_.lights[i].name == name_or_index.get<std::string>()) return i;
+    throw InputError("no light named \"" + name_or_index.get<std::string>() + "\"");
+}
+
+bool SceneEditor::addLight(const nlohmann::json& light) {
+    solo_.reset();
+    return edit("add light", [&](nlohmann::json& j) { j["lights"].push_back(light); });
+}
+
+bool SceneEditor::removeLight(int index) {
+    solo_.reset();
+    return edit("remove light", [&](nlohmann::json& j) { j.at("lights").erase(size_t(index)); });
+}
+
+bool SceneEditor::enableLight(int index, bool on) {
+    return edit("enable light", [&](nlohmann::json& j) { j.at("lights").at(size_t(index))["enabled"] = on; });
+}
+
+bool SceneEditor::renameLight(int index, const std::string& name) {
+    return edit("rename light", [&](nlohmann::json& j) { j.at("lights").at(size_t(index))["name"] = name; });
+}
+
+bool SceneEditor::changeLight(int index, const nlohmann::json& keys) {
+    return edit("light " + std::to_string(index), [&](nlohmann::json& j) {
+        nlohmann::json& light = j.at("lights").at(size_t(index));
+        light.merge_patch(keys);
+        // A type change drops the keys the new type does not take (a point light has no direction).
+        const std::string type = light.value("type", "directional");
+        if (type != "point" && type != "spot") light.erase("position");
+        if (type != "directional" && type != "spot") light.erase("direction");
+        if (type != "spot") light.erase("cone_angle"), light.erase("cone_softness");
+        if (type == "point" || type == "spot")
+            if (!light.contains("position")) light["position"] = {0, 0, 0};
+        if (type == "directional" || type == "spot")
+            if (!light.contains("direction")) light["direction"] = {0, -1, 0};
+    });
+}
+
+bool SceneEditor::setLight(int index, const Light& light) {
+    nlohmann::json keys = lightToJson(light);
+    keys["enabled"] = light.enabled;
+    return edit("light " + std::to_string(index), [&](nlohmann::json& j) { j.at("lights").at(size_t(index)) = keys; });
+}
+
+bool SceneEditor::soloLight(int index) {
+    const size_t count = scene_.lights.size();
+    if (solo_ == index && before_solo_.size() == count) {
+        const std::vector<bool> states = before_solo_;
+        solo_.reset();
+        return edit("unsolo light", [&](nlohmann::json& j) {
+            for (size_t i = 0; i < count; ++i) j["lights"][i]["enabled"] = bool(states[i]);
+        });
+    }
+    if (!solo_) {
+        before_solo_.clear();
+        for (const Light& l : scene_.lights) before_solo_.push_back(l.enabled);
+    }
+    solo_ = index;
+    return edit("solo light", [&](nlohmann::json& j) {
+        for (size_t i = 0; i < count; ++i) j["lights"][i]["enabled"] = int(i) == index;
+    });
+}
+
+bool SceneEditor::setCamera(const Camera& camera) {
+    Scene with = scene_;
+    with.camera = camera;
+    const nlohmann::json keys = sceneToJson(with)["camera"];
+    return edit("camera", [&](nlohmann::json& j) { j["camera"] = keys; });
+}
+
+void SceneEditor::save(const std::string& path) const {
+    const std::string folder = std::filesystem::absolute(path).parent_path().string();
+    writeFileAtomically(path, jsonText(sceneToJson(scenePathsRelativeTo(scene_, folder)), 2) + "\n");
+}
+
+}  // namespace voxlux

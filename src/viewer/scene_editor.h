@@ -1,0 +1,62 @@
+// The scene as the viewer edits it: its JSON (the form `voxlux scene` writes and the render graph
+// hashes) and the Scene read back from it. Every edit, from a panel, a gizmo, a script or the
+// camera, is a change of the JSON that must read back: a bad one leaves the scene as it was and
+// keeps its one-line error, which the viewer shows.
+#pragma once
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/scene.h"
+
+namespace voxlux {
+
+class SceneEditor {
+public:
+    explicit SceneEditor(Scene scene);
+
+    const Scene& scene() const { return scene_; }
+    const nlohmann::json& json() const { return json_; }
+    // Increases with every edit that took, so a caller knows when to render again.
+    uint64_t version() const { return version_; }
+    // The error of the last edit that was refused, until the next edit that takes.
+    const std::string& error() const { return error_; }
+
+    // Applies `change` to the scene's JSON; `what` names the edit in its error. False if refused.
+    bool edit(const std::string& what, const std::function<void(nlohmann::json&)>& change);
+    // "KEY=VALUE" with a dotted key, as `voxlux render --set` takes it.
+    bool set(const std::string& assignment);
+    // Takes `scene` whole (the last good state after a failed render), keeping the error.
+    void adopt(const Scene& scene);
+
+    // Lights, by index in the scene's list. `light` is a light's JSON keys (docs/scene.md).
+    bool addLight(const nlohmann::json& light);
+    bool removeLight(int index);
+    bool enableLight(int index, bool on);
+    bool renameLight(int index, const std::string& name);
+    bool changeLight(int index, const nlohmann::json& keys);   // merged over the light's keys
+    bool setLight(int index, const Light& light);
+    // Solo: only this light on; solo of the soloed light again gives each light its state back.
+    bool soloLight(int index);
+    std::optional<int> soloed() const { return solo_; }
+    // The index of the light named `name`, or of the index `name` spells; throws InputError.
+    int lightIndex(const nlohmann::json& name_or_index) const;
+
+    bool setCamera(const Camera& camera);
+
+    // Writes the scene to `path` (via a temporary file), its paths relative to the file's folder.
+    void save(const std::string& path) const;
+
+private:
+    Scene scene_;
+    nlohmann::json json_;
+    uint64_t version_ = 0;
+    std::string error_;
+    std::optional<int> solo_;
+    std::vector<bool> before_solo_;
+};
+
+}  // namespace voxlux

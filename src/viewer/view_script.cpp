@@ -1,0 +1,89 @@
+#include "viewer/view_script.h"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/json_reader.h"
+
+namespace voxlux {
+namespace {
+
+enum class Shape { Text, Number, Bool, Light, Object, Pair, Wait };
+
+// Each kind, the shape of its value, and the other keys it takes.
+const std::map<std::string, std::pair<Shape, std::vector<std::string>>>& kinds() {
+    static const std::map<std::string, std::pair<Shape, std::vector<std::string>>> k = {
+        {"set", {Shape::Text, {}}},          {"light", {Shape::Light, {"set"}}},       {"enable", {Shape::Light, {"on"}}},
+        {"solo", {Shape::Light, {}}},        {"remove_light", {Shape::Light, {}}},    {"add_light", {Shape::Object, {}}},
+        {"drag_light", {Shape::Light, {"by"}}}, {"orbit", {Shape::Pair, {}}},         {"pan", {Shape::Pair, {}}},
+        {"dolly", {Shape::Number, {}}},      {"frame", {Shape::Bool, {}}},            {"frame_number", {Shape::Number, {}}},
+        {"aov", {Shape::Text, {}}},          {"wait", {Shape::Wait, {}}},             {"wait_file", {Shape::Text, {"timeout"}}},
+        {"screenshot", {Shape::Text, {}}},   {"window_screenshot", {Shape::Text, {}}}, {"layout", {Shape::Text, {}}},
+        {"save", {Shape::Text, {}}},         {"render", {Shape::Bool, {}}},           {"stats", {Shape::Text, {}}},
+        {"quit", {Shape::Bool, {}}},
+    };
+    return k;
+}
+
+bool isPair(const nlohmann::json& v) { return v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number(); }
+
+}  // namespace
+
+std::vector<ViewAction> loadViewScript(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path + ": cannot open the view script");
+    std::stringstream text;
+    text << in.rdbuf();
+    return parseViewScript(text.str(), path);
+}
+
+std::vector<ViewAction> parseViewScript(const std::string& text, const std::string& path) {
+    const nlohmann::json root = parseJson(text, path);
+    if (!root.is_object() || !root.contains("actions") || !root["actions"].is_array())
+        throw InputError(path + ": a view script is an object with an \"actions\" array");
+    JsonObject(root, path, "").rejectUnknown({"actions"});
+    std::vector<ViewAction> actions;
+    for (size_t k = 0; k < root["actions"].size(); ++k) {
+        const nlohmann::json& a = root["actions"][k];
+        const std::string where = path + ": /actions/" + std::to_string(k);
+        if (!a.is_object() || a.empty()) throw InputError(where + ": an action is an object with one kind key");
+        std::string kind;
+        for (const auto& [key, value] : a.items())
+            if (kinds().count(key) && kind.empty() && (key != "set" || !a.contains("light"))) kind = key;
+        if (kind.empty()) throw InputError(where + ": unknown action \"" + a.begin().key() + "\"");
+        const auto& [shape, extra] = kinds().at(kind);
+        std::vector<std::string> known = extra;
+        known.push_back(kind);
+        JsonObject(a, path, "/actions/" + std::to_string(k)).rejectUnknown(known);
+        const nlohmann::json& v = a[kind];
+        const bool ok = shape == Shape::Text     ? v.is_string()
+                        : shape == Shape::Number ? v.is_number()
+                        : shape == Shape::Bool   ? v.is_boolean()
+                        : shape == Shape::Light  ? v.is_string() || v.is_number_integer()
+                        : shape == Shape::Object ? v.is_object()
+                        : shape == Shape::Pair   ? isPair(v)
+                                                 : v == "converged" || (v.is_number() && v.get<double>() >= 0);
+        if (!ok) {
+            const char* expected = shape == Shape::Text     ? "a string"
+                                   : shape == Shape::Number ? "a number"
+                                   : shape == Shape::Bool   ? "true or false"
+                                   : shape == Shape::Light  ? "a light's name or index"
+                                   : shape == Shape::Object ? "an object"
+                                   : shape == Shape::Pair   ? "two numbers"
+                                                            : "\"converged\" or seconds";
+            throw InputError(where + "/" + kind + ": must be " + expected);
+        }
+        if (kind == "light" && !(a.contains("set") && a["set"].is_object()))
+            throw InputError(where + ": a light action needs \"set\": an object of the light's keys");
+        if (kind == "enable" && !(a.contains("on") && a["on"].is_boolean()))
+            throw InputError(where + ": an enable action needs \"on\": true or false");
+        if (kind == "drag_light" && !(a.contains("by") && isPair(a["by"])))
+            throw InputError(where + ": a drag_light action needs \"by\": [dx, dy] in pixels");
+        actions.push_back({kind, a, where});
+    }
+    return actions;
+}
+
+}  // namespace voxlux

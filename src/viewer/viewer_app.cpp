@@ -1,0 +1,413 @@
+#include "viewer/viewer_app.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <iostream>
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include "core/error.h"
+#include "core/frame_pattern.h"
+#include "core/json_reader.h"
+#include "io/exr_writer.h"
+#include "io/png_writer.h"
+#include "render/renderer.h"
+#include "viewer/orbit_camera.h"
+#include "viewer/view_script.h"
+#include "viewer/viewer_panels.h"
+#include "viewer/viewport.h"
+#include "volume/vdb_loader.h"
+
+namespace voxlux {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr float kScenePanelWidth = 380.0f, kImagePanelWidth = 300.0f, kTimelineHeight = 40.0f, kMessageHeight = 22.0f;
+constexpr double kConvergeTimeout = 300.0;   // seconds a script waits for one image
+
+std::string glfwProblem;
+extern "C" void onGlfwError(int, const char* text) { glfwProblem = text; }
+
+// The volume's world box from the density grid's active voxels, for framing and gizmo sizes.
+void readBounds(ViewerState& state) {
+    const Scene& s = state.editor.scene();
+    try {
+        const std::string file = state.frame ? expandFramePattern(s.volume.path, *state.frame) : s.volume.path;
+        for (const GridSummary& g : summarizeFile(file))
+            if (g.name == s.volume.density.name && g.active_voxels > 0) {
+                state.bounds_lo = glm::vec3(g.world_min.x, g.world_min.y, g.world_min.z);
+                state.bounds_hi = glm::vec3(g.world_max.x, g.world_max.y, g.world_max.z);
+                return;
+            }
+    } catch (const std::exception&) {   // the render names the problem
+    }
+}
+
+// Writes display-referred RGBA8 read back from the window (rows bottom-up) as a PNG.
+void writeWindowPng(const std::string& path, int width, int height) {
+    std::vector<uint8_t> bytes(size_t(width) * height * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    std::vector<glm::vec4> rgba(size_t(width) * height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const uint8_t* p = &bytes[(size_t(height - 1 - y) * width + x) * 4];
+            rgba[size_t(y) * width + x] = glm::vec4(p[0], p[1], p[2], 255) / 255.0f;
+        }
+    writePng(path, width, height, rgba, false);
+}
+
+// Renders the scene to its output path on a thread of its own, as `voxlux render` does.
+std::future<std::string> renderInBackground(const Scene& scene, std::optional<int> frame) {
+    return std::async(std::launch::async, [scene, frame] {
+        Renderer renderer(scene);
+        const FrameResult r = renderer.renderToFile(frame, frame.has_value());
+        return "wrote " + r.path + (r.preview_path.empty() ? "" : " and " + r.preview_path);
+    });
+}
+
+// The edits `--bench` times: each case applied `kBenchRepeats` times, waiting for convergence.
+constexpr int kBenchRepeats = 5;
+std::vector<ViewAction> benchActions(const Scene& scene) {
+    std::vector<ViewAction> a;
+    const auto add = [&a](nlohmann::json action) { a.push_back({action.begin().key(), action, "bench"}); };
+    add({{"wait", "converged"}});
+    int key = -1;
+    for (size_t i = 0; i < scene.lights.size() && key < 0; ++i)
+        if (scene.lights[i].type != LightType::Ambient && scene.lights[i].enabled) key = int(i);
+    for (int k = 0; k < kBenchRepeats; ++k) {
+        if (key >= 0) {
+            add({{"drag_light", key}, {"by", {k % 2 ? -12 : 12, 0}}});
+            add({{"wait", "converged"}});
+            add({{"bench_record", "light edit"}});
+        }
+        add({{"orbit", {k % 2 ? -5 : 5, 0}}});
+        add({{"wait", "converged"}});
+        add({{"bench_record", "camera orbit"}});
+        add({{"set", "material.anisotropy=" + std::to_string(k % 2 ? 0.3 : 0.35)}});
+        add({{"wait", "converged"}});
+        add({{"bench_record", "material change"}});
+    }
+    add({{"bench_report", true}});
+    add({{"quit", true}});
+    return a;
+}
+
+struct BenchCase {
+    std::vector<double> first, converged, slowest_frame;
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+class ViewerApp {
+public:
+    ViewerApp(const Scene& scene, const ViewerOptions& options, std::vector<ViewAction> script)
+        : options_(options), state_(scene), script_(std::move(script)) {}
+
+    int run(GLFWwindow* window);
+
+private:
+    void syncRender();
+    bool runScript();                 // false once the script quits
+    bool runAction(const ViewAction& a);   // false while it waits
+    bool converged() const;
+    void drawFrame(GLFWwindow* window);
+
+    ViewerOptions options_;
+    ViewerState state_;
+    Viewport viewport_;
+    std::vector<ViewAction> script_;
+    size_t next_ = 0;
+    Clock::time_point wait_until_{}, wait_start_{};
+    bool waiting_ = false;
+    std::string window_png_;           // written after the next frame is drawn
+    std::future<std::string> rendering_;
+    std::map<std::string, BenchCase> bench_;
+    std::vector<std::string> bench_order_;
+    std::string shown_error_;
+    int exit_code_ = 0;
+};
+
+void ViewerApp::syncRender() {
+    if (auto f = state_.render->failure(); f && f->edit > state_.failure_seen) {
+        state_.failure_seen = f->edit;
+        state_.showError(f->message);
+        state_.editor.adopt(f->last_good);   // the worker renders the last good state already
+        state_.submitted_version = state_.editor.version();
+    }
+    if (!state_.editor.error().empty() && state_.editor.error() != shown_error_) state_.showError(state_.editor.error());
+    shown_error_ = state_.editor.error();
+    if (state_.submitted_version != state_.editor.version()) {
+        state_.render->submit(state_.editor.scene(), state_.frame);
+        state_.submitted_version = state_.editor.version();
+    }
+    if (rendering_.valid() && rendering_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        try {
+            state_.showNote(rendering_.get());
+        } catch (const std::exception& e) {
+            state_.showError(e.what());
+        }
+    }
+}
+
+bool ViewerApp::converged() const {
+    if (state_.submitted_version != state_.editor.version() || !state_.render->settled()) return false;
+    const auto f = state_.render->latest();
+    return !f || f->converged || state_.render->failure();
+}
+
+bool ViewerApp::runAction(const ViewAction& a) {
+    const nlohmann::json& v = a.value[a.kind];
+    const auto light = [&] { return state_.editor.lightIndex(v); };
+    const auto check = [&](bool took) {
+        if (!took) throw InputError(a.where + ": " + state_.editor.error());
+    };
+    if (a.kind == "wait" || a.kind == "screenshot" || a.kind == "bench_record") {
+        if (!waiting_) wait_start_ = Clock::now(), waiting_ = true;
+        if (v.is_number()) {
+            if (Clock::now() - wait_start_ < std::chrono::duration<double>(v.get<double>())) return false;
+        } else if (!converged()) {
+            if (Clock::now() - wait_start_ > std::chrono::duration<double>(kConvergeTimeout))
+                throw InputError(a.where + ": no converged image after " + std::to_string(int(kConvergeTimeout)) + " s");
+            return false;
+        }
+        waiting_ = false;
+    }
+    if (a.kind == "wait_file") {
+        if (!waiting_) wait_start_ = Clock::now(), waiting_ = true;
+        if (!std::filesystem::exists(v.get<std::string>())) {
+            if (Clock::now() - wait_start_ > std::chrono::duration<double>(a.value.value("timeout", 60.0)))
+                throw InputError(a.where + ": " + v.get<std::string>() + " did not appear");
+            return false;
+        }
+        waiting_ = false;
+    }
+    if (a.kind == "set") check(state_.editor.set(v.get<std::string>()));
+    if (a.kind == "light") check(state_.editor.changeLight(light(), a.value["set"]));
+    if (a.kind == "enable") check(state_.editor.enableLight(light(), a.value["on"].get<bool>()));
+    if (a.kind == "solo") check(state_.editor.soloLight(light()));
+    if (a.kind == "remove_light") check(state_.editor.removeLight(light()));
+    if (a.kind == "add_light") check(state_.editor.addLight(v));
+    if (a.kind == "drag_light") {
+        const glm::vec2 size = viewport_.imageHi() - viewport_.imageLo();
+        check(Viewport::dragLight(state_, light(), glm::vec2(a.value["by"][0].get<float>(), a.value["by"][1].get<float>()), size));
+    }
+    if (a.kind == "orbit") check(state_.editor.setCamera(orbit(state_.camera(), v[0].get<float>(), v[1].get<float>())));
+    if (a.kind == "pan") check(state_.editor.setCamera(pan(state_.camera(), glm::vec2(v[0].get<float>(), v[1].get<float>()))));
+    if (a.kind == "dolly") check(state_.editor.setCamera(dolly(state_.camera(), v.get<float>())));
+    if (a.kind == "frame") check(state_.editor.setCamera(frameAlong(state_.camera(), state_.bounds_lo, state_.bounds_hi)));
+    if (a.kind == "frame_number") {
+        if (!state_.frame) throw InputError(a.where + ": the scene is not a sequence");
+        state_.frame = std::clamp(v.get<int>(), state_.first_frame, state_.last_frame);
+        state_.submitted_version = ~uint64_t(0);
+    }
+    if (a.kind == "aov") {
+        if (std::find(kViewAovs.begin(), kViewAovs.end(), v.get<std::string>()) == kViewAovs.end())
+            throw InputError(a.where + ": no AOV \"" + v.get<std::string>() + "\" (beauty, direct, indirect, ambient, emission, transmittance, depth)");
+        state_.aov = v.get<std::string>();
+    }
+    if (a.kind == "screenshot") {
+        const auto f = state_.render->latest();
+        if (!f) throw InputError(a.where + ": no image (" + state_.message + ")");
+        writePng(v.get<std::string>(), f->image.width, f->image.height, f->display, false);
+    }
+    if (a.kind == "window_screenshot") window_png_ = v.get<std::string>();
+    if (a.kind == "save") {
+        state_.editor.save(v.get<std::string>());
+        state_.showNote("wrote " + v.get<std::string>());
+    }
+    if (a.kind == "render") {
+        if (!rendering_.valid()) rendering_ = renderInBackground(state_.editor.scene(), state_.frame);
+        if (rendering_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+        state_.showNote(rendering_.get());   // a failed render throws its own line
+    }
+    if (a.kind == "stats" || a.kind == "layout") {
+        nlohmann::json out;
+        if (a.kind == "stats") {
+            const ViewStatistics st = state_.render->statistics();
+            out = {{"submitted", st.submitted}, {"rendered", st.rendered}, {"converged", st.converged}, {"cancelled", st.cancelled},
+                   {"selective_updates", st.selective_updates}, {"entire_updates", st.entire_updates}, {"kept_updates", st.kept_updates},
+                   {"ui_fps", state_.ui_fps}, {"message", state_.message}};
+            if (const auto f = state_.render->latest())
+                for (const StageReport& s : f->edit_stages) out["edit_stages"].push_back(s.name);
+        } else {
+            for (const auto& [name, r] : state_.widgets) out["widgets"][name] = {r.x, r.y, r.z, r.w};
+            out["image"] = {viewport_.imageLo().x, viewport_.imageLo().y, viewport_.imageHi().x, viewport_.imageHi().y};
+        }
+        writeFileAtomically(v.get<std::string>(), jsonText(out, 2) + "\n");
+    }
+    if (a.kind == "bench_record") {
+        const ViewStatistics st = state_.render->statistics();
+        const std::string name = v.get<std::string>();
+        if (!bench_.count(name)) bench_order_.push_back(name);
+        bench_[name].first.push_back(st.first_image_seconds);
+        bench_[name].converged.push_back(st.converged_seconds);
+        bench_[name].slowest_frame.push_back(state_.slowest_ui_frame);
+    }
+    if (a.kind == "bench_report") {
+        const Scene& s = state_.editor.scene();
+        std::printf("voxlux view --bench: %s, %dx%d, %s backend, medians of %d edits\n", options_.source.c_str(), s.render.width,
+                    s.render.height, s.render.backend == Backend::Gl ? "gl" : "cpu", kBenchRepeats);
+        std::printf("%-16s %14s %14s %12s\n", "edit", "first image", "converged", "UI fps (min)");
+        for (const auto& name : bench_order_) {
+            const BenchCase& c = bench_[name];
+            const double slowest = *std::max_element(c.slowest_frame.begin(), c.slowest_frame.end());
+            std::printf("%-16s %11.1f ms %11.1f ms %12.0f\n", name.c_str(), median(c.first) * 1000.0, median(c.converged) * 1000.0,
+                        slowest > 0.0 ? 1.0 / slowest : 0.0);
+        }
+        std::fflush(stdout);
+    }
+    // Each edit's slowest UI frame is measured from the edit on, through its wait.
+    if (a.kind != "wait" && a.kind != "bench_record") state_.slowest_ui_frame = 0.0;
+    return true;
+}
+
+bool ViewerApp::runScript() {
+    while (next_ < script_.size()) {
+        const ViewAction& a = script_[next_];
+        syncRender();
+        if (!runAction(a)) return true;
+        ++next_;
+        if (a.kind == "quit") return false;
+        if (a.kind != "wait" && a.kind != "wait_file") return true;   // let the UI draw the edit before the next action
+    }
+    return true;
+}
+
+void ViewerApp::drawFrame(GLFWwindow* window) {
+    int w = 0, h = 0;
+    glfwGetWindowSize(window, &w, &h);
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    const float bottom = float(h) - kMessageHeight - (state_.frame ? kTimelineHeight : 0.0f);
+    const PanelRequests requests = drawScenePanel(state_, 0.0f, kScenePanelWidth, float(h));
+    viewport_.draw(state_, glm::vec2(kScenePanelWidth, 0.0f), glm::vec2(float(w) - kImagePanelWidth, bottom));
+    drawImagePanel(state_, viewport_, float(w) - kImagePanelWidth, kImagePanelWidth, float(h));
+    drawTimeline(state_, kScenePanelWidth, bottom, float(w) - kScenePanelWidth - kImagePanelWidth);
+    ImGui::GetForegroundDrawList()->AddText(ImVec2(kScenePanelWidth + 8.0f, float(h) - kMessageHeight + 3.0f),
+                                            state_.message_is_error ? IM_COL32(255, 90, 80, 255) : IM_COL32(200, 200, 200, 255),
+                                            state_.message.c_str());
+    if (requests.save) {
+        try {
+            state_.editor.save(state_.save_path);
+            state_.showNote("wrote " + state_.save_path);
+        } catch (const std::exception& e) {
+            state_.showError(e.what());
+        }
+    }
+    if (requests.render && !rendering_.valid()) {
+        rendering_ = renderInBackground(state_.editor.scene(), state_.frame);
+        state_.showNote("rendering to " + state_.editor.scene().output.path + " ...");
+    }
+    ImGui::Render();
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window, &fw, &fh);
+    glViewport(0, 0, fw, fh);
+    glClearColor(0.1f, 0.1f, 0.11f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (!window_png_.empty()) {
+        writeWindowPng(window_png_, fw, fh);
+        window_png_.clear();
+    }
+    glfwSwapBuffers(window);
+}
+
+int ViewerApp::run(GLFWwindow* window) {
+    const Scene& scene = state_.editor.scene();
+    if (scene.volume.frames) {
+        state_.first_frame = int((*scene.volume.frames)[0]);
+        state_.last_frame = int((*scene.volume.frames)[1]);
+        state_.frame = state_.first_frame;
+    }
+    state_.save_path = std::filesystem::path(options_.source).stem().string() + "-view.json";
+    readBounds(state_);
+    state_.render = std::make_unique<ProgressiveRender>(scene, state_.frame);
+    state_.submitted_version = state_.editor.version();
+    auto last = Clock::now(), last_step = last;
+    bool running = true;
+    while (running && !glfwWindowShouldClose(window)) {
+        // Idle, the loop sleeps until an event or a new image; busy, it draws as fast as it can.
+        const bool busy = !script_.empty() || !state_.render->settled() || state_.playing || rendering_.valid() ||
+                          ImGui::IsAnyMouseDown();
+        if (busy) glfwPollEvents();
+        else glfwWaitEventsTimeout(0.1);
+        const auto now = Clock::now();
+        const double dt = std::chrono::duration<double>(now - last).count();
+        last = now;
+        state_.ui_fps = state_.ui_fps == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * state_.ui_fps + 0.1 / std::max(dt, 1e-6);
+        state_.slowest_ui_frame = std::max(state_.slowest_ui_frame, dt);
+        if (state_.playing && state_.render->settled() && std::chrono::duration<double>(now - last_step).count() > 1.0 / 24.0) {
+            state_.frame = *state_.frame >= state_.last_frame ? state_.first_frame : *state_.frame + 1;
+            state_.submitted_version = ~uint64_t(0);
+            last_step = now;
+        }
+        syncRender();
+        if (next_ < script_.size()) {
+            try {
+                running = runScript();
+            } catch (const InputError& e) {
+                std::cerr << "voxlux: error: " << e.what() << "\n";
+                exit_code_ = kInputError;
+                running = false;
+            }
+        }
+        drawFrame(window);
+    }
+    if (rendering_.valid()) rendering_.wait();
+    return exit_code_;
+}
+
+}  // namespace
+
+int runViewer(const Scene& scene, const ViewerOptions& options) {
+    std::vector<ViewAction> script;
+    if (options.script) script = loadViewScript(*options.script);
+    if (options.bench) script = benchActions(scene);
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display) throw InputError("voxlux view: no display (DISPLAY is not set); run it on a desktop, or under xvfb-run for scripts");
+    glfwSetErrorCallback(onGlfwError);
+    if (!glfwInit()) throw InputError("voxlux view: cannot open the display " + std::string(display) + " (" + glfwProblem + ")");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    GLFWwindow* window = glfwCreateWindow(options.window.x, options.window.y, ("voxlux view - " + options.source).c_str(), nullptr, nullptr);
+    if (!window) {
+        glfwTerminate();
+        throw InputError("voxlux view: cannot open an OpenGL 3.3 window (" + glfwProblem + ")");
+    }
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(1);
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;   // the layout is fixed; nothing to remember
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330");
+    int code = 0;
+    {
+        ViewerApp app(scene, options, std::move(script));
+        code = app.run(window);
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return code;
+}
+
+}  // namespace voxlux

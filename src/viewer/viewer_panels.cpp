@@ -1,0 +1,279 @@
+#include "viewer/viewer_panels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <cstdio>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "core/frame_pattern.h"
+#include "grade/color_pipeline.h"
+#include "scene/quality_presets.h"
+#include "scene/scene_json.h"
+#include "volume/vdb_file.h"
+
+namespace voxlux {
+namespace {
+
+using Pointer = nlohmann::json::json_pointer;
+
+void remember(ViewerState& state, const std::string& name) {
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    state.widgets[name] = glm::vec4(lo.x, lo.y, hi.x, hi.y);
+}
+
+bool setKey(ViewerState& state, const std::string& pointer, const nlohmann::json& value) {
+    return state.editor.edit(pointer, [&](nlohmann::json& j) { j[Pointer(pointer)] = value; });
+}
+
+// A combo over `items`; returns the pick when it changed.
+std::optional<std::string> combo(const char* label, const std::string& current, const std::vector<std::string>& items) {
+    std::optional<std::string> picked;
+    if (ImGui::BeginCombo(label, current.empty() ? "(default)" : current.c_str())) {
+        for (const auto& item : items)
+            if (ImGui::Selectable(item.c_str(), item == current) && item != current) picked = item;
+        ImGui::EndCombo();
+    }
+    return picked;
+}
+
+// Any JSON value as widgets: objects and arrays as tree nodes, numbers as drags, and so on.
+// Every change is one edit of the key at `pointer`.
+void jsonWidget(ViewerState& state, const std::string& label, const nlohmann::json& value, const std::string& pointer) {
+    ImGui::PushID(pointer.c_str());
+    const bool numbers = value.is_array() && !value.empty() && value.size() <= 4 &&
+                         std::all_of(value.begin(), value.end(), [](const nlohmann::json& v) { return v.is_number(); });
+    if (numbers) {
+        float v[4];
+        for (size_t i = 0; i < value.size(); ++i) v[i] = value[i].get<float>();
+        if (ImGui::DragScalarN(label.c_str(), ImGuiDataType_Float, v, int(value.size()), 0.01f)) {
+            nlohmann::json out = nlohmann::json::array();
+            for (size_t i = 0; i < value.size(); ++i) out.push_back(value[i].is_number_integer() ? nlohmann::json(std::lround(v[i])) : nlohmann::json(v[i]));
+            setKey(state, pointer, out);
+        }
+    } else if (value.is_object() || value.is_array()) {
+        if (ImGui::TreeNode(label.c_str())) {
+            if (value.is_object())
+                for (const auto& [key, child] : value.items()) jsonWidget(state, key, child, pointer + "/" + key);
+            else
+                for (size_t i = 0; i < value.size(); ++i) jsonWidget(state, std::to_string(i), value[i], pointer + "/" + std::to_string(i));
+            ImGui::TreePop();
+        }
+    } else if (value.is_boolean()) {
+        bool v = value.get<bool>();
+        if (ImGui::Checkbox(label.c_str(), &v)) setKey(state, pointer, v);
+    } else if (value.is_number_integer()) {
+        int v = value.get<int>();
+        if (ImGui::DragInt(label.c_str(), &v, 0.2f)) setKey(state, pointer, v);
+    } else if (value.is_number()) {
+        float v = value.get<float>();
+        if (ImGui::DragFloat(label.c_str(), &v, std::max(std::abs(v) * 0.01f, 0.001f), 0.0f, 0.0f, "%.4g")) setKey(state, pointer, v);
+    } else if (value.is_string()) {
+        std::string v = value.get<std::string>();
+        if (ImGui::InputText(label.c_str(), &v, ImGuiInputTextFlags_EnterReturnsTrue)) setKey(state, pointer, v);
+    } else {
+        ImGui::TextDisabled("%s: (unset)", label.c_str());
+    }
+    ImGui::PopID();
+}
+
+void lightList(ViewerState& state) {
+    const std::vector<Light>& lights = state.editor.scene().lights;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const Light& l = lights[i];
+        ImGui::PushID(int(i));
+        bool on = l.enabled;
+        if (ImGui::Checkbox("##on", &on)) state.editor.enableLight(int(i), on);
+        remember(state, "light/" + std::to_string(i) + "/enable");
+        ImGui::SameLine();
+        const std::string name = l.name.empty() ? "light " + std::to_string(i) : l.name;
+        if (ImGui::Selectable(name.c_str(), state.selected_light == int(i), 0, ImVec2(150, 0))) state.selected_light = int(i);
+        ImGui::SameLine();
+        const bool soloed = state.editor.soloed() == int(i);
+        if (ImGui::SmallButton(soloed ? "unsolo" : "solo")) state.editor.soloLight(int(i));
+        ImGui::SameLine();
+        if (ImGui::SmallButton("remove")) state.editor.removeLight(int(i));
+        ImGui::PopID();
+    }
+    for (const char* type : {"directional", "point", "spot", "ambient"}) {
+        if (ImGui::SmallButton((std::string("+ ") + type).c_str())) {
+            nlohmann::json light = {{"type", type}, {"intensity", 1.0}, {"name", std::string(type) + " " + std::to_string(lights.size())}};
+            const glm::vec3 c = 0.5f * (state.bounds_lo + state.bounds_hi);
+            const float r = 0.5f * glm::length(state.bounds_hi - state.bounds_lo);
+            if (std::string(type) == "point" || std::string(type) == "spot") light["position"] = {c.x, c.y + 1.5f * r, c.z};
+            if (std::string(type) == "spot" || std::string(type) == "directional") light["direction"] = {0, -1, 0};
+            if (state.editor.addLight(light)) state.selected_light = int(lights.size());
+        }
+        ImGui::SameLine();
+    }
+    ImGui::NewLine();
+}
+
+void lightEditor(ViewerState& state) {
+    const std::vector<Light>& lights = state.editor.scene().lights;
+    if (state.selected_light < 0 || state.selected_light >= int(lights.size())) return;
+    const int i = state.selected_light;
+    Light l = lights[size_t(i)];
+    ImGui::Separator();
+    std::string name = l.name;
+    if (ImGui::InputText("name", &name, ImGuiInputTextFlags_EnterReturnsTrue)) state.editor.renameLight(i, name);
+    const std::string type = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : l.type == LightType::Ambient ? "ambient" : "directional";
+    if (auto t = combo("type", type, {"directional", "point", "spot", "ambient"})) state.editor.changeLight(i, {{"type", *t}});
+    bool changed = ImGui::ColorEdit3("colour", &l.color.x, ImGuiColorEditFlags_Float);
+    // Intensity as exposure: a stop doubles it, as a lighter expects.
+    float stops = std::log2(std::max(l.intensity, 1e-6f));
+    if (ImGui::SliderFloat("exposure (stops)", &stops, -10.0f, 10.0f, "%.2f")) {
+        l.intensity = std::exp2(stops);
+        changed = true;
+    }
+    if (l.type == LightType::Point || l.type == LightType::Spot) changed |= ImGui::DragFloat3("position", &l.position.x, 0.01f);
+    if (l.type == LightType::Directional || l.type == LightType::Spot) {
+        if (ImGui::DragFloat3("direction", &l.direction.x, 0.01f) && glm::length(l.direction) > 1e-6f) changed = true;
+    }
+    if (l.type == LightType::Spot) {
+        changed |= ImGui::SliderFloat("cone angle", &l.cone_angle, 1.0f, 89.0f, "%.1f deg");
+        changed |= ImGui::SliderFloat("cone softness", &l.cone_softness, 0.0f, l.cone_angle, "%.1f deg");
+    }
+    if (changed) state.editor.setLight(i, l);
+}
+
+const std::vector<std::string>& densityGrids(const ViewerState& state) {
+    static std::string file;
+    static std::vector<std::string> names;
+    const Scene& s = state.editor.scene();
+    const std::string now = state.frame ? expandFramePattern(s.volume.path, *state.frame) : s.volume.path;
+    if (now != file) {
+        file = now;
+        names.clear();
+        try {
+            const VdbFile vdb(file);
+            for (const auto& g : vdb.grids())
+                if (g.value_type == "float" || g.value_type == "half") names.push_back(g.name);
+        } catch (const std::exception&) {   // the render names the problem; the list stays empty
+        }
+    }
+    return names;
+}
+
+void colourControls(ViewerState& state) {
+    const ColorSettings& c = state.editor.scene().color;
+    static std::string config_key;
+    static std::vector<std::string> displays;
+    static std::map<std::string, std::vector<std::string>> views;
+    if (config_key != c.config + "|") {
+        config_key = c.config + "|";
+        displays.clear();
+        views.clear();
+        try {
+            std::string source;
+            const auto config = loadColorConfig(c, source);
+            for (int d = 0; d < config->getNumDisplays(); ++d) {
+                displays.push_back(config->getDisplay(d));
+                for (int v = 0; v < config->getNumViews(displays.back().c_str()); ++v)
+                    views[displays.back()].push_back(config->getView(displays.back().c_str(), v));
+            }
+        } catch (const std::exception&) {
+        }
+    }
+    if (auto d = combo("display", c.display, displays)) setKey(state, "/color/display", *d);
+    const std::string display = c.display.empty() && !displays.empty() ? displays.front() : c.display;
+    if (auto v = combo("view", c.view, views[display])) setKey(state, "/color/view", *v);
+    float exposure = state.editor.scene().render.exposure;
+    if (ImGui::SliderFloat("exposure", &exposure, -6.0f, 6.0f, "%.2f stops")) setKey(state, "/render/exposure", exposure);
+}
+
+}  // namespace
+
+PanelRequests drawScenePanel(ViewerState& state, float x, float width, float height) {
+    PanelRequests out;
+    ImGui::SetNextWindowPos(ImVec2(x, 0));
+    ImGui::SetNextWindowSize(ImVec2(width, height));
+    ImGui::Begin("scene", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::InputText("##save", &state.save_path);
+    ImGui::SameLine();
+    out.save = ImGui::Button("Save scene");
+    remember(state, "save");
+    out.render = ImGui::Button("Render");
+    ImGui::SameLine();
+    ImGui::TextDisabled("to %s", state.editor.scene().output.path.empty() ? "(set output.path)" : state.editor.scene().output.path.c_str());
+
+    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) {
+        lightList(state);
+        lightEditor(state);
+    }
+    if (ImGui::CollapsingHeader("Method and quality", ImGuiTreeNodeFlags_DefaultOpen)) {
+        static std::string preset;
+        if (auto q = combo("quality", preset, qualityPresetNames()))
+            if (state.editor.edit("quality " + *q, [&](nlohmann::json& j) { applyQualityPreset(j, *q); })) preset = *q;
+        const nlohmann::json& j = state.editor.json();
+        if (auto m = combo("method", j["render"].value("method", "march"), {"march", "reference"})) setKey(state, "/render/method", *m);
+        if (auto sh = combo("shadows", j["effects"].value("shadows", "none"), {"none", "raymarch", "sat_cone", "propagation"}))
+            setKey(state, "/effects/shadows", *sh);
+        if (auto f = combo("filter", j["render"].value("filter", "trilinear"), {"trilinear", "tricubic"})) setKey(state, "/render/filter", *f);
+    }
+    if (ImGui::CollapsingHeader("Colour", ImGuiTreeNodeFlags_DefaultOpen)) colourControls(state);
+    if (ImGui::CollapsingHeader("Volume")) {
+        const Scene& s = state.editor.scene();
+        if (auto g = combo("density grid", s.volume.density.name, densityGrids(state))) setKey(state, "/volume/density", *g);
+    }
+    if (ImGui::CollapsingHeader("Every key")) {
+        const nlohmann::json json = state.editor.json();   // a copy: edits replace it
+        for (const auto& [key, value] : json.items()) jsonWidget(state, key, value, "/" + key);
+    }
+    ImGui::End();
+    return out;
+}
+
+void drawImagePanel(ViewerState& state, const Viewport& viewport, float x, float width, float height) {
+    ImGui::SetNextWindowPos(ImVec2(x, 0));
+    ImGui::SetNextWindowSize(ImVec2(width, height));
+    ImGui::Begin("image", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    if (auto a = combo("AOV", state.aov, kViewAovs)) state.aov = *a;
+    const std::shared_ptr<const ViewFrame> frame = state.render->latest();
+    if (ImGui::Button("Hold as before") && frame) state.held = frame;
+    ImGui::SameLine();
+    ImGui::Checkbox("wipe", &state.wipe);
+    if (state.wipe) ImGui::SliderFloat("wipe at", &state.wipe_at, 0.0f, 1.0f);
+    if (const auto& p = viewport.probe())
+        ImGui::Text("pixel %d %d\nRGBA %.4g %.4g %.4g %.4g", viewport.probePixel().x, viewport.probePixel().y, p->x, p->y, p->z, p->w);
+    else
+        ImGui::TextDisabled("pixel probe: hover the image");
+    ImGui::Separator();
+    if (frame) {
+        ImGui::Text("edit %llu: level %d of %d (%dx%d)%s", (unsigned long long)frame->edit, frame->level + 1, frame->levels,
+                    frame->image.width, frame->image.height, frame->converged ? ", converged" : "");
+        ImGui::Text("%.0f ms since the edit", frame->seconds_to_image * 1000.0);
+        ImGui::TextUnformatted("the edit re-ran:");
+        for (const StageReport& s : frame->edit_stages) ImGui::BulletText("%-18s %7.1f ms", s.name.c_str(), s.seconds * 1000.0);
+        if (const auto& u = frame->light_update) {
+            const char* mode = u->mode == LightUpdate::Mode::Selective ? "selective" : u->mode == LightUpdate::Mode::Entire ? "entire" : "kept";
+            ImGui::Text("light update: %s, -%d +%d of %d lights", mode, u->lights_out, u->lights_in, u->lights);
+        }
+        for (const auto& w : frame->warnings) ImGui::TextWrapped("warning: %s", w.c_str());
+    } else {
+        ImGui::TextUnformatted("rendering the first image...");
+    }
+    const ViewStatistics st = state.render->statistics();
+    ImGui::Separator();
+    ImGui::Text("UI %.0f fps", state.ui_fps);
+    ImGui::Text("edits %llu, cancelled marches %llu", (unsigned long long)st.submitted, (unsigned long long)st.cancelled);
+    ImGui::Text("light updates: %llu selective, %llu entire", (unsigned long long)st.selective_updates, (unsigned long long)st.entire_updates);
+    ImGui::End();
+}
+
+void drawTimeline(ViewerState& state, float x, float y, float width) {
+    if (!state.frame) return;
+    ImGui::SetNextWindowPos(ImVec2(x, y));
+    ImGui::SetNextWindowSize(ImVec2(width, 0));
+    ImGui::Begin("timeline", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
+    ImGui::Checkbox("play", &state.playing);
+    ImGui::SameLine();
+    int f = *state.frame;
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderInt("##frame", &f, state.first_frame, state.last_frame, "frame %d")) state.frame = f;
+    ImGui::End();
+}
+
+}  // namespace voxlux

@@ -1,0 +1,54 @@
+// What the viewer's parts share: the edited scene, the progressive render, the volume's bounds,
+// and the display choices that are the viewer's own (not the scene's): the AOV shown, the wipe,
+// the selected light, the frame of a sequence.
+#pragma once
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "viewer/progressive_render.h"
+#include "viewer/scene_editor.h"
+
+namespace voxlux {
+
+// The AOVs the viewport can show; "beauty" is the graded image through the scene's display and view.
+inline const std::vector<std::string> kViewAovs = {"beauty", "direct", "indirect", "ambient", "emission", "transmittance", "depth"};
+
+struct ViewerState {
+    explicit ViewerState(Scene scene) : editor(std::move(scene)) {}
+
+    SceneEditor editor;
+    std::unique_ptr<ProgressiveRender> render;
+    uint64_t submitted_version = ~uint64_t(0);   // the editor version last handed to the render
+    uint64_t failure_seen = 0;                   // the newest failed edit already shown
+    std::string message;                         // the line under the viewport: an error, or what was written
+    bool message_is_error = false;
+
+    glm::vec3 bounds_lo{-1.0f}, bounds_hi{1.0f};   // the volume's world box (framing, gizmo sizes)
+    std::optional<int> frame;                      // the frame of a #### sequence shown
+    int first_frame = 0, last_frame = 0;
+    bool playing = false;
+
+    std::string aov = "beauty";
+    int selected_light = 0;
+    bool wipe = false;                 // show the held image left of the wipe line
+    float wipe_at = 0.5f;              // fraction of the viewport's width
+    std::shared_ptr<const ViewFrame> held;   // the "before" image of the wipe
+
+    std::map<std::string, glm::vec4> widgets;   // named widgets' screen rectangles (lo, hi), for `layout`
+    std::string save_path;             // where "Save scene" writes
+
+    double ui_fps = 0.0;               // smoothed frame rate of the UI loop
+    double slowest_ui_frame = 0.0;     // seconds, since the last reset (benchmarks)
+
+    // The scene's camera, or the framing the render chose when it has none yet.
+    Camera camera() const;
+    void showError(const std::string& line) { message = line, message_is_error = true; }
+    void showNote(const std::string& line) { message = line, message_is_error = false; }
+};
+
+}  // namespace voxlux

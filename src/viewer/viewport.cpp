@@ -1,0 +1,208 @@
+#include "viewer/viewport.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <imgui.h>
+
+#include "scene/camera.h"
+#include "viewer/orbit_camera.h"
+
+namespace voxlux {
+namespace {
+
+ImVec2 im(glm::vec2 v) { return {v.x, v.y}; }
+glm::vec2 gl2(ImVec2 v) { return {v.x, v.y}; }
+
+// Screen rectangle of an image of `size` fitted inside [lo, hi), centred.
+void fit(glm::vec2 size, glm::vec2 lo, glm::vec2 hi, glm::vec2& out_lo, glm::vec2& out_hi) {
+    const glm::vec2 room = hi - lo;
+    const float scale = std::min(room.x / size.x, room.y / size.y);
+    const glm::vec2 shown = size * scale;
+    out_lo = lo + 0.5f * (room - shown);
+    out_hi = out_lo + shown;
+}
+
+float radius(const ViewerState& s) { return 0.5f * glm::length(s.bounds_hi - s.bounds_lo); }
+glm::vec3 centre(const ViewerState& s) { return 0.5f * (s.bounds_lo + s.bounds_hi); }
+
+glm::vec3 rotate(glm::vec3 v, float degrees, glm::vec3 axis) {
+    return glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(degrees), axis) * glm::vec4(v, 0.0f));
+}
+
+}  // namespace
+
+struct Viewport::Texture {
+    GLuint id = 0;
+    glm::ivec2 size{0};
+    const ViewFrame* frame = nullptr;   // what it holds (compared by address: frames are never changed)
+    std::string aov;
+    std::shared_ptr<const ViewFrame> keep;
+    ~Texture() {
+        if (id) glDeleteTextures(1, &id);
+    }
+};
+
+Viewport::Viewport() : current_(std::make_unique<Texture>()), held_(std::make_unique<Texture>()) {}
+Viewport::~Viewport() = default;
+
+void Viewport::upload(const ViewerState& state, Texture& t, const ViewFrame& frame) {
+    if (t.frame == &frame && t.aov == state.aov) return;
+    const std::vector<glm::vec4> rgba = aov_display_.show(frame, state.aov, state.editor.scene().color);
+    // Display-referred values to 8 bits, opaque: the preview composites over black as the PNG does.
+    std::vector<uint8_t> bytes(rgba.size() * 4);
+    for (size_t i = 0; i < rgba.size(); ++i)
+        for (int c = 0; c < 4; ++c) {
+            const float v = c == 3 ? 1.0f : rgba[i][c];
+            bytes[i * 4 + c] = uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) * 255.0f));
+        }
+    if (!t.id) glGenTextures(1, &t.id);
+    glBindTexture(GL_TEXTURE_2D, t.id);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame.image.width, frame.image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    t.size = {frame.image.width, frame.image.height};
+    t.frame = &frame;
+    t.aov = state.aov;
+}
+
+void Viewport::draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
+    ImDrawList* back = ImGui::GetBackgroundDrawList();
+    back->AddRectFilled(im(lo), im(hi), IM_COL32(32, 32, 34, 255));
+    const std::shared_ptr<const ViewFrame> frame = state.render->latest();
+    const Scene& scene = state.editor.scene();
+    fit(glm::vec2(scene.render.width, scene.render.height), lo, hi, image_lo_, image_hi_);
+    if (frame && !frame->display.empty()) {
+        current_->keep = frame;
+        upload(state, *current_, *frame);
+        const float split = state.wipe && state.held ? image_lo_.x + state.wipe_at * (image_hi_.x - image_lo_.x) : image_lo_.x;
+        const float u = (split - image_lo_.x) / (image_hi_.x - image_lo_.x);
+        back->AddImage(ImTextureID(intptr_t(current_->id)), ImVec2(split, image_lo_.y), im(image_hi_), ImVec2(u, 0), ImVec2(1, 1));
+        if (state.wipe && state.held) {
+            held_->keep = state.held;
+            upload(state, *held_, *state.held);
+            back->AddImage(ImTextureID(intptr_t(held_->id)), im(image_lo_), ImVec2(split, image_hi_.y), ImVec2(0, 0), ImVec2(u, 1));
+            back->AddLine(ImVec2(split, image_lo_.y), ImVec2(split, image_hi_.y), IM_COL32(255, 200, 60, 255), 2.0f);
+        }
+        // The probe reads the image under the mouse, at whatever level it is.
+        probe_.reset();
+        const glm::vec2 m = gl2(ImGui::GetIO().MousePos);
+        if (m.x >= image_lo_.x && m.y >= image_lo_.y && m.x < image_hi_.x && m.y < image_hi_.y) {
+            const glm::vec2 f = (m - image_lo_) / (image_hi_ - image_lo_);
+            probe_pixel_ = glm::min(glm::ivec2(f * glm::vec2(frame->image.width, frame->image.height)),
+                                    glm::ivec2(frame->image.width - 1, frame->image.height - 1));
+            probe_ = frame->image.pixels[size_t(probe_pixel_.y) * frame->image.width + probe_pixel_.x].rgba;
+            // Pixel coordinates of the full image, whatever level shows.
+            probe_pixel_ = glm::ivec2(f * glm::vec2(scene.render.width, scene.render.height));
+        }
+    }
+    gizmos(state);
+    mouse(state);
+}
+
+bool Viewport::dragLight(ViewerState& state, int index, glm::vec2 by, glm::vec2 image_size) {
+    const Camera camera = state.camera();
+    const Light& light = state.editor.scene().lights.at(size_t(index));
+    const glm::mat4 frame = cameraToWorld(camera);
+    const glm::vec3 right(frame[0]), up(frame[1]);
+    Light moved = light;
+    if (light.type == LightType::Point || (light.type == LightType::Spot && !ImGui::GetIO().KeyShift)) {
+        // Move in the plane facing the camera through the light: a pixel is the view's height at
+        // the light's depth over the image's height.
+        const float depth = std::max(glm::dot(light.position - camera.position, -glm::vec3(frame[2])), 1e-3f);
+        const float per_pixel = 2.0f * depth * std::tan(glm::radians(camera.fov) * 0.5f) / image_size.y;
+        moved.position += (right * by.x - up * by.y) * per_pixel;
+    } else if (light.type != LightType::Ambient) {
+        // Turn the direction: across the screen about the camera's up, up and down about its right.
+        moved.direction = glm::normalize(rotate(rotate(light.direction, by.x * 0.4f, up), by.y * 0.4f, right));
+    }
+    return state.editor.setLight(index, moved);
+}
+
+void Viewport::gizmos(ViewerState& state) {
+    ImDrawList* fg = ImGui::GetForegroundDrawList();
+    const Camera camera = state.camera();
+    const glm::vec2 size = image_hi_ - image_lo_;
+    const auto toScreen = [&](glm::vec3 p, glm::vec2& out) {
+        if (!projectToImage(camera, size, p, out)) return false;
+        out += image_lo_;
+        return true;
+    };
+    const std::vector<Light>& lights = state.editor.scene().lights;
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    const bool free = !ImGui::GetIO().WantCaptureMouse && !ImGui::GetIO().KeyAlt;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const Light& l = lights[i];
+        if (l.type == LightType::Ambient) continue;
+        const bool selected = int(i) == state.selected_light;
+        const ImU32 colour = !l.enabled ? IM_COL32(120, 120, 120, 200) : selected ? IM_COL32(255, 200, 60, 255) : IM_COL32(230, 230, 230, 220);
+        // The handle: the light's position, or for a directional light the point it shines from.
+        const glm::vec3 handle = l.type == LightType::Directional ? centre(state) - glm::normalize(l.direction) * 1.3f * radius(state) : l.position;
+        glm::vec2 h, tip;
+        if (!toScreen(handle, h)) continue;
+        const glm::vec3 towards = l.type == LightType::Directional ? centre(state) - glm::normalize(l.direction) * 0.9f * radius(state)
+                                                                   : l.position + glm::normalize(l.direction) * 0.4f * radius(state);
+        if (l.type != LightType::Point && toScreen(towards, tip)) {
+            fg->AddLine(im(h), im(tip), colour, 2.0f);
+            const glm::vec2 d = glm::normalize(tip - h + glm::vec2(1e-6f)), n(-d.y, d.x);
+            fg->AddTriangleFilled(im(tip), im(tip - d * 10.0f + n * 5.0f), im(tip - d * 10.0f - n * 5.0f), colour);
+        }
+        if (l.type == LightType::Spot) {   // the cone: its rim at 0.4 radii along the direction
+            const glm::vec3 dir = glm::normalize(l.direction);
+            const glm::vec3 a = glm::normalize(glm::cross(dir, std::abs(dir.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+            const glm::vec3 b = glm::cross(dir, a);
+            const float reach = 0.4f * radius(state), rim = reach * std::tan(glm::radians(l.cone_angle));
+            const float inner = reach * std::tan(glm::radians(std::max(l.cone_angle - l.cone_softness, 0.0f)));
+            for (float r : {rim, inner}) {
+                glm::vec2 prev{};
+                for (int k = 0; k <= 24; ++k) {
+                    const float t = float(k) / 24.0f * 6.2831853f;
+                    glm::vec2 p;
+                    if (!toScreen(l.position + dir * reach + (a * std::cos(t) + b * std::sin(t)) * r, p)) break;
+                    if (k > 0) fg->AddLine(im(prev), im(p), colour, r == rim ? 1.5f : 1.0f);
+                    if (k % 6 == 0 && r == rim) fg->AddLine(im(h), im(p), colour, 1.0f);
+                    prev = p;
+                }
+            }
+        }
+        const bool over = glm::length(gl2(mouse) - h) < 9.0f;
+        fg->AddCircleFilled(im(h), 7.0f, colour);
+        if (over || dragging_light_ == int(i)) fg->AddCircle(im(h), 10.0f, IM_COL32(255, 255, 255, 255), 0, 2.0f);
+        if (over && free && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+            dragging_light_ = int(i);
+            state.selected_light = int(i);
+        }
+    }
+    if (dragging_light_ >= 0) {
+        if (!ImGui::IsMouseDown(ImGuiMouseButton_Left) || dragging_light_ >= int(lights.size())) {
+            dragging_light_ = -1;
+        } else {
+            const ImVec2 d = ImGui::GetIO().MouseDelta;
+            if (d.x != 0.0f || d.y != 0.0f) dragLight(state, dragging_light_, gl2(d), size);
+        }
+    }
+}
+
+void Viewport::mouse(ViewerState& state) {
+    ImGuiIO& io = ImGui::GetIO();
+    if (io.WantCaptureMouse || dragging_light_ >= 0) return;
+    const glm::vec2 d = gl2(io.MouseDelta);
+    const float height = std::max(image_hi_.y - image_lo_.y, 1.0f);
+    std::optional<Camera> moved;
+    const Camera camera = state.camera();
+    if (io.KeyAlt && ImGui::IsMouseDown(ImGuiMouseButton_Left) && (d.x != 0 || d.y != 0)) moved = orbit(camera, -d.x * 0.3f, d.y * 0.3f);
+    if (io.KeyAlt && ImGui::IsMouseDown(ImGuiMouseButton_Middle) && (d.x != 0 || d.y != 0)) moved = pan(camera, glm::vec2(-d.x, d.y) / height);
+    if (io.KeyAlt && ImGui::IsMouseDown(ImGuiMouseButton_Right) && d.x != 0) moved = dolly(camera, std::exp(-d.x * 0.005f));
+    if (io.MouseWheel != 0.0f) moved = dolly(camera, std::pow(0.9f, io.MouseWheel));
+    if (!io.WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_F, false)) moved = frameAlong(camera, state.bounds_lo, state.bounds_hi);
+    if (moved) state.editor.setCamera(*moved);
+}
+
+}  // namespace voxlux

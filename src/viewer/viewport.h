@@ -1,0 +1,51 @@
+// The viewport: the newest image drawn to fit the window (scaled up while coarse levels show),
+// the before/after wipe, the pixel probe, the light gizmos, and the camera moves of the mouse
+// (Alt + left orbits, Alt + middle pans, Alt + right or the wheel dollies; F frames the volume).
+// Drawn with Dear ImGui's background and foreground draw lists over one texture per image.
+#pragma once
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "viewer/aov_display.h"
+#include "viewer/viewer_state.h"
+
+namespace voxlux {
+
+class Viewport {
+public:
+    Viewport();
+    ~Viewport();
+    Viewport(const Viewport&) = delete;
+    Viewport& operator=(const Viewport&) = delete;
+
+    // Draws into the screen rectangle [lo, hi) and handles the mouse and keys over it.
+    void draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi);
+
+    // Where the image sits on screen, as last drawn.
+    glm::vec2 imageLo() const { return image_lo_; }
+    glm::vec2 imageHi() const { return image_hi_; }
+    // The scene-linear value under the mouse, if it is over the image.
+    const std::optional<glm::vec4>& probe() const { return probe_; }
+    glm::ivec2 probePixel() const { return probe_pixel_; }
+
+    // The light gizmo drag of `light` by `by` screen pixels, as a mouse drag does it.
+    static bool dragLight(ViewerState& state, int light, glm::vec2 by, glm::vec2 image_size);
+
+private:
+    struct Texture;
+    void upload(const ViewerState& state, Texture& texture, const ViewFrame& frame);
+    void gizmos(ViewerState& state);
+    void mouse(ViewerState& state);
+
+    std::unique_ptr<Texture> current_, held_;
+    AovDisplay aov_display_;
+    glm::vec2 image_lo_{0.0f}, image_hi_{1.0f};
+    std::optional<glm::vec4> probe_;
+    glm::ivec2 probe_pixel_{0};
+    int dragging_light_ = -1;
+};
+
+}  // namespace voxlux
