@@ -73,10 +73,12 @@ std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const
     return p;
 }
 
-CliResult runCli(const std::string& args) {
+CliResult runCli(const std::string& args) { return runShell(std::string(VOXLUX_BINARY) + " " + args); }
+
+CliResult runShell(const std::string& command) {
     static int counter = 0;
     const std::string base = tempDir("cli") + "/run" + std::to_string(counter++);
-    const std::string cmd = std::string(VOXLUX_BINARY) + " " + args + " >" + base + ".out 2>" + base + ".err";
+    const std::string cmd = "(" + command + ") >" + base + ".out 2>" + base + ".err";
     int status = std::system(cmd.c_str());
     CliResult r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

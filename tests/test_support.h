@@ -88,6 +88,8 @@ struct CliResult {
 };
 // Runs the voxlux binary with `args` (shell-quoted by the caller where needed).
 CliResult runCli(const std::string& args);
+// Runs a shell command line, its output captured.
+CliResult runShell(const std::string& command);
 
 // An EXR read back through the OpenEXR API: every channel as float, and the header.
 struct Exr {

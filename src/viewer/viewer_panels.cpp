@@ -80,7 +80,7 @@ void jsonWidget(ViewerState& state, const std::string& label, const nlohmann::js
 }
 
 void lightList(ViewerState& state) {
-    const std::vector<Light>& lights = state.editor.scene().lights;
+    const std::vector<Light> lights = state.editor.scene().lights;   // a copy: an edit replaces the scene
     for (size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
         ImGui::PushID(int(i));

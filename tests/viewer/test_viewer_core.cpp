@@ -1,0 +1,230 @@
+// The viewer's parts that need no window: the scene editor, the camera moves, the script reader,
+// and the progressive render worker (its converged image is the Renderer's, newer edits cancel
+// older ones, failures keep the last good image, and a light drag is a run of selective updates).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "render/renderer.h"
+#include "scene/scene_json.h"
+#include "test_support.h"
+#include "viewer/orbit_camera.h"
+#include "viewer/progressive_render.h"
+#include "viewer/scene_editor.h"
+#include "viewer/view_script.h"
+
+namespace voxlux::test {
+namespace {
+
+const std::string kDefaultScene = std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json";
+
+// The bundled cloud at a small size, trilinear, so a render takes milliseconds.
+Scene smallCloud() {
+    Scene s = loadSceneFile(kDefaultScene);
+    s.render.width = 96;
+    s.render.height = 60;
+    s.render.filter = Filter::Trilinear;
+    s.effects.light_resolution = 32;
+    return s;
+}
+
+TEST(SceneEditor, ARefusedEditKeepsTheSceneAndSaysWhy) {
+    SceneEditor editor(smallCloud());
+    const uint64_t version = editor.version();
+    EXPECT_FALSE(editor.set("material.density_scale=-1"));
+    EXPECT_EQ(editor.error(), "set material.density_scale=-1: /material/density_scale: must be 0 or more");
+    EXPECT_EQ(editor.version(), version);
+    EXPECT_FLOAT_EQ(editor.scene().material.density_scale, 40.0f);
+    EXPECT_TRUE(editor.set("material.density_scale=20"));
+    EXPECT_EQ(editor.error(), "");
+    EXPECT_FLOAT_EQ(editor.scene().material.density_scale, 20.0f);
+    EXPECT_GT(editor.version(), version);
+}
+
+TEST(SceneEditor, SoloTwiceGivesEachLightItsStateBack) {
+    Scene s = smallCloud();
+    s.lights.push_back(s.lights[0]);
+    s.lights[2].name = "rim";
+    s.lights[2].enabled = false;
+    SceneEditor editor(s);
+    ASSERT_TRUE(editor.soloLight(1));
+    EXPECT_FALSE(editor.scene().lights[0].enabled);
+    EXPECT_TRUE(editor.scene().lights[1].enabled);
+    EXPECT_FALSE(editor.scene().lights[2].enabled);
+    ASSERT_TRUE(editor.soloLight(1));
+    EXPECT_TRUE(editor.scene().lights[0].enabled);
+    EXPECT_TRUE(editor.scene().lights[1].enabled);
+    EXPECT_FALSE(editor.scene().lights[2].enabled);
+    EXPECT_EQ(editor.lightIndex("rim"), 2);
+    EXPECT_EQ(inputErrorOf([&] { editor.lightIndex("fill"); }), "no light named \"fill\"");
+    EXPECT_EQ(inputErrorOf([&] { editor.lightIndex(3); }), "no light 3 (the scene has 3)");
+}
+
+TEST(SceneEditor, ATypeChangeDropsTheKeysTheNewTypeLacks) {
+    SceneEditor editor(smallCloud());
+    ASSERT_TRUE(editor.changeLight(0, {{"type", "point"}, {"position", {1, 2, 3}}}));
+    const nlohmann::json light = editor.json()["lights"][0];
+    EXPECT_FALSE(light.contains("direction"));
+    EXPECT_EQ(light["position"], nlohmann::json({1.0, 2.0, 3.0}));
+    EXPECT_EQ(editor.scene().lights[0].type, LightType::Point);
+}
+
+TEST(SceneEditor, ASavedSceneReadsBackTheSameFromAnotherFolder) {
+    SceneEditor editor(smallCloud());
+    const std::string path = tempDir("viewer-save") + "/nested/scene.json";
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    editor.save(path);
+    const Scene back = loadSceneFile(path);
+    EXPECT_EQ(std::filesystem::canonical(back.volume.path), std::filesystem::canonical(editor.scene().volume.path));
+    nlohmann::json a = sceneToJson(back), b = editor.json();
+    a["volume"].erase("path");
+    b["volume"].erase("path");
+    EXPECT_EQ(a, b);
+}
+
+TEST(OrbitCamera, OrbitKeepsTheDistanceAndStopsShortOfThePole) {
+    Camera c;
+    c.position = {0, 0, 5};
+    c.look_at = {0, 0, 0};
+    const Camera yawed = orbit(c, 90.0f, 0.0f);
+    EXPECT_NEAR(yawed.position.x, 5.0f, 1e-5f);
+    EXPECT_NEAR(yawed.position.z, 0.0f, 1e-5f);
+    const Camera over = orbit(c, 0.0f, 120.0f);   // asks past the pole
+    EXPECT_NEAR(glm::length(over.position), 5.0f, 1e-4f);
+    EXPECT_NEAR(glm::degrees(std::asin(over.position.y / 5.0f)), 89.0f, 1e-3f);
+}
+
+TEST(OrbitCamera, PanMovesBothPointsAndDollyScalesTheDistance) {
+    Camera c;
+    c.position = {0, 0, 4};
+    c.look_at = {0, 0, 0};
+    c.fov = 90.0f;   // the view is 2 x 4 = 8 high at the look-at point
+    const Camera p = pan(c, {0.25f, 0.0f});
+    EXPECT_NEAR(p.look_at.x, 2.0f, 1e-5f);
+    EXPECT_NEAR(p.position.x, 2.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(dolly(c, 0.5f).position), 2.0f, 1e-6f);
+}
+
+TEST(OrbitCamera, FrameFitsTheBoxesSphereAndProjectsItsCentreToTheMiddle) {
+    Camera c;
+    c.position = {0, 0, 10};
+    c.look_at = {0, 0, 9};
+    c.fov = 60.0f;
+    const Camera f = frameAlong(c, glm::vec3(1, 1, 1), glm::vec3(3, 3, 3));
+    EXPECT_EQ(f.look_at, glm::vec3(2, 2, 2));
+    EXPECT_NEAR(glm::length(f.position - f.look_at), std::sqrt(3.0f) / std::sin(glm::radians(30.0f)), 1e-4f);
+    glm::vec2 px;
+    ASSERT_TRUE(projectToImage(f, {200, 100}, f.look_at, px));
+    EXPECT_NEAR(px.x, 100.0f, 1e-3f);
+    EXPECT_NEAR(px.y, 50.0f, 1e-3f);
+    EXPECT_FALSE(projectToImage(f, {200, 100}, f.position + (f.position - f.look_at), px));
+}
+
+TEST(ViewScript, BadActionsNameTheFileAndTheAction) {
+    const auto error = [](const std::string& text) { return inputErrorOf([&] { parseViewScript(text, "s.json"); }); };
+    EXPECT_EQ(error(R"({"edits": []})"), "s.json: a view script is an object with an \"actions\" array");
+    EXPECT_EQ(error(R"({"actions": [{"jump": 1}]})"), "s.json: /actions/0: unknown action \"jump\"");
+    EXPECT_EQ(error(R"({"actions": [{"orbit": [1]}]})"), "s.json: /actions/0/orbit: must be two numbers");
+    EXPECT_EQ(error(R"({"actions": [{"wait": "forever"}]})"), "s.json: /actions/0/wait: must be \"converged\" or seconds");
+    EXPECT_EQ(error(R"({"actions": [{"light": "sun"}]})"), "s.json: /actions/0: a light action needs \"set\": an object of the light's keys");
+    EXPECT_EQ(error(R"({"actions": [{"quit": true, "now": 1}]})"), "s.json: /actions/0/now: unknown key (expected one of quit)");
+    EXPECT_EQ(parseViewScript(R"({"actions": [{"light": 0, "set": {"intensity": 2}}, {"wait": 0.5}]})", "s.json").size(), 2u);
+}
+
+// The image `voxlux render --preview` makes of `scene`.
+FrameResult renderOnce(Scene scene) {
+    if (scene.output.preview.empty()) scene.output.preview = "unused.png";
+    Renderer renderer(scene);
+    return renderer.render(std::nullopt, true);
+}
+
+// Equal images, or within `tolerance` of each other (relative to the brighter, per channel).
+void expectSameImage(const ViewFrame& shown, const FrameResult& rendered, float tolerance = 0.0f) {
+    ASSERT_EQ(shown.display.size(), rendered.preview.size());
+    ASSERT_EQ(shown.image.pixels.size(), rendered.image.pixels.size());
+    const auto near = [tolerance](glm::vec4 a, glm::vec4 b) {
+        return glm::all(glm::lessThanEqual(glm::abs(a - b), tolerance * glm::max(glm::abs(a), glm::abs(b))));
+    };
+    for (size_t i = 0; i < shown.display.size(); ++i) {
+        ASSERT_TRUE(near(shown.display[i], rendered.preview[i])) << "pixel " << i;
+        ASSERT_TRUE(near(shown.image.pixels[i].rgba, rendered.image.pixels[i].rgba)) << "pixel " << i;
+    }
+}
+
+TEST(ProgressiveRender, TheConvergedImageIsTheRenderersAfterCoarserLevels) {
+    const Scene scene = smallCloud();
+    ProgressiveRender view(scene, std::nullopt);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    const auto shown = view.latest();
+    ASSERT_TRUE(shown);
+    EXPECT_TRUE(shown->converged);
+    EXPECT_EQ(shown->levels, 2);   // 96 wide: 1/2 (48) and full; 1/4 and 1/8 are under 32 pixels
+    EXPECT_EQ(shown->level, 1);
+    EXPECT_EQ(levelResolution({96, 60}, 8), glm::ivec2(12, 8));
+    expectSameImage(*shown, renderOnce(scene));
+}
+
+TEST(ProgressiveRender, TheNewestOfManyEditsWins) {
+    Scene scene = smallCloud();
+    ProgressiveRender view(scene, std::nullopt);
+    uint64_t last = 0;
+    for (int k = 0; k < 12; ++k) {
+        scene.material.anisotropy = 0.02f * float(k);
+        last = view.submit(scene, std::nullopt);
+    }
+    ASSERT_TRUE(view.waitConverged(120.0));
+    EXPECT_EQ(view.latest()->edit, last);
+    const ViewStatistics st = view.statistics();
+    EXPECT_EQ(st.submitted, 13u);
+    EXPECT_LT(st.converged, 13u);   // coalesced: most edits never rendered
+    expectSameImage(*view.latest(), renderOnce(scene));
+}
+
+TEST(ProgressiveRender, AFailedEditSaysWhyAndTheLastGoodSceneShowsAgain) {
+    const Scene good = smallCloud();
+    ProgressiveRender view(good, std::nullopt);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    Scene bad = good;
+    bad.volume.path = tempDir("viewer-missing") + "/gone.vdb";
+    const uint64_t edit = view.submit(bad, std::nullopt);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    const auto failure = view.failure();
+    ASSERT_TRUE(failure);
+    EXPECT_EQ(failure->edit, edit);
+    EXPECT_EQ(failure->message, bad.volume.path + ": no such file");
+    EXPECT_EQ(failure->last_good.volume.path, good.volume.path);
+    EXPECT_GT(view.latest()->edit, edit);   // the last good scene rendered again
+    expectSameImage(*view.latest(), renderOnce(good));
+}
+
+TEST(ProgressiveRender, DraggingOneOfSeveralLightsIsSelectiveUpdates) {
+    Scene scene = smallCloud();
+    scene.effects.indirect.reset();
+    for (int k = 0; k < 3; ++k) {   // three more keys, along other axes
+        Light l = scene.lights[0];
+        l.name = "key" + std::to_string(k);
+        l.direction = glm::normalize(glm::vec3(k == 0, k == 1 ? -1 : 0.2f, k == 2));
+        scene.lights.push_back(l);
+    }
+    ProgressiveRender view(scene, std::nullopt);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    for (int k = 0; k < 4; ++k) {
+        scene.lights[0].direction = glm::normalize(scene.lights[0].direction + glm::vec3(0.05f, 0, 0));
+        view.submit(scene, std::nullopt);
+        ASSERT_TRUE(view.waitConverged(120.0));
+        ASSERT_TRUE(view.latest()->light_update);
+        EXPECT_EQ(view.latest()->light_update->mode, LightUpdate::Mode::Selective) << view.latest()->light_update->reason;
+        EXPECT_EQ(view.latest()->light_update->lights_out, 1);
+        EXPECT_EQ(view.latest()->light_update->lights_in, 1);
+    }
+    const ViewStatistics st = view.statistics();
+    EXPECT_EQ(st.entire_updates, 1u);   // the first image
+    EXPECT_EQ(st.selective_updates, 4u);
+    // Lights taken out and put back leave float residue (kDriftBudget), far below a display step.
+    expectSameImage(*view.latest(), renderOnce(scene), 1e-4f);
+}
+
+}  // namespace
+}  // namespace voxlux::test

@@ -1,0 +1,185 @@
+// `voxlux view` in a window, on a virtual X display (xvfb-run, Mesa): scripted actions and their
+// screenshots, real X events sent with xdotool, errors that keep the viewer running, and no display.
+#include <gtest/gtest.h>
+
+#include <png.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/json_reader.h"
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+
+const std::string kXvfb = "xvfb-run -a -s '-screen 0 1600x900x24' ";
+const std::string kCloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --res 160x100 --filter trilinear";
+
+// Writes {"actions": actions} to `dir`/`name` and returns its path.
+std::string writeScript(const std::string& dir, const std::string& name, const nlohmann::json& actions) {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path) << nlohmann::json({{"actions", actions}}).dump(1);
+    return path;
+}
+
+CliResult view(const std::string& args) { return runShell(kXvfb + VOXLUX_BINARY + " view " + args); }
+
+nlohmann::json readJson(const std::string& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+struct Rgb {
+    int width = 0, height = 0;
+    std::vector<uint8_t> bytes;
+};
+Rgb readPng(const std::string& path) {
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    Rgb out;
+    if (!png_image_begin_read_from_file(&image, path.c_str())) return out;
+    image.format = PNG_FORMAT_RGB;
+    out.bytes.resize(PNG_IMAGE_SIZE(image));
+    png_image_finish_read(&image, nullptr, out.bytes.data(), 0, nullptr);
+    out.width = int(image.width);
+    out.height = int(image.height);
+    return out;
+}
+
+// Mean of the 8-bit values in columns [x0, x1) of the image.
+double columnsMean(const Rgb& img, int x0, int x1) {
+    double sum = 0.0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = x0; x < x1; ++x)
+            for (int c = 0; c < 3; ++c) sum += img.bytes[(size_t(y) * img.width + x) * 3 + c];
+    return sum / (3.0 * img.height * (x1 - x0));
+}
+
+TEST(ViewerWindow, TheConvergedViewportIsVoxluxRenderOfTheSavedScene) {
+    const std::string dir = tempDir("viewer-roundtrip");
+    const std::string script = writeScript(dir, "s.json", {{{"orbit", {25, -10}}}, {{"set", "material.anisotropy=0.5"}},
+                                                           {{"screenshot", dir + "/view.png"}}, {{"save", dir + "/saved.json"}},
+                                                           {{"quit", true}}});
+    const CliResult r = view(kCloud + " --script " + script);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const CliResult render = runCli("render " + dir + "/saved.json -o " + dir + "/r.exr --preview " + dir + "/r.png");
+    ASSERT_EQ(render.exit_code, 0) << render.err;
+    const Rgb shown = readPng(dir + "/view.png"), rendered = readPng(dir + "/r.png");
+    ASSERT_EQ(shown.width, 160);
+    EXPECT_EQ(shown.bytes, rendered.bytes);
+    EXPECT_FLOAT_EQ(readJson(dir + "/saved.json")["material"]["anisotropy"].get<float>(), 0.5f);
+}
+
+TEST(ViewerWindow, MirroringTheSunMovesTheLitSide) {
+    const std::string dir = tempDir("viewer-lit-side");
+    const std::string script = writeScript(dir, "s.json", {{{"screenshot", dir + "/left.png"}},
+                                                           {{"light", "sun"}, {"set", {{"direction", {-0.65, -0.6, -0.45}}}}},
+                                                           {{"screenshot", dir + "/right.png"}}, {{"quit", true}}});
+    const CliResult r = view(kCloud + " --script " + script);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Rgb before = readPng(dir + "/left.png"), after = readPng(dir + "/right.png");
+    ASSERT_EQ(before.width, 160);
+    // The sun travels towards +x first, so it lights the cloud's left; mirrored, its right. The
+    // cloud is not symmetric, so the test compares the right-to-left ratios of the two images.
+    const double right_before = columnsMean(before, 80, 120) / columnsMean(before, 40, 80);
+    const double right_after = columnsMean(after, 80, 120) / columnsMean(after, 40, 80);
+    EXPECT_LT(right_before, 0.9);
+    EXPECT_GT(right_after, 1.15 * right_before);
+}
+
+TEST(ViewerWindow, ALightOffAndOnAgainGivesTheSameImage) {
+    const std::string dir = tempDir("viewer-toggle");
+    const std::string script = writeScript(dir, "s.json", {{{"screenshot", dir + "/a.png"}}, {{"enable", "sun"}, {"on", false}},
+                                                           {{"screenshot", dir + "/off.png"}}, {{"enable", "sun"}, {"on", true}},
+                                                           {{"screenshot", dir + "/b.png"}}, {{"stats", dir + "/stats.json"}},
+                                                           {{"quit", true}}});
+    const CliResult r = view(kCloud + " --script " + script);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(readPng(dir + "/a.png").bytes, readPng(dir + "/b.png").bytes);
+    EXPECT_NE(readPng(dir + "/a.png").bytes, readPng(dir + "/off.png").bytes);
+    // The sun is the only light the sweeps see: off, the propagation stage has nothing to do and
+    // is skipped; on again, it sweeps the sun whole.
+    EXPECT_EQ(readJson(dir + "/stats.json")["entire_updates"], 2);
+}
+
+TEST(ViewerWindow, BadEditsAndMissingFilesShowTheErrorAndTheViewerGoesOn) {
+    const std::string dir = tempDir("viewer-errors");
+    const std::string missing = dir + "/gone.vdb";
+    const std::string script = writeScript(dir, "s.json", {{{"screenshot", dir + "/a.png"}},
+                                                           {{"set", "material.albedo=[2,0]"}},
+                                                           {{"stats", dir + "/bad-edit.json"}},
+                                                           {{"set", "volume.path=" + missing}},
+                                                           {{"wait", "converged"}},
+                                                           {{"stats", dir + "/missing.json"}},
+                                                           {{"screenshot", dir + "/b.png"}}, {{"save", dir + "/saved.json"}},
+                                                           {{"quit", true}}});
+    const CliResult r = view(kCloud + " --script " + script);
+    // The script's own edit is refused: the script stops there with the error, exit 2.
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: " + script + ": /actions/1: set material.albedo=[2,0]: /material/albedo: expected an array of 3 numbers\n");
+
+    // In the UI, the same edits show their error and keep the last good state.
+    const std::string ui = writeScript(dir, "ui.json", {{{"screenshot", dir + "/a.png"}},
+                                                        {{"set", "volume.path=" + missing}},
+                                                        {{"wait", "converged"}},
+                                                        {{"stats", dir + "/missing.json"}},
+                                                        {{"screenshot", dir + "/b.png"}}, {{"save", dir + "/saved.json"}},
+                                                        {{"quit", true}}});
+    const CliResult ok = view(kCloud + " --script " + ui);
+    ASSERT_EQ(ok.exit_code, 0) << ok.err;
+    EXPECT_EQ(readJson(dir + "/missing.json")["message"], missing + ": no such file");
+    EXPECT_EQ(readPng(dir + "/a.png").bytes, readPng(dir + "/b.png").bytes);
+    const std::string saved_volume = readJson(dir + "/saved.json")["volume"]["path"];
+    EXPECT_EQ(std::filesystem::canonical(dir + "/" + saved_volume), std::filesystem::canonical(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb"));
+}
+
+TEST(ViewerWindow, WithoutADisplayItSaysSoAndExitsWith2) {
+    const CliResult r = runShell("env -u DISPLAY " + std::string(VOXLUX_BINARY) + " view " + kCloud);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: voxlux view: no display (DISPLAY is not set); run it on a desktop, or under xvfb-run for scripts\n");
+}
+
+TEST(ViewerWindow, RealXEventsOrbitTheCameraAndUncheckALight) {
+    const std::string dir = tempDir("viewer-xdotool");
+    std::filesystem::remove(dir + "/layout.json");
+    std::filesystem::remove(dir + "/go.flag");
+    const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}},
+                                                           {{"wait_file", dir + "/go.flag"}, {"timeout", 120}},
+                                                           {{"wait", 0.5}}, {{"save", dir + "/saved.json"}}, {{"quit", true}}});
+    // The viewer in the background; once it has written its layout, xdotool clicks the first
+    // light's enable box and Alt-drags across the image, then lets the script go on.
+    const std::string events = R"sh(
+        box=$(python3 -c "import json; r = json.load(open('DIR/layout.json'))['widgets']['light/0/enable']; print(int((r[0]+r[2])/2), int((r[1]+r[3])/2))")
+        img=$(python3 -c "import json; r = json.load(open('DIR/layout.json'))['image']; print(int((r[0]+r[2])/2), int((r[1]+r[3])/2))")
+        set -- $box; bx=$1; by=$2; set -- $img; ix=$1; iy=$2
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        xdotool mousemove --window $wid $bx $by; sleep 0.3; xdotool click 1; sleep 0.3
+        xdotool mousemove --window $wid $ix $iy; sleep 0.3
+        xdotool keydown Alt_L mousedown 1; sleep 0.2
+        for i in $(seq 10); do xdotool mousemove_relative 8 0; sleep 0.05; done
+        xdotool mouseup 1 keyup Alt_L; sleep 0.3
+        touch DIR/go.flag)sh";
+    std::string shell = "VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done;" + events +
+                        "; wait $pid";
+    const auto replace = [&shell](const std::string& from, const std::string& to) {
+        for (size_t at = shell.find(from); at != std::string::npos; at = shell.find(from, at + to.size())) shell.replace(at, from.size(), to);
+    };
+    replace("DIR", dir);
+    replace("VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud);
+    replace("SCRIPT", script);
+    std::ofstream(dir + "/events.sh") << shell << "\n";
+    const CliResult r = runShell(kXvfb + "bash " + dir + "/events.sh");
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const nlohmann::json saved = readJson(dir + "/saved.json");
+    EXPECT_EQ(saved["lights"][0]["enabled"], false);
+    // Dragged to the right, the camera orbits about the cloud: it moves off its start, at the same distance.
+    const glm::vec3 start(0.25f, 0.28f, 3.7f), look(0.0f, -0.02f, 0.0f);
+    const glm::vec3 now(saved["camera"]["position"][0].get<float>(), saved["camera"]["position"][1].get<float>(),
+                        saved["camera"]["position"][2].get<float>());
+    EXPECT_GT(glm::length(now - start), 0.3f);
+    EXPECT_NEAR(glm::length(now - look), glm::length(start - look), 1e-3f);
+}
+
+}  // namespace
+}  // namespace voxlux::test
