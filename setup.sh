@@ -11,6 +11,8 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
   libopencolorio-dev opencolorio-tools libpng-dev
   libgtest-dev
+  libglfw3-dev libimgui-dev   # voxlux view: the window and its panels
+  xvfb xdotool python3        # the viewer's tests: a virtual X display and real X events
   clang libclang-rt-14-dev   # the sanitizer build and its libFuzzer targets (tests/run.sh)
 )
 missing=()

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <thread>
 
 #include "core/error.h"
 #include "render/renderer.h"
@@ -179,6 +180,27 @@ TEST(ProgressiveRender, TheNewestOfManyEditsWins) {
     const ViewStatistics st = view.statistics();
     EXPECT_EQ(st.submitted, 13u);
     EXPECT_LT(st.converged, 13u);   // coalesced: most edits never rendered
+    expectSameImage(*view.latest(), renderOnce(scene));
+}
+
+TEST(ProgressiveRender, AnEditDuringAMarchCancelsItAndRendersNext) {
+    Scene scene = smallCloud();
+    scene.render.width = 480;   // a full-resolution march long enough to be cut short
+    scene.render.height = 300;
+    scene.render.filter = Filter::Tricubic;
+    ProgressiveRender view(scene, std::nullopt);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    uint64_t last = 0;
+    for (int k = 0; k < 3; ++k) {
+        scene.material.anisotropy = 0.1f * float(k);
+        last = view.submit(scene, std::nullopt);
+        // As soon as this edit's coarsest image shows, the next edit lands on its finer marches.
+        for (int wait = 0; wait < 20000 && view.latest()->edit != last; ++wait) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ASSERT_TRUE(view.waitConverged(120.0));
+    EXPECT_FALSE(view.failure()) << view.failure()->message;
+    EXPECT_GE(view.statistics().cancelled, 1u);
+    EXPECT_EQ(view.latest()->edit, last);
     expectSameImage(*view.latest(), renderOnce(scene));
 }
 
