@@ -99,7 +99,7 @@ def first_frames(value):
 
 
 REDUCTIONS = [
-    (("render", "study"), "--res", smaller_res, f"{MAX_RES}x{MAX_RES}"),     # 64x64 images
+    (("render", "study", "view"), "--res", smaller_res, f"{MAX_RES}x{MAX_RES}"),     # 64x64 images
     (("voxlux_bench",), "--res", smaller_res, str(MAX_RES)),
     (("render", "study"), "--spp", lambda v: str(min(int(v), 4)) if v.isdigit() else v, None),
     (("render", "study"), "--frames", first_frames, None),                  # 3 frames of a sequence
@@ -249,10 +249,12 @@ def join(tokens):
 
 def reduce_sizes(words):
     """`words` (one simple command, redirections included) with REDUCTIONS applied."""
-    program = os.path.basename(words[0])
+    # voxlux may run under a launcher (`xvfb-run -a ... build/voxlux view ...`, `env -u DISPLAY voxlux`).
+    start = next((k for k, w in enumerate(words) if os.path.basename(w) == "voxlux"), 0)
+    program = os.path.basename(words[start])
     key = program
     if program == "voxlux":
-        key = next((w for w in words[1:] if not w.startswith("-")), "")
+        key = next((w for w in words[start + 1:] if not w.startswith("-")), "")
     words = list(words)
     for keys, option, rewrite, added in REDUCTIONS:
         if key not in keys:
