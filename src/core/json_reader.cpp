@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <optional>
+#include <sstream>
 
 #include "core/error.h"
 
@@ -234,6 +236,14 @@ nlohmann::json parseJson(const std::string& text, const std::string& file) {
         if (auto dash = what.find(" - "); dash != std::string::npos) what = what.substr(dash + 3);
         throw InputError(file + ": malformed JSON" + (where.empty() ? "" : " " + where) + ": " + what);
     }
+}
+
+std::string readFileText(const std::string& path, const std::string& what) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open " + what);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
 }
 
 }  // namespace voxlux

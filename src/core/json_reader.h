@@ -61,6 +61,9 @@ void checkJsonDepth(const std::string& text, const std::string& source);
 // UTF-8 (a Latin-1 "caf\xe9.vdb"): bytes that are not UTF-8 are written as the text \xHH.
 std::string jsonText(const nlohmann::json& json, int indent = -1);
 
+// The bytes of the file at `path`; throws InputError "<path>: cannot open <what>".
+std::string readFileText(const std::string& path, const std::string& what);
+
 // Parses `text` (read from `file`); syntax errors give line and column, nesting past
 // kMaxJsonDepth is refused.
 nlohmann::json parseJson(const std::string& text, const std::string& file);

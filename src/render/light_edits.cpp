@@ -1,8 +1,5 @@
 #include "render/light_edits.h"
 
-#include <fstream>
-#include <sstream>
-
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "scene/scene_json.h"
@@ -55,11 +52,7 @@ Light readEditedLight(const nlohmann::json& value, const LightEdit& e, const std
 }  // namespace
 
 std::vector<LightEdit> loadLightEdits(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open the light-edit file");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parseLightEdits(text.str(), path);
+    return parseLightEdits(readFileText(path, "the light-edit file"), path);
 }
 
 std::vector<LightEdit> parseLightEdits(const std::string& text, const std::string& path) {

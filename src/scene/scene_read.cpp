@@ -6,8 +6,6 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <glm/gtx/component_wise.hpp>
 
@@ -547,11 +545,7 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
 }
 
 Scene loadSceneFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open scene file");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parseScene(text.str(), path, fs::path(path).parent_path().string());
+    return parseScene(readFileText(path, "scene file"), path, fs::path(path).parent_path().string());
 }
 
 }  // namespace voxlux

@@ -1,8 +1,6 @@
 #include "viewer/view_script.h"
 
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "core/error.h"
 #include "core/json_reader.h"
@@ -32,11 +30,7 @@ bool isPair(const nlohmann::json& v) { return v.is_array() && v.size() == 2 && v
 }  // namespace
 
 std::vector<ViewAction> loadViewScript(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open the view script");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parseViewScript(text.str(), path);
+    return parseViewScript(readFileText(path, "the view script"), path);
 }
 
 std::vector<ViewAction> parseViewScript(const std::string& text, const std::string& path) {

@@ -12,7 +12,8 @@
 //   {"layout": "widgets.json"}   where named widgets are on screen, for tests that send X events
 //   {"save": "scene.json"}  {"render": true}  {"stats": "stats.json"}  {"quit": true}
 // Every action is checked when the file is read: a bad one is an error naming the file and its
-// JSON pointer before the window opens.
+// JSON pointer before the window opens. An edit the scene refuses is shown as in the UI (and
+// printed as a warning), and the script goes on.
 #pragma once
 #include <string>
 #include <vector>

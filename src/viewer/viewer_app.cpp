@@ -173,8 +173,9 @@ bool ViewerApp::converged() const {
 bool ViewerApp::runAction(const ViewAction& a) {
     const nlohmann::json& v = a.value[a.kind];
     const auto light = [&] { return state_.editor.lightIndex(v); };
+    // An edit the scene refuses is shown as the UI shows it, and the script goes on.
     const auto check = [&](bool took) {
-        if (!took) throw InputError(a.where + ": " + state_.editor.error());
+        if (!took) std::cerr << "voxlux: warning: " << a.where << ": " << state_.editor.error() << "\n";
     };
     if (a.kind == "wait" || a.kind == "screenshot" || a.kind == "bench_record") {
         if (!waiting_) wait_start_ = Clock::now(), waiting_ = true;
