@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 
@@ -19,7 +20,7 @@ nlohmann::json fileIdentity(const std::string& file) {
     const auto size = std::filesystem::file_size(file, ec);
     const auto time = ec ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(file, ec);
     if (ec) {
-        static long unreadable = 0;
+        static std::atomic<long> unreadable{0};   // the viewer renders on two threads
         return {{"path", file}, {"unreadable", ++unreadable}};
     }
     return {{"path", file}, {"size", size}, {"time", time.time_since_epoch().count()}};

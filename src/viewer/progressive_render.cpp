@@ -123,11 +123,14 @@ void ProgressiveRender::work() {
             ++stats_.cancelled;
         } catch (const std::exception& e) {
             std::lock_guard<std::mutex> lock(mutex_);
-            failure_ = Failure{edit, e.what(), last_good_.value_or(scene)};
-            // Show the last good state again, unless the user has moved on already.
-            if (last_good_ && started_ == submitted_) {
+            failure_ = Failure{edit, e.what(), false, last_good_.value_or(scene), last_good_ ? last_good_frame_ : frame};
+            // Show the last good state again, unless the user has moved on already, or this was
+            // that re-render failing (a file removed since): then the failure stands.
+            if (last_good_ && started_ == submitted_ && edit != restore_edit_) {
                 pending_scene_ = *last_good_;
-                ++submitted_;
+                pending_frame_ = last_good_frame_;
+                restore_edit_ = ++submitted_;
+                failure_->restored = true;
             }
             settled_edit_ = edit;
             settled_.notify_all();
@@ -167,11 +170,6 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
     }
 
     for (size_t k = 0; k < divisors.size(); ++k) {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (newerEdit()) return;
-            cancelled_ = false;
-        }
         Scene level = shown;
         const glm::ivec2 size = levelResolution(full, divisors[k]);
         level.render.width = size.x;
@@ -182,8 +180,10 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
         std::exception_ptr error;
         tbb::task_group_context context;
         tbb::task_group group(context);
-        {
+        {   // one lock: a submit either comes before (and this edit stops) or sees the context to cancel
             std::lock_guard<std::mutex> lock(mutex_);
+            if (newerEdit()) return;
+            cancelled_ = false;
             march_context_ = &context;
         }
         // Exceptions are caught inside: TBB drops one thrown in a group that was cancelled.
@@ -220,10 +220,11 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
             base.edit_stages = out->edit_stages;
             ++stats_.rendered;
             stats_.first_image_seconds = out->seconds_to_image;
-            last_good_ = scene;
         }
         latest_ = out;
         if (out->converged) {
+            last_good_ = scene;
+            last_good_frame_ = frame;
             ++stats_.converged;
             stats_.converged_seconds = out->seconds_to_image;
             settled_edit_ = edit;

@@ -6,6 +6,8 @@
 // selective updates (Sunden 2015) rather than restarts of the whole sweep. Edits that arrive
 // meanwhile are coalesced: only the newest is rendered.
 // Cost: the levels below full add about 1/64 + 1/16 + 1/4 of a full march to a converged image.
+// The eye pass (effects.propagation.eye_pass) reads the camera, whose resolution each level
+// changes: it runs again at every level, inside the cancellable part.
 #pragma once
 #include <atomic>
 #include <chrono>
@@ -76,15 +78,19 @@ public:
     std::shared_ptr<const ViewFrame> latest() const;
 
     // The one-line error of the newest edit that failed (a missing file, a grid that is not
-    // there), with the scene that last rendered, which the worker renders again; or nothing.
+    // there), or nothing. When no newer edit was waiting, the worker renders the last scene that
+    // converged again (`restored`), which the UI then shows as its state.
     struct Failure {
         uint64_t edit = 0;
         std::string message;
+        bool restored = false;
         Scene last_good;
+        std::optional<int> last_good_frame;
     };
     std::optional<Failure> failure() const;
 
-    // Blocks until the newest edit has converged or failed, or `seconds` passed; true if it did.
+    // Blocks until the newest edit (the last good scene's re-render, after a failure) has converged
+    // or failed, or `seconds` passed; true if it did.
     bool waitConverged(double seconds);
     // Whether the newest edit has converged or failed.
     bool settled() const;
@@ -107,7 +113,9 @@ private:
     std::atomic<bool> cancelled_{false};
     std::shared_ptr<const ViewFrame> latest_;
     std::optional<Failure> failure_;
-    std::optional<Scene> last_good_;
+    std::optional<Scene> last_good_;          // the newest scene that converged, and its frame
+    std::optional<int> last_good_frame_;
+    uint64_t restore_edit_ = 0;               // the edit that re-renders the last good scene
     ViewStatistics stats_;
     std::thread worker_;
 };

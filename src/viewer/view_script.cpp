@@ -73,6 +73,8 @@ std::vector<ViewAction> parseViewScript(const std::string& text, const std::stri
             throw InputError(where + ": a light action needs \"set\": an object of the light's keys");
         if (kind == "enable" && !(a.contains("on") && a["on"].is_boolean()))
             throw InputError(where + ": an enable action needs \"on\": true or false");
+        if (kind == "wait_file" && a.contains("timeout") && !(a["timeout"].is_number() && a["timeout"].get<double>() >= 0))
+            throw InputError(where + "/timeout: must be seconds");
         if (kind == "drag_light" && !(a.contains("by") && isPair(a["by"])))
             throw InputError(where + ": a drag_light action needs \"by\": [dx, dy] in pixels");
         actions.push_back({kind, a, where});

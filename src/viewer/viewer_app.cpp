@@ -135,7 +135,7 @@ private:
     Clock::time_point wait_until_{}, wait_start_{};
     bool waiting_ = false;
     std::string window_png_;           // written after the next frame is drawn
-    std::future<std::string> rendering_;
+    std::future<std::string> rendering_, script_render_;
     std::map<std::string, BenchCase> bench_;
     std::vector<std::string> bench_order_;
     std::string shown_error_;
@@ -146,8 +146,11 @@ void ViewerApp::syncRender() {
     if (auto f = state_.render->failure(); f && f->edit > state_.failure_seen) {
         state_.failure_seen = f->edit;
         state_.showError(f->message);
-        state_.editor.adopt(f->last_good);   // the worker renders the last good state already
-        state_.submitted_version = state_.editor.version();
+        if (f->restored) {   // the worker renders the last good state already: show it as the state
+            state_.editor.adopt(f->last_good);
+            state_.frame = f->last_good_frame;
+            state_.submitted_version = state_.editor.version();
+        }
     }
     if (!state_.editor.error().empty() && state_.editor.error() != shown_error_) state_.showError(state_.editor.error());
     shown_error_ = state_.editor.error();
@@ -164,11 +167,7 @@ void ViewerApp::syncRender() {
     }
 }
 
-bool ViewerApp::converged() const {
-    if (state_.submitted_version != state_.editor.version() || !state_.render->settled()) return false;
-    const auto f = state_.render->latest();
-    return !f || f->converged || state_.render->failure();
-}
+bool ViewerApp::converged() const { return state_.submitted_version == state_.editor.version() && state_.render->settled(); }
 
 bool ViewerApp::runAction(const ViewAction& a) {
     const nlohmann::json& v = a.value[a.kind];
@@ -231,10 +230,10 @@ bool ViewerApp::runAction(const ViewAction& a) {
         state_.editor.save(v.get<std::string>());
         state_.showNote("wrote " + v.get<std::string>());
     }
-    if (a.kind == "render") {
-        if (!rendering_.valid()) rendering_ = renderInBackground(state_.editor.scene(), state_.frame);
-        if (rendering_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
-        state_.showNote(rendering_.get());   // a failed render throws its own line
+    if (a.kind == "render") {   // a future of its own: the UI's Render button has rendering_
+        if (!script_render_.valid()) script_render_ = renderInBackground(state_.editor.scene(), state_.frame);
+        if (script_render_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+        state_.showNote(script_render_.get());   // a failed render throws its one line, and the script stops
     }
     if (a.kind == "stats" || a.kind == "layout") {
         nlohmann::json out;
@@ -369,7 +368,7 @@ int ViewerApp::run(GLFWwindow* window) {
         if (next_ < script_.size()) {
             try {
                 running = runScript();
-            } catch (const InputError& e) {
+            } catch (const std::exception& e) {   // a file it cannot write, a render that fails
                 std::cerr << "voxlux: error: " << e.what() << "\n";
                 exit_code_ = kInputError;
                 running = false;
@@ -377,7 +376,8 @@ int ViewerApp::run(GLFWwindow* window) {
         }
         drawFrame(window);
     }
-    if (rendering_.valid()) rendering_.wait();
+    for (auto* f : {&rendering_, &script_render_})
+        if (f->valid()) f->wait();
     return exit_code_;
 }
 

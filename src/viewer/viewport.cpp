@@ -81,7 +81,13 @@ void Viewport::draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     fit(glm::vec2(scene.render.width, scene.render.height), lo, hi, image_lo_, image_hi_);
     if (frame && !frame->display.empty()) {
         current_->keep = frame;
-        upload(state, *current_, *frame);
+        try {
+            upload(state, *current_, *frame);
+        } catch (const std::exception& e) {   // a colour AOV under a colour edit OCIO refuses
+            state.aov = "beauty";
+            state.showError(e.what());
+            upload(state, *current_, *frame);
+        }
         const float split = state.wipe && state.held ? image_lo_.x + state.wipe_at * (image_hi_.x - image_lo_.x) : image_lo_.x;
         const float u = (split - image_lo_.x) / (image_hi_.x - image_lo_.x);
         back->AddImage(ImTextureID(intptr_t(current_->id)), ImVec2(split, image_lo_.y), im(image_hi_), ImVec2(u, 0), ImVec2(1, 1));

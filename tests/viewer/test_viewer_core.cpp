@@ -221,6 +221,26 @@ TEST(ProgressiveRender, AFailedEditSaysWhyAndTheLastGoodSceneShowsAgain) {
     expectSameImage(*view.latest(), renderOnce(good));
 }
 
+TEST(ProgressiveRender, WhenTheLastGoodSceneFailsTooTheFailureStands) {
+    Scene good = smallCloud();
+    const std::string copy = tempDir("viewer-removed") + "/cloud.vdb";
+    std::filesystem::copy_file(good.volume.path, copy, std::filesystem::copy_options::overwrite_existing);
+    good.volume.path = copy;
+    ProgressiveRender view(good, std::nullopt);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    std::filesystem::remove(copy);   // gone since it rendered: the re-render of the last good scene fails too
+    Scene bad = good;
+    bad.volume.path = copy + ".missing";
+    view.submit(bad, std::nullopt);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    const auto failure = view.failure();
+    ASSERT_TRUE(failure);
+    EXPECT_EQ(failure->message, copy + ": no such file");
+    EXPECT_FALSE(failure->restored);   // no second restore: the worker is idle, not looping
+    EXPECT_EQ(view.statistics().submitted, 2u);
+    EXPECT_TRUE(view.settled());
+}
+
 TEST(ProgressiveRender, DraggingOneOfSeveralLightsIsSelectiveUpdates) {
     Scene scene = smallCloud();
     scene.effects.indirect.reset();

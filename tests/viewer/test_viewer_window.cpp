@@ -60,7 +60,8 @@ TEST(ViewerWindow, TheConvergedViewportIsVoxluxRenderOfTheSavedScene) {
     const std::string dir = tempDir("viewer-roundtrip");
     const std::string script = writeScript(dir, "s.json", {{{"orbit", {25, -10}}}, {{"set", "material.anisotropy=0.5"}},
                                                            {{"screenshot", dir + "/view.png"}}, {{"save", dir + "/saved.json"}},
-                                                           {{"quit", true}}});
+                                                           {{"set", "output.path=\"" + dir + "/viewer.exr\""}}, {{"render", true}},
+                                                           {{"stats", dir + "/stats.json"}}, {{"quit", true}}});
     const CliResult r = view(kCloud + " --script " + script);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const CliResult render = runCli("render " + dir + "/saved.json -o " + dir + "/r.exr --preview " + dir + "/r.png");
@@ -68,6 +69,10 @@ TEST(ViewerWindow, TheConvergedViewportIsVoxluxRenderOfTheSavedScene) {
     const Rgb shown = readPng(dir + "/view.png"), rendered = readPng(dir + "/r.png");
     ASSERT_EQ(shown.width, 160);
     EXPECT_EQ(shown.bytes, rendered.bytes);
+    // The viewer's Render writes, through the same code, the EXR `voxlux render` writes.
+    EXPECT_EQ(readJson(dir + "/stats.json")["message"], "wrote " + dir + "/viewer.exr");
+    const Exr a = readExr(dir + "/viewer.exr"), b = readExr(dir + "/r.exr");
+    EXPECT_EQ(a.planes, b.planes);
     EXPECT_FLOAT_EQ(readJson(dir + "/saved.json")["material"]["anisotropy"].get<float>(), 0.5f);
 }
 
