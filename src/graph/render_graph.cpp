@@ -167,7 +167,7 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
         } else {
             last_keys_.erase(s->name());
             s->output_warnings_.clear();
-            StageRun run{scene, document, backend, reports, kept_inside, s->output_warnings_};
+            StageRun run{scene, document, backend, reports, kept_inside, s->output_warnings_, keys};
             const auto start = std::chrono::steady_clock::now();
             s->run(run);
             report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -44,6 +44,7 @@ struct StageRun {
     const std::vector<StageReport>& so_far;  // the stages of this frame before it
     std::vector<std::string>& reused;     // parts of its output a stage that ran kept (selective updates)
     std::vector<std::string>& warnings;   // recoverable oddities, one line each
+    const std::map<std::string, std::string>& keys;   // every stage's key this frame (RenderGraph::keys)
 };
 
 class Stage {

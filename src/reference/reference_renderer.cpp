@@ -241,7 +241,8 @@ float ratioTrackedTransmittance(const KernelInputs& in, const std::vector<float>
     return Tracker{k, majorants, opaque}.transmittance(x, w, dist, rng, events);
 }
 
-RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs, uint64_t* opaque_segments) {
+RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs, uint64_t* opaque_segments,
+                            ReferenceSums* sums) {
     CpuKernel k = bindCpuKernel(in);
     if (k.P.surface_inv_range > 0.0f || k.P.noise_octaves > 0)
         throw InputError("render.method reference: effects.surface and effects.perturbation are march-only effects");
@@ -252,8 +253,11 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
     img.width = k.P.width;
     img.height = k.P.height;
     img.pixels.resize(size_t(img.width) * img.height);
+    const bool resume = sums && sums->width == img.width && sums->height == img.height && sums->samples < rs.spp;
+    if (sums && !resume) *sums = ReferenceSums{0, img.width, img.height, std::vector<ReferenceSums::Pixel>(img.pixels.size())};
+    const int first = resume ? sums->samples : 0;
     const double n = rs.spp;
-    ProgressTask progress("reference", int64_t(img.width) * img.height * rs.spp, "samples");
+    ProgressTask progress("reference", int64_t(img.width) * img.height * (rs.spp - first), "samples");
     // Small tiles: a reference render is often a few pixels at many samples.
     tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 4, 0, img.width, 4), [&](const tbb::blocked_range2d<int>& r) {
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
@@ -263,41 +267,40 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 k.vx_camera_ray(x, y, origin, dir, forward);
                 // Sums in double, written clamped to the float maximum: HDR lights up to 3.4e38 are
                 // legal, and a float sum of several such samples (or a luminance squared) overflows.
-                glm::dvec3 direct(0.0), indirect(0.0), ambient(0.0), emission(0.0);
-                double transmittance = 0.0, depth = 0.0, lum = 0.0, lum2 = 0.0;
-                int64_t events = 0;
-                int hits = 0;
-                for (int s = 0; s < rs.spp; ++s) {
+                ReferenceSums::Pixel local;
+                ReferenceSums::Pixel& acc = sums ? sums->pixels[pixel] : local;
+                for (int s = first; s < rs.spp; ++s) {
                     ReferenceRng rng(uint32_t(rs.seed), pixel, uint32_t(s));
                     const PathSample p = tracePath(tracker, rs, origin, dir, forward, rng);
-                    direct += p.direct;
-                    indirect += p.indirect;
-                    ambient += p.ambient;
-                    emission += p.emission;
-                    transmittance += p.transmittance;
-                    depth += p.depth;
-                    events += p.events;
-                    hits += p.hit;
+                    acc.direct += p.direct;
+                    acc.indirect += p.indirect;
+                    acc.ambient += p.ambient;
+                    acc.emission += p.emission;
+                    acc.transmittance += p.transmittance;
+                    acc.depth += p.depth;
+                    acc.events += p.events;
+                    acc.hits += p.hit;
                     // Luminance is linear: per term, so that no float sum overflows.
                     const double l = double(k.vx_luminance(p.direct)) + k.vx_luminance(p.indirect) +
                                      k.vx_luminance(p.ambient) + k.vx_luminance(p.emission);
-                    lum += l;
-                    lum2 += l * l;
+                    acc.lum += l;
+                    acc.lum2 += l * l;
                 }
                 kernel::VxPixel& px = img.pixels[pixel];
-                px.direct = toFloat(direct / n);
-                px.indirect = toFloat(indirect / n);
-                px.ambient = toFloat(ambient / n);
-                px.emission = toFloat(emission / n);
-                px.transmittance = float(transmittance / n);
-                px.rgba = glm::vec4(toFloat((direct + indirect + ambient + emission) / n), 1.0f - px.transmittance);
-                px.depth = hits ? float(depth / hits) : 0.0f;
-                px.samples = float(double(events) / n);
-                const double mean = lum / rs.spp;
-                px.variance = rs.spp > 1 ? toFloat(std::max(0.0, lum2 - rs.spp * mean * mean) / (rs.spp - 1) / rs.spp) : 0.0f;
-                progress.advance(rs.spp);
+                px.direct = toFloat(acc.direct / n);
+                px.indirect = toFloat(acc.indirect / n);
+                px.ambient = toFloat(acc.ambient / n);
+                px.emission = toFloat(acc.emission / n);
+                px.transmittance = float(acc.transmittance / n);
+                px.rgba = glm::vec4(toFloat((acc.direct + acc.indirect + acc.ambient + acc.emission) / n), 1.0f - px.transmittance);
+                px.depth = acc.hits ? float(acc.depth / acc.hits) : 0.0f;
+                px.samples = float(double(acc.events) / n);
+                const double mean = acc.lum / rs.spp;
+                px.variance = rs.spp > 1 ? toFloat(std::max(0.0, acc.lum2 - rs.spp * mean * mean) / (rs.spp - 1) / rs.spp) : 0.0f;
+                progress.advance(rs.spp - first);
             }
     });
+    if (sums) sums->samples = rs.spp;
     if (opaque_segments) *opaque_segments = opaque;
     return img;
 }

@@ -39,6 +39,22 @@ std::vector<float> brickMajorants(const KernelInputs& inputs);
 float ratioTrackedTransmittance(const KernelInputs& inputs, const std::vector<float>& majorants, glm::vec3 x,
                                 glm::vec3 w, float dist, ReferenceRng& rng);
 
+// Every pixel's sums over the samples taken so far, kept by an interactive render so that more
+// samples continue an image rather than restart it: samples [samples, spp) added to the sums of
+// [0, samples), one pixel's in order, give the sums a render of spp samples takes, so the image is
+// the same bit for bit. Costs 144 bytes a pixel.
+struct ReferenceSums {
+    struct Pixel {
+        glm::dvec3 direct{0.0}, indirect{0.0}, ambient{0.0}, emission{0.0};
+        double transmittance = 0.0, depth = 0.0, lum = 0.0, lum2 = 0.0;
+        int64_t events = 0;
+        int hits = 0;
+    };
+    int samples = 0;   // per pixel
+    int width = 0, height = 0;
+    std::vector<Pixel> pixels;
+};
+
 // Renders inputs.params' camera with `settings.spp` paths per pixel centre. The pixel holds the
 // beauty (premultiplied: alpha = 1 - the ratio-tracked transmittance of the camera ray), the
 // direct (first-bounce NEE), indirect (the rest), ambient and emission (seen from the camera)
@@ -47,7 +63,10 @@ float ratioTrackedTransmittance(const KernelInputs& inputs, const std::vector<fl
 // march-only effects surface and perturbation. Tracking stays bounded in any medium: a brick
 // segment whose majorant overflows a float (density 3e38), or that takes over 2^16 tentative
 // collisions, is taken as opaque there; `opaque_segments`, when given, receives their count.
+// With `sums` of the same image size and fewer samples, only the missing samples are taken and
+// added to them; otherwise they are started again (the caller keeps them only while nothing but
+// the sample count changes).
 RenderImage renderReference(const KernelInputs& inputs, const ReferenceSettings& settings,
-                            uint64_t* opaque_segments = nullptr);
+                            uint64_t* opaque_segments = nullptr, ReferenceSums* sums = nullptr);
 
 }  // namespace voxlux

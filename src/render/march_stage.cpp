@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/json_reader.h"
 #include "reference/reference_renderer.h"
 
 namespace voxlux {
@@ -23,6 +24,30 @@ std::string emissionDescription(const EmissionSource& e) {
 }
 
 }  // namespace
+
+void MarchStage::release() {
+    image_ = RenderImage{};
+    sums_ = ReferenceSums{};
+    sums_key_.clear();
+}
+
+// The march's key without the reference's sample count: upstream stages' keys and the document
+// keys it reads, render.reference without spp.
+std::string MarchStage::referenceSetupKey(const StageRun& run) const {
+    const StageReads r = reads();
+    std::string text;
+    for (const auto& up : r.stages) text += up + "=" + run.keys.at(up) + "\n";
+    for (const auto& key : r.keys) {
+        if (key != "/render/reference") {
+            text += readKey(run.document, key) + "\n";
+            continue;
+        }
+        nlohmann::json settings = run.document.value(nlohmann::json::json_pointer(key), nlohmann::json::object());
+        settings.erase("spp");
+        text += key + "=" + jsonText(settings) + "\n";
+    }
+    return hashText(text);
+}
 
 StageReads MarchStage::reads() const {
     // Every render key but exposure, which only the grade applies.
@@ -69,7 +94,22 @@ void MarchStage::run(StageRun& run) {
         return;
     }
     uint64_t opaque = 0;
-    image_ = renderReference(inputs, scene.render.reference, &opaque);
+    if (!keep_sums_) {
+        image_ = renderReference(inputs, scene.render.reference, &opaque);
+    } else {
+        const std::string setup = referenceSetupKey(run);
+        if (setup != sums_key_) sums_ = ReferenceSums{};
+        sums_key_ = setup;
+        const int kept = sums_.samples < scene.render.reference.spp ? sums_.samples : 0;
+        try {
+            image_ = renderReference(inputs, scene.render.reference, &opaque, &sums_);
+        } catch (...) {   // the sums may hold part of the new samples
+            sums_ = ReferenceSums{};
+            sums_key_.clear();
+            throw;
+        }
+        if (kept > 0) run.reused.push_back("march: " + std::to_string(kept) + " reference samples a pixel");
+    }
     if (opaque)
         run.warnings.push_back("reference: " + std::to_string(opaque) +
                                " brick segments too dense to track (extinction beyond a float, or over 2^16 collisions) taken as opaque");

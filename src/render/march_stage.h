@@ -8,6 +8,7 @@
 #include "kernel/kernel_backend.h"
 #include "lighting/propagation/propagation_stages.h"
 #include "graph/render_graph.h"
+#include "reference/reference_renderer.h"
 #include "volume/volume_stages.h"
 
 namespace voxlux {
@@ -27,8 +28,12 @@ public:
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
-    void release() override { image_ = RenderImage{}; }
+    void release() override;
     const RenderImage& image() const { return image_; }
+    // For an interactive render: keep the reference's per-pixel sums (ReferenceSums, 144 bytes a
+    // pixel), so that when only render.reference.spp grows the new samples are added to the
+    // image instead of starting it again.
+    void keepReferenceSums(bool keep) { keep_sums_ = keep; }
 
 private:
     const ColorSpaceStage& color_;
@@ -37,6 +42,10 @@ private:
     const CameraStage& camera_;
     LightingStages lighting_;
     RenderImage image_;
+    bool keep_sums_ = false;
+    std::string referenceSetupKey(const StageRun& run) const;
+    ReferenceSums sums_;
+    std::string sums_key_;   // everything the march read for sums_ but the sample count
 };
 
 }  // namespace voxlux

@@ -61,6 +61,8 @@ public:
     // Asked between stages while rendering (RenderGraph::run): the viewer cancels a render its
     // next edit makes stale. Renders then throw Cancelled.
     void setCancellation(std::function<bool()> cancelled) { cancelled_ = std::move(cancelled); }
+    // A reference render whose sample count grows continues its image (MarchStage::keepReferenceSums).
+    void keepReferenceSums(bool keep) { march_.keepReferenceSums(keep); }
     const RenderGraph& graph() const { return graph_; }
     std::string backendName() { return backend().name(); }
 

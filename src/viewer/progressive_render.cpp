@@ -36,6 +36,19 @@ glm::ivec2 levelResolution(glm::ivec2 full, int divisor) {
     return glm::max(glm::ivec2(1), (full + glm::ivec2(divisor - 1)) / divisor);
 }
 
+std::vector<ViewLevel> progressiveLevels(const Scene& scene) {
+    const bool reference = scene.render.method == RenderMethod::Reference;
+    std::vector<ViewLevel> levels;
+    for (int d : kProgressiveDivisors)   // a level is worth its march when it is at least 32 pixels wide
+        if (d == 1 || scene.render.width / d >= 32) levels.push_back({d, reference ? 1 : 0});
+    if (reference) {   // then the samples, doubling, each added to the last
+        const int target = scene.render.reference.spp;
+        for (int s = 2; s < target; s *= 2) levels.push_back({1, s});
+        if (target > 1) levels.push_back({1, target});
+    }
+    return levels;
+}
+
 ProgressiveRender::ProgressiveRender(Scene scene, std::optional<int> frame) {
     submit(std::move(scene), frame);
     worker_ = std::thread([this] { work(); });
@@ -115,6 +128,7 @@ void ProgressiveRender::work() {
         if (!renderer) {
             renderer = std::make_unique<Renderer>(scene);
             renderer->setCancellation([this] { return cancelled_.load(); });
+            renderer->keepReferenceSums(true);
         }
         try {
             renderEdit(*renderer, scene, frame, edit, since);
@@ -141,9 +155,7 @@ void ProgressiveRender::work() {
 void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::optional<int> frame, uint64_t edit,
                                    std::chrono::steady_clock::time_point since) {
     const glm::ivec2 full(scene.render.width, scene.render.height);
-    std::vector<int> divisors;
-    for (int d : kProgressiveDivisors)   // a level is worth its march when it is at least 32 pixels wide
-        if (d == 1 || full.x / d >= 32) divisors.push_back(d);
+    const std::vector<ViewLevel> levels = progressiveLevels(scene);
 
     // The grade stage makes the display-referred image only for a scene with a preview; the
     // path is never written (the viewer runs no write stage).
@@ -156,7 +168,7 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
     const FrameResult prepared = renderer.prepare(frame, true);
     ViewFrame base;
     base.edit = edit;
-    base.levels = int(divisors.size());
+    base.levels = int(levels.size());
     base.light_update = prepared.light_update;
     for (const StageReport& s : prepared.stages)
         if (s.status == StageStatus::Ran) base.edit_stages.push_back(s);
@@ -169,11 +181,12 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
         }
     }
 
-    for (size_t k = 0; k < divisors.size(); ++k) {
+    for (size_t k = 0; k < levels.size(); ++k) {
         Scene level = shown;
-        const glm::ivec2 size = levelResolution(full, divisors[k]);
+        const glm::ivec2 size = levelResolution(full, levels[k].divisor);
         level.render.width = size.x;
         level.render.height = size.y;
+        if (levels[k].samples > 0) level.render.reference.spp = levels[k].samples;
         renderer.setScene(level);
 
         FrameResult r;
@@ -206,7 +219,8 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
 
         auto out = std::make_shared<ViewFrame>(base);
         out->level = int(k);
-        out->converged = divisors[k] == 1;
+        out->converged = k + 1 == levels.size();
+        out->samples = levels[k].samples;
         out->camera = r.camera;
         out->image = std::move(r.image);
         out->display = std::move(r.preview);

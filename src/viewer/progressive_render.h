@@ -1,6 +1,7 @@
 // The viewer's renders, off the UI thread: a worker owns a Renderer (the render graph of `voxlux
 // render`) and renders the newest submitted scene progressively, at 1/8, 1/4 and 1/2 of its
-// resolution and then in full, publishing each image as it lands. A submit cancels the march in
+// resolution and then in full (the reference then adds samples until it has the scene's),
+// publishing each image as it lands. A submit cancels the march in
 // flight (TBB cancellation; the graph drops the cancelled stage's output) and restarts from the
 // coarsest level; a lighting update in flight is let finish, so a light drag stays a run of
 // selective updates (Sunden 2015) rather than restarts of the whole sweep. Edits that arrive
@@ -34,12 +35,24 @@ inline constexpr int kProgressiveDivisors[] = {8, 4, 2, 1};
 // The image size at `divisor` of `full` (each side rounded up, at least 1 pixel).
 glm::ivec2 levelResolution(glm::ivec2 full, int divisor);
 
+// One image of an edit's progression: a resolution divisor and, for the Monte Carlo reference,
+// the samples a pixel (0: the scene's).
+struct ViewLevel {
+    int divisor = 1;
+    int samples = 0;
+};
+// The levels of `scene`: each divisor whose image is at least 32 pixels wide, and the full image;
+// for the reference those at 1 sample a pixel, then the full image at 2, 4, 8, ... samples and at
+// render.reference.spp, each level's samples added to the last's (MarchStage::keepReferenceSums).
+std::vector<ViewLevel> progressiveLevels(const Scene& scene);
+
 // One published image.
 struct ViewFrame {
     uint64_t edit = 0;                       // the submit it renders (1 for the first)
     int level = 0;                           // index into the levels run for this edit
     int levels = 1;
-    bool converged = false;                  // the full-resolution image of the newest edit
+    bool converged = false;                  // the last level of the edit
+    int samples = 0;                         // reference samples a pixel (0 for the march)
     Camera camera;                           // as rendered (the scene's, or the framing's)
     RenderImage image;                       // scene-linear, graded into the output space
     std::vector<glm::vec4> display;          // display-referred RGBA through the scene's view

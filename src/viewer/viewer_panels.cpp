@@ -244,6 +244,8 @@ void drawImagePanel(ViewerState& state, const Viewport& viewport, float x, float
     if (frame) {
         ImGui::Text("edit %llu: level %d of %d (%dx%d)%s", (unsigned long long)frame->edit, frame->level + 1, frame->levels,
                     frame->image.width, frame->image.height, frame->converged ? ", converged" : "");
+        if (frame->samples > 0)
+            ImGui::Text("%d of %d samples a pixel", frame->samples, state.editor.scene().render.reference.spp);
         ImGui::Text("%.0f ms since the edit", frame->seconds_to_image * 1000.0);
         ImGui::TextUnformatted("the edit re-ran:");
         for (const StageReport& s : frame->edit_stages) ImGui::BulletText("%-18s %7.1f ms", s.name.c_str(), s.seconds * 1000.0);

@@ -3,6 +3,7 @@
 // older ones, failures keep the last good image, and a light drag is a run of selective updates).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <thread>
@@ -165,6 +166,52 @@ TEST(ProgressiveRender, TheConvergedImageIsTheRenderersAfterCoarserLevels) {
     EXPECT_EQ(shown->level, 1);
     EXPECT_EQ(levelResolution({96, 60}, 8), glm::ivec2(12, 8));
     expectSameImage(*shown, renderOnce(scene));
+}
+
+TEST(ProgressiveRender, TheReferenceAddsSamplesUntilItIsTheRenderersImage) {
+    Scene scene = smallCloud();
+    scene.render.width = 48;
+    scene.render.height = 30;
+    scene.render.method = RenderMethod::Reference;
+    scene.render.reference.spp = 6;
+    scene.effects.shadows = ShadowMethod::Raymarch;
+    scene.effects.indirect.reset();
+    scene.effects.ambient_occlusion.reset();
+    const std::vector<ViewLevel> levels = progressiveLevels(scene);   // 48 wide: no coarser level
+    ASSERT_EQ(levels.size(), 4u);
+    EXPECT_EQ(levels[0].samples, 1);
+    EXPECT_EQ(levels[1].samples, 2);
+    EXPECT_EQ(levels[2].samples, 4);
+    EXPECT_EQ(levels[3].samples, 6);
+    ProgressiveRender view(scene, std::nullopt);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    EXPECT_EQ(view.latest()->samples, 6);
+    // Samples 4 and 5 were added to the sums of 0-3: the image is the one-go render's, bit for bit.
+    expectSameImage(*view.latest(), renderOnce(scene));
+}
+
+TEST(ProgressiveRender, MoreReferenceSamplesAreAddedToTheLastOnes) {
+    Scene scene = smallCloud();
+    scene.render.method = RenderMethod::Reference;
+    scene.render.reference.spp = 4;
+    scene.effects.shadows = ShadowMethod::Raymarch;
+    scene.effects.indirect.reset();
+    scene.effects.ambient_occlusion.reset();
+    Renderer renderer(scene);
+    renderer.keepReferenceSums(true);
+    renderer.render(std::nullopt, true);
+    scene.render.reference.spp = 6;
+    renderer.setScene(scene);
+    const FrameResult more = renderer.render(std::nullopt, true);
+    EXPECT_NE(std::find(more.reused.begin(), more.reused.end(), "march: 4 reference samples a pixel"), more.reused.end());
+    const FrameResult fresh = renderOnce(scene);
+    for (size_t i = 0; i < fresh.image.pixels.size(); ++i) ASSERT_EQ(more.image.pixels[i].rgba, fresh.image.pixels[i].rgba) << i;
+    // Anything else changed (here the seed) starts the sums again.
+    scene.render.reference.seed = 2;
+    scene.render.reference.spp = 8;
+    renderer.setScene(scene);
+    const FrameResult reseeded = renderer.render(std::nullopt, true);
+    EXPECT_EQ(std::count_if(reseeded.reused.begin(), reseeded.reused.end(), [](const std::string& r) { return r.rfind("march:", 0) == 0; }), 0);
 }
 
 TEST(ProgressiveRender, TheNewestOfManyEditsWins) {
