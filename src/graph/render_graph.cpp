@@ -123,13 +123,17 @@ std::map<std::string, std::string> RenderGraph::keys(const Scene& scene, const n
             keys[s->name()] = "";
             continue;
         }
-        const StageReads r = s->reads();
-        std::string text = s->name() + "\n";
-        for (const auto& k : r.keys) text += readKey(document, k) + "\n";
-        for (const auto& up : r.stages) text += up + "=" + keys.at(up) + "\n";
-        keys[s->name()] = hashText(text);
+        keys[s->name()] = stageKey(*s, document, keys);
     }
     return keys;
+}
+
+std::string stageKey(const Stage& stage, const nlohmann::json& document, const std::map<std::string, std::string>& keys) {
+    const StageReads r = stage.reads();
+    std::string text = stage.name() + "\n";
+    for (const auto& k : r.keys) text += readKey(document, k) + "\n";
+    for (const auto& up : r.stages) text += up + "=" + keys.at(up) + "\n";
+    return hashText(text);
 }
 
 bool RenderGraph::reads(const std::string& stage, const std::string& pointer) const {

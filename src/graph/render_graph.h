@@ -101,6 +101,10 @@ std::string hashBytes(const T& value) {
     return hashText(std::string(reinterpret_cast<const char*>(&value), sizeof value));
 }
 
+// The key of `stage` for `document`: the hash of the values it reads and of its upstream stages'
+// `keys` (what RenderGraph::keys gives every stage that takes part).
+std::string stageKey(const Stage& stage, const nlohmann::json& document, const std::map<std::string, std::string>& keys);
+
 class RenderGraph {
 public:
     // Orders `stages` (not owned): each after the stages it reads, otherwise as given. Throws

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "core/json_reader.h"
 #include "reference/reference_renderer.h"
 
 namespace voxlux {
@@ -31,22 +30,12 @@ void MarchStage::release() {
     sums_key_.clear();
 }
 
-// The march's key without the reference's sample count: upstream stages' keys and the document
-// keys it reads, render.reference without spp.
+// The march's key as if the reference's sample count were not read.
 std::string MarchStage::referenceSetupKey(const StageRun& run) const {
-    const StageReads r = reads();
-    std::string text;
-    for (const auto& up : r.stages) text += up + "=" + run.keys.at(up) + "\n";
-    for (const auto& key : r.keys) {
-        if (key != "/render/reference") {
-            text += readKey(run.document, key) + "\n";
-            continue;
-        }
-        nlohmann::json settings = run.document.value(nlohmann::json::json_pointer(key), nlohmann::json::object());
-        settings.erase("spp");
-        text += key + "=" + jsonText(settings) + "\n";
-    }
-    return hashText(text);
+    nlohmann::json document = run.document;
+    const nlohmann::json::json_pointer spp("/render/reference/spp");
+    if (document.contains(spp)) document["render"]["reference"].erase("spp");
+    return stageKey(*this, document, run.keys);
 }
 
 StageReads MarchStage::reads() const {
