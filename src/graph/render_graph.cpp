@@ -153,6 +153,8 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
     for (Stage* s : stages) {
         const std::string& key = keys.at(s->name());
         if (!key.empty() && (!last_keys_.count(s->name()) || last_keys_[s->name()] != key)) {
+            if (last_keys_.count(s->name()))
+                cache_.keep(s->name(), last_keys_[s->name()], {s->sharedOutput(), s->outputBytes(), s->output_warnings_});
             last_keys_.erase(s->name());   // its output is gone: it runs, even if this frame fails and the key comes back
             s->stale();
         }
@@ -168,6 +170,13 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
         } else if (last_keys_.count(s->name()) && last_keys_[s->name()] == key) {
             report.status = StageStatus::Reused;
             reused.push_back(s->name());
+        } else if (const CachedOutput* kept = cache_.find(s->name(), key)) {
+            s->adoptOutput(kept->value);
+            s->output_warnings_ = kept->warnings;
+            report.status = StageStatus::Reused;
+            report.cached = true;
+            reused.push_back(s->name());
+            last_keys_[s->name()] = key;
         } else {
             last_keys_.erase(s->name());
             s->output_warnings_.clear();

@@ -8,12 +8,14 @@
 #pragma once
 #include <functional>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "graph/output_cache.h"
 #include "scene/scene.h"
 
 namespace voxlux {
@@ -64,6 +66,12 @@ public:
     // Called before any stage of a frame runs, when this stage's key changed: a stage that rebuilds
     // its output whole may drop it here, so the old and new outputs never coexist.
     virtual void stale() {}
+    // A stage whose output is dear to remake and worth keeping past its key (a frame's grids and
+    // bricks, which a viewer scrubbing a sequence comes back to) shares it with the graph's output
+    // cache, and adopts one the cache gives back for its key. Others share nothing.
+    virtual std::shared_ptr<const void> sharedOutput() const { return nullptr; }
+    virtual size_t outputBytes() const { return 0; }
+    virtual void adoptOutput(std::shared_ptr<const void>) {}
     // Warnings that belong to the current output, repeated on every frame that reuses it.
     const std::vector<std::string>& outputWarnings() const { return output_warnings_; }
 
@@ -83,6 +91,7 @@ struct StageReport {
     std::string name;
     StageStatus status = StageStatus::Skipped;
     double seconds = 0.0;                 // of the run (0 unless it ran)
+    bool cached = false;                  // reused from the output cache, not from the last frame
 };
 
 // The value of `pointer` (with "*" wildcards) in `document`, as text: every match's path and
@@ -125,6 +134,11 @@ public:
                                  const std::vector<std::string>& targets, std::vector<std::string>& reused,
                                  std::vector<std::string>& warnings, const std::function<bool()>& cancelled = {});
 
+    // Outputs that stages share (a frame's grids and bricks) are kept past their key within
+    // `bytes` (OutputCache; 0, the default, keeps none), and taken back when the key returns.
+    void setCacheBudget(size_t bytes) { cache_.setBudget(bytes); }
+    const OutputCache& cache() const { return cache_; }
+
     // Each stage's key for this scene and document ("" for stages that do not take part).
     std::map<std::string, std::string> keys(const Scene& scene, const nlohmann::json& document) const;
 
@@ -140,6 +154,7 @@ private:
     std::vector<Stage*> order_;
     std::map<std::string, Stage*> by_name_;
     std::map<std::string, std::string> last_keys_;   // what each stage's current output was computed from
+    OutputCache cache_;
 };
 
 }  // namespace voxlux

@@ -63,6 +63,9 @@ public:
     void setCancellation(std::function<bool()> cancelled) { cancelled_ = std::move(cancelled); }
     // A reference render whose sample count grows continues its image (MarchStage::keepReferenceSums).
     void keepReferenceSums(bool keep) { march_.keepReferenceSums(keep); }
+    // Keeps the grids and bricks of frames rendered before within `bytes`, so that coming back
+    // to a frame reads and densifies nothing (RenderGraph::setCacheBudget): a viewer's timeline.
+    void setCacheBudget(size_t bytes) { graph_.setCacheBudget(bytes); }
     const RenderGraph& graph() const { return graph_; }
     std::string backendName() { return backend().name(); }
 

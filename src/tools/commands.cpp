@@ -307,6 +307,7 @@ int runView(const ViewCommand& cmd) {
     options.source = cmd.input;
     options.script = cmd.script;
     options.bench = cmd.bench;
+    options.frame_cache_mb = cmd.frame_cache_mb;
     return runViewer(scene, options);
 #else
     throw InputError("voxlux view: this build has no viewer (configured with VOXLUX_VIEWER=OFF)");

@@ -38,6 +38,7 @@ struct ViewCommand {
     SceneOverrides overrides;
     std::optional<std::string> script;          // replay these UI actions
     bool bench = false;
+    size_t frame_cache_mb = 2048;
 };
 
 // `voxlux view`; in a build without the viewer, an error saying so.

@@ -108,6 +108,8 @@ int main(int argc, char** argv) {
     viewCmd->add_option("input", view.input, "scene .json or volume .vdb")->required();
     viewCmd->add_option("--script", view.script, "ACTIONS.json: replay UI actions (set keys, move lights, screenshots, save)");
     viewCmd->add_flag("--bench", view.bench, "time a light edit, a camera orbit and a material change, print the figures, quit");
+    viewCmd->add_option("--frame-cache", view.frame_cache_mb, "MB for the grids and bricks of frames seen, so scrubbing back reads nothing")
+        ->check(CLI::Range(size_t(0), size_t(1) << 20))->capture_default_str();
     addSceneOverrides(*viewCmd, view.overrides);
 
     std::string cloudOutput;

@@ -49,7 +49,7 @@ std::vector<ViewLevel> progressiveLevels(const Scene& scene) {
     return levels;
 }
 
-ProgressiveRender::ProgressiveRender(Scene scene, std::optional<int> frame) {
+ProgressiveRender::ProgressiveRender(Scene scene, std::optional<int> frame, size_t cache_bytes) : cache_bytes_(cache_bytes) {
     submit(std::move(scene), frame);
     worker_ = std::thread([this] { work(); });
 }
@@ -129,6 +129,7 @@ void ProgressiveRender::work() {
             renderer = std::make_unique<Renderer>(scene);
             renderer->setCancellation([this] { return cancelled_.load(); });
             renderer->keepReferenceSums(true);
+            renderer->setCacheBudget(cache_bytes_);
         }
         try {
             renderEdit(*renderer, scene, frame, edit, since);
@@ -171,7 +172,9 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
     base.levels = int(levels.size());
     base.light_update = prepared.light_update;
     for (const StageReport& s : prepared.stages)
-        if (s.status == StageStatus::Ran) base.edit_stages.push_back(s);
+        if (s.status == StageStatus::Ran || s.cached) base.edit_stages.push_back(s);
+    base.cache_bytes = renderer.graph().cache().bytes();
+    base.cache_outputs = renderer.graph().cache().entries();
     {
         std::lock_guard<std::mutex> lock(mutex_);
         if (prepared.light_update) {

@@ -56,9 +56,11 @@ struct ViewFrame {
     Camera camera;                           // as rendered (the scene's, or the framing's)
     RenderImage image;                       // scene-linear, graded into the output space
     std::vector<glm::vec4> display;          // display-referred RGBA through the scene's view
-    std::vector<StageReport> edit_stages;    // what the edit re-ran: its lighting update and first march
+    std::vector<StageReport> edit_stages;    // what the edit re-ran (its lighting update and first march)
+                                             // and took back from the frame cache
     std::optional<LightUpdate> light_update; // the propagation stage's update for the edit, if it ran
     double seconds_to_image = 0.0;           // from the submit to this image
+    size_t cache_bytes = 0, cache_outputs = 0;   // held by the frame cache after the edit's lighting
     std::vector<std::string> warnings;
 };
 
@@ -77,8 +79,10 @@ struct ViewStatistics {
 
 class ProgressiveRender {
 public:
-    // `frame` as in Renderer::render. The first scene is rendered at once.
-    ProgressiveRender(Scene scene, std::optional<int> frame);
+    // `frame` as in Renderer::render. The first scene is rendered at once. The grids and bricks of
+    // frames rendered before are kept within `cache_bytes` (Renderer::setCacheBudget), so that
+    // scrubbing back to a frame runs neither load nor brick.
+    ProgressiveRender(Scene scene, std::optional<int> frame, size_t cache_bytes = 0);
     ~ProgressiveRender();
     ProgressiveRender(const ProgressiveRender&) = delete;
     ProgressiveRender& operator=(const ProgressiveRender&) = delete;
@@ -122,6 +126,7 @@ private:
     uint64_t submitted_ = 0, started_ = 0, settled_edit_ = 0;
     std::chrono::steady_clock::time_point submit_time_;
     bool stop_ = false;
+    const size_t cache_bytes_;
     tbb::task_group_context* march_context_ = nullptr;   // the march in flight, to cancel
     std::atomic<bool> cancelled_{false};
     std::shared_ptr<const ViewFrame> latest_;

@@ -243,8 +243,10 @@ bool ViewerApp::runAction(const ViewAction& a) {
                    {"selective_updates", st.selective_updates}, {"entire_updates", st.entire_updates}, {"kept_updates", st.kept_updates},
                    {"first_image_seconds", st.first_image_seconds}, {"converged_seconds", st.converged_seconds},
                    {"ui_fps", state_.ui_fps}, {"message", state_.message}};
-            if (const auto f = state_.render->latest())
-                for (const StageReport& s : f->edit_stages) out["edit_stages"].push_back(s.name);
+            if (const auto f = state_.render->latest()) {
+                for (const StageReport& s : f->edit_stages) out[s.cached ? "cached_stages" : "edit_stages"].push_back(s.name);
+                out["frame_cache"] = {{"outputs", f->cache_outputs}, {"bytes", f->cache_bytes}, {"budget", state_.frame_cache_bytes}};
+            }
         } else {
             for (const auto& [name, r] : state_.widgets) out["widgets"][name] = {r.x, r.y, r.z, r.w};
             out["image"] = {viewport_.imageLo().x, viewport_.imageLo().y, viewport_.imageHi().x, viewport_.imageHi().y};
@@ -340,7 +342,8 @@ int ViewerApp::run(GLFWwindow* window) {
     }
     state_.save_path = std::filesystem::path(options_.source).stem().string() + "-view.json";
     readBounds(state_);
-    state_.render = std::make_unique<ProgressiveRender>(scene, state_.frame);
+    state_.frame_cache_bytes = state_.frame ? options_.frame_cache_mb << 20 : 0;   // one frame needs no cache
+    state_.render = std::make_unique<ProgressiveRender>(scene, state_.frame, state_.frame_cache_bytes);
     state_.submitted_version = state_.editor.version();
     auto last = Clock::now(), last_step = last;
     bool running = true;

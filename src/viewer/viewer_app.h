@@ -16,6 +16,7 @@ struct ViewerOptions {
     std::string source;                       // the scene file or cache, for the title and the save path
     std::optional<std::string> script;        // --script: actions to replay (view_script.h)
     bool bench = false;                       // --bench: time edits and print the figures
+    size_t frame_cache_mb = 2048;             // --frame-cache: memory for the grids and bricks of frames seen
     glm::ivec2 window{1600, 900};
 };
 

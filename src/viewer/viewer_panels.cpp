@@ -248,11 +248,16 @@ void drawImagePanel(ViewerState& state, const Viewport& viewport, float x, float
             ImGui::Text("%d of %d samples a pixel", frame->samples, state.editor.scene().render.reference.spp);
         ImGui::Text("%.0f ms since the edit", frame->seconds_to_image * 1000.0);
         ImGui::TextUnformatted("the edit re-ran:");
-        for (const StageReport& s : frame->edit_stages) ImGui::BulletText("%-18s %7.1f ms", s.name.c_str(), s.seconds * 1000.0);
+        for (const StageReport& s : frame->edit_stages)
+            if (s.cached) ImGui::BulletText("%-18s from the frame cache", s.name.c_str());
+            else ImGui::BulletText("%-18s %7.1f ms", s.name.c_str(), s.seconds * 1000.0);
         if (const auto& u = frame->light_update) {
             const char* mode = u->mode == LightUpdate::Mode::Selective ? "selective" : u->mode == LightUpdate::Mode::Entire ? "entire" : "kept";
             ImGui::Text("light update: %s, -%d +%d of %d lights", mode, u->lights_out, u->lights_in, u->lights);
         }
+        if (state.frame)
+            ImGui::Text("frame cache: %zu grids and brick sets, %.0f of %.0f MB", frame->cache_outputs,
+                        frame->cache_bytes / 1048576.0, state.frame_cache_bytes / 1048576.0);
         for (const auto& w : frame->warnings) ImGui::TextWrapped("warning: %s", w.c_str());
     } else {
         ImGui::TextUnformatted("rendering the first image...");

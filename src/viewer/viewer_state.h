@@ -32,6 +32,7 @@ struct ViewerState {
     std::optional<int> frame;                      // the frame of a #### sequence shown
     int first_frame = 0, last_frame = 0;
     bool playing = false;
+    size_t frame_cache_bytes = 0;                  // the budget of the frame cache (--frame-cache)
 
     std::string aov = "beauty";
     int selected_light = 0;

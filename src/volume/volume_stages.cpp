@@ -31,8 +31,16 @@ StageActivity LoadStage::activity(const Scene& s) const {
 }
 
 void LoadStage::run(StageRun& run) {
-    volume_ = given_ ? *given_ : loadVolume(run.document["input"]["file"]["path"], run.scene.volume, run.scene.emission);
+    volume_ = std::make_shared<const LoadedVolume>(
+        given_ ? *given_ : loadVolume(run.document["input"]["file"]["path"], run.scene.volume, run.scene.emission));
     run.warnings = volume_->warnings;
+}
+
+size_t LoadStage::outputBytes() const {
+    if (!volume_) return 0;
+    size_t bytes = volume_->density->memUsage() + (volume_->color ? volume_->color->memUsage() : 0);
+    for (const auto& grid : volume_->emission) bytes += grid->memUsage();
+    return bytes;
 }
 
 StageActivity BrickStage::activity(const Scene&) const {
@@ -40,7 +48,7 @@ StageActivity BrickStage::activity(const Scene&) const {
 }
 
 void BrickStage::run(StageRun& run) {
-    atlas_ = buildBrickAtlas(load_.volume());
+    atlas_ = std::make_shared<const BrickAtlas>(buildBrickAtlas(load_.volume()));
     run.warnings = sanitizeReport(*atlas_, load_.volume());
 }
 

@@ -2,8 +2,10 @@
 // grids), brick (the atlas of 8^3 bricks with aprons), classify (the page table of the bricks the
 // material makes visible) and camera (the scene's, or one framing the active voxels).
 // Cost: load and brick follow the active voxels, never the bounding box; classify is one pass
-// over the bricks' value ranges; camera one bounding-box query of the density tree.
+// over the bricks' value ranges; camera one bounding-box query of the density tree. Load and
+// brick share their outputs with the graph's output cache (a viewer's frames within a budget).
 #pragma once
+#include <memory>
 #include <optional>
 
 #include "volume/brick_atlas.h"
@@ -23,12 +25,15 @@ public:
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     void stale() override { volume_.reset(); }
+    std::shared_ptr<const void> sharedOutput() const override { return volume_; }
+    size_t outputBytes() const override;
+    void adoptOutput(std::shared_ptr<const void> kept) override { volume_ = std::static_pointer_cast<const LoadedVolume>(kept); }
     bool given() const { return given_.has_value(); }
     const LoadedVolume& volume() const { return *volume_; }
 
 private:
     std::optional<LoadedVolume> given_;
-    std::optional<LoadedVolume> volume_;
+    std::shared_ptr<const LoadedVolume> volume_;
 };
 
 class BrickStage final : public Stage {
@@ -39,11 +44,14 @@ public:
     StageActivity activity(const Scene&) const override;
     void run(StageRun& run) override;
     void stale() override { atlas_.reset(); }
+    std::shared_ptr<const void> sharedOutput() const override { return atlas_; }
+    size_t outputBytes() const override { return atlas_ ? atlas_->bytes() : 0; }
+    void adoptOutput(std::shared_ptr<const void> kept) override { atlas_ = std::static_pointer_cast<const BrickAtlas>(kept); }
     const BrickAtlas& atlas() const { return *atlas_; }
 
 private:
     const LoadStage& load_;
-    std::optional<BrickAtlas> atlas_;
+    std::shared_ptr<const BrickAtlas> atlas_;
 };
 
 class ClassifyStage final : public Stage {

@@ -33,8 +33,11 @@ public:
         if (!warning.empty()) run.warnings.push_back(warning);
     }
     void release() override { output.clear(); }
+    std::shared_ptr<const void> sharedOutput() const override { return shares ? std::make_shared<const std::string>(output) : nullptr; }
+    size_t outputBytes() const override { return output.size(); }
+    void adoptOutput(std::shared_ptr<const void> kept) override { output = *std::static_pointer_cast<const std::string>(kept); }
 
-    bool active = true, fail = false;
+    bool active = true, fail = false, shares = false;
     int runs = 0;
     std::string output, warning;
 
@@ -221,6 +224,70 @@ TEST(RenderGraph, FramesThatMoveOrFailLeaveNothingStale) {
             << stage;
     EXPECT_GT(maxDifference(two.image, one), 0.0f);
     EXPECT_EQ(maxDifference(two.image, Renderer(scene).render(2, false).image), 0.0f);
+}
+
+// A stage that shares its output gets it back from the cache when its key returns, with its
+// warnings, as long as the budget holds it; the least recently used goes first.
+TEST(RenderGraph, SharedOutputsComeBackFromTheCacheWithinItsBudget) {
+    ToyStage load("load", {{"/frame"}, {}}), march("march", {{"/camera"}, {"load"}});
+    load.shares = true;
+    RenderGraph graph({&load, &march});
+    const nlohmann::json one = {{"frame", 1}, {"camera", 0}}, two = {{"frame", 2}, {"camera", 0}}, three = {{"frame", 3}, {"camera", 0}};
+    const size_t bytes = one.dump().size();   // every frame's output has this size
+    graph.setCacheBudget(2 * bytes);
+    load.warning = "frame 1 has NaN voxels";
+    runToy(graph, one, {"march"});
+    load.warning.clear();
+    runToy(graph, two, {"march"});
+    EXPECT_EQ(load.runs, 2);
+
+    ToyRun back = runToy(graph, one, {"march"});
+    EXPECT_EQ(back.status("load"), "reused");
+    EXPECT_TRUE(back.reports[0].cached);
+    EXPECT_EQ(load.runs, 2);
+    EXPECT_EQ(load.output, one.dump());
+    EXPECT_EQ(back.warnings, std::vector<std::string>{"frame 1 has NaN voxels"});
+    EXPECT_EQ(back.status("march"), "ran");   // its key reads load's, which changed
+    EXPECT_EQ(graph.cache().entries(), 2u);
+    EXPECT_EQ(graph.cache().bytes(), 2 * bytes);
+
+    runToy(graph, three, {"march"});   // keeps frame 1 (just used) and drops frame 2
+    EXPECT_EQ(load.runs, 3);
+    EXPECT_EQ(runToy(graph, one, {"march"}).status("load"), "reused");
+    EXPECT_EQ(runToy(graph, two, {"march"}).status("load"), "ran");
+    EXPECT_EQ(load.runs, 4);
+
+    graph.setCacheBudget(0);   // the default: nothing kept
+    EXPECT_EQ(graph.cache().entries(), 0u);
+    EXPECT_EQ(runToy(graph, one, {"march"}).status("load"), "ran");
+    EXPECT_FALSE(runToy(graph, one, {"march"}).reports[0].cached);
+}
+
+// Coming back to a frame of a sequence with a cache budget takes its grids and bricks from the
+// cache: load and brick do not run, and the image is the first render's, bit for bit.
+TEST(RenderGraph, AFrameSeenBeforeReadsNothing) {
+    const std::string dir = tempDir("cached_frames");
+    openvdb::io::File(dir + "/box_0001.vdb").write({boxGrid({0, 0, 0}, {23, 15, 15}, 2.0f, 0.1)});
+    openvdb::io::File(dir + "/box_0002.vdb").write({boxGrid({8, 0, 0}, {31, 15, 15}, 2.0f, 0.1)});
+    Scene scene = parseScene(R"({"volume": {"path": "box_####.vdb", "frames": [1, 2]},
+        "lights": [{"type": "directional", "direction": [-1, -1, 0], "intensity": 2}],
+        "camera": {"position": [1.5, 1, 6], "look_at": [1.5, 0.8, 0.8], "fov": 35},
+        "render": {"resolution": [40, 30], "backend": "cpu"}, "effects": {"shadows": "propagation", "light_resolution": 16}})",
+                             "cached.json", dir);
+    Renderer renderer(scene);
+    renderer.setCacheBudget(size_t(64) << 20);
+    const RenderImage one = renderer.render(1, false).image;
+    renderer.render(2, false);
+    const FrameResult back = renderer.render(1, false);
+    std::vector<std::string> ran, cached;
+    for (const StageReport& s : back.stages) {
+        if (s.status == StageStatus::Ran) ran.push_back(s.name);
+        if (s.cached) cached.push_back(s.name);
+    }
+    EXPECT_EQ(cached, (std::vector<std::string>{"load", "brick"}));
+    EXPECT_EQ(ran, (std::vector<std::string>{"classify", "empty_check", "camera", "illumination_grid", "propagation", "march"}));
+    EXPECT_EQ(maxDifference(back.image, one), 0.0f);
+    EXPECT_EQ(renderer.graph().cache().entries(), 4u);   // both frames' grids and bricks
 }
 
 // A light-edit replay prepares the lighting allowing empty frames, then writes the last frame

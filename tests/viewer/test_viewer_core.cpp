@@ -288,6 +288,31 @@ TEST(ProgressiveRender, WhenTheLastGoodSceneFailsTooTheFailureStands) {
     EXPECT_TRUE(view.settled());
 }
 
+// Scrubbing back to a frame takes its grids and bricks from the frame cache, and the viewer says so.
+TEST(ProgressiveRender, ScrubbingBackToAFrameTakesItsBricksFromTheCache) {
+    const std::string dir = tempDir("viewer-frames");
+    for (int f : {1, 2}) std::filesystem::copy_file(smallCloud().volume.path, dir + "/cloud_000" + std::to_string(f) + ".vdb",
+                                                    std::filesystem::copy_options::overwrite_existing);
+    Scene scene = smallCloud();
+    scene.volume.path = dir + "/cloud_####.vdb";
+    scene.volume.frames = std::array<int, 2>{1, 2};
+    ProgressiveRender view(scene, 1, size_t(256) << 20);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    const std::vector<glm::vec4> first = view.latest()->display;
+    view.submit(scene, 2);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    view.submit(scene, 1);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    const auto shown = view.latest();
+    std::vector<std::string> cached;
+    for (const StageReport& s : shown->edit_stages)
+        if (s.cached) cached.push_back(s.name);
+    EXPECT_EQ(cached, (std::vector<std::string>{"load", "brick"}));
+    EXPECT_EQ(shown->cache_outputs, 4u);
+    EXPECT_GT(shown->cache_bytes, 0u);
+    EXPECT_EQ(shown->display, first);
+}
+
 TEST(ProgressiveRender, DraggingOneOfSeveralLightsIsSelectiveUpdates) {
     Scene scene = smallCloud();
     scene.effects.indirect.reset();
