@@ -9,8 +9,8 @@
 
 namespace voxlux {
 
-std::vector<glm::vec4> AovDisplay::show(const ViewFrame& frame, const std::string& aov, const ColorSettings& color) {
-    if (aov == "beauty") return frame.display;
+const std::vector<uint8_t>& AovDisplay::texels(const ViewFrame& frame, const std::string& aov, const ColorSettings& color) {
+    if (aov == "beauty") return frame.display_texels;
     const std::vector<kernel::VxPixel>& px = frame.image.pixels;
     std::vector<glm::vec4> out(px.size());
     if (aov == "transmittance" || aov == "depth") {
@@ -22,7 +22,7 @@ std::vector<glm::vec4> AovDisplay::show(const ViewFrame& frame, const std::strin
             const float v = aov == "depth" ? (top > 0.0f ? px[i].depth / top : 0.0f) : px[i].transmittance;
             out[i] = glm::vec4(glm::vec3(v), 1.0f);
         }
-        return out;
+        return texels_ = opaqueTexels(out);
     }
     for (size_t i = 0; i < px.size(); ++i) {
         const glm::vec3 c = aov == "direct" ? px[i].direct : aov == "indirect" ? px[i].indirect : aov == "ambient" ? px[i].ambient : px[i].emission;
@@ -36,7 +36,7 @@ std::vector<glm::vec4> AovDisplay::show(const ViewFrame& frame, const std::strin
         pipeline_key_ = key;
     }
     makeColorTransformer(Device::Cpu)->transformColors(pipeline_.preview, out, false);
-    return out;
+    return texels_ = opaqueTexels(out);
 }
 
 }  // namespace voxlux

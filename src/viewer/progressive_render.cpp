@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 
 #include <tbb/task_scheduler_observer.h>
@@ -31,6 +32,18 @@ public:
 };
 
 }  // namespace
+
+std::vector<uint8_t> opaqueTexels(const std::vector<glm::vec4>& display) {
+    std::vector<uint8_t> texels(display.size() * 4);
+    for (size_t i = 0; i < display.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {   // + 0.5 in double (exact) and truncation: lround's result, without its call
+            const float v = display[i][c];
+            texels[i * 4 + c] = uint8_t(double((std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f) * 255.0f) + 0.5);
+        }
+        texels[i * 4 + 3] = 255;
+    }
+    return texels;
+}
 
 glm::ivec2 levelResolution(glm::ivec2 full, int divisor) {
     return glm::max(glm::ivec2(1), (full + glm::ivec2(divisor - 1)) / divisor);
@@ -227,6 +240,7 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
         out->camera = r.camera;
         out->image = std::move(r.image);
         out->display = std::move(r.preview);
+        out->display_texels = opaqueTexels(out->display);
         out->warnings = std::move(r.warnings);
         if (k == 0)
             for (const StageReport& s : r.stages)

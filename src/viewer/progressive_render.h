@@ -56,6 +56,9 @@ struct ViewFrame {
     Camera camera;                           // as rendered (the scene's, or the framing's)
     RenderImage image;                       // scene-linear, graded into the output space
     std::vector<glm::vec4> display;          // display-referred RGBA through the scene's view
+    std::vector<uint8_t> display_texels;     // the same as the viewport's texture (opaqueTexels), made
+                                             // by the worker: at 1280x720 the conversion would hold
+                                             // the UI thread for a frame or two
     std::vector<StageReport> edit_stages;    // what the edit re-ran (its lighting update and first march)
                                              // and took back from the frame cache
     std::optional<LightUpdate> light_update; // the propagation stage's update for the edit, if it ran
@@ -63,6 +66,11 @@ struct ViewFrame {
     size_t cache_bytes = 0, cache_outputs = 0;   // held by the frame cache after the edit's lighting
     std::vector<std::string> warnings;
 };
+
+// Display-referred RGBA as 8-bit RGBA texels: clamped to [0, 1] and rounded as the PNG preview is
+// (non-finite values black), alpha opaque, since the viewport draws the preview over black as the
+// PNG does.
+std::vector<uint8_t> opaqueTexels(const std::vector<glm::vec4>& display);
 
 // What the worker did since it started: counts a test or benchmark reads.
 struct ViewStatistics {

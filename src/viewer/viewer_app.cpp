@@ -392,6 +392,12 @@ int runViewer(const Scene& scene, const ViewerOptions& options) {
     if (options.bench) script = benchActions(scene);
     const char* display = std::getenv("DISPLAY");
     if (!display || !*display) throw InputError("voxlux view: no display (DISPLAY is not set); run it on a desktop, or under xvfb-run for scripts");
+    // Mesa's llvmpipe (GL without a GPU) rasterizes the window on a thread per core at the UI's
+    // priority, which pre-empts the render's threads (nice 10). Drawn by the UI thread alone, the
+    // bench's first and converged images came 1.2-1.9x sooner (docs/viewer.md). A GL march on
+    // llvmpipe would lose its threads too, so not when the scene asks for GL (auto takes GL only
+    // on a GPU), and a value the user set stands.
+    if (scene.render.backend != Backend::Gl) setenv("LP_NUM_THREADS", "0", 0);
     glfwSetErrorCallback(onGlfwError);
     if (!glfwInit()) throw InputError("voxlux view: cannot open the display " + std::string(display) + " (" + glfwProblem + ")");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);

@@ -52,14 +52,7 @@ Viewport::~Viewport() = default;
 
 void Viewport::upload(const ViewerState& state, Texture& t, const ViewFrame& frame) {
     if (t.frame == &frame && t.aov == state.aov) return;
-    const std::vector<glm::vec4> rgba = aov_display_.show(frame, state.aov, state.editor.scene().color);
-    // Display-referred values to 8 bits, opaque: the preview composites over black as the PNG does.
-    std::vector<uint8_t> bytes(rgba.size() * 4);
-    for (size_t i = 0; i < rgba.size(); ++i)
-        for (int c = 0; c < 4; ++c) {
-            const float v = c == 3 ? 1.0f : rgba[i][c];
-            bytes[i * 4 + c] = uint8_t(std::lround(std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) * 255.0f));
-        }
+    const std::vector<uint8_t>& texels = aov_display_.texels(frame, state.aov, state.editor.scene().color);
     if (!t.id) glGenTextures(1, &t.id);
     glBindTexture(GL_TEXTURE_2D, t.id);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -67,7 +60,10 @@ void Viewport::upload(const ViewerState& state, Texture& t, const ViewFrame& fra
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame.image.width, frame.image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    if (t.size == glm::ivec2(frame.image.width, frame.image.height))   // the same level again: no new storage
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, frame.image.width, frame.image.height, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+    else
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame.image.width, frame.image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
     t.size = {frame.image.width, frame.image.height};
     t.frame = &frame;
     t.aov = state.aov;

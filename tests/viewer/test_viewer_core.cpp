@@ -155,6 +155,25 @@ void expectSameImage(const ViewFrame& shown, const FrameResult& rendered, float 
     }
 }
 
+// The viewport's texels round as the PNG preview does (std::lround of the clamped value), over
+// every 8-bit step and its edges, and show non-finite values black.
+TEST(ProgressiveRender, TexelsRoundAsThePngPreview) {
+    std::vector<glm::vec4> display;
+    for (int k = -2; k <= 257 * 8; ++k) {
+        const float v = k / (255.0f * 8.0f);
+        display.push_back(glm::vec4(v, std::nextafter(v, 2.0f), std::nextafter(v, -1.0f), 0.0f));
+    }
+    display.push_back(glm::vec4(NAN, INFINITY, -INFINITY, NAN));
+    const std::vector<uint8_t> texels = opaqueTexels(display);
+    ASSERT_EQ(texels.size(), display.size() * 4);
+    for (size_t i = 0; i + 1 < display.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            ASSERT_EQ(int(texels[i * 4 + c]), int(std::lround(std::clamp(display[i][c], 0.0f, 1.0f) * 255.0f))) << display[i][c];
+    EXPECT_EQ(int(texels[3]), 255);
+    const size_t last = (display.size() - 1) * 4;
+    EXPECT_EQ(std::vector<uint8_t>(texels.begin() + last, texels.end()), (std::vector<uint8_t>{0, 0, 0, 255}));
+}
+
 TEST(ProgressiveRender, TheConvergedImageIsTheRenderersAfterCoarserLevels) {
     const Scene scene = smallCloud();
     ProgressiveRender view(scene, std::nullopt);
