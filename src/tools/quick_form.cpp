@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "core/frame_pattern.h"
+#include "core/quantile.h"
 #include "optics/emission.h"
 #include "scene/camera.h"
 #include "volume/vdb_loader.h"
@@ -37,13 +38,6 @@ std::vector<double> columnSums(const openvdb::FloatGrid& grid, int axis, F f) {
     sums.reserve(columns.size());
     for (const auto& [k, s] : columns) sums.push_back(s);
     return sums;
-}
-
-double quantile(std::vector<double> values, double q) {
-    if (values.empty()) return 0.0;
-    const size_t k = std::min(values.size() - 1, size_t(q * double(values.size())));
-    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(k), values.end());
-    return values[k];
 }
 
 // The index axis closest to the world direction the default camera looks from.

@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/frame_pattern.h"
 #include "core/json_reader.h"
+#include "core/quantile.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
 #include "render/renderer.h"
@@ -107,11 +108,6 @@ std::vector<ViewAction> benchActions(const Scene& scene) {
 struct BenchCase {
     std::vector<double> first, converged, slowest_frame;
 };
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 class ViewerApp {
 public:
@@ -269,7 +265,7 @@ bool ViewerApp::runAction(const ViewAction& a) {
         for (const auto& name : bench_order_) {
             const BenchCase& c = bench_[name];
             const double slowest = *std::max_element(c.slowest_frame.begin(), c.slowest_frame.end());
-            std::printf("%-16s %11.1f ms %11.1f ms %12.0f  ", name.c_str(), median(c.first) * 1000.0, median(c.converged) * 1000.0,
+            std::printf("%-16s %11.1f ms %11.1f ms %12.0f  ", name.c_str(), quantile(c.first, 0.5) * 1000.0, quantile(c.converged, 0.5) * 1000.0,
                         slowest > 0.0 ? 1.0 / slowest : 0.0);
             for (size_t k = 0; k < c.first.size(); ++k) std::printf(" %.0f/%.0f", c.first[k] * 1000.0, c.converged[k] * 1000.0);
             std::printf("\n");
