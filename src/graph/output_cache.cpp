@@ -10,7 +10,7 @@ void OutputCache::setBudget(size_t bytes) {
 }
 
 void OutputCache::keep(const std::string& stage, const std::string& key, CachedOutput output) {
-    if (output.bytes > budget_ || !output.value) return;
+    if (budget_ == 0 || output.bytes > budget_ || !output.value) return;
     Entry& e = entries_[{stage, key}];
     bytes_ -= e.output.bytes;
     bytes_ += output.bytes;

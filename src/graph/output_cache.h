@@ -28,7 +28,8 @@ public:
     size_t entries() const { return entries_.size(); }
 
     // Keeps `output` of `stage` under `key`, then drops the least recently used outputs until the
-    // cache fits its budget (an output larger than the budget is not kept).
+    // cache fits its budget (an output larger than the budget, or any with a budget of 0, is not
+    // kept).
     void keep(const std::string& stage, const std::string& key, CachedOutput output);
     // The output of `stage` kept under `key`, now the most recently used, or null.
     const CachedOutput* find(const std::string& stage, const std::string& key);

@@ -153,8 +153,10 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
     for (Stage* s : stages) {
         const std::string& key = keys.at(s->name());
         if (!key.empty() && (!last_keys_.count(s->name()) || last_keys_[s->name()] != key)) {
-            if (last_keys_.count(s->name()))
+            if (last_keys_.count(s->name())) {
+                cache_.find(s->name(), key);   // made the newest first, so keeping the old output cannot drop it
                 cache_.keep(s->name(), last_keys_[s->name()], {s->sharedOutput(), s->outputBytes(), s->output_warnings_});
+            }
             last_keys_.erase(s->name());   // its output is gone: it runs, even if this frame fails and the key comes back
             s->stale();
         }

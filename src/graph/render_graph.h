@@ -64,7 +64,8 @@ public:
     // the stage is then skipped and released, as if the scene did not need it.
     virtual bool idle() const { return false; }
     // Called before any stage of a frame runs, when this stage's key changed: a stage that rebuilds
-    // its output whole may drop it here, so the old and new outputs never coexist.
+    // its output whole may drop it here, so the old and new outputs never coexist (unless the
+    // output cache keeps the old one, within its budget).
     virtual void stale() {}
     // A stage whose output is dear to remake and worth keeping past its key (a frame's grids and
     // bricks, which a viewer scrubbing a sequence comes back to) shares it with the graph's output
