@@ -182,6 +182,7 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
     const FrameResult prepared = renderer.prepare(frame, true);
     ViewFrame base;
     base.edit = edit;
+    base.frame = frame;
     base.levels = int(levels.size());
     base.light_update = prepared.light_update;
     for (const StageReport& s : prepared.stages)

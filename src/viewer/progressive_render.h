@@ -53,6 +53,7 @@ struct ViewFrame {
     int levels = 1;
     bool converged = false;                  // the last level of the edit
     int samples = 0;                         // reference samples a pixel (0 for the march)
+    std::optional<int> frame;                // the sequence frame rendered
     Camera camera;                           // as rendered (the scene's, or the framing's)
     RenderImage image;                       // scene-linear, graded into the output space
     std::vector<glm::vec4> display;          // display-referred RGBA through the scene's view

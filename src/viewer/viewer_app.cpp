@@ -208,8 +208,7 @@ bool ViewerApp::runAction(const ViewAction& a) {
     if (a.kind == "frame") check(state_.editor.setCamera(frameAlong(state_.camera(), state_.bounds_lo, state_.bounds_hi)));
     if (a.kind == "frame_number") {
         if (!state_.frame) throw InputError(a.where + ": the scene is not a sequence");
-        state_.frame = std::clamp(v.get<int>(), state_.first_frame, state_.last_frame);
-        state_.submitted_version = ~uint64_t(0);
+        state_.showFrame(v.get<int>());
     }
     if (a.kind == "aov") {
         if (std::find(kViewAovs.begin(), kViewAovs.end(), v.get<std::string>()) == kViewAovs.end())
@@ -242,6 +241,7 @@ bool ViewerApp::runAction(const ViewAction& a) {
             if (const auto f = state_.render->latest()) {
                 for (const StageReport& s : f->edit_stages) out[s.cached ? "cached_stages" : "edit_stages"].push_back(s.name);
                 out["frame_cache"] = {{"outputs", f->cache_outputs}, {"bytes", f->cache_bytes}, {"budget", state_.frame_cache_bytes}};
+                if (f->frame) out["shown_frame"] = *f->frame;
             }
         } else {
             for (const auto& [name, r] : state_.widgets) out["widgets"][name] = {r.x, r.y, r.z, r.w};
@@ -359,8 +359,7 @@ int ViewerApp::run(GLFWwindow* window) {
         state_.ui_fps = state_.ui_fps == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * state_.ui_fps + 0.1 / std::max(dt, 1e-6);
         state_.slowest_ui_frame = std::max(state_.slowest_ui_frame, dt);
         if (state_.playing && state_.render->settled() && std::chrono::duration<double>(now - last_step).count() > 1.0 / 24.0) {
-            state_.frame = *state_.frame >= state_.last_frame ? state_.first_frame : *state_.frame + 1;
-            state_.submitted_version = ~uint64_t(0);
+            state_.showFrame(*state_.frame >= state_.last_frame ? state_.first_frame : *state_.frame + 1);
             last_step = now;
         }
         syncRender();

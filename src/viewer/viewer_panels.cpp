@@ -279,7 +279,8 @@ void drawTimeline(ViewerState& state, float x, float y, float width) {
     ImGui::SameLine();
     int f = *state.frame;
     ImGui::SetNextItemWidth(-1);
-    if (ImGui::SliderInt("##frame", &f, state.first_frame, state.last_frame, "frame %d")) state.frame = f;
+    if (ImGui::SliderInt("##frame", &f, state.first_frame, state.last_frame, "frame %d")) state.showFrame(f);
+    remember(state, "timeline/frame");
     ImGui::End();
 }
 

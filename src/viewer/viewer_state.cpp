@@ -1,8 +1,15 @@
 #include "viewer/viewer_state.h"
 
+#include <algorithm>
+
 #include "viewer/orbit_camera.h"
 
 namespace voxlux {
+
+void ViewerState::showFrame(int f) {
+    frame = std::clamp(f, first_frame, last_frame);
+    submitted_version = ~uint64_t(0);   // the frame is not part of the scene: submit again
+}
 
 Camera ViewerState::camera() const {
     const glm::vec3 pivot = 0.5f * (bounds_lo + bounds_hi);

@@ -46,6 +46,8 @@ struct ViewerState {
     double ui_fps = 0.0;               // smoothed frame rate of the UI loop
     double slowest_ui_frame = 0.0;     // seconds, since the last reset (benchmarks)
 
+    // Shows frame `f` of the sequence (clamped to its range): the render is asked for it.
+    void showFrame(int f);
     // The scene's camera, or the framing the render chose when it has none yet.
     Camera camera() const;
     void showError(const std::string& line) { message = line, message_is_error = true; }

@@ -178,5 +178,39 @@ TEST(ViewerWindow, RealXEventsOrbitTheCameraAndUncheckALight) {
     EXPECT_NEAR(glm::length(now - look), glm::length(start - look), 1e-3f);
 }
 
+// A click at the right end of the timeline's slider shows the last frame: the render is asked for
+// it (the frame is the viewer's, not a scene key, so it must submit on its own).
+TEST(ViewerWindow, AClickOnTheTimelineRendersThatFrame) {
+    const std::string dir = tempDir("viewer-timeline");
+    for (const char* f : {"layout.json", "go.flag", "stats.json"}) std::filesystem::remove(dir + "/" + f);
+    for (int f = 1; f <= 3; ++f)
+        openvdb::io::File(dir + "/box_000" + std::to_string(f) + ".vdb").write({boxGrid({0, 0, 0}, {8 * f, 15, 15}, 2.0f, 0.1)});
+    std::ofstream(dir + "/boxes.json") << R"({"volume": {"path": "box_####.vdb", "frames": [1, 3]},
+        "lights": [{"type": "directional", "direction": [-1, -1, 0], "intensity": 2}],
+        "render": {"resolution": [160, 100], "backend": "cpu"}})";
+    const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}},
+                                                           {{"wait_file", dir + "/go.flag"}, {"timeout", 120}},
+                                                           {{"wait", "converged"}}, {{"stats", dir + "/stats.json"}}, {{"quit", true}}});
+    std::string shell = R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+        at=$(python3 -c "import json; r = json.load(open('DIR/layout.json'))['widgets']['timeline/frame']; print(int(r[2]) - 3, int((r[1]+r[3])/2))")
+        set -- $at
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool click 1; sleep 0.3
+        touch DIR/go.flag; wait $pid)sh";
+    const auto replace = [&shell](const std::string& from, const std::string& to) {
+        for (size_t at = shell.find(from); at != std::string::npos; at = shell.find(from, at + to.size())) shell.replace(at, from.size(), to);
+    };
+    replace("DIR", dir);
+    replace("VIEWER", std::string(VOXLUX_BINARY) + " view " + dir + "/boxes.json");
+    replace("SCRIPT", script);
+    std::ofstream(dir + "/events.sh") << shell << "\n";
+    const CliResult r = runShell(kXvfb + "bash " + dir + "/events.sh");
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const nlohmann::json stats = readJson(dir + "/stats.json");
+    EXPECT_EQ(stats["shown_frame"], 3);
+    EXPECT_EQ(stats["submitted"], 2);
+    EXPECT_EQ(stats["message"], "");
+}
+
 }  // namespace
 }  // namespace voxlux::test
