@@ -20,15 +20,10 @@ PngWriteReport writePng(const std::string& path, int width, int height, const st
     std::vector<png_byte> bytes(rgba.size() * channels);
     for (size_t i = 0; i < rgba.size(); ++i)
         for (int k = 0; k < channels; ++k) {
-            float v = rgba[i][k];
-            if (!std::isfinite(v)) {
-                v = 0.0f;
-                ++report.non_finite;
-            } else if (v < 0.0f || v > 1.0f) {
-                v = std::clamp(v, 0.0f, 1.0f);
-                ++report.clipped;
-            }
-            bytes[i * channels + k] = png_byte(std::lround(v * 255.0f));
+            const float v = rgba[i][k];
+            if (!std::isfinite(v)) ++report.non_finite;
+            else if (v < 0.0f || v > 1.0f) ++report.clipped;
+            bytes[i * channels + k] = displayByte(v);
         }
 
     // libpng's simplified API: errors come back as a message instead of a longjmp, and it tags

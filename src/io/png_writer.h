@@ -1,6 +1,9 @@
 // Preview stage output: display-referred RGB(A) as an 8-bit sRGB PNG, for review tools and web
 // pages that have no OpenEXR or OpenColorIO.
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,6 +15,12 @@ struct PngWriteReport {
     size_t non_finite = 0;  // samples that were NaN/Inf and written as 0
     size_t clipped = 0;     // finite samples outside [0, 1], clamped
 };
+
+// One display-referred channel as the PNG stores it: clamped to [0, 1] and rounded (as std::lround;
+// adding 0.5 in double is exact), a non-finite value 0. The viewer's texture uses it too.
+inline uint8_t displayByte(float v) {
+    return uint8_t(double((std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f) * 255.0f) + 0.5);
+}
 
 // Writes display-referred RGB (already encoded for the display, e.g. by an OCIO view) as an 8-bit
 // sRGB-tagged PNG via a temporary file renamed into place (writeAtomically from exr_writer.h).

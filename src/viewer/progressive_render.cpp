@@ -5,12 +5,12 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <exception>
 
 #include <tbb/task_scheduler_observer.h>
 
 #include "core/error.h"
+#include "io/png_writer.h"
 
 namespace voxlux {
 
@@ -36,10 +36,7 @@ public:
 std::vector<uint8_t> opaqueTexels(const std::vector<glm::vec4>& display) {
     std::vector<uint8_t> texels(display.size() * 4);
     for (size_t i = 0; i < display.size(); ++i) {
-        for (int c = 0; c < 3; ++c) {   // + 0.5 in double (exact) and truncation: lround's result, without its call
-            const float v = display[i][c];
-            texels[i * 4 + c] = uint8_t(double((std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f) * 255.0f) + 0.5);
-        }
+        for (int c = 0; c < 3; ++c) texels[i * 4 + c] = displayByte(display[i][c]);
         texels[i * 4 + 3] = 255;
     }
     return texels;

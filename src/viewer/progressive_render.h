@@ -68,8 +68,8 @@ struct ViewFrame {
     std::vector<std::string> warnings;
 };
 
-// Display-referred RGBA as 8-bit RGBA texels: clamped to [0, 1] and rounded as the PNG preview is
-// (non-finite values black), alpha opaque, since the viewport draws the preview over black as the
+// Display-referred RGBA as 8-bit RGBA texels, each channel as the PNG preview stores it
+// (displayByte), alpha opaque, since the viewport draws the preview over black as the
 // PNG does.
 std::vector<uint8_t> opaqueTexels(const std::vector<glm::vec4>& display);
 
