@@ -75,24 +75,21 @@ struct VxParams {
     int chroma_factor;      // indirect block's subsampling (1 or 2)
     ivec3 chroma_dims;      // indirect-light cells
     int indirect_offset;    // first float of the indirect block
-    vec3 transport;         // transport colour
     float indirect_weight;  // indirect strength / 4 pi (0 = no indirect light)
-
     float surface_low;      // Kniss Eq. 11: gradient where surface shading starts
     float surface_inv_range;  // 1 / (gradient where it is full - surface_low) (0 = off)
     float specular;         // specular weight
-    float shininess;
 
-    vec3 noise_offset;      // perturbation: world offset of the noise (animation)
-    float displacement;     // displacement in index voxels
+    float shininess;
+    float displacement;     // perturbation: displacement in index voxels
     float noise_frequency;  // first-octave noise texels per world unit
     int noise_octaves;      // 0 = no perturbation
+    vec3 noise_offset;      // world offset of the noise (animation)
     float lacunarity;
     float gain;
     float noise_density;    // extinction amplitude
     float noise_transport;  // transport-colour amplitude
     int voxel_filter;       // VX_FILTER_* (filter is a GLSL reserved word)
-    int pad0;
 };
 
 // The light passes' parameters (Schlegel 2011): the extinction SAT over the light grid and the

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "scene/camera.h"
+#include "optics/diffusion_profile.h"
 #include "optics/noise_table.h"
 #include "optics/transfer_function.h"
 
@@ -118,8 +119,11 @@ void setLighting(const Scene& scene, const MarchSources& sources, KernelInputs& 
         P.indirect_offset = int(v->indirectOffset());
     }
     if (const auto& ind = scene.effects.indirect; ind && scene.effects.shadows == ShadowMethod::Propagation) {
-        P.transport = ind->transport_color;
         P.indirect_weight = ind->strength / (4.0f * float(M_PI));
+        // The march scatters the sky's radiance unoccluded; a multiply scattering medium keeps only
+        // this share of it at its surface. The reference traces the sky itself.
+        if (ind->model == IndirectModel::Diffusion && scene.render.method == RenderMethod::March)
+            P.ambient *= diffuseSkyFactor(scene.material.albedo, scene.material.anisotropy);
     }
 }
 

@@ -28,7 +28,6 @@ VX_LINE_ALIGNED(VxParams, emission_domain);
 VX_LINE_ALIGNED(VxParams, cache_dims);
 VX_LINE_ALIGNED(VxParams, illum_dims);
 VX_LINE_ALIGNED(VxParams, chroma_dims);
-VX_LINE_ALIGNED(VxParams, transport);
 VX_LINE_ALIGNED(VxParams, noise_offset);
 static_assert(VX_MAX_EMISSION == 4, "VxParams::emission_domain holds one source per vec4 component");
 static_assert(sizeof(VxSatParams) % 16 == 0);

@@ -129,19 +129,24 @@ struct Propagation {
                                            // 2015); false: one pass per light. Same result, for timing
 };
 
-// Kniss 2003 indirect light: forward-scattered light blurred within a cone as it propagates and
-// attenuated by the transport colour. Needs shadows "propagation".
+// Indirect (multiply scattered) light, swept through the illumination volume, blurred within a cone
+// as it propagates (Kniss 2003 Eq. 9). Needs shadows "propagation". How deep it reaches and how
+// bright it is come from the model: "diffusion" derives both from the material's albedo and
+// anisotropy (src/optics/diffusion_profile.h), and scales the sky's light as diffusion theory does;
+// "kniss" is Kniss 2003 Eq. 8: an artist's transport colour.
 enum class BlurPhase { Phong, HenyeyGreenstein };
+enum class IndirectModel { Diffusion, Kniss };
 
 struct Indirect {
+    IndirectModel model = IndirectModel::Diffusion;
     float strength = 1.0f;                 // scale of the indirect term in Kniss Eq. 12
     float angle = 30.0f;                   // blur cone apex angle, degrees (Kniss theta)
     int samples = 9;                       // blur taps per cell
     BlurPhase phase = BlurPhase::Phong;    // tap weights: Phong lobe cos^exponent, or Henyey-Greenstein g
     float exponent = 4.0f;
     float g = 0.5f;
-    glm::vec3 transport_color{0.6f};       // share of indirect light kept per unit optical depth (direct keeps
-                                           // e^-1 = 0.37: indirect light reaches deeper)
+    glm::vec3 transport_color{0.6f};       // kniss: share of indirect light kept per unit optical depth
+                                           // (direct keeps e^-1 = 0.37: indirect light reaches deeper)
 };
 
 // Kniss 2003 Eq. 11: Blinn-Phong surface shading blended in where the density gradient is steep.

@@ -221,8 +221,13 @@ Propagation readPropagation(const JsonObject& o) {
 }
 
 Indirect readIndirect(const JsonObject& o) {
-    o.rejectUnknown({"strength", "angle", "samples", "phase", "exponent", "g", "transport_color"});
+    o.rejectUnknown({"model", "strength", "angle", "samples", "phase", "exponent", "g", "transport_color"});
     Indirect in;
+    // A transport colour is Kniss's parameter: giving one picks his model unless "model" says otherwise.
+    const std::string implied = o.has("transport_color") ? "kniss" : "diffusion";
+    in.model = o.choice("model", {"diffusion", "kniss"}, implied) == "kniss" ? IndirectModel::Kniss : IndirectModel::Diffusion;
+    if (in.model == IndirectModel::Diffusion && o.has("transport_color"))
+        o.fail("transport_color", "is the kniss model's; the diffusion model derives it from material.albedo and anisotropy");
     in.strength = o.number("strength", in.strength);
     if (!(in.strength >= 0) || !std::isfinite(in.strength)) o.fail("strength", "must be a finite value >= 0");
     in.angle = o.number("angle", in.angle);

@@ -177,12 +177,13 @@ nlohmann::json sceneToJson(const Scene& s) {
                  {"growth", decimal(s.effects.cone.growth)}};
     const Propagation& pr = s.effects.propagation;
     e["propagation"] = {{"blend_axes", pr.blend_axes}, {"eye_pass", pr.eye_pass}, {"chroma_subsampling", pr.chroma_subsampling}, {"coherent", pr.coherent}};
-    if (const auto& in = s.effects.indirect)
-        e["indirect"] = {{"strength", decimal(in->strength)}, {"angle", decimal(in->angle)}, {"samples", in->samples},
-                         {"phase", in->phase == BlurPhase::Phong ? "phong" : "henyey_greenstein"},
-                         {"exponent", decimal(in->exponent)}, {"g", decimal(in->g)},
-                         {"transport_color", vec(in->transport_color)}};
-    else
+    if (const auto& in = s.effects.indirect) {
+        const bool kniss = in->model == IndirectModel::Kniss;
+        e["indirect"] = {{"model", kniss ? "kniss" : "diffusion"}, {"strength", decimal(in->strength)}, {"angle", decimal(in->angle)},
+                         {"samples", in->samples}, {"phase", in->phase == BlurPhase::Phong ? "phong" : "henyey_greenstein"},
+                         {"exponent", decimal(in->exponent)}, {"g", decimal(in->g)}};
+        if (kniss) e["indirect"]["transport_color"] = vec(in->transport_color);
+    } else
         e["indirect"] = false;
     if (const auto& sf = s.effects.surface)
         e["surface"] = {{"gradient_low", decimal(sf->gradient_low)}, {"gradient_high", decimal(sf->gradient_high)},

@@ -219,8 +219,8 @@ TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
         "shadows": "propagation", "ambient_occlusion": false, "color_bleeding": 0,
         "cone": {"angle": 2, "samples": 20, "growth": 0.05},
         "propagation": {"blend_axes": false, "eye_pass": true, "chroma_subsampling": true, "coherent": true},
-        "indirect": {"strength": 1, "angle": 40, "samples": 13, "phase": "henyey_greenstein", "exponent": 4, "g": 0.7,
-                     "transport_color": [1, 0.5, 0.25]},
+        "indirect": {"model": "kniss", "strength": 1, "angle": 40, "samples": 13, "phase": "henyey_greenstein", "exponent": 4,
+                     "g": 0.7, "transport_color": [1, 0.5, 0.25]},
         "surface": {"gradient_low": 0.1, "gradient_high": 0.3, "specular": 0.5, "shininess": 32},
         "perturbation": {"seed": 7, "scale": 2, "octaves": 4, "lacunarity": 2, "gain": 0.5, "density": 0.5,
                          "transport": 0, "displacement": 1.5, "velocity": [0.1, 0, 0], "time": 0},
@@ -234,6 +234,7 @@ TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
     EXPECT_FALSE(again.effects.propagation.blend_axes);
     EXPECT_TRUE(again.effects.propagation.eye_pass);
     ASSERT_TRUE(again.effects.indirect.has_value());
+    EXPECT_EQ(again.effects.indirect->model, IndirectModel::Kniss);   // implied by the transport colour
     EXPECT_EQ(again.effects.indirect->phase, BlurPhase::HenyeyGreenstein);
     EXPECT_EQ(again.effects.indirect->samples, 13);
     EXPECT_FLOAT_EQ(again.effects.indirect->transport_color.z, 0.25f);
@@ -246,7 +247,8 @@ TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
     Scene d = parseScene(R"({"volume": {"path": "a.vdb"}, "effects": {"indirect": true, "perturbation": false}})",
                          "shot.json", "");
     EXPECT_EQ(d.effects.indirect->samples, 9);
-    EXPECT_EQ(d.effects.indirect->transport_color, glm::vec3(0.6f));
+    EXPECT_EQ(d.effects.indirect->model, IndirectModel::Diffusion);
+    EXPECT_FALSE(sceneToJson(d)["effects"]["indirect"].contains("transport_color"));
     EXPECT_FALSE(d.effects.perturbation.has_value());
     EXPECT_FALSE(d.effects.surface.has_value());
 }
@@ -255,6 +257,11 @@ TEST(Scene, PropagationEffectsAreValidated) {
     const std::string v = R"({"volume": {"path": "a.vdb"}, "effects": )";
     EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"transport_color": [1, 0, 0.5]}}})"),
               "shot.json: /effects/indirect/transport_color: each component must lie in (0, 1]");
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"model": "diffusion", "transport_color": [1, 0.5, 0.5]}}})"),
+              "shot.json: /effects/indirect/transport_color: is the kniss model's; the diffusion model derives it from "
+              "material.albedo and anisotropy");
+    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"model": "dipole"}}})"),
+              "shot.json: /effects/indirect/model: 'dipole' is not one of diffusion, kniss");
     EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"samples": 33}}})"),
               "shot.json: /effects/indirect/samples: must lie in 1..32");
     EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"phase": "mie"}}})"),

@@ -14,6 +14,7 @@
 #include "scene/camera.h"
 #include "kernel/cpu_kernel.h"
 #include "lighting/propagation/light_sweeps.h"
+#include "optics/diffusion_profile.h"
 
 namespace voxlux {
 namespace {
@@ -41,6 +42,13 @@ std::vector<float> halveGrid(const LightGrid& g) {
 
 // Rec. 709 luminance, as the kernel weighs it.
 float luminance(glm::vec3 c) { return kernel::CpuKernel().vx_luminance(c); }
+
+// The indirect light's profile per unit of light entering: diffusion theory's
+// (src/optics/diffusion_profile.h), or Kniss's, attenuated by -ln(transport colour).
+FluenceProfile indirectFluence(const Indirect& in, const Material& m) {
+    if (in.model == IndirectModel::Diffusion) return collimatedFluence(m.albedo, m.anisotropy);
+    return {glm::vec3(1.0f), -glm::log(in.transport_color)};
+}
 
 // What the sweeps of every light share on one grid.
 kernel::VxPropParams baseParams(const SweepGrid& g, int channels, const std::vector<kernel::VxTap>& taps, float tan_half,
@@ -341,7 +349,7 @@ StageReads PropagationStage::reads() const {
     return {{"/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/lights/*/color",
              "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects/propagation/blend_axes",
              "/effects/propagation/chroma_subsampling", "/effects/propagation/coherent", "/effects/indirect",
-             "/effects/perturbation", "/input/frame", "/render/backend"},
+             "/effects/perturbation", "/material/albedo", "/material/anisotropy", "/input/frame", "/render/backend"},
             {"brick", "classify", "illumination_grid"}};
 }
 
@@ -353,10 +361,14 @@ StageActivity PropagationStage::activity(const Scene& s) const {
                       (lights > 1 ? (fx.propagation.coherent ? ", one pass per direction" : ", one pass per light") : "") +
                       "; direct RGB";
     if (const auto& in = fx.indirect) {
-        char blur[160];
-        std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, transport colour (%g, %g, %g)",
-                      double(in->angle), in->samples, double(in->transport_color.x), double(in->transport_color.y),
-                      double(in->transport_color.z));
+        char blur[200];
+        if (in->model == IndirectModel::Diffusion)
+            std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, diffusion profile",
+                          double(in->angle), in->samples);
+        else
+            std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, transport colour (%g, %g, %g)",
+                          double(in->angle), in->samples, double(in->transport_color.x), double(in->transport_color.y),
+                          double(in->transport_color.z));
         out += blur;
         if (fx.propagation.chroma_subsampling) out += ", chroma subsampled 2x";
     }
@@ -380,19 +392,24 @@ void PropagationStage::run(StageRun& run) {
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
     std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
-                            "/effects/indirect", "/effects/perturbation", "/render/backend"})
+                            "/effects/indirect", "/effects/perturbation", "/material/albedo", "/material/anisotropy",
+                            "/render/backend"})
         setup_key += "|" + readKey(run.document, key);
     const bool coherent = fx.propagation.coherent;
     const bool blend = fx.propagation.blend_axes;
     const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
+    // The indirect sweep attenuates by the profile's rate; its amplitude scales the light it carries.
+    FluenceProfile profile;
     kernel::VxPropParams blurred{};
-    if (indirect)
-        blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)),
-                             -glm::log(fx.indirect->transport_color));
+    if (indirect) {
+        profile = indirectFluence(*fx.indirect, run.scene.material);
+        blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)), profile.attenuation);
+    }
     // The sweeps of `lights`, weighted by `sign`, on both blocks.
     auto sweepsOf = [&](const std::vector<kernel::VxLight>& lights, float sign, PassSweeps& fine_passes, PassSweeps& coarse_passes) {
-        for (const auto& l : lights) {
+        for (kernel::VxLight l : lights) {
             addLightSweeps(l, sign, fine, direct, blend, fine_passes);
+            l.color *= profile.amplitude;
             if (indirect) addLightSweeps(l, sign, coarse, blurred, blend, coarse_passes);
         }
     };

@@ -332,29 +332,34 @@ TEST(GlBackend, MatchesCpuWithSatLighting) {
     EXPECT_GT(stats[kAmbient].peak, 0.0);
 }
 
-// Propagation shadows with indirect light, the eye pass, chroma subsampling, perturbation and
-// surface shading: the illumination volume is swept by each backend, then marched.
+// Propagation shadows with indirect light (Kniss's transport colour, and the diffusion model of a
+// coloured albedo), the eye pass, chroma subsampling, perturbation and surface shading: the
+// illumination volume is swept by each backend, then marched.
 TEST(GlBackend, MatchesCpuWithPropagation) {
     VOXLUX_REQUIRE_GL(gl);
-    Scene s = baseScene();
-    s.effects.shadows = ShadowMethod::Propagation;
-    s.effects.light_resolution = 24;
-    Indirect in;
-    in.transport_color = glm::vec3(1.0f, 0.6f, 0.35f);
-    s.effects.indirect = in;
-    s.effects.propagation.eye_pass = true;
-    s.effects.propagation.chroma_subsampling = true;
-    Perturbation p;
-    p.density = 0.6f;
-    p.transport = 0.3f;
-    p.displacement = 1.0f;
-    s.effects.perturbation = p;
-    s.effects.surface = SurfaceShading{};
-    s.lights = {directionalLight(), pointLight(), spotLight()};
-    s.emission = {EmissionSource{}};
-    const auto stats = expectMatch(renderBoth(makeVolume(true), s, *gl));
-    EXPECT_GT(stats[kDirect].peak, 0.0);
-    EXPECT_GT(stats[kIndirect].peak, 0.0);
+    for (IndirectModel model : {IndirectModel::Kniss, IndirectModel::Diffusion}) {
+        Scene s = baseScene();
+        s.effects.shadows = ShadowMethod::Propagation;
+        s.effects.light_resolution = 24;
+        Indirect in;
+        in.model = model;
+        in.transport_color = glm::vec3(1.0f, 0.6f, 0.35f);
+        s.material.albedo = glm::vec3(0.95f, 0.8f, 0.6f);
+        s.effects.indirect = in;
+        s.effects.propagation.eye_pass = true;
+        s.effects.propagation.chroma_subsampling = true;
+        Perturbation p;
+        p.density = 0.6f;
+        p.transport = 0.3f;
+        p.displacement = 1.0f;
+        s.effects.perturbation = p;
+        s.effects.surface = SurfaceShading{};
+        s.lights = {directionalLight(), pointLight(), spotLight()};
+        s.emission = {EmissionSource{}};
+        const auto stats = expectMatch(renderBoth(makeVolume(true), s, *gl));
+        EXPECT_GT(stats[kDirect].peak, 0.0);
+        EXPECT_GT(stats[kIndirect].peak, 0.0);
+    }
 }
 
 TEST(GlBackend, MatchesCpuWithoutLights) {

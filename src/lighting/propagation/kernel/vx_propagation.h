@@ -260,10 +260,11 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     }
     float tau = sum * step_world / float(pieces);
 
-    // Transmittance of the step per channel (the transport colour's, Kniss Eq. 8, for indirect light).
+    // Transmittance of the step per channel (for indirect light the transport colour's e^-atten,
+    // which the noise tints: Kniss Eq. 8 and Sec. III.D).
     vec3 k = Q.atten;
     if (Q.channels == 3 && vx_perturbed() && P.noise_transport != 0.0f)
-        k = -log(vx_perturb_transport(P.transport, nx));
+        k = -log(vx_perturb_transport(exp(-Q.atten), nx));
     vec3 transmitted = vec3(vx_exp(-k.x * tau), vx_exp(-k.y * tau), vx_exp(-k.z * tau));
     if (first) return vx_prop_outside(x) * transmitted;
     // Blur: taps on a disc around p in the previous slice, radius = step length * tan(half-angle).
