@@ -30,7 +30,8 @@ struct Methods {
 std::string methodName(const Scene& s) {
     if (s.render.method == RenderMethod::Reference) return "reference";
     const char* shadows[] = {"unshadowed", "raymarch", "sat_cone", "propagation"};
-    return std::string(shadows[int(s.effects.shadows)]) + (s.effects.indirect ? "+indirect" : "") +
+    const char* indirect = !s.effects.indirect ? "" : s.effects.indirect->model == IndirectModel::Kniss ? "+kniss" : "+indirect";
+    return std::string(shadows[int(s.effects.shadows)]) + indirect +
            (s.effects.ambient_occlusion && hasAmbientLight(s) ? "+AO" : "");
 }
 
@@ -84,7 +85,8 @@ StudyPlan planStudy(const nlohmann::json& base, const std::vector<int>& spps, in
         sweep("propagation+indirect", "effects.indirect.samples", m.march("propagation", true, false), {"3", "9", "17"}),
         sweep("propagation+indirect", "render.step", m.march("propagation", true, false), {"1", "0.5"}),
         sweep("propagation+indirect", "effects.indirect.strength", m.march("propagation", true, false), {"0.5", "1", "2", "4"}),
-        sweep("propagation+indirect", "effects.indirect.transport_color", m.march("propagation", true, false),
+        // Kniss's artistic model, which the diffusion model replaced as the default: its transport colour.
+        sweep("propagation+kniss", "effects.indirect.transport_color", m.march("propagation", true, false),
               {"[0.4,0.4,0.4]", "[0.6,0.6,0.6]", "[0.8,0.8,0.8]", "[0.9,0.9,0.9]"}),
         sweep("propagation+indirect", "", m.march("propagation", true, false),
               {"effects.propagation.eye_pass=true", "effects.propagation.chroma_subsampling=true",
@@ -121,8 +123,12 @@ StudyPlan planStudy(const nlohmann::json& base, const std::vector<int>& spps, in
     std::map<std::string, size_t> by_scene;   // scene hash -> config
     for (const Sweep& s : sweeps) {
         StudySweep out{s.method, s.knob, {}, s.labels};
-        for (const StudyConfig& c : s.points) {
-            const std::string hash = sceneHash(studyScene(base, c));
+        for (StudyConfig c : s.points) {
+            // The family is the scene's own: a scene with Kniss's indirect light keeps it throughout.
+            const Scene scene = studyScene(base, c);
+            c.method = methodName(scene);
+            if (s.method != kPresetSweep) out.method = c.method;
+            const std::string hash = sceneHash(scene);
             auto [it, fresh] = by_scene.emplace(hash, plan.configs.size());
             if (fresh) plan.configs.push_back(c);
             out.configs.push_back(it->second);

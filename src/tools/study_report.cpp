@@ -28,7 +28,8 @@ const char* methodColor(const std::string& method) {
     static const std::map<std::string, const char*> colors = {
         {"unshadowed", "#7f7f7f"},           {"raymarch", "#1f77b4"},     {"raymarch+AO", "#17becf"},
         {"sat_cone", "#2ca02c"},             {"sat_cone+AO", "#98df8a"},  {"propagation", "#ff7f0e"},
-        {"propagation+indirect", "#d62728"}, {"propagation+indirect+AO", "#e377c2"}, {"reference", "#9467bd"}};
+        {"propagation+indirect", "#d62728"}, {"propagation+indirect+AO", "#e377c2"}, {"propagation+kniss", "#bcbd22"},
+        {"reference", "#9467bd"}};
     auto it = colors.find(method);
     return it == colors.end() ? "#8c564b" : it->second;
 }

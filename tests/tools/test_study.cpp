@@ -210,7 +210,7 @@ TEST(StudyPlan, KeepsTheScenesOwnIndirectSettings) {
     for (const auto& c : plan.configs) {
         const Scene s = studyScene(base, c);
         if (c.spp) continue;   // the reference traces all light; effects do not apply
-        if (c.method != "propagation+indirect") {
+        if (c.method != "propagation+kniss") {   // the scene's own model throughout
             EXPECT_FALSE(s.effects.indirect) << c.id();
             continue;
         }
