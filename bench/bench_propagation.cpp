@@ -167,7 +167,7 @@ void paperComparison(bool quick) {
     Light key;
     key.intensity = 6.0f;
     scene.lights = {key};
-    const Indirect in;   // the defaults: 9 taps, 30 degree cone, Phong 4, transport colour 0.6
+    const Indirect in;   // the defaults: 9 taps, 30 degree cone, Phong 4, the diffusion model (one sweep, as Kniss's)
 
     Renderer renderer(scene);
     const FrameResult first = renderer.render(std::nullopt, false);
