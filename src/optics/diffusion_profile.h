@@ -13,9 +13,11 @@
 //   D phi'' - a phi = -alpha (1 - g) E exp(-t' tau) with the partial-current boundary condition
 //   phi(0) = 2 D phi'(0), which gives phi = E (C exp(-kappa tau) + K exp(-t' tau)). The indirect
 //   sweep carries one exponential: the boundary value C + K = 2 alpha (1 - g) / ((kappa + t')
-//   (1 + 2 D kappa)), attenuated at the asymptotic rate kappa. (The full two-term profile builds up below the surface to several times E, which a
-//   finite cloud loses through its sides: measured against the Monte Carlo reference it is 1.6x
-//   too bright on the smoke and the cloud of docs/accuracy.md, and the one-term form is not.)
+//   (1 + 2 D kappa)), attenuated at the asymptotic rate kappa. (The full two-term profile builds
+//   up below the surface, to about 2 E in a cloud, and deep inside stays C / (C + K), 3.8-7 times,
+//   above the one-term form: light a finite cloud loses through its sides. Against the Monte
+//   Carlo reference it is 1.6x too bright on the smoke and the cloud of docs/accuracy.md, and the
+//   one-term form is not.)
 // - Diffuse (sky) light of radiance L: the same boundary condition with an inward current pi L
 //   gives phi(0) = 4 pi L / (1 + 2 D kappa), so a surface cell scatters the sky's radiance times
 //   alpha / (1 + 2 D kappa) rather than alpha.

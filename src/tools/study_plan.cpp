@@ -24,6 +24,12 @@ struct Methods {
         return {"render.method=march", "effects.shadows=" + shadows,
                 indirect ? indirect_on : "effects.indirect=false", ao ? ao_on : "effects.ambient_occlusion=false"};
     }
+    // Propagation with Kniss's indirect light, whatever model the scene's own settings name.
+    std::vector<std::string> kniss() const {
+        std::vector<std::string> sets = march("propagation", true, false);
+        sets.push_back("effects.indirect.model=\"kniss\"");
+        return sets;
+    }
 };
 
 // The family a scene's lighting belongs to, named as the sweeps name them.
@@ -86,7 +92,7 @@ StudyPlan planStudy(const nlohmann::json& base, const std::vector<int>& spps, in
         sweep("propagation+indirect", "render.step", m.march("propagation", true, false), {"1", "0.5"}),
         sweep("propagation+indirect", "effects.indirect.strength", m.march("propagation", true, false), {"0.5", "1", "2", "4"}),
         // Kniss's artistic model, which the diffusion model replaced as the default: its transport colour.
-        sweep("propagation+kniss", "effects.indirect.transport_color", m.march("propagation", true, false),
+        sweep("propagation+kniss", "effects.indirect.transport_color", m.kniss(),
               {"[0.4,0.4,0.4]", "[0.6,0.6,0.6]", "[0.8,0.8,0.8]", "[0.9,0.9,0.9]"}),
         sweep("propagation+indirect", "", m.march("propagation", true, false),
               {"effects.propagation.eye_pass=true", "effects.propagation.chroma_subsampling=true",

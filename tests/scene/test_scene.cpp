@@ -234,7 +234,8 @@ TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
     EXPECT_FALSE(again.effects.propagation.blend_axes);
     EXPECT_TRUE(again.effects.propagation.eye_pass);
     ASSERT_TRUE(again.effects.indirect.has_value());
-    EXPECT_EQ(again.effects.indirect->model, IndirectModel::Kniss);   // implied by the transport colour
+    EXPECT_EQ(s.effects.indirect->model, IndirectModel::Kniss);   // implied by the transport colour
+    EXPECT_EQ(again.effects.indirect->model, IndirectModel::Kniss);
     EXPECT_EQ(again.effects.indirect->phase, BlurPhase::HenyeyGreenstein);
     EXPECT_EQ(again.effects.indirect->samples, 13);
     EXPECT_FLOAT_EQ(again.effects.indirect->transport_color.z, 0.25f);

@@ -228,6 +228,23 @@ TEST(StudyPlan, KeepsTheScenesOwnIndirectSettings) {
         }
     }
     EXPECT_GE(indirect, 14);
+
+    // A scene with the diffusion model on (as voxlux writes it: "model" named): the transport-colour
+    // sweep switches to Kniss's model rather than clash with it; every other config keeps diffusion.
+    j["effects"] = {{"indirect", {{"strength", 0.7}}}, {"shadows", "propagation"}};
+    const nlohmann::json diffusion_base = sceneToJson(parseScene(j.dump(), "s.json", ""));
+    ASSERT_EQ(diffusion_base["effects"]["indirect"]["model"], "diffusion");
+    const StudyPlan diffusion_plan = planStudy(diffusion_base, {1}, 1);
+    int kniss = 0;
+    for (const auto& c : diffusion_plan.configs) {
+        const Scene s = studyScene(diffusion_base, c);
+        if (!s.effects.indirect || c.spp) continue;
+        const bool sets_transport = c.id().find("transport_color=") != std::string::npos;
+        EXPECT_EQ(s.effects.indirect->model, sets_transport ? IndirectModel::Kniss : IndirectModel::Diffusion) << c.id();
+        EXPECT_EQ(c.method, sets_transport ? "propagation+kniss" : "propagation+indirect") << c.id();
+        kniss += sets_transport;
+    }
+    EXPECT_EQ(kniss, 4);
 }
 
 TEST(Study, MeasuresEveryConfigAndResumes) {
