@@ -277,6 +277,24 @@ int runStudyCommand(const StudyCommand& cmd) {
     return 0;
 }
 
+int runCalibrateCommand(const CalibrateCommand& cmd) {
+    std::vector<std::string> notes;
+    Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
+    checkWritable(cmd.options.output);   // before minutes of rendering
+    const Calibration cal = calibrate(scene, cmd.options, std::cout);
+    scene.effects.indirect = cal.indirect;
+    scene = scenePathsRelativeTo(scene, std::filesystem::absolute(cmd.options.output).parent_path().string());
+    writeFileAtomically(cmd.options.output, jsonText(sceneToJson(scene), 2) + "\n");
+    const std::string reference = cmd.options.truth ? "" : "reference " + secondsText(cal.truth_seconds) + ", ";
+    char line[300];
+    std::snprintf(line, sizeof line, "calibrated at %dx%d: RMSE %.4g -> %.4g (%sfit %s over %d marches); wrote %s\n",
+                  cal.width, cal.height, cal.rmse_before, cal.rmse_after, reference.c_str(),
+                  secondsText(cal.fit_seconds).c_str(), cal.marches, cmd.options.output.c_str());
+    std::cout << line;
+    printNotes(notes, std::cout);
+    return 0;
+}
+
 int runScene(const SceneCommand& cmd) {
     std::vector<std::string> notes;
     Scene scene = sceneFor(cmd.input, cmd.overrides, notes);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "tools/scene_overrides.h"
+#include "tools/calibrate.h"
 #include "tools/study.h"
 
 namespace voxlux {
@@ -23,8 +24,15 @@ struct StudyCommand {
     StudyOptions options;
 };
 
+struct CalibrateCommand {
+    std::string input;                          // scene .json, or a .vdb for the quick form
+    SceneOverrides overrides;
+    CalibrateOptions options;
+};
+
 int runRender(const RenderCommand& cmd);
 int runStudyCommand(const StudyCommand& cmd);
+int runCalibrateCommand(const CalibrateCommand& cmd);
 struct SceneCommand {
     std::string input;                          // volume .vdb (#### with --frames)
     SceneOverrides overrides;

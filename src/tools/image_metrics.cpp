@@ -65,6 +65,13 @@ double meanSquaredError(const RenderImage& a, const RenderImage& b) {
 
 double halvesNoiseMse(const RenderImage& a, const RenderImage& b) { return meanSquaredError(a, b) / 4.0; }
 
+RenderImage meanOfHalves(const RenderImage& a, const RenderImage& b) {
+    checkSizes(a, b);
+    RenderImage mean = a;
+    for (size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i].rgba = 0.5f * (a.pixels[i].rgba + b.pixels[i].rgba);
+    return mean;
+}
+
 double meanDeltaEItp(const RenderImage& a, const RenderImage& b, const glm::mat3& working_to_xyz, double white_nits) {
     checkSizes(a, b);
     if (a.pixels.empty()) return 0.0;

@@ -15,6 +15,10 @@ double meanSquaredError(const RenderImage& a, const RenderImage& b);
 // equal variance). What a noisy ground truth adds to every MSE measured against it.
 double halvesNoiseMse(const RenderImage& a, const RenderImage& b);
 
+// The two half renders' mean (RGBA; the AOVs are a's): the image a render of both halves' samples
+// would give.
+RenderImage meanOfHalves(const RenderImage& a, const RenderImage& b);
+
 // Mean over pixels of ITU-R BT.2124 Delta E_ITP, an HDR colour difference in which 1 is about
 // one just-noticeable difference. `working_to_xyz` takes the working space to CIE XYZ (D65);
 // scene-linear 1.0 is shown at `white_nits` cd/m^2. Negative components count as 0.

@@ -103,6 +103,18 @@ int main(int argc, char** argv) {
     studyCmd->add_flag("--fresh", study.options.fresh, "measure everything again instead of resuming");
     addSceneOverrides(*studyCmd, study.overrides);
 
+    voxlux::CalibrateCommand calibrate;
+    auto* calibrateCmd = app.add_subcommand(
+        "calibrate", "fit the propagation method's indirect light to a Monte Carlo reference; write the calibrated scene");
+    calibrateCmd->add_option("input", calibrate.input, "scene .json or volume .vdb")->required();
+    calibrateCmd->add_option("-o,--output", calibrate.options.output, "the calibrated scene .json")->required();
+    calibrateCmd->add_option("--truth", calibrate.options.truth, "fit this reference image (RGBA EXR, scene-linear) instead of rendering one");
+    calibrateCmd->add_option("--reference-spp", calibrate.options.spp, "the reference's samples per pixel")
+        ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+    calibrateCmd->add_option("--max-side", calibrate.options.max_side, "the fit's resolution: longest side in pixels")
+        ->check(CLI::Range(8, 1 << 16))->capture_default_str();
+    addSceneOverrides(*calibrateCmd, calibrate.overrides);
+
     voxlux::ViewCommand view;
     auto* viewCmd = app.add_subcommand("view", "open the interactive look-dev viewer on a scene .json or a .vdb (docs/viewer.md)");
     viewCmd->add_option("input", view.input, "scene .json or volume .vdb")->required();
@@ -146,6 +158,7 @@ int main(int argc, char** argv) {
             for (int i = 1; i < argc; ++i) study.options.command += " " + shellQuoted(argv[i]);
             return voxlux::runStudyCommand(study);
         }
+        if (*calibrateCmd) return voxlux::runCalibrateCommand(calibrate);
         if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
         if (*viewCmd) return voxlux::runView(view);
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);

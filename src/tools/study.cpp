@@ -96,9 +96,7 @@ Truth groundTruth(const nlohmann::json& base, const std::string& hash, const Stu
         half[h] = renderTimed(studyScene(base, c), frame, 1);
     }
     Truth t;
-    t.image = half[0].image;
-    for (size_t i = 0; i < t.image.pixels.size(); ++i)
-        t.image.pixels[i].rgba = 0.5f * (half[0].image.pixels[i].rgba + half[1].image.pixels[i].rgba);
+    t.image = meanOfHalves(half[0].image, half[1].image);
     // The mean's error against the noise-free image is half the halves' difference.
     t.info = {o.truth_spp, half[0].seconds + half[1].seconds, std::sqrt(halvesNoiseMse(half[0].image, half[1].image)),
               0.5 * meanDeltaEItp(half[0].image, half[1].image, working_to_xyz)};

@@ -105,6 +105,8 @@ REDUCTIONS = [
     (("render", "study"), "--frames", first_frames, None),                  # 3 frames of a sequence
     (("study",), "--spp-list", lambda v: "1,2", "1,2"),                     # 2 reference renders,
     (("study",), "--truth-spp", lambda v: "4", "4"),                        # against a 4-spp truth
+    (("calibrate",), "--max-side", lambda v: "32", "32"),                   # a 32-pixel fit
+    (("calibrate",), "--reference-spp", lambda v: "4", "4"),                # against a 4-spp truth
 ]
 
 RUN_TAGS = {"sh", "bash", "shell"}
