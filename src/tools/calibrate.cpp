@@ -10,9 +10,33 @@
 #include "io/exr_reader.h"
 #include "render/renderer.h"
 #include "tools/image_metrics.h"
+#include "tools/study.h"
+#include "tools/study_plan.h"
 
 namespace voxlux {
 namespace {
+
+// A given truth must be a finite, non-black image of the scene's framing.
+void checkTruth(const RenderImage& truth, const Scene& scene, const std::string& path) {
+    if (truth.width < 8 || truth.height < 8)
+        throw InputError(path + ": " + std::to_string(truth.width) + "x" + std::to_string(truth.height) +
+                         " is too small to fit (at least 8x8)");
+    // The same aspect as the scene, to within a pixel's rounding: another framing is another image.
+    if (std::abs(double(truth.width) * scene.render.height - double(truth.height) * scene.render.width) >=
+        double(std::max(scene.render.width, scene.render.height)))
+        throw InputError(path + ": " + std::to_string(truth.width) + "x" + std::to_string(truth.height) +
+                         " does not have the scene's aspect (" + std::to_string(scene.render.width) + "x" +
+                         std::to_string(scene.render.height) + ")");
+    size_t bad = 0;
+    bool lit = false;
+    for (const auto& p : truth.pixels)
+        for (int c = 0; c < 3; ++c) {
+            bad += !std::isfinite(p.rgba[c]);
+            lit = lit || p.rgba[c] != 0.0f;
+        }
+    if (bad) throw InputError(path + ": " + std::to_string(bad) + " colour values are not finite");
+    if (!lit) throw InputError(path + ": the image is black (or has no R, G, B channels): nothing to fit");
+}
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -53,13 +77,17 @@ Calibration calibrate(const Scene& scene, const CalibrateOptions& o, std::ostrea
         !scene.effects.indirect)
         throw InputError("calibrate: fits effects.indirect, which needs render.method \"march\", effects.shadows "
                          "\"propagation\" and effects.indirect (--quality preview sets all three)");
-    if (o.spp < 1) throw InputError("calibrate: --spp must be at least 1");
+    if (o.spp < 2 || o.spp % 2 != 0) throw InputError("calibrate: --reference-spp must be even and at least 2 (two halves)");
     if (o.max_side < 8) throw InputError("calibrate: --max-side must be at least 8 pixels");
     Calibration cal;
-    Scene reduced = scene;
+    // Measured as the study measures: CPU, ungraded (a grade is not linear in the indirect light),
+    // a sequence's first frame.
+    Scene reduced = studyScene(studyBase(scene), StudyConfig{});
+    const std::optional<int> frame = studyFrame(scene);
     RenderImage truth;
     if (o.truth) {
         truth = readExrRgba(*o.truth);
+        checkTruth(truth, scene, *o.truth);
         reduced.render.width = truth.width;
         reduced.render.height = truth.height;
     } else {
@@ -72,16 +100,16 @@ Calibration calibrate(const Scene& scene, const CalibrateOptions& o, std::ostrea
         for (int h = 0; h < 2; ++h) {
             Scene reference = reduced;
             reference.render.method = RenderMethod::Reference;
-            reference.render.reference.spp = std::max(1, o.spp / 2);
-            reference.render.reference.seed = scene.render.reference.seed + 1000003u * unsigned(h + 1);
-            half[h] = Renderer(reference).render(std::nullopt, false).image;
+            reference.render.reference.spp = o.spp / 2;
+            reference.render.reference.seed = scene.render.reference.seed + 1000003 * (h + 1);
+            half[h] = Renderer(reference).render(frame, false).image;
         }
         truth = meanOfHalves(half[0], half[1]);
         cal.truth_noise_mse = halvesNoiseMse(half[0], half[1]);
         cal.truth_seconds = secondsSince(t);
         char line[160];
         std::snprintf(line, sizeof line, "reference: %dx%d, %d spp in two halves, %.3g s, its noise RMSE %.3g (taken out below)\n",
-                      reduced.render.width, reduced.render.height, 2 * std::max(1, o.spp / 2), cal.truth_seconds,
+                      reduced.render.width, reduced.render.height, o.spp, cal.truth_seconds,
                       std::sqrt(cal.truth_noise_mse));
         out << line;
     }
@@ -95,7 +123,7 @@ Calibration calibrate(const Scene& scene, const CalibrateOptions& o, std::ostrea
         s.effects.indirect = in;
         renderer.setScene(s);
         ++cal.marches;
-        return renderer.render(std::nullopt, false).image;
+        return renderer.render(frame, false).image;
     };
     // RMSE against the noise-free image: the truth's noise is added to every MSE measured against it.
     auto rmse = [&](double mse) { return std::sqrt(std::max(0.0, mse - cal.truth_noise_mse)); };
@@ -119,10 +147,9 @@ Calibration calibrate(const Scene& scene, const CalibrateOptions& o, std::ostrea
     report("diffusion", diffusion, rmse(d.mse));
 
     // Kniss's model: a grey transport colour by golden section over (0.02, 0.99), each with its
-    // best strength. The error is unimodal in it on every scene measured (docs/accuracy.md).
+    // best strength (taken to be unimodal in it: the studies' transport sweeps are).
     Indirect kniss = own;
     kniss.model = IndirectModel::Kniss;
-    kniss.strength = 1.0f;
     auto kniss_at = [&](double transport) {
         kniss.transport_color = glm::vec3(float(transport));
         kniss.strength = 1.0f;
@@ -151,12 +178,15 @@ Calibration calibrate(const Scene& scene, const CalibrateOptions& o, std::ostrea
     const bool take_a = fa.first <= fb.first;
     kniss.transport_color = glm::vec3(float(take_a ? a : b));
     kniss.strength = take_a ? fa.second : fb.second;
-    const double kniss_rmse = rmse(take_a ? fa.first : fb.first);
-    report("kniss", kniss, kniss_rmse);
+    const double kniss_mse = take_a ? fa.first : fb.first;
+    report("kniss", kniss, rmse(kniss_mse));
 
-    const bool diffusion_wins = rmse(d.mse) <= kniss_rmse;
+    // Chosen on the raw MSE: with the noise taken out, both can clamp to 0 where it exceeds the error.
+    const bool diffusion_wins = d.mse <= kniss_mse;
     cal.indirect = diffusion_wins ? diffusion : kniss;
-    cal.rmse_after = diffusion_wins ? rmse(d.mse) : kniss_rmse;
+    cal.rmse_after = rmse(diffusion_wins ? d.mse : kniss_mse);
+    if (!std::isfinite(cal.indirect.strength))
+        throw InputError("calibrate: the fit found no finite strength (the scene's indirect light is too faint to fit)");
     cal.fit_seconds = secondsSince(t);
     return cal;
 }

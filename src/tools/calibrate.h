@@ -19,8 +19,8 @@ namespace voxlux {
 
 struct CalibrateOptions {
     std::string output;                  // the calibrated scene .json
-    std::optional<std::string> truth;    // a reference image to fit (RGBA EXR) instead of rendering one
-    int spp = 256;                       // the reference's samples per pixel
+    std::optional<std::string> truth;    // a reference image to fit (RGBA EXR, the scene's aspect) instead of rendering one
+    int spp = 256;                       // the reference's samples per pixel (even: two halves)
     int max_side = 256;                  // the reduced resolution's longest side (pixels)
 };
 

@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     calibrateCmd->add_option("-o,--output", calibrate.options.output, "the calibrated scene .json")->required();
     calibrateCmd->add_option("--truth", calibrate.options.truth, "fit this reference image (RGBA EXR, scene-linear) instead of rendering one");
     calibrateCmd->add_option("--reference-spp", calibrate.options.spp, "the reference's samples per pixel")
-        ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+        ->check(CLI::Range(2, 1 << 20))->capture_default_str();
     calibrateCmd->add_option("--max-side", calibrate.options.max_side, "the fit's resolution: longest side in pixels")
         ->check(CLI::Range(8, 1 << 16))->capture_default_str();
     addSceneOverrides(*calibrateCmd, calibrate.overrides);

@@ -22,10 +22,6 @@
 
 namespace voxlux {
 namespace fs = std::filesystem;
-namespace {
-
-// The scene as every config starts from: CPU, ungraded, in the working space, no files written.
-// Errors are measured on the scene-linear beauty, before any look or display transform.
 nlohmann::json studyBase(const Scene& scene) {
     nlohmann::json j = sceneToJson(scene);
     j["render"]["backend"] = "cpu";
@@ -41,6 +37,8 @@ std::optional<int> studyFrame(const Scene& scene) {
         throw InputError(scene.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
     return (*scene.volume.frames)[0];
 }
+
+namespace {
 
 // Every stage but reading the file and the colour config, which are the same for every method.
 double computeSeconds(const FrameResult& r) {

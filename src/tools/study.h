@@ -3,8 +3,11 @@
 // the CSV, the chart and the report (docs/accuracy.md). Resumes where a stopped run left off.
 #pragma once
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "scene/scene.h"
 
@@ -19,6 +22,13 @@ struct StudyOptions {
     int repeats = 1;                     // renders per config; the fastest counts
     bool fresh = false;                  // ignore what an earlier run measured
 };
+
+// The scene as every measurement starts from: CPU, ungraded, in the working space, no files
+// written. Errors are measured on the scene-linear beauty, before any look or display transform.
+nlohmann::json studyBase(const Scene& scene);
+
+// The frame a measurement renders: a sequence's first (volume.frames), or none for one file.
+std::optional<int> studyFrame(const Scene& scene);
 
 // Writes <out_dir>/study.csv, truth.exr, truth.json, chart.svg and report.md, and one line per
 // render to `out`; progress through core/progress.h. Throws InputError.

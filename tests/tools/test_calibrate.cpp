@@ -1,5 +1,6 @@
 // `voxlux calibrate` (src/tools/calibrate.h): it recovers the indirect settings a synthetic truth
-// was rendered with, writes a scene that renders that truth, and refuses a scene it cannot fit.
+// was rendered with, writes a scene that renders that truth, and refuses a scene or a truth it
+// cannot fit.
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -63,6 +64,22 @@ TEST(Calibrate, RefusesASceneWithoutPropagatedIndirectLight) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: calibrate: fits effects.indirect, which needs render.method \"march\", "
                      "effects.shadows \"propagation\" and effects.indirect (--quality preview sets all three)\n");
+    EXPECT_FALSE(std::ifstream(dir + "/out.json").good());
+
+    // A given truth of another framing, or a black one, is refused, and nothing is written.
+    const std::string vdb = dir + "/ball.vdb";
+    writeJson(dir + "/ball.json", knissBall(vdb, 0.5f, 1.0f));
+    ASSERT_EQ(runCli("render " + dir + "/ball.json --res 48x20 -o " + dir + "/wide.exr").exit_code, 0);
+    const CliResult wide = runCli("calibrate " + dir + "/ball.json --truth " + dir + "/wide.exr -o " + dir + "/out.json");
+    EXPECT_EQ(wide.exit_code, 2);
+    EXPECT_EQ(wide.err, "voxlux: error: " + dir + "/wide.exr: 48x20 does not have the scene's aspect (48x40)\n");
+    nlohmann::json dark = knissBall(vdb, 0.5f, 1.0f);
+    for (auto& light : dark["lights"]) light["intensity"] = 0;
+    writeJson(dir + "/dark.json", dark);
+    ASSERT_EQ(runCli("render " + dir + "/dark.json -o " + dir + "/black.exr").exit_code, 0);
+    const CliResult black = runCli("calibrate " + dir + "/ball.json --truth " + dir + "/black.exr -o " + dir + "/out.json");
+    EXPECT_EQ(black.exit_code, 2);
+    EXPECT_EQ(black.err, "voxlux: error: " + dir + "/black.exr: the image is black (or has no R, G, B channels): nothing to fit\n");
     EXPECT_FALSE(std::ifstream(dir + "/out.json").good());
 }
 
