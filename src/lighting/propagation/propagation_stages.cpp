@@ -361,15 +361,16 @@ StageActivity PropagationStage::activity(const Scene& s) const {
                       (lights > 1 ? (fx.propagation.coherent ? ", one pass per direction" : ", one pass per light") : "") +
                       "; direct RGB";
     if (const auto& in = fx.indirect) {
-        char blur[200];
-        if (in->model == IndirectModel::Diffusion)
-            std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, diffusion profile",
-                          double(in->angle), in->samples);
-        else
-            std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, transport colour (%g, %g, %g)",
-                          double(in->angle), in->samples, double(in->transport_color.x), double(in->transport_color.y),
-                          double(in->transport_color.z));
+        char blur[160];
+        std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, ", double(in->angle), in->samples);
         out += blur;
+        if (in->model == IndirectModel::Diffusion) {
+            out += "diffusion profile";
+        } else {
+            std::snprintf(blur, sizeof blur, "transport colour (%g, %g, %g)", double(in->transport_color.x),
+                          double(in->transport_color.y), double(in->transport_color.z));
+            out += blur;
+        }
         if (fx.propagation.chroma_subsampling) out += ", chroma subsampled 2x";
     }
     if (fx.perturbation) out += ", perturbed";
