@@ -19,7 +19,7 @@ layout(std430, binding = VX_BIND_ILLUMINATION) readonly buffer Illumination { fl
 layout(std430, binding = VX_BIND_NOISE) readonly buffer Noise { vec4 vx_noise_data[]; };
 layout(std430, binding = VX_BIND_PROP_SIGMA) readonly buffer PropSigma { float vx_prop_sigma_data[]; };
 layout(std430, binding = VX_BIND_SLICE_IN) readonly buffer SliceIn { float vx_prop_prev_data[]; };
-layout(std430, binding = VX_BIND_EYE_INPUT) readonly buffer EyeInput { float vx_prop_in_data[]; };
+layout(std430, binding = VX_BIND_SWEEP_INPUT) readonly buffer SweepInput { float vx_prop_in_data[]; };
 layout(std430, binding = VX_BIND_EMISSION_LUT) readonly buffer EmissionLut { vec4 vx_emission_lut_data[]; };
 
 float vx_atlas_density(int i) { return vx_density_data[i]; }

@@ -19,6 +19,12 @@ VX_INLINE float vx_exp(float x) {
     return p * intBitsToFloat((int(n) + 127) << 23);
 }
 
+// (1 - e^-x) / x for x >= 0: the share of a constant source over a stretch of optical depth x
+// that leaves it. Its series 1 - x/2 + x^2/6 below 1e-3, where the quotient loses its digits.
+VX_INLINE float vx_exp_integral(float x) {
+    return x < 1e-3f ? 1.0f - x * (0.5f - x * (1.0f / 6.0f)) : (1.0f - vx_exp(-x)) / x;
+}
+
 // Transfer-function lookup for a raw grid value: rgb = albedo tint, a = extinction multiplier.
 VX_INLINE vec4 vx_tf_eval(float value) {
     float x = clamp((value - P.transfer_lo) * P.transfer_inv_range, 0.0f, 1.0f) * float(VX_TF_LUT_SIZE - 1);

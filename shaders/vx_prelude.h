@@ -92,7 +92,7 @@
 #define VX_BIND_SLICE_IN 14
 #define VX_BIND_VOLUME 15          // propagate.comp: the RGB block it writes
 #define VX_BIND_SLICE_OUT 16
-#define VX_BIND_EYE_INPUT 17
+#define VX_BIND_SWEEP_INPUT 17
 #define VX_BIND_EMISSION_LUT 18
 #define VX_BIND_SAT_SCAN 19        // sat_scan.comp: the table it scans
 #define VX_BIND_PIXELS 20          // grade.comp: the pixels it transforms

@@ -140,12 +140,13 @@ struct VxPropParams {
     int direction;          // +1 / -1: the way slices advance
     int slice;              // the slice written
     int tap_count;          // blur taps
-    ivec3 strides;          // index step per cell along x, y, z of the extinction grid and eye input
+    ivec3 strides;          // index step per cell along x, y, z of the extinction grid and sweep input
     int max_slope;          // the steepest slope (cells sideways per slice) a point sweep computes
     int per_cell_flow;      // 1: weight each cell by its own flow (point and spot lights)
     int blend_axes;         // 1: blend the two closest axes (Sunden 2015, Eq. 5)
     int eye_sweep;          // 1 for the eye sweep (flow towards the camera)
-    int pad0;
+    int source_sweep;       // 1: light enters nowhere from outside, and each cell adds its own source
+                            // (vx_prop_in, radiance per world unit: emission, or scattered light)
     vec3 source;            // grid position of the light (or camera), or for a directional light
                             // the grid-space direction it travels
     int source_is_position; // 1 for a position, 0 for a direction

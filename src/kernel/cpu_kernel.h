@@ -64,7 +64,7 @@ struct CpuKernel {
     vec4 vx_noise(int i) const { return noise.at(i, "noise table"); }
     float vx_prop_sigma(int i) const { return prop_sigma.at(i, "propagation extinction"); }
     float vx_prop_prev(int i) const { return prop_prev.at(i, "propagation slice"); }
-    float vx_prop_in(int i) const { return prop_in.at(i, "eye-sweep input"); }
+    float vx_prop_in(int i) const { return prop_in.at(i, "sweep input"); }
 
 #include "vx_march.h"
 #include "lighting/extinction_sat/kernel/vx_sat.h"

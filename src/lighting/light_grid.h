@@ -27,6 +27,8 @@ struct LightGrid {
     int planes = 1;                // 1: extinction; 4: and extinction * (1 - bleeding * albedo) rgb
     std::vector<float> values;     // plane-major; in a plane x fastest: mean value over the cell
     std::vector<uint8_t> needed;   // 1 where the march may read the light cache (near extinction)
+    std::vector<float> emission;   // when asked for: RGB per cell, x fastest: mean emitted radiance
+                                   // per world unit over the cell
     uint64_t clamped_cells = 0;    // cells above kMaxCellOpticalDepth, clamped
     size_t cells() const { return size_t(dims.x) * dims.y * dims.z; }
     glm::mat4 lightToIndex() const;
@@ -76,7 +78,7 @@ int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_ch
                        std::string& warning);
 
 // Box-filters the visible bricks into a light grid of `resolution` over the occupied bricks'
-// box. `bleeding` > 0 adds the three colour-bleeding planes.
-LightGrid buildLightGrid(const KernelInputs& inputs, int resolution, float bleeding);
+// box. `bleeding` > 0 adds the three colour-bleeding planes; `emission` the emitted radiance.
+LightGrid buildLightGrid(const KernelInputs& inputs, int resolution, float bleeding, bool emission = false);
 
 }  // namespace voxlux

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "lighting/propagation/emitted_light.h"
 #include "reference/reference_renderer.h"
 
 namespace voxlux {
@@ -55,7 +56,8 @@ StageActivity MarchStage::activity(const Scene& s) const {
         march = "Monte Carlo reference: delta tracking, ratio-tracked shadows, up to " + std::to_string(ref.max_bounces) +
                 (ref.max_bounces == 1 ? " bounce, " : " bounces, ") + std::to_string(ref.spp) + " spp";
     } else if (s.lights.empty()) {
-        march = "no lights: emission and transmittance only";
+        march = emissionLightsTheMedium(s) ? "no lights: emission, its light scattered from the illumination volume, and transmittance"
+                                           : "no lights: emission and transmittance only";
     } else {
         march = std::to_string(s.lights.size()) + (s.lights.size() == 1 ? " light, " : " lights, ");
         march += enabledLightCount(s, false) > 0 ? shadowDescription(s.effects.shadows) : "ambient only";

@@ -108,7 +108,7 @@ private:
     LightGridStage light_grid_{brick_, classify_};
     SatStage sat_{light_grid_};
     LightCacheStage light_cache_{brick_, classify_, light_grid_, sat_};
-    IlluminationGridStage illumination_grid_{brick_, classify_};
+    IlluminationGridStage illumination_grid_{[this] { return color_space_.xyzToWorking(); }, brick_, classify_};
     PropagationStage propagation_{brick_, classify_, illumination_grid_};
     EyePassStage eye_pass_{brick_, classify_, camera_, illumination_grid_, propagation_};
     MarchStage march_{color_space_, brick_, classify_, camera_, {light_cache_, propagation_, eye_pass_}};

@@ -133,20 +133,22 @@ TEST(BatchPaths, LightPassRowsMatchThePerCellQueries) {
     }
 }
 
-// One sweep of a directional light along each axis both ways, direct (one channel, no blur) and
-// indirect (RGB, blurred, attenuated by a transport colour): the batched volume equals the
-// per-cell sweep to float rounding.
+// One sweep of a directional light along each axis both ways, direct (one channel, no blur),
+// indirect (RGB, blurred, attenuated by a transport colour) and a source sweep (indirect, adding
+// each cell's own source): the batched volume equals the per-cell sweep to float rounding.
 TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
     const glm::ivec3 dims(24, 20, 18);
     const size_t cells = size_t(dims.x) * dims.y * dims.z;
     const std::vector<float> sigma = randomValues(cells, 0.6f, 3);
+    const std::vector<float> sources = randomValues(3 * cells, 2.0f, 5);
     const glm::mat4 grid_to_world = glm::mat4(glm::mat3(0.7f));
     const kernel::VxParams march{};   // no perturbation
     Indirect blur;
     blur.angle = 40.0f;
     for (int axis = 0; axis < 3; ++axis)
         for (int sign : {-1, 1})
-            for (bool indirect : {false, true}) {
+            for (const char* kind : {"direct", "indirect", "source"}) {
+                const bool indirect = kind[0] != 'd', source = kind[0] == 's';
                 // A flow mostly along the sweep's axis, oblique enough that reads fall between cells.
                 glm::vec3 travel(0.35f, -0.2f, 0.25f);
                 travel[axis] = float(sign);
@@ -168,6 +170,7 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 Q.atten = indirect ? glm::vec3(0.2f, 0.5f, 0.9f) : glm::vec3(1.0f);
                 Q.cells_per_voxel = 1.0f;
                 Q.tint = glm::vec3(1.0f, 0.8f, 0.6f);
+                Q.source_sweep = source ? 1 : 0;
 
                 IlluminationVolume batched;
                 batched.dims = dims;
@@ -176,6 +179,7 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 pass.sweeps = {Q};
                 pass.march = &march;
                 pass.sigma = &sigma;
+                if (source) pass.input = &sources;
                 propagateCpu(pass, batched);
 
                 kernel::CpuKernel k;
@@ -183,6 +187,7 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 k.Q = Q;
                 k.Q.strides = glm::ivec3(1, dims.x, dims.x * dims.y);
                 k.prop_sigma = sigma;
+                if (source) k.prop_in = sources;
                 const int u = k.vx_axis_u(axis), v = k.vx_axis_v(axis);
                 std::vector<float> per_cell(3 * cells, 0.0f);
                 std::vector<float> prev(size_t(dims[u] * dims[v] * Q.channels), 0.0f), cur(prev.size());
@@ -205,10 +210,8 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 }
                 // Measured at most 9.9e-7: the batch sums the trapezoid as weights times samples.
                 const double error = relativeError(batched.values, per_cell);
-                std::printf("  sweep, axis %d, sign %+d, %-8s max |batch - per cell| / peak %.2g\n", axis, sign,
-                            indirect ? "indirect" : "direct", error);
-                EXPECT_LE(error, 2e-6)
-                    << "axis " << axis << ", sign " << sign << (indirect ? ", indirect" : ", direct");
+                std::printf("  sweep, axis %d, sign %+d, %-8s max |batch - per cell| / peak %.2g\n", axis, sign, kind, error);
+                EXPECT_LE(error, 2e-6) << "axis " << axis << ", sign " << sign << ", " << kind;
             }
 }
 

@@ -43,8 +43,8 @@ struct SliceMajor {
     }
 };
 
-// The CPU's batch form of vx_prop_cell for the common case: a directional light, no
-// perturbation, a light sweep. Every cell then reads the previous slice (and, for the extinction
+// The CPU's batch form of vx_prop_cell for the common case: a directional light (or a source
+// sweep along an axis), no perturbation. Every cell then reads the previous slice (and, for the extinction
 // along a long step, its own slice) at the same offsets, so a row is a weighted sum of shifted
 // bilinear blends of slice rows: SIMD loops over contiguous floats. Cells whose reads leave the
 // slice, and every other case, run vx_prop_cell itself. The GL backend runs vx_prop_cell
@@ -61,6 +61,7 @@ public:
         // from p (previous slice) to the cell, a blend of the two slices' bilinear reads.
         const int pieces = k.vx_prop_pieces(back);
         const float step_world = k.vx_prop_step_world(back);
+        step_world_ = step_world;
         for (int q = 0; q <= pieces; ++q) {
             const float f = float(q) / float(pieces);
             const float w = (q == 0 || q == pieces ? 0.5f : 1.0f) * step_world / float(pieces);
@@ -120,8 +121,19 @@ public:
                     }
                 }
                 const float kc = atten_[c];
+                if (Q.source_sweep == 0) {
 #pragma omp simd
-                for (int q = 0; q < n; ++q) out[size_t(base + q) * channels + c] = acc[q] * k_.vx_exp(-kc * tau[q]);
+                    for (int q = 0; q < n; ++q) out[size_t(base + q) * channels + c] = acc[q] * k_.vx_exp(-kc * tau[q]);
+                    continue;
+                }
+                // A source sweep adds the cell's own source over the step, as vx_prop_cell does.
+                const float* src = k_.prop_in.data + (size_t(Q.slice) * sa + size_t(j) * sv) * 3 + c;
+                const float step = step_world_;
+#pragma omp simd
+                for (int q = 0; q < n; ++q) {
+                    const float kt = kc * tau[q];
+                    out[size_t(base + q) * channels + c] = acc[q] * k_.vx_exp(-kt) + src[size_t(base + q) * 3] * (step * k_.vx_exp_integral(kt));
+                }
             }
         }
         first = lo_;
@@ -158,6 +170,7 @@ private:
     std::vector<Read> taps_;
     int lo_ = 0, hi_ = 0;
     float atten_[3] = {1.0f, 1.0f, 1.0f};
+    float step_world_ = 0.0f;
 };
 
 }  // namespace

@@ -35,7 +35,7 @@ public:
         } arrays[] = {
             {prop_sigma_, "PropSigma", pass.sigma->data(), pass.sigma->size() * sizeof(float)},
             {noise_, "Noise", pass.noise->data(), pass.noise->size() * sizeof(glm::vec4)},
-            {prop_in_, "EyeInput", pass.input ? pass.input->data() : nullptr, pass.input ? pass.input->size() * sizeof(float) : 0},
+            {prop_in_, "SweepInput", pass.input ? pass.input->data() : nullptr, pass.input ? pass.input->size() * sizeof(float) : 0},
             {volume_, "Volume", volume.values.data() + pass.offset, block * sizeof(float)},
         };
         for (const auto& a : arrays) {

@@ -14,14 +14,15 @@ namespace voxlux {
 // One pass of the propagation over a grid of extinction `sigma`: one or more sweeps along the same
 // axis and direction, each carrying its own light (Sunden 2015's propagation group), all adding
 // into the RGB block of `volume.values` that starts at `offset`. The eye sweep is a pass of one
-// sweep that replaces the indirect light with its result, reading the light before it from `input`.
+// sweep that replaces the indirect light with its result, reading the light before it from `input`;
+// source sweeps read their sources from `input`.
 struct PropagationPass {
     std::vector<kernel::VxPropParams> sweeps;       // same dims, axis and direction
     const kernel::VxParams* march = nullptr;        // noise and transport parameters
     const std::vector<float>* sigma = nullptr;      // the sweeps' dims cells
     const std::vector<glm::vec4>* noise = nullptr;  // perturbation table (VX_NOISE_SIZE^3)
     size_t offset = 0;
-    const std::vector<float>* input = nullptr;      // eye sweep only: 3 floats per cell
+    const std::vector<float>* input = nullptr;      // eye or source sweeps: 3 floats per cell
 };
 
 }  // namespace voxlux

@@ -13,6 +13,7 @@
 
 #include "scene/camera.h"
 #include "kernel/cpu_kernel.h"
+#include "lighting/propagation/emitted_light.h"
 #include "lighting/propagation/light_sweeps.h"
 #include "optics/diffusion_profile.h"
 
@@ -21,21 +22,23 @@ namespace {
 
 glm::ivec3 coarserDims(glm::ivec3 d, int factor) { return (d + factor - 1) / factor; }
 
-// The light grid's extinction averaged over blocks of 2^3 cells; cells past an odd edge count as
-// empty space, which is what they are.
-std::vector<float> halveGrid(const LightGrid& g) {
-    const glm::ivec3 h = coarserDims(g.dims, 2);
-    std::vector<float> out(size_t(h.x) * h.y * h.z, 0.0f);
+// A grid of `channels` floats per cell over `dims` cells averaged over blocks of 2^3 cells; cells
+// past an odd edge count as empty space, which is what they are.
+std::vector<float> halveGrid(const std::vector<float>& values, glm::ivec3 dims, int channels) {
+    const glm::ivec3 h = coarserDims(dims, 2);
+    std::vector<float> out(size_t(h.x) * h.y * h.z * channels, 0.0f);
     tbb::parallel_for(0, h.z, [&](int z) {
         for (int y = 0; y < h.y; ++y)
-            for (int x = 0; x < h.x; ++x) {
-                float sum = 0.0f;
-                for (int k = 0; k < 8; ++k) {
-                    const glm::ivec3 c = 2 * glm::ivec3(x, y, z) + glm::ivec3(k & 1, (k >> 1) & 1, k >> 2);
-                    if (glm::all(glm::lessThan(c, g.dims))) sum += g.values[(size_t(c.z) * g.dims.y + c.y) * g.dims.x + c.x];
+            for (int x = 0; x < h.x; ++x)
+                for (int ch = 0; ch < channels; ++ch) {
+                    float sum = 0.0f;
+                    for (int k = 0; k < 8; ++k) {
+                        const glm::ivec3 c = 2 * glm::ivec3(x, y, z) + glm::ivec3(k & 1, (k >> 1) & 1, k >> 2);
+                        if (glm::all(glm::lessThan(c, dims)))
+                            sum += values[((size_t(c.z) * dims.y + c.y) * dims.x + c.x) * channels + ch];
+                    }
+                    out[((size_t(z) * h.y + y) * h.x + x) * channels + ch] = sum * 0.125f;
                 }
-                out[(size_t(z) * h.y + y) * h.x + x] = sum * 0.125f;
-            }
     });
     return out;
 }
@@ -170,6 +173,15 @@ double passesCost(const PassSweeps& passes, const SweepGrid& g, bool coherent) {
     return cost * cells;
 }
 
+// What an entire update's emitted light costs on grid g, in the units of passesCost: two orders of
+// six source sweeps (src/lighting/propagation/emitted_light.h), each an indirect sweep in a pass
+// of its own; a selective update does not run them.
+double emittedLightCost(const SweepGrid& g) {
+    if (!g.emission) return 0.0;
+    const double sweep = SweepCost::kPass + SweepCost::kIndirect;
+    return double(g.dims.x) * g.dims.y * g.dims.z * 2.0 * (4.0 * sweep + 2.0 * sweep * SweepCost::kXAxis);
+}
+
 // Runs `passes` on grid g into the block at `offset`: one pass per direction with every light in
 // it (coherent), or one pass per light sweep, on `device`. Counts what ran into `report`.
 void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool coherent, const KernelInputs& inputs,
@@ -259,9 +271,9 @@ std::vector<kernel::VxLight> missingFrom(const std::vector<kernel::VxLight>& fro
 StageActivity propagationActivity(const Scene& s, const std::string& what) {
     if (s.render.method == RenderMethod::Reference)
         return {false, "skipped: the Monte Carlo reference (render.method) computes all light itself"};
-    if (s.effects.shadows != ShadowMethod::Propagation || enabledLightCount(s, false) == 0) {
+    if (s.effects.shadows != ShadowMethod::Propagation || (enabledLightCount(s, false) == 0 && !emissionLightsTheMedium(s))) {
         std::string why = "skipped: no effect in the scene needs an illumination volume";
-        if (s.effects.shadows == ShadowMethod::Propagation) why += " (propagation shadows but no light to propagate)";
+        if (s.effects.shadows == ShadowMethod::Propagation) why += " (propagation shadows but no light or lit emission to propagate)";
         else if (s.effects.indirect) why += " (indirect light needs effects.shadows = propagation)";
         return {false, why};
     }
@@ -277,7 +289,7 @@ uint64_t nextGridGeneration() {
 
 }  // namespace
 
-size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma) {
+size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission) {
     const size_t cells = size_t(d.x) * d.y * d.z;
     // The light grid, its mask, the direct RGB, and an x pass's slice-major copies of the
     // extinction and of its RGB result (CPU).
@@ -288,25 +300,28 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma) {
         // With the eye pass's own volume and its input copy of the indirect cells, reserved whenever
         // indirect light is on, so that toggling the eye pass never changes the grid.
         bytes += cc * 3 * sizeof(float) + (chroma > 1 ? cc * sizeof(float) : 0) + (cells + 2 * cc) * 3 * sizeof(float);
+        if (emission) bytes += (cells + (chroma > 1 ? cc : 0) + 2 * cc) * 3 * sizeof(float);
     }
     return bytes;
 }
 
 StageReads IlluminationGridStage::reads() const {
     return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
-             "/effects/propagation/chroma_subsampling"},
-            {"brick", "classify"}};
+             "/effects/propagation/chroma_subsampling", "/emission"},
+            {"color_space", "brick", "classify"}};
 }
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
     const bool chroma = s.effects.indirect && s.effects.propagation.chroma_subsampling;
-    return propagationActivity(s, "extinction box-filtered into a " + std::to_string(s.effects.light_resolution) +
+    return propagationActivity(s, std::string(emissionLightsTheMedium(s) ? "extinction and emission" : "extinction") +
+                                      " box-filtered into a " + std::to_string(s.effects.light_resolution) +
                                       "-cell grid over the occupied bricks" + (chroma ? ", and its 2x coarsening" : ""));
 }
 
 void IlluminationGridStage::release() {
     grid_ = LightGrid{};
     chroma_sigma_.clear();
+    chroma_emission_.clear();
     fine_ = coarse_ = SweepGrid{};
 }
 
@@ -318,7 +333,8 @@ void IlluminationGridStage::run(StageRun& run) {
     const bool indirect = fx.indirect.has_value();
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
     const glm::vec3 extent = occupiedExtent(pages);
-    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma); },
+    const bool emission = emissionLightsTheMedium(run.scene);
+    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission); },
                         // The kernels index the volume (3 + 3 floats per cell at most) with ints.
                         [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 < uint64_t(INT32_MAX); },
                         "illumination volume"};
@@ -326,7 +342,8 @@ void IlluminationGridStage::run(StageRun& run) {
     const int resolution = fitGridResolution(extent, cappedLightResolution(extent, fx.light_resolution),
                                              size_t(fx.light_memory_mb) << 20, cost, "illumination volume", warning);
     if (!warning.empty()) run.warnings.push_back(warning);
-    grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), pages), resolution, 0.0f);
+    grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), pages, 0.0f, xyz_to_working_()), resolution, 0.0f,
+                           emission);
     if (grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(grid_));
 
     fine_.grid_to_world = brick_.atlas().index_to_world * grid_.lightToIndex();
@@ -334,9 +351,14 @@ void IlluminationGridStage::run(StageRun& run) {
     fine_.dims = grid_.dims;
     fine_.cells_per_voxel = 1.0f / grid_.cell;
     fine_.sigma = &grid_.values;
+    fine_.emission = grid_.emission.empty() ? nullptr : &grid_.emission;
     coarse_ = fine_;
     if (chroma > 1) {
-        chroma_sigma_ = halveGrid(grid_);
+        chroma_sigma_ = halveGrid(grid_.values, grid_.dims, 1);
+        if (fine_.emission) {
+            chroma_emission_ = halveGrid(grid_.emission, grid_.dims, 3);
+            coarse_.emission = &chroma_emission_;
+        }
         coarse_.grid_to_world = fine_.grid_to_world * glm::scale(glm::mat4(1.0f), glm::vec3(float(chroma)));
         coarse_.world_to_grid = glm::inverse(coarse_.grid_to_world);
         coarse_.dims = coarserDims(grid_.dims, chroma);
@@ -372,6 +394,7 @@ StageActivity PropagationStage::activity(const Scene& s) const {
             out += blur;
         }
         if (fx.propagation.chroma_subsampling) out += ", chroma subsampled 2x";
+        if (emissionLightsTheMedium(s)) out += "; emission lighting the medium (12 source sweeps)";
     }
     if (fx.perturbation) out += ", perturbed";
     return propagationActivity(s, out);
@@ -427,7 +450,7 @@ void PropagationStage::run(StageRun& run) {
     report.lights = int(inputs.lights.size());
     PassSweeps all_fine, all_coarse;
     sweepsOf(inputs.lights, 1.0f, all_fine, all_coarse);
-    report.entire_cost = estimate(all_fine, all_coarse);
+    report.entire_cost = estimate(all_fine, all_coarse) + (indirect ? emittedLightCost(coarse) : 0.0);
     bool selective = false;
     PassSweeps sel_fine, sel_coarse;
     std::vector<kernel::VxLight> removed, added;
@@ -476,7 +499,10 @@ void PropagationStage::run(StageRun& run) {
             report.mode = LightUpdate::Mode::Entire;
             report.lights_in = int(inputs.lights.size());
             runPasses(all_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
-            if (indirect) runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
+            if (indirect) {
+                runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
+                addEmittedLight(coarse, run.scene.material, blurred, inputs, passes_.on(run.backend), volume_, report);
+            }
             drift_ = 0.0;
         }
         applied_ = inputs.lights;

@@ -14,6 +14,7 @@
 // Cost: each sweep is linear in the cells it walks; a point light's sweep costs about 8 directional
 // ones and an indirect one 6 (SweepCost), which is what the selective update weighs.
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,8 +29,9 @@ namespace voxlux {
 // Bytes the propagation stages need at light-grid dimensions `dims`: the light grid, the direct
 // RGB, an x pass's slice-major copies, and with indirect light the indirect cells (their own
 // extinction grid when chroma subsampled, and the eye pass's second volume and input copy of the
-// indirect cells). The lights' 2D slice buffers are left out: two slices per light.
-size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma);
+// indirect cells), and with `emission` the emission grids and their sweeps' two source blocks.
+// The lights' 2D slice buffers are left out: two slices per light.
+size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emission);
 
 // What one update of the light sweeps did, for logs, the light-edit report and tests.
 struct LightUpdate {
@@ -69,11 +71,14 @@ struct SweepGrid {
     glm::ivec3 dims{0};
     float cells_per_voxel = 1.0f;          // grid cells per index voxel (for displacement)
     const std::vector<float>* sigma = nullptr;
+    const std::vector<float>* emission = nullptr;   // RGB emitted radiance per cell, when it lights the medium
 };
 
 class IlluminationGridStage final : public Stage {
 public:
-    IlluminationGridStage(const BrickStage& brick, const ClassifyStage& classify) : brick_(brick), classify_(classify) {}
+    // `xyz_to_working`: the colour-space stage's matrix, which emission colours are converted by.
+    IlluminationGridStage(std::function<glm::mat3()> xyz_to_working, const BrickStage& brick, const ClassifyStage& classify)
+        : xyz_to_working_(std::move(xyz_to_working)), brick_(brick), classify_(classify) {}
     std::string name() const override { return "illumination_grid"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -87,10 +92,12 @@ public:
     uint64_t generation() const { return generation_; }   // changes whenever the grids do
 
 private:
+    std::function<glm::mat3()> xyz_to_working_;
     const BrickStage& brick_;
     const ClassifyStage& classify_;
     LightGrid grid_;
     std::vector<float> chroma_sigma_;   // the light grid averaged over 2^3 cells (chroma subsampling)
+    std::vector<float> chroma_emission_;   // and its emission
     SweepGrid fine_, coarse_;
     uint64_t generation_ = 0;
 };

@@ -362,6 +362,22 @@ TEST(GlBackend, MatchesCpuWithPropagation) {
     }
 }
 
+// Emission lighting the medium with no light at all: the source sweeps alone fill the indirect
+// block (unperturbed, so the CPU runs its row batches and GL the per-cell kernel).
+TEST(GlBackend, MatchesCpuWithEmissionLightingTheMedium) {
+    VOXLUX_REQUIRE_GL(gl);
+    Scene s = baseScene();
+    s.lights.clear();
+    s.effects.shadows = ShadowMethod::Propagation;
+    s.effects.light_resolution = 24;
+    s.effects.indirect = Indirect{};
+    s.material.albedo = glm::vec3(0.9f, 0.7f, 0.5f);
+    s.emission = {emissionSource()};
+    const auto stats = expectMatch(renderBoth(makeVolume(true), s, *gl));
+    EXPECT_GT(stats[kIndirect].peak, 0.0);
+    EXPECT_EQ(stats[kDirect].peak, 0.0);
+}
+
 TEST(GlBackend, MatchesCpuWithoutLights) {
     VOXLUX_REQUIRE_GL(gl);
     Scene scene = baseScene();

@@ -4,14 +4,16 @@
 //  - direct sweep (1 channel): luminance, one bilinear read, no blur, so shadow edges stay hard;
 //  - indirect sweep (3 channels): RGB blurred over Q.tap_count taps in a cone (Kniss Eq. 9) and
 //    attenuated by the transport colour (Kniss Eq. 8);
-//  - eye sweep (3 channels): the indirect light blended with the blurred light behind the cell.
+//  - eye sweep (3 channels): the indirect light blended with the blurred light behind the cell;
+//  - source sweep (3 channels, Q.source_sweep): nothing enters from outside; every cell adds its
+//    own source along the step (emitted light, or light scattered once, that then travels on).
 // The optical depth of a step is the trapezoid rule over the extinction along it times its world
 // length, so it is corrected for the slice distance and the propagation angle alike.
 // Several lights share the volume (Sunden 2015): each sweep adds vx_prop_weight times its value,
 // tinted by Q.tint, so a negative weight takes a light out again.
 // Accessors: vx_prop_sigma (the sweep grid's extinction per world unit, one float per cell),
-// vx_prop_prev (the previous slice, Q.channels floats per cell), vx_prop_in (the eye sweep's input,
-// 3 floats per cell of the whole grid), vx_noise (perturbation table).
+// vx_prop_prev (the previous slice, Q.channels floats per cell), vx_prop_in (the eye sweep's input
+// or a source sweep's source, 3 floats per cell of the whole grid), vx_noise (perturbation table).
 #pragma once
 #include "vx_noise.h"
 
@@ -130,8 +132,9 @@ VX_INLINE float vx_prop_distance2(vec3 q) {
 
 // What enters from beyond the grid at grid point q: the light's unattenuated radiance (a light
 // sweep; luminance in x for the direct sweep; for a point or spot light times vx_prop_distance2),
-// or the eye sweep's own input at the nearest cell.
+// or the eye sweep's own input at the nearest cell; nothing for a source sweep.
 vec3 vx_prop_outside(vec3 q) {
+    if (Q.source_sweep != 0) return vec3(0.0f);
     if (Q.eye_sweep != 0) {
         ivec3 c = clamp(ivec3(floor(q)), ivec3(0), Q.dims - ivec3(1));
         int i = 3 * vx_prop_index(c);
@@ -278,6 +281,15 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
         // proportion to its opacity and passes on the light from behind it for the rest.
         float alpha = 1.0f - vx_exp(-tau);
         return vx_radiance_add(alpha * vx_prop_outside(x), (1.0f - alpha) * incoming);
+    }
+    if (Q.source_sweep != 0) {
+        // The cell's source q (per world unit) held constant over the step: it adds
+        // q * (1 - e^-k tau) / k, the march's emission integral.
+        int at = 3 * vx_prop_index(ivec3(floor(x)));
+        vec3 q = vec3(vx_prop_in(at), vx_prop_in(at + 1), vx_prop_in(at + 2));
+        vec3 kt = k * tau;
+        vec3 kept = vec3(vx_exp_integral(kt.x), vx_exp_integral(kt.y), vx_exp_integral(kt.z));
+        return vx_radiance_add(incoming * transmitted, q * (kept * step_world));
     }
     return incoming * transmitted;
 }

@@ -1,0 +1,79 @@
+#include "lighting/propagation/emitted_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace voxlux {
+namespace {
+
+constexpr float kFourPi = float(4.0 * M_PI);
+// The largest ratio of successive orders the series is summed with: its sum stays finite (at most
+// 100 times the second order) in a medium that absorbs nothing.
+constexpr float kMaxRatio = 0.99f;
+
+// Sweeps the sources `input` (RGB per world unit, per cell of g) through the extinction from the
+// six axis directions, adding 4 pi / 6 times each sweep into the RGB block of `volume`: the
+// fluence, with each face of the cube carrying a sixth of the sphere. Q: the indirect sweeps'.
+void sweepSources(const std::vector<float>& input, kernel::VxPropParams Q, const SweepGrid& g, const KernelInputs& inputs,
+                  PropagationPasses& device, IlluminationVolume& volume, LightUpdate& report) {
+    Q.source_sweep = 1;
+    Q.source_is_position = 0;
+    Q.per_cell_flow = 0;
+    Q.eye_sweep = 0;
+    Q.atten = glm::vec3(1.0f);
+    Q.tint = glm::vec3(1.0f);
+    Q.weight = kFourPi / 6.0f;
+    Q.light = kernel::VxLight{};
+    PropagationPass pass;
+    pass.march = &inputs.params;
+    pass.noise = &inputs.noise;
+    pass.sigma = g.sigma;
+    pass.offset = 0;
+    pass.input = &input;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int sign : {1, -1}) {
+            Q.axis = axis;
+            Q.direction = sign;
+            Q.source = glm::vec3(0.0f);
+            Q.source[axis] = float(sign);   // the flow: along the axis
+            pass.sweeps = {Q};
+            device.propagate(pass, volume);
+            report.sweeps += 1;
+            report.passes += 1;
+            report.slices += g.dims[axis];
+        }
+}
+
+}  // namespace
+
+bool emissionLightsTheMedium(const Scene& s) {
+    return !s.emission.empty() && s.effects.indirect && s.effects.shadows == ShadowMethod::Propagation &&
+           s.render.method == RenderMethod::March;
+}
+
+void addEmittedLight(const SweepGrid& grid, const Material& material, const kernel::VxPropParams& indirect,
+                     const KernelInputs& inputs, PropagationPasses& device, IlluminationVolume& volume, LightUpdate& report) {
+    if (!grid.emission || std::all_of(grid.emission->begin(), grid.emission->end(), [](float e) { return e <= 0.0f; }))
+        return;
+    const std::vector<float>& sigma = *grid.sigma;
+    float* block = volume.values.data() + volume.indirectOffset();
+    std::vector<float> source = *grid.emission;
+    IlluminationVolume first, second;   // the fluence of light scattered 0 and 1 times
+    for (IlluminationVolume* order : {&first, &second}) {
+        order->values.assign(source.size(), 0.0f);
+        sweepSources(source, indirect, grid, inputs, device, *order, report);
+        // The light this order scatters: the next order's source.
+        for (size_t cell = 0; cell < sigma.size(); ++cell)
+            for (int ch = 0; ch < 3; ++ch)
+                source[3 * cell + ch] = material.albedo[ch] * sigma[cell] * order->values[3 * cell + ch] / kFourPi;
+    }
+    // The orders after: a geometric series at the ratio of the second order to the first, per cell
+    // and channel, at most the albedo (the ratio the orders tend to in an unbounded medium).
+    for (size_t i = 0; i < first.values.size(); ++i) {
+        const float albedo = material.albedo[int(i % 3)];
+        const float ratio = first.values[i] > 0.0f ? std::min(second.values[i] / first.values[i], std::min(albedo, kMaxRatio)) : 0.0f;
+        block[i] += first.values[i] + second.values[i] / (1.0f - ratio);
+    }
+}
+
+}  // namespace voxlux
