@@ -141,16 +141,19 @@ int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_ch
 
 namespace {
 
-// The mean emitted radiance over the voxel at brick-local `voxel` of atlas slot `slot`, by the
-// 2^3-point midpoint rule over the reconstruction the march samples. Emission is a convex function
-// of the grid value (a blackbody's visible radiance grows many times faster than its
-// temperature), so the emission of the voxel's own value overstates the mean (Jensen's
-// inequality): 1.5x in the Blender fire of docs/accuracy.md.
-glm::vec3 meanEmission(kernel::CpuKernel& k, int slot, glm::vec3 voxel) {
+// The mean emitted radiance over the voxel at index-space `voxel`, by the 2^3-point midpoint rule
+// over the trilinear reconstruction the march samples (a point below the voxel's brick reads the
+// brick it lies in, as the march does). Emission is a convex function of the grid value (a
+// blackbody's visible radiance grows many times faster than its temperature), so the emission
+// of the voxel's own value overstates the mean (Jensen's inequality): 1.5x in the Blender fire of
+// docs/accuracy.md.
+glm::vec3 meanEmission(kernel::CpuKernel& k, glm::ivec3 voxel) {
     glm::vec3 sum(0.0f);
     for (int q = 0; q < 8; ++q) {
-        const glm::vec3 p = voxel + glm::vec3(q & 1 ? 0.25f : -0.25f, q & 2 ? 0.25f : -0.25f, q & 4 ? 0.25f : -0.25f);
-        sum += k.vx_emission(k.vx_single_tap(k.vx_corners(slot, p.x, p.y, p.z)));
+        const glm::vec3 p = glm::vec3(voxel) + glm::vec3(q & 1 ? 0.25f : -0.25f, q & 2 ? 0.25f : -0.25f, q & 4 ? 0.25f : -0.25f);
+        const glm::ivec3 brick = glm::ivec3(glm::floor(p / float(VX_BRICK)));
+        const int slot = k.vx_page_lookup(brick);
+        if (slot != VX_PAGE_EMPTY) sum += k.vx_emission(k.vx_single_tap(k.vx_corners_at(slot, brick, p)));
     }
     return sum * 0.125f;
 }
@@ -199,7 +202,8 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding,
                         kernel::CpuKernel::VxCorners c{
                             b->slot * VX_BRICK_VOXELS + (oz * VX_BRICK_STRIDE + oy) * VX_BRICK_STRIDE + ox, 0, 0, 0};
                         const float sigma = k.vx_value_extinction(k.vx_atlas_density(c.base));
-                        const glm::vec3 le = emits ? meanEmission(k, b->slot, glm::vec3(ox, oy, oz)) : glm::vec3(0.0f);
+                        const glm::vec3 le =
+                            emits ? meanEmission(k, (b->local + bmin) * VX_BRICK + glm::ivec3(ox, oy, oz)) : glm::vec3(0.0f);
                         if (sigma <= 0.0f && le == glm::vec3(0.0f)) continue;
                         const glm::vec3 albedo = g.planes == 1 ? glm::vec3(0.0f) : k.vx_albedo(k.vx_single_tap(c));
                         ay.eachCellOf(first.y + oy, [&](int cy, double y_length) {

@@ -7,6 +7,7 @@
 //       |                \-> light_grid -> sat -> light_cache ---------------------------+-> march -> grade -> write
 //       |                 \-> illumination_grid -> propagation -> eye_pass -------------+
 //        `-> camera --------------------------------------------------------------------'
+//   (color_space also feeds illumination_grid, whose emission is in the working space, and the march.)
 #pragma once
 #include <functional>
 #include <memory>

@@ -1,8 +1,8 @@
 // Numbers stay finite (docs/scene.md, "Extreme values"): every lighting method, on both backends
 // and in the Monte Carlo reference, renders every sample finite for legal extremes: lights from
 // 1e-30 to 1e38, densities from 1e-8 to the float maximum, Henyey-Greenstein g of +-0.999 and
-// +-0.9999999, a surface gradient threshold of 1e-45, and point lights on a voxel corner, on the
-// volume's face and inside it.
+// +-0.9999999, a surface gradient threshold of 1e-45, emission of 1e38 (lighting the medium, with
+// propagation), and point lights on a voxel corner, on the volume's face and inside it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,6 +33,16 @@ void setPointLight(Scene& s, glm::vec3 position) {
     s.lights[1].intensity = 1e6f;
 }
 
+// The box glowing with its own density at `intensity` (with propagation it also lights itself).
+std::function<void(Scene&)> glow(float intensity) {
+    return [intensity](Scene& s) {
+        EmissionSource e;
+        e.grid.name = "density";
+        e.intensity = intensity;
+        s.emission = {e};
+    };
+}
+
 std::vector<Extreme> extremes() {
     const auto intensity = [](float i) { return [i](Scene& s) { for (auto& l : s.lights) l.intensity = i; }; };
     const auto g = [](float g) { return [g](Scene& s) { s.material.anisotropy = g; }; };
@@ -49,6 +59,7 @@ std::vector<Extreme> extremes() {
         {"g 0.9999999", 0.5f, g(0.9999999f)},
         {"g -0.9999999", 0.5f, g(-0.9999999f)},
         {"gradient_high 1e-45", 0.5f, [](Scene& s) { s.effects.surface = SurfaceShading{0.0f, 1e-45f}; }, true},
+        {"emission 1e38", 0.5f, glow(1e38f)},
         {"point light on a voxel corner", 0.5f, [](Scene& s) { setPointLight(s, glm::vec3(12.0f)); }},
         {"point light on the face", 0.5f, [](Scene& s) { setPointLight(s, {0.0f, 11.5f, 11.5f}); }},
         {"point light inside", 0.5f, [](Scene& s) { setPointLight(s, {11.3f, 11.6f, 11.5f}); }},
@@ -112,7 +123,10 @@ void expectEveryExtremeFinite(KernelBackend& backend, const std::vector<Method>&
             SCOPED_TRACE(m.name + ", " + e.name + " on " + backend.name());
             Scene scene = methodScene(m.shadows, m.method);
             if (e.change) e.change(scene);
-            Renderer renderer(scene, volumeFromGrid(boxGrid({0, 0, 0}, {23, 23, 23}, e.density)), backend);
+            const auto box = boxGrid({0, 0, 0}, {23, 23, 23}, e.density);
+            std::vector<openvdb::FloatGrid::ConstPtr> emission;
+            if (!scene.emission.empty()) emission = {box};
+            Renderer renderer(scene, volumeFromGrid(box, emission), backend);
             const FrameResult frame = renderer.render(std::nullopt, false);
             EXPECT_EQ(nonFinite(frame.image), 0u);
             // Finite, and not black: the box is lit. Black is right for 1e-30 lights (below float

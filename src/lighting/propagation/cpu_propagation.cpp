@@ -132,7 +132,8 @@ public:
 #pragma omp simd
                 for (int q = 0; q < n; ++q) {
                     const float kt = kc * tau[q];
-                    out[size_t(base + q) * channels + c] = acc[q] * k_.vx_exp(-kt) + src[size_t(base + q) * 3] * (step * k_.vx_exp_integral(kt));
+                    out[size_t(base + q) * channels + c] =
+                        kernel::vx_radiance_add(acc[q] * k_.vx_exp(-kt), src[size_t(base + q) * 3] * (step * k_.vx_exp_integral(kt)));
                 }
             }
         }

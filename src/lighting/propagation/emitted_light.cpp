@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace voxlux {
 namespace {
@@ -12,7 +13,7 @@ constexpr float kFourPi = float(4.0 * M_PI);
 constexpr float kMaxRatio = 0.99f;
 
 // Sweeps the sources `input` (RGB per world unit, per cell of g) through the extinction from the
-// six axis directions, adding 4 pi / 6 times each sweep into the RGB block of `volume`: the
+// six axis directions into `volume`'s values (3 per cell), 4 pi / 6 times each sweep: the
 // fluence, with each face of the cube carrying a sixth of the sphere. Q: the indirect sweeps'.
 void sweepSources(const std::vector<float>& input, kernel::VxPropParams Q, const SweepGrid& g, const KernelInputs& inputs,
                   PropagationPasses& device, IlluminationVolume& volume, LightUpdate& report) {
@@ -24,6 +25,7 @@ void sweepSources(const std::vector<float>& input, kernel::VxPropParams Q, const
     Q.tint = glm::vec3(1.0f);
     Q.weight = kFourPi / 6.0f;
     Q.light = kernel::VxLight{};
+    volume.values.assign(input.size(), 0.0f);
     PropagationPass pass;
     pass.march = &inputs.params;
     pass.noise = &inputs.noise;
@@ -57,22 +59,23 @@ void addEmittedLight(const SweepGrid& grid, const Material& material, const kern
         return;
     const std::vector<float>& sigma = *grid.sigma;
     float* block = volume.values.data() + volume.indirectOffset();
-    std::vector<float> source = *grid.emission;
+    // Sums and products in double, capped at the float maximum: no order, and no sum of them, is
+    // ever infinite, so no NaN follows from one (docs/scene.md, "Extreme values").
+    auto capped = [](double v) { return float(std::min(v, double(std::numeric_limits<float>::max()))); };
     IlluminationVolume first, second;   // the fluence of light scattered 0 and 1 times
-    for (IlluminationVolume* order : {&first, &second}) {
-        order->values.assign(source.size(), 0.0f);
-        sweepSources(source, indirect, grid, inputs, device, *order, report);
-        // The light this order scatters: the next order's source.
-        for (size_t cell = 0; cell < sigma.size(); ++cell)
-            for (int ch = 0; ch < 3; ++ch)
-                source[3 * cell + ch] = material.albedo[ch] * sigma[cell] * order->values[3 * cell + ch] / kFourPi;
-    }
+    sweepSources(*grid.emission, indirect, grid, inputs, device, first, report);
+    // The light order 1 scatters: order 2's source.
+    std::vector<float> scattered(first.values.size());
+    for (size_t cell = 0; cell < sigma.size(); ++cell)
+        for (int ch = 0; ch < 3; ++ch)
+            scattered[3 * cell + ch] = capped(double(material.albedo[ch]) * sigma[cell] * first.values[3 * cell + ch] / kFourPi);
+    sweepSources(scattered, indirect, grid, inputs, device, second, report);
     // The orders after: a geometric series at the ratio of the second order to the first, per cell
     // and channel, at most the albedo (the ratio the orders tend to in an unbounded medium).
     for (size_t i = 0; i < first.values.size(); ++i) {
-        const float albedo = material.albedo[int(i % 3)];
-        const float ratio = first.values[i] > 0.0f ? std::min(second.values[i] / first.values[i], std::min(albedo, kMaxRatio)) : 0.0f;
-        block[i] += first.values[i] + second.values[i] / (1.0f - ratio);
+        const double limit = std::min(double(material.albedo[int(i % 3)]), double(kMaxRatio));
+        const double ratio = first.values[i] > 0.0f ? std::min(double(second.values[i]) / first.values[i], limit) : 0.0;
+        block[i] = capped(double(block[i]) + first.values[i] + second.values[i] / (1.0 - ratio));
     }
 }
 

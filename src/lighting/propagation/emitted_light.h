@@ -12,7 +12,8 @@
 // Limits (measured in docs/accuracy.md): a sweep carries radiance along its axis with no
 // geometric spreading, so far from a small source it stays brighter than the 1 / r^2 it should
 // fall off by; deep in an optically thick medium the series ends too soon (light that needs many
-// scatterings to get out); the constant material albedo scatters it (no albedo grid).
+// scatterings to get out); the inner orders scatter with the material's constant albedo (a
+// colour grid tints only the march's last scattering).
 // Cost: 12 RGB sweeps over the indirect grid, on an entire update only (emission does not change
 // when a light does).
 #pragma once

@@ -300,7 +300,9 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission)
         // With the eye pass's own volume and its input copy of the indirect cells, reserved whenever
         // indirect light is on, so that toggling the eye pass never changes the grid.
         bytes += cc * 3 * sizeof(float) + (chroma > 1 ? cc * sizeof(float) : 0) + (cells + 2 * cc) * 3 * sizeof(float);
-        if (emission) bytes += (cells + (chroma > 1 ? cc : 0) + 2 * cc) * 3 * sizeof(float);
+        // The emission grid (and its coarsening), the two orders, the second's source and an x
+        // pass's slice-major copy of a source.
+        if (emission) bytes += (cells + (chroma > 1 ? cc : 0) + 4 * cc) * 3 * sizeof(float);
     }
     return bytes;
 }
@@ -355,9 +357,11 @@ void IlluminationGridStage::run(StageRun& run) {
     coarse_ = fine_;
     if (chroma > 1) {
         chroma_sigma_ = halveGrid(grid_.values, grid_.dims, 1);
-        if (fine_.emission) {
+        if (fine_.emission) {   // only the coarse grid's is swept
             chroma_emission_ = halveGrid(grid_.emission, grid_.dims, 3);
             coarse_.emission = &chroma_emission_;
+            fine_.emission = nullptr;
+            grid_.emission = std::vector<float>();
         }
         coarse_.grid_to_world = fine_.grid_to_world * glm::scale(glm::mat4(1.0f), glm::vec3(float(chroma)));
         coarse_.world_to_grid = glm::inverse(coarse_.grid_to_world);

@@ -29,7 +29,7 @@ namespace voxlux {
 // Bytes the propagation stages need at light-grid dimensions `dims`: the light grid, the direct
 // RGB, an x pass's slice-major copies, and with indirect light the indirect cells (their own
 // extinction grid when chroma subsampled, and the eye pass's second volume and input copy of the
-// indirect cells), and with `emission` the emission grids and their sweeps' two source blocks.
+// indirect cells), and with `emission` the emission grids and their sweeps' blocks.
 // The lights' 2D slice buffers are left out: two slices per light.
 size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emission);
 
