@@ -171,8 +171,9 @@ TEST(Reference, SingleScatteringMatchesTheMarch) {
 // The ball glowing with its own density (a constant source from the density grid), unlit. With
 // albedo 0 nothing scatters: the reference's emission is the march's emission integral, per pixel
 // within 4 of its standard deviations and the image mean within 1%. With albedo 0.8 the glow also
-// lights the medium itself (scattered emission, in the indirect AOV), which the march has no term
-// for: the emission AOVs still agree, and the beauty is brighter than the march's.
+// lights the medium itself (scattered emission, in the indirect AOV), which the march gets only
+// from propagated indirect light (off here; tests/lighting/propagation/test_emitted_light.cpp
+// compares it): the emission AOVs still agree, and the beauty is brighter than the march's.
 TEST(Reference, EmissionMatchesTheMarchAndAlsoLightsTheMedium) {
     Ball b = ball("reference_emission");
     b.scene.lights.clear();
