@@ -348,7 +348,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                     px.ambient = vx_radiance_add(px.ambient, albedo * ambient * vx_ambient_occlusion(cell) * absorbed);
                     depth_weighted += absorbed * t * cos_forward;
                 }
-                px.emission += le * (sigma > 1e-6f ? absorbed / sigma : T * dt);
+                px.emission = vx_radiance_add(px.emission, le * (sigma > 1e-6f ? absorbed / sigma : T * dt));
                 T = T_next;
             }
         }

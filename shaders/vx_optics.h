@@ -61,7 +61,7 @@ vec3 vx_emission(VxTaps r) {
                   float(VX_EMISSION_LUT_SIZE - 1);
         int i = min(int(x), VX_EMISSION_LUT_SIZE - 2);
         int row = s * VX_EMISSION_LUT_SIZE + i;
-        sum += vec3(mix(vx_emission_lut(row), vx_emission_lut(row + 1), x - float(i)));
+        sum = vx_radiance_add(sum, vec3(mix(vx_emission_lut(row), vx_emission_lut(row + 1), x - float(i))));
     }
     return sum;
 }

@@ -153,7 +153,7 @@ glm::vec3 meanEmission(kernel::CpuKernel& k, glm::ivec3 voxel) {
         const glm::vec3 p = glm::vec3(voxel) + glm::vec3(q & 1 ? 0.25f : -0.25f, q & 2 ? 0.25f : -0.25f, q & 4 ? 0.25f : -0.25f);
         const glm::ivec3 brick = glm::ivec3(glm::floor(p / float(VX_BRICK)));
         const int slot = k.vx_page_lookup(brick);
-        if (slot != VX_PAGE_EMPTY) sum += k.vx_emission(k.vx_single_tap(k.vx_corners_at(slot, brick, p)));
+        if (slot != VX_PAGE_EMPTY) sum = kernel::vx_radiance_add(sum, k.vx_emission(k.vx_single_tap(k.vx_corners_at(slot, brick, p))));
     }
     return sum * 0.125f;
 }
@@ -232,7 +232,8 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding,
             const size_t i = size_t(cz) * g.dims.x * g.dims.y + cell;
             for (int p = 0; p < g.planes; ++p) g.values[p * plane + i] = float(sum[p] * inv_volume);
             if (emits)
-                for (int ch = 0; ch < 3; ++ch) g.emission[i * 3 + ch] = float(emitted[cell * 3 + ch] * inv_volume);
+                for (int ch = 0; ch < 3; ++ch)
+                    g.emission[i * 3 + ch] = float(std::min(emitted[cell * 3 + ch] * inv_volume, double(VX_FLOAT_MAX)));
         }
     });
     g.clamped_cells = clamped;

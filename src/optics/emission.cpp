@@ -49,7 +49,9 @@ EmissionTable bakeEmission(const EmissionSource& source, float grid_max, const g
     t.rows.resize(n);
     int first = n;  // the first row that emits
     for (int i = 0; i < n; ++i) {
-        const glm::vec3 rgb = emissionRadiance(source, grid_max * float(i) / float(n - 1), xyz_to_working);
+        // At most the float maximum: a grid value of 1e6 at intensity 3e38 is no infinite row.
+        const glm::vec3 rgb = glm::min(emissionRadiance(source, grid_max * float(i) / float(n - 1), xyz_to_working),
+                                       glm::vec3(std::numeric_limits<float>::max()));
         t.rows[size_t(i)] = glm::vec4(rgb, 0.0f);
         if (first == n && rgb != glm::vec3(0.0f)) first = i;
     }

@@ -1,8 +1,9 @@
 // Numbers stay finite (docs/scene.md, "Extreme values"): every lighting method, on both backends
 // and in the Monte Carlo reference, renders every sample finite for legal extremes: lights from
 // 1e-30 to 1e38, densities from 1e-8 to the float maximum, Henyey-Greenstein g of +-0.999 and
-// +-0.9999999, a surface gradient threshold of 1e-45, emission of 1e38 (lighting the medium, with
-// propagation), and point lights on a voxel corner, on the volume's face and inside it.
+// +-0.9999999, a surface gradient threshold of 1e-45, emission up to the float maximum on values
+// of 1e6 (lighting the medium, with propagation), and point lights on a voxel corner, on the
+// volume's face and inside it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -60,6 +61,7 @@ std::vector<Extreme> extremes() {
         {"g -0.9999999", 0.5f, g(-0.9999999f)},
         {"gradient_high 1e-45", 0.5f, [](Scene& s) { s.effects.surface = SurfaceShading{0.0f, 1e-45f}; }, true},
         {"emission 1e38", 0.5f, glow(1e38f)},
+        {"emission FLT_MAX, density 1e6", 1e6f, glow(FLT_MAX)},
         {"point light on a voxel corner", 0.5f, [](Scene& s) { setPointLight(s, glm::vec3(12.0f)); }},
         {"point light on the face", 0.5f, [](Scene& s) { setPointLight(s, {0.0f, 11.5f, 11.5f}); }},
         {"point light inside", 0.5f, [](Scene& s) { setPointLight(s, {11.3f, 11.6f, 11.5f}); }},
