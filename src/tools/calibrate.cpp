@@ -101,7 +101,7 @@ Calibration calibrate(const Scene& scene, const CalibrateOptions& o, std::ostrea
             Scene reference = reduced;
             reference.render.method = RenderMethod::Reference;
             reference.render.reference.spp = o.spp / 2;
-            reference.render.reference.seed = scene.render.reference.seed + 1000003 * (h + 1);
+            reference.render.reference.seed = truthHalfSeed(scene.render.reference.seed, h);
             half[h] = Renderer(reference).render(frame, false).image;
         }
         truth = meanOfHalves(half[0], half[1]);

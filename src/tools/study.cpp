@@ -90,7 +90,7 @@ Truth groundTruth(const nlohmann::json& base, const std::string& hash, const Stu
     for (int h = 0; h < 2; ++h) {
         progress.describe("ground truth, half " + std::to_string(h + 1) + " of 2");
         StudyConfig c{"reference", {"render.method=reference", "render.reference.spp=" + std::to_string(o.truth_spp / 2),
-                                    "render.reference.seed=" + std::to_string(seed + 1000003 * (h + 1))}, o.truth_spp / 2};
+                                    "render.reference.seed=" + std::to_string(truthHalfSeed(seed, h))}, o.truth_spp / 2};
         half[h] = renderTimed(studyScene(base, c), frame, 1);
     }
     Truth t;

@@ -30,6 +30,10 @@ nlohmann::json studyBase(const Scene& scene);
 // The frame a measurement renders: a sequence's first (volume.frames), or none for one file.
 std::optional<int> studyFrame(const Scene& scene);
 
+// The seed of half `half` (0 or 1) of a ground truth rendered in two halves from the scene's
+// reference seed `seed`: far from it and from each other, so the halves' noise is independent.
+inline int truthHalfSeed(int seed, int half) { return seed + 1000003 * (half + 1); }
+
 // Writes <out_dir>/study.csv, truth.exr, truth.json, chart.svg and report.md, and one line per
 // render to `out`; progress through core/progress.h. Throws InputError.
 void runStudy(const Scene& scene, const StudyOptions& options, std::ostream& out);

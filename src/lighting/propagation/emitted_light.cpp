@@ -48,6 +48,13 @@ void sweepSources(const std::vector<float>& input, kernel::VxPropParams Q, const
 
 }  // namespace
 
+double emittedLightCost(const SweepGrid& g) {
+    if (!g.emission) return 0.0;
+    // Per order: the x axis both ways (slice-major copies) and the y and z axes both ways.
+    const double sweep = SweepCost::kPass + SweepCost::kIndirect;
+    return double(g.dims.x) * g.dims.y * g.dims.z * (kEmittedLightSweeps / 6) * (2.0 * sweep * SweepCost::kXAxis + 4.0 * sweep);
+}
+
 bool emissionLightsTheMedium(const Scene& s) {
     return !s.emission.empty() && s.effects.indirect && s.effects.shadows == ShadowMethod::Propagation &&
            s.render.method == RenderMethod::March;

@@ -25,6 +25,13 @@ namespace voxlux {
 // carries propagated indirect light.
 bool emissionLightsTheMedium(const Scene& scene);
 
+// The source sweeps addEmittedLight runs: two orders, each from the six axis directions.
+constexpr int kEmittedLightSweeps = 12;
+
+// What addEmittedLight costs on `grid` (none without emission), in the units of the propagation's
+// cost estimate (SweepCost): each source sweep an indirect sweep in a pass of its own.
+double emittedLightCost(const SweepGrid& grid);
+
 // Adds the fluence of the emission in `grid` (its `emission`, on the indirect light's grid) into
 // the indirect block of `volume`. `indirect` holds the indirect sweeps' grid and blur.
 void addEmittedLight(const SweepGrid& grid, const Material& material, const kernel::VxPropParams& indirect,

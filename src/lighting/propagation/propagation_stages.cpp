@@ -173,15 +173,6 @@ double passesCost(const PassSweeps& passes, const SweepGrid& g, bool coherent) {
     return cost * cells;
 }
 
-// What an entire update's emitted light costs on grid g, in the units of passesCost: two orders of
-// six source sweeps (src/lighting/propagation/emitted_light.h), each an indirect sweep in a pass
-// of its own; a selective update does not run them.
-double emittedLightCost(const SweepGrid& g) {
-    if (!g.emission) return 0.0;
-    const double sweep = SweepCost::kPass + SweepCost::kIndirect;
-    return double(g.dims.x) * g.dims.y * g.dims.z * 2.0 * (4.0 * sweep + 2.0 * sweep * SweepCost::kXAxis);
-}
-
 // Runs `passes` on grid g into the block at `offset`: one pass per direction with every light in
 // it (coherent), or one pass per light sweep, on `device`. Counts what ran into `report`.
 void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool coherent, const KernelInputs& inputs,
@@ -398,7 +389,7 @@ StageActivity PropagationStage::activity(const Scene& s) const {
             out += blur;
         }
         if (fx.propagation.chroma_subsampling) out += ", chroma subsampled 2x";
-        if (emissionLightsTheMedium(s)) out += "; emission lighting the medium (12 source sweeps)";
+        if (emissionLightsTheMedium(s)) out += "; emission lighting the medium (" + std::to_string(kEmittedLightSweeps) + " source sweeps)";
     }
     if (fx.perturbation) out += ", perturbed";
     return propagationActivity(s, out);
