@@ -20,18 +20,11 @@ namespace {
 
 using kernel::CpuKernel;
 
-// PCG hash (Jarzynski and Olano 2020): one well-mixed 32-bit word per input word.
-uint32_t pcgHash(uint32_t v) {
-    const uint32_t state = v * 747796405u + 2891336453u;
-    const uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-// The tracker: the kernel bound to the inputs, and the majorants of its slots. Rays are in world
-// units; the kernel's brick DDA walks them in index space with t as world distance.
+// The tracker: the kernel bound to the inputs, and the extinction bounds of its slots. Rays are in
+// world units; the kernel's brick DDA walks them in index space with t as world distance.
 struct Tracker {
     CpuKernel& k;
-    const std::vector<float>& majorant;
+    const ExtinctionBounds& bounds;
     std::atomic<uint64_t>& opaque_segments;
 
     // Tentative collisions one brick's segment may take: m * length of them are expected, a
@@ -62,29 +55,47 @@ struct Tracker {
         CpuKernel::VxDda s = k.vx_dda_begin(o, d, t0, t1);
         while (s.t < s.t_end) {
             const int slot = k.vx_page_lookup(s.brick);
-            if (slot != VX_PAGE_EMPTY && majorant[slot] > 0.0f &&
-                !visit(slot, s.brick, o, d, s.t, k.vx_dda_exit(s), majorant[slot]))
+            if (slot != VX_PAGE_EMPTY && bounds.majorant[slot] > 0.0f &&
+                !visit(slot, s.brick, o, d, s.t, k.vx_dda_exit(s), bounds.majorant[slot]))
                 return;
             k.vx_dda_advance(s);
         }
     }
 
-    // Ratio tracking: the product of (1 - sigma / majorant) over the tentative collisions.
+    // Steps through the tentative collisions at `rate` in one brick segment [t, t_end) of a walk,
+    // calling at(t, index_point, opaque) for each until it returns false; returns whether the
+    // segment's end was reached. `opaque`: the segment is taken as opaque at t (nextCollision says
+    // why), with no collision there, and `at` must stop the walk.
+    template <class At>
+    bool collisions(glm::vec3 o, glm::vec3 d, float t, float t_end, float rate, ReferenceRng& rng, int& events,
+                    At&& at) const {
+        for (int here = 0;; ++here) {
+            const std::optional<float> next = nextCollision(t, rate, here, rng);
+            if (next && *next >= t_end) return true;
+            if (next) {
+                t = *next;
+                ++events;
+            }
+            if (!at(t, o + d * t, !next)) return false;
+        }
+    }
+
+    // Residual ratio tracking (Novak et al. 2014): in each brick segment the minorant c's share of
+    // the optical depth is exact, exp(-c * length), and only the residual sigma - c is tracked, with
+    // tentative collisions at rate m - c, each weighing 1 - (sigma - c) / (m - c). A brick of
+    // uniform density costs no event and adds no noise (a dense cloud's core); where c is 0 it is
+    // plain ratio tracking.
     float transmittance(glm::vec3 x, glm::vec3 w, float dist, ReferenceRng& rng, int& events) const {
         float T = 1.0f;
         walk(x, w, dist, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
-            for (int here = 0;; ++here) {
-                const std::optional<float> next = nextCollision(t, m, here, rng);
-                if (!next) {
-                    T = 0.0f;
-                    return false;
-                }
-                t = *next;
-                if (t >= t_end) return true;
-                ++events;
-                T *= std::max(0.0f, 1.0f - k.vx_extinction(k.vx_taps_at(slot, brick, o + d * t)) / m);
-                if (T <= 0.0f) return false;
-            }
+            const float c = bounds.minorant[slot], residual = m - c;
+            if (t_end > t) T *= std::exp(-c * (t_end - t));
+            if (T <= 0.0f) return false;
+            if (!(residual > 0.0f)) return true;  // uniform here: exact
+            return collisions(o, d, t, t_end, residual, rng, events, [&](float, glm::vec3 p, bool opaque) {
+                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (k.vx_extinction(k.vx_taps_at(slot, brick, p)) - c) / residual);
+                return T > 0.0f;
+            });
         });
         return T;
     }
@@ -102,43 +113,88 @@ struct Tracker {
         Flight f;
         const bool emits = k.P.emission_sources > 0;
         walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
-            for (int here = 0;; ++here) {
-                const std::optional<float> next = nextCollision(t, m, here, rng);
-                if (next && *next >= t_end) return true;
-                if (next) {
-                    t = *next;
-                    ++events;
+            return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 p, bool opaque) {
+                const CpuKernel::VxTaps c = k.vx_taps_at(slot, brick, p);
+                if (!opaque) {  // else the flight ends here
+                    if (emits) f.emitted += k.vx_emission(c) / m;
+                    if (rng.next() * m >= k.vx_extinction(c)) return true;  // a null collision
                 }
-                const CpuKernel::VxTaps c = k.vx_taps_at(slot, brick, o + d * t);
-                if (!next) {  // opaque at float precision: the flight ends here
-                    f.collided = true;
-                    f.t = t;
-                    f.cell = c;
-                    return false;
-                }
-                if (emits) f.emitted += k.vx_emission(c) / m;
-                if (rng.next() * m < k.vx_extinction(c)) {
-                    f.collided = true;
-                    f.t = t;
-                    f.cell = c;
-                    return false;
-                }
-            }
+                f.collided = true;
+                f.t = at;
+                f.cell = c;
+                return false;
+            });
         });
         return f;
     }
+
+    // A flight by ratio tracking at the full majorant m to the end of the volume, for the camera ray
+    // and for a path's last flight. Its tentative collisions are a Poisson process of rate m, so by
+    // Campbell's theorem the sum over them of T(t) f(t) / m, with T(t) the running ratio-tracking
+    // product, estimates the integral of T f along the ray without bias. With f = sigma that is the
+    // probability of scattering at all: when `choose`, one collision is chosen in proportion to its
+    // term, by the pixel's stratified number, and the path scatters there with the whole sum as its
+    // weight, where delta tracking would escape with probability T and give nothing. With f = Le it
+    // is the emission along the ray. The product at the end is the transmittance to the outside
+    // (the camera's alpha; the share of the ambient light a last flight brings, where delta
+    // tracking brings all or nothing). The same events serve all three.
+    struct RatioFlight {
+        Flight scatter;  // the chosen collision; collided is false when no term was positive
+        float weight = 0.0f;  // the sum of T sigma / m: the path's throughput at the collision
+        float transmittance = 1.0f;
+        glm::vec3 emitted{0.0f};
+    };
+
+    // A tentative collision that may be chosen: the running sum of the terms up to it.
+    struct Candidate {
+        float cumulative;
+        float t;
+        int slot;
+        glm::ivec3 brick;
+        glm::vec3 index_point;
+    };
+
+    RatioFlight ratioFlight(glm::vec3 x, glm::vec3 w, bool choose, ReferenceRng& rng, int& events) const {
+        thread_local std::vector<Candidate> candidates;
+        candidates.clear();
+        RatioFlight p;
+        float& T = p.transmittance;
+        const bool emits = k.P.emission_sources > 0;
+        walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
+            return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 point, bool opaque) {
+                // Opaque at float precision: all of T scatters here.
+                const CpuKernel::VxTaps c = k.vx_taps_at(slot, brick, point);
+                const float sigma = opaque ? m : k.vx_extinction(c);
+                const float term = opaque ? T : T * std::min(1.0f, sigma / m);
+                if (emits && !opaque) p.emitted += T * k.vx_emission(c) / m;
+                if (term > 0.0f) {
+                    p.weight += term;
+                    if (choose) candidates.push_back({p.weight, at, slot, brick, point});
+                }
+                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - sigma / m);
+                return T > 0.0f;
+            });
+        });
+        if (candidates.empty()) return p;
+        const float target = rng.stratified(ReferenceRng::kCameraScatter) * p.weight;
+        const auto chosen = std::min(std::upper_bound(candidates.begin(), candidates.end(), target,
+                                                      [](float v, const Candidate& c) { return v < c.cumulative; }),
+                                     candidates.end() - 1);
+        p.scatter = {true, chosen->t, k.vx_taps_at(chosen->slot, chosen->brick, chosen->index_point), glm::vec3(0.0f)};
+        return p;
+    }
 };
 
-// One path's contributions.
 // A sum of radiance as float, at most the float maximum (the sum is never NaN: its terms are >= 0).
 float toFloat(double v) { return float(std::min(v, double(std::numeric_limits<float>::max()))); }
 glm::vec3 toFloat(const glm::dvec3& v) { return {toFloat(v.x), toFloat(v.y), toFloat(v.z)}; }
 
+// One path's contributions.
 struct PathSample {
     glm::vec3 direct{0.0f}, indirect{0.0f}, ambient{0.0f}, emission{0.0f};
     float transmittance = 1.0f;
-    float depth = 0.0f;  // camera-space distance of the first collision
-    bool hit = false;
+    float scatter_weight = 0.0f;  // the camera pass's probability-of-scattering estimate
+    float depth = 0.0f;           // camera-space distance of the first scattering
     int events = 0;
 };
 
@@ -146,25 +202,21 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
                      glm::vec3 forward, ReferenceRng& rng) {
     CpuKernel& k = tr.k;
     PathSample ps;
-    ps.transmittance = tr.transmittance(origin, dir, 1e30f, rng, ps.events);
+    const Tracker::RatioFlight camera = tr.ratioFlight(origin, dir, true, rng, ps.events);
+    ps.transmittance = camera.transmittance;
+    ps.emission = camera.emitted;
+    if (!camera.scatter.collided) return ps;
+    ps.scatter_weight = camera.weight;
+    ps.depth = camera.scatter.t * glm::dot(dir, forward);
+    if (rs.max_bounces == 0) return ps;
     const glm::vec3 ambient = k.P.ambient;
     const bool escapes_count = k.P.has_ambient != 0 || k.P.emission_sources > 0;
     const float g = k.P.anisotropy;
-    glm::vec3 beta(1.0f), x = origin, w = dir;
+    glm::vec3 beta(camera.weight), x = origin + dir * camera.scatter.t, w = dir;
+    CpuKernel::VxTaps cell = camera.scatter.cell;
+    // Each turn scatters at x: next-event estimation to the lights, then a flight by delta tracking.
     for (int bounce = 0;; ++bounce) {
-        const Tracker::Flight f = tr.flight(x, w, rng, ps.events);
-        (bounce == 0 ? ps.emission : ps.indirect) += beta * f.emitted;
-        if (!f.collided) {
-            if (bounce > 0) ps.ambient += beta * ambient;
-            break;
-        }
-        if (bounce == 0) {
-            ps.hit = true;
-            ps.depth = f.t * glm::dot(dir, forward);
-        }
-        if (bounce == rs.max_bounces) break;
-        x += w * f.t;
-        beta *= k.vx_albedo(f.cell);
+        beta *= k.vx_albedo(cell);
         for (int i = 0; i < k.P.light_count; ++i) {
             glm::vec3 wi;
             float dist;
@@ -183,33 +235,50 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
             }
         }
         if (beta.x + beta.y + beta.z <= 0.0f) break;
-        const float u1 = rng.next(), u2 = rng.next();
+        const bool first = bounce == 0;
+        const float u1 = first ? rng.stratified(ReferenceRng::kFirstDirectionU) : rng.next();
+        const float u2 = first ? rng.stratified(ReferenceRng::kFirstDirectionV) : rng.next();
         w = k.vx_sample_hg(w, g, u1, u2);
+        // The last flight brings only ambient light and emission: their expected values along w,
+        // by residual ratio tracking where nothing emits.
+        if (bounce + 1 == rs.max_bounces) {
+            if (k.P.emission_sources > 0) {
+                const Tracker::RatioFlight last = tr.ratioFlight(x, w, false, rng, ps.events);
+                ps.indirect += beta * last.emitted;
+                ps.ambient += beta * ambient * last.transmittance;
+            } else {
+                ps.ambient += beta * ambient * tr.transmittance(x, w, 1e30f, rng, ps.events);
+            }
+            break;
+        }
+        const Tracker::Flight f = tr.flight(x, w, rng, ps.events);
+        ps.indirect += beta * f.emitted;
+        if (!f.collided) {
+            ps.ambient += beta * ambient;
+            break;
+        }
+        x += w * f.t;
+        cell = f.cell;
     }
     return ps;
 }
 
 }  // namespace
 
-ReferenceRng::ReferenceRng(uint32_t seed, uint32_t pixel, uint32_t sample)
-    : key_(pcgHash(seed ^ pcgHash(pixel ^ pcgHash(sample)))) {}
-
-float ReferenceRng::next() { return float(pcgHash(key_ + pcgHash(dim_++)) >> 8) * 0x1p-24f; }
-
-std::vector<float> brickMajorants(const KernelInputs& in) {
+ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
     CpuKernel k = bindCpuKernel(in);
     const BrickAtlas& atlas = *in.atlas;
     const size_t slots = atlas.slots();
     const bool tf = k.P.use_transfer != 0;
     const float floor_emitting = 1.0f / voxelEdge(atlas.index_to_world);
-    std::vector<float> m(slots, 0.0f);
+    ExtinctionBounds b{std::vector<float>(slots, 0.0f), std::vector<float>(slots, 0.0f)};
     // The slots a sample in slot s reads: s itself, and under the B-spline its 26 neighbours
     // (absent ones read 0).
     const bool tricubic = k.P.voxel_filter == VX_FILTER_TRICUBIC;
     for (size_t s = 0; s < slots; ++s) {
         // Filtered values stay within the range of the blocks they read (both filters are convex
         // combinations of voxels); the transfer function is linear between its table rows, so its
-        // largest extinction over the range is at an end or at a row.
+        // extremes over the range are at an end or at a row.
         float lo = atlas.density_range[s].x, hi = atlas.density_range[s].y;
         bool emitting = false;
         for (int n = tricubic ? 0 : 13; n < (tricubic ? 27 : 14); ++n) {
@@ -222,23 +291,28 @@ std::vector<float> brickMajorants(const KernelInputs& in) {
             hi = std::max(hi, atlas.density_range[size_t(read)].y);
             for (int e = 0; e < k.P.emission_sources; ++e) emitting |= atlas.emission_max[size_t(e) * slots + size_t(read)] > 0.0f;
         }
-        float sigma = std::max(k.vx_value_extinction(lo), k.vx_value_extinction(hi));
+        float sigma_max = std::max(k.vx_value_extinction(lo), k.vx_value_extinction(hi));
+        float sigma_min = std::min(k.vx_value_extinction(lo), k.vx_value_extinction(hi));
         for (int i = 0; tf && i < VX_TF_LUT_SIZE; ++i) {
             const float v = k.P.transfer_lo + float(i) / (float(VX_TF_LUT_SIZE - 1) * k.P.transfer_inv_range);
-            if (v > lo && v < hi) sigma = std::max(sigma, k.vx_value_extinction(v));
+            if (v > lo && v < hi) {
+                sigma_max = std::max(sigma_max, k.vx_value_extinction(v));
+                sigma_min = std::min(sigma_min, k.vx_value_extinction(v));
+            }
         }
-        if (emitting) sigma = std::max(sigma, floor_emitting);
-        m[s] = sigma;
+        if (emitting) sigma_max = std::max(sigma_max, floor_emitting);
+        b.majorant[s] = sigma_max;
+        b.minorant[s] = std::max(0.0f, std::min(sigma_min, sigma_max));
     }
-    return m;
+    return b;
 }
 
-float ratioTrackedTransmittance(const KernelInputs& in, const std::vector<float>& majorants, glm::vec3 x, glm::vec3 w,
+float ratioTrackedTransmittance(const KernelInputs& in, const ExtinctionBounds& bounds, glm::vec3 x, glm::vec3 w,
                                 float dist, ReferenceRng& rng) {
     CpuKernel k = bindCpuKernel(in);
     int events = 0;
     std::atomic<uint64_t> opaque{0};
-    return Tracker{k, majorants, opaque}.transmittance(x, w, dist, rng, events);
+    return Tracker{k, bounds, opaque}.transmittance(x, w, dist, rng, events);
 }
 
 RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs, uint64_t* opaque_segments,
@@ -246,9 +320,9 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
     CpuKernel k = bindCpuKernel(in);
     if (k.P.surface_inv_range > 0.0f || k.P.noise_octaves > 0)
         throw InputError("render.method reference: effects.surface and effects.perturbation are march-only effects");
-    const std::vector<float> majorants = brickMajorants(in);
+    const ExtinctionBounds bounds = brickExtinctionBounds(in);
     std::atomic<uint64_t> opaque{0};
-    const Tracker tracker{k, majorants, opaque};
+    const Tracker tracker{k, bounds, opaque};
     RenderImage img;
     img.width = k.P.width;
     img.height = k.P.height;
@@ -277,9 +351,9 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                     acc.ambient += p.ambient;
                     acc.emission += p.emission;
                     acc.transmittance += p.transmittance;
-                    acc.depth += p.depth;
+                    acc.depth += double(p.depth) * p.scatter_weight;
+                    acc.scatter_weight += p.scatter_weight;
                     acc.events += p.events;
-                    acc.hits += p.hit;
                     // Luminance is linear: per term, so that no float sum overflows.
                     const double l = double(k.vx_luminance(p.direct)) + k.vx_luminance(p.indirect) +
                                      k.vx_luminance(p.ambient) + k.vx_luminance(p.emission);
@@ -293,7 +367,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 px.emission = toFloat(acc.emission / n);
                 px.transmittance = float(acc.transmittance / n);
                 px.rgba = glm::vec4(toFloat((acc.direct + acc.indirect + acc.ambient + acc.emission) / n), 1.0f - px.transmittance);
-                px.depth = acc.hits ? float(acc.depth / acc.hits) : 0.0f;
+                px.depth = acc.scatter_weight > 0.0 ? float(acc.depth / acc.scatter_weight) : 0.0f;
                 px.samples = float(double(acc.events) / n);
                 const double mean = acc.lum / rs.spp;
                 px.variance = rs.spp > 1 ? toFloat(std::max(0.0, acc.lum2 - rs.spp * mean * mean) / (rs.spp - 1) / rs.spp) : 0.0f;

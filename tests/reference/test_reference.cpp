@@ -42,8 +42,8 @@ double meanLuminance(const RenderImage& img) {
     return sum / double(img.pixels.size());
 }
 
-// Ratio tracking through a homogeneous box along the axes: the mean of independent estimates
-// matches exp(-sigma * d) within 3 standard errors computed from the estimates themselves. Beyond
+// Residual ratio tracking through a homogeneous box along the axes: the mean of independent
+// estimates matches exp(-sigma * d) within 4 standard errors computed from the estimates themselves. Beyond
 // the last voxel centre trilinear reconstruction ramps to zero over one voxel, so an axis ray sees
 // kN voxels of full density (as the march's transmittance test).
 TEST(Reference, RatioTrackedTransmittanceOfAHomogeneousBox) {
@@ -53,7 +53,7 @@ TEST(Reference, RatioTrackedTransmittanceOfAHomogeneousBox) {
         const float sigma = float(optical_depth / d);
         auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {kN - 1, kN - 1, kN - 1}, sigma, kVoxel)),
                                 referenceScene(1, 1), cameraAlong(centre, {1, 0, 0}, 200.0f, 1.0f));
-        const std::vector<float> majorants = brickMajorants(prepared->inputs);
+        const ExtinctionBounds bounds = brickExtinctionBounds(prepared->inputs);
         const glm::vec3 axes[] = {{1, 0, 0}, {0, -1, 0}, {0, 0, 1}};
         for (uint32_t a = 0; a < 3; ++a) {
             const glm::vec3 start = centre - axes[a] * 100.0f;
@@ -61,7 +61,7 @@ TEST(Reference, RatioTrackedTransmittanceOfAHomogeneousBox) {
             double sum = 0.0, sum2 = 0.0;
             for (int i = 0; i < kSamples; ++i) {
                 ReferenceRng rng(7, a, uint32_t(i));
-                const double T = ratioTrackedTransmittance(prepared->inputs, majorants, start, axes[a], 200.0f, rng);
+                const double T = ratioTrackedTransmittance(prepared->inputs, bounds, start, axes[a], 200.0f, rng);
                 sum += T;
                 sum2 += T * T;
             }
@@ -69,7 +69,7 @@ TEST(Reference, RatioTrackedTransmittanceOfAHomogeneousBox) {
             const double se = std::sqrt(std::max(0.0, sum2 / kSamples - mean * mean) / (kSamples - 1));
             const double expected = std::exp(-optical_depth);
             std::printf("ratio tracking, sigma*d %.1f: T %.5f +- %.5f (exp %.5f)\n", optical_depth, mean, se, expected);
-            EXPECT_NEAR(mean, expected, 3.0 * se + 1e-6) << "sigma*d " << optical_depth;
+            EXPECT_NEAR(mean, expected, 4.0 * se + 1e-6) << "sigma*d " << optical_depth;
         }
     }
 }
