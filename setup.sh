@@ -7,6 +7,7 @@ cd "$(dirname "$0")"
 packages=(
   build-essential cmake ninja-build pkg-config
   libopenvdb-dev libboost-iostreams-dev libopenvdb-tools
+  libboost-dev                # Boost.Random's Sobol sequence (the reference's stratified numbers)
   libopenexr-dev openexr libtbb-dev libglm-dev nlohmann-json3-dev libcli11-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
   libopencolorio-dev opencolorio-tools libpng-dev
