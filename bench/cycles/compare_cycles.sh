@@ -19,9 +19,11 @@ for bounces in 1 16; do
         seconds=$("$voxlux" render "$scene" -o "$out/voxlux_${bounces}_$1.exr" --set render.reference.seed=$1 \
             --set render.reference.spp=$2 --set render.reference.max_bounces=$bounces 2>&1 |
             sed -n 's/.* march \([0-9.]*\) s.*/\1/p')
+        [ -n "$seconds" ] || { echo "compare_cycles.sh: $voxlux failed to render $scene" >&2; exit 1; }
         echo "voxlux $bounces $1 $2 $seconds" >> "$out/times"
         seconds=$(blender -b --factory-startup -P "$here/cycles_render.py" -- "$scene" "$out/cycles_${bounces}_$1.exr" \
             $2 $1 $bounces 2>&1 | sed -n 's/^cycles_seconds //p')
+        [ -n "$seconds" ] || { echo "compare_cycles.sh: blender failed to render $scene" >&2; exit 1; }
         echo "cycles $bounces $1 $2 $seconds" >> "$out/times"
     done
 done

@@ -139,7 +139,7 @@ struct Tracker {
     // (the camera's alpha; the share of the ambient light a last flight brings, where delta
     // tracking brings all or nothing). The same events serve all three. Once T is below
     // kRouletteT, Russian roulette ends the flight or raises T back to it: a ray into a dense
-    // medium does not walk to its far side for terms of under 2% (this saved 5-10% of a sample's
+    // medium does not walk to its far side for terms of under 2% (this saved 5-14% of a sample's
     // time on the study scenes).
     struct RatioFlight {
         Flight scatter;  // the chosen collision; collided is false when no term was positive
@@ -167,7 +167,7 @@ struct Tracker {
         const bool emits = k.P.emission_sources > 0;
         walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
             return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 point, bool opaque) {
-                // Opaque at float precision: all of T scatters here.
+                // A segment taken as opaque (nextCollision): all of T scatters here.
                 const CpuKernel::VxTaps c = k.vx_taps_at(slot, brick, point);
                 const float sigma = opaque ? m : k.vx_extinction(c);
                 const float term = opaque ? T : T * std::min(1.0f, sigma / m);
@@ -220,7 +220,8 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
     const float g = k.P.anisotropy;
     glm::vec3 beta(camera.weight), x = origin + dir * camera.scatter.t, w = dir;
     CpuKernel::VxTaps cell = camera.scatter.cell;
-    // Each turn scatters at x: next-event estimation to the lights, then a flight by delta tracking.
+    // Each turn scatters at x: next-event estimation to the lights, then a flight by delta tracking
+    // (by ratio tracking when it is the last the path may take).
     for (int bounce = 0;; ++bounce) {
         beta *= k.vx_albedo(cell);
         for (int i = 0; i < k.P.light_count; ++i) {

@@ -3,8 +3,8 @@
 // The camera ray is ratio-tracked to the end of the volume once, and that one pass gives its
 // transmittance, the emission it sees and a first scattering point chosen among its tentative
 // collisions with the probability of scattering as weight, so no path escapes empty-handed.
-// Later flights are delta tracked and shadow rays residual-ratio tracked, against per-brick
-// majorants and minorants. Henyey-Greenstein scattering with next-event estimation to the scene
+// Later flights are delta tracked (the last one a path may take ratio tracked) and shadow rays
+// residual-ratio tracked, against per-brick majorants and minorants. Henyey-Greenstein scattering with next-event estimation to the scene
 // lights, up to max_bounces with Russian roulette; ambient light picked up by paths that escape;
 // emission from the emission grids. Every per-sample quantity comes from the shared kernel
 // (shaders/vx_*.h).

@@ -53,7 +53,7 @@ StageActivity MarchStage::activity(const Scene& s) const {
     std::string march;
     if (reference) {
         const ReferenceSettings& ref = s.render.reference;
-        march = "Monte Carlo reference: delta tracking, ratio-tracked shadows, up to " + std::to_string(ref.max_bounces) +
+        march = "Monte Carlo reference: a ratio-tracked camera pass, residual-ratio-tracked shadows, up to " + std::to_string(ref.max_bounces) +
                 (ref.max_bounces == 1 ? " bounce, " : " bounces, ") + std::to_string(ref.spp) + " spp";
     } else if (s.lights.empty()) {
         march = emissionLightsTheMedium(s) ? "no lights: emission, its light scattered from the illumination volume, and transmittance"
