@@ -83,8 +83,8 @@ struct Tracker {
     // Residual ratio tracking (Novak et al. 2014): in each brick segment the minorant c's share of
     // the optical depth is exact, exp(-c * length), and only the residual sigma - c is tracked, with
     // tentative collisions at rate m - c, each weighing 1 - (sigma - c) / (m - c). A brick of
-    // uniform density costs no event and adds no noise (a dense cloud's core); where c is 0 it is
-    // plain ratio tracking.
+    // uniform density that does not emit (emission raises its majorant) costs no event and adds no
+    // noise (a dense cloud's core); where c is 0 it is plain ratio tracking.
     float transmittance(glm::vec3 x, glm::vec3 w, float dist, ReferenceRng& rng, int& events) const {
         float T = 1.0f;
         walk(x, w, dist, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
