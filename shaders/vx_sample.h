@@ -105,19 +105,34 @@ VX_INLINE VxTaps vx_single_tap(VxCorners c) {
 #define VX_VOXEL_FILTER P.voxel_filter
 #endif
 
+// The cubic B-spline's weights, per axis, of the four grid points i - 1, i, i + 1, i + 2 around a
+// point at fraction t past i. They sum to 1 and are never negative.
+struct VxSplineWeights {
+    vec3 w0;
+    vec3 w1;
+    vec3 w2;
+    vec3 w3;
+};
+
+VX_INLINE VxSplineWeights vx_spline_weights(vec3 t) {
+    vec3 t2 = t * t;
+    vec3 t3 = t2 * t;
+    VxSplineWeights w;
+    w.w0 = (1.0f - 3.0f * t + 3.0f * t2 - t3) / 6.0f;
+    w.w1 = (4.0f - 6.0f * t2 + 3.0f * t3) / 6.0f;
+    w.w3 = t3 / 6.0f;
+    w.w2 = 1.0f - w.w0 - w.w1 - w.w3;
+    return w;
+}
+
 // Reconstruction of the atlas at index point p inside stored brick b (atlas slot `slot`).
 VX_INLINE VxTaps vx_taps_at(int slot, ivec3 b, vec3 p) {
     if (VX_VOXEL_FILTER == VX_FILTER_TRILINEAR) return vx_single_tap(vx_corners_at(slot, b, p));
     vec3 i = floor(p);
-    vec3 t = p - i;
-    vec3 t2 = t * t;
-    vec3 t3 = t2 * t;
-    vec3 w0 = (1.0f - 3.0f * t + 3.0f * t2 - t3) / 6.0f;
-    vec3 w1 = (4.0f - 6.0f * t2 + 3.0f * t3) / 6.0f;
-    vec3 w3 = t3 / 6.0f;
-    vec3 g1 = 1.0f - w0 - w1;    // w2 + w3, at least 1/6
-    vec3 h0 = i - 1.0f + w1 / (w0 + w1);
-    vec3 h1 = i + 1.0f + w3 / g1;
+    VxSplineWeights w = vx_spline_weights(p - i);
+    vec3 g1 = w.w2 + w.w3;    // at least 1/6
+    vec3 h0 = i - 1.0f + w.w1 / (w.w0 + w.w1);
+    vec3 h1 = i + 1.0f + w.w3 / g1;
     VxTaps r;
     r.sx = g1.x;
     r.sy = g1.y;

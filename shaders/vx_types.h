@@ -90,6 +90,10 @@ struct VxParams {
     float noise_density;    // extinction amplitude
     float noise_transport;  // transport-colour amplitude
     int voxel_filter;       // VX_FILTER_* (filter is a GLSL reserved word)
+    int light_filter;       // VX_FILTER_*: how the illumination volume is read between cells
+    int pad0;
+    int pad1;
+    int pad2;
 };
 
 // The light passes' parameters (Schlegel 2011): the extinction SAT over the light grid and the

@@ -1,5 +1,6 @@
 #include "test_support.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -53,6 +54,13 @@ openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigm
     g->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
     g->denseFill(openvdb::CoordBBox(lo, hi), sigma, true);
     return g;
+}
+
+double cubicBSpline(double x) {
+    x = std::abs(x);
+    if (x < 1) return (4 - 6 * x * x + 3 * x * x * x) / 6;
+    if (x < 2) return (2 - x) * (2 - x) * (2 - x) / 6;
+    return 0;
 }
 
 Camera cameraAlong(glm::vec3 centre, glm::vec3 dir, float distance, float fov) {

@@ -55,6 +55,10 @@ openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigm
 // file, since the renderer keys its caches on it.
 std::string writeBall(const std::string& dir);
 
+// The uniform cubic B-spline centred on a grid point, at distance x from it: the brute-force
+// weights the tricubic filters are tested against.
+double cubicBSpline(double x);
+
 // A camera `distance` from `centre`, looking at it along `dir`, with field of view `fov` (degrees).
 Camera cameraAlong(glm::vec3 centre, glm::vec3 dir, float distance, float fov);
 

@@ -41,6 +41,7 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     P.world_to_index = glm::inverse(atlas.index_to_world);
     P.step = r.step * edge;
     P.voxel_filter = r.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
+    P.light_filter = scene.effects.propagation.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
     P.shadow_step = r.shadow_step * edge;
     P.transmittance_cutoff = r.transmittance_cutoff;
     P.anisotropy = m.anisotropy;

@@ -65,6 +65,8 @@ StageActivity MarchStage::activity(const Scene& s) const {
             march += s.effects.ambient_occlusion ? ", occluded ambient" : ", unoccluded ambient";
     }
     if (s.render.filter == Filter::Tricubic) march += ", tricubic B-spline filter";
+    if (!reference && s.effects.shadows == ShadowMethod::Propagation && s.effects.propagation.filter == Filter::Trilinear)
+        march += ", illumination volume read trilinear";
     if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation && !reference) march += ", noise-perturbed";
     for (size_t i = 0; i < s.emission.size(); ++i) march += (i ? ", " : ", emission: ") + emissionDescription(s.emission[i]);

@@ -18,10 +18,11 @@ const std::map<std::string, std::vector<std::string>>& presets() {
     static const std::map<std::string, std::vector<std::string>> p = {
         {"draft", {"render.method=march", "render.step=1", "effects.shadows=propagation", "effects.light_resolution=64",
                    "effects.indirect=true", "effects.propagation.chroma_subsampling=true",
-                   "effects.ambient_occlusion=false"}},
+                   "effects.propagation.filter=tricubic", "effects.ambient_occlusion=false"}},
         {"preview", {"render.method=march", "render.step=0.5", "effects.shadows=propagation",
                      "effects.light_resolution=128", "effects.indirect=true",
-                     "effects.propagation.chroma_subsampling=false", "effects.ambient_occlusion=false"}},
+                     "effects.propagation.chroma_subsampling=false", "effects.propagation.filter=tricubic",
+                     "effects.ambient_occlusion=false"}},
         {"final", {"render.method=reference", "render.reference.spp=256"}},
     };
     return p;

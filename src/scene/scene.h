@@ -127,6 +127,8 @@ struct Propagation {
     bool chroma_subsampling = false;       // indirect light at half the resolution per axis
     bool coherent = true;                  // all lights of a propagation direction in one pass (Sunden
                                            // 2015); false: one pass per light. Same result, for timing
+    Filter filter = Filter::Tricubic;      // how the march reads the volume between cells: the B-spline
+                                           // leaves no bands at the cells (docs/accuracy.md)
 };
 
 // Indirect (multiply scattered) light, swept through the illumination volume, blurred within a cone

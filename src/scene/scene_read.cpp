@@ -211,12 +211,13 @@ ShadowCone readCone(const JsonObject& o) {
 }
 
 Propagation readPropagation(const JsonObject& o) {
-    o.rejectUnknown({"blend_axes", "eye_pass", "chroma_subsampling", "coherent"});
+    o.rejectUnknown({"blend_axes", "eye_pass", "chroma_subsampling", "coherent", "filter"});
     Propagation p;
     p.coherent = o.boolean("coherent", p.coherent);
     p.blend_axes = o.boolean("blend_axes", p.blend_axes);
     p.eye_pass = o.boolean("eye_pass", p.eye_pass);
     p.chroma_subsampling = o.boolean("chroma_subsampling", p.chroma_subsampling);
+    p.filter = o.choice("filter", {"trilinear", "tricubic"}, "tricubic") == "tricubic" ? Filter::Tricubic : Filter::Trilinear;
     return p;
 }
 

@@ -176,7 +176,8 @@ nlohmann::json sceneToJson(const Scene& s) {
     e["cone"] = {{"angle", decimal(s.effects.cone.angle)}, {"samples", s.effects.cone.samples},
                  {"growth", decimal(s.effects.cone.growth)}};
     const Propagation& pr = s.effects.propagation;
-    e["propagation"] = {{"blend_axes", pr.blend_axes}, {"eye_pass", pr.eye_pass}, {"chroma_subsampling", pr.chroma_subsampling}, {"coherent", pr.coherent}};
+    e["propagation"] = {{"blend_axes", pr.blend_axes}, {"eye_pass", pr.eye_pass}, {"chroma_subsampling", pr.chroma_subsampling}, {"coherent", pr.coherent},
+                         {"filter", pr.filter == Filter::Tricubic ? "tricubic" : "trilinear"}};
     if (const auto& in = s.effects.indirect) {
         const bool kniss = in->model == IndirectModel::Kniss;
         e["indirect"] = {{"model", kniss ? "kniss" : "diffusion"}, {"strength", decimal(in->strength)}, {"angle", decimal(in->angle)},

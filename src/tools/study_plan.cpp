@@ -96,7 +96,7 @@ StudyPlan planStudy(const nlohmann::json& base, const std::vector<int>& spps, in
               {"[0.4,0.4,0.4]", "[0.6,0.6,0.6]", "[0.8,0.8,0.8]", "[0.9,0.9,0.9]"}),
         sweep("propagation+indirect", "", m.march("propagation", true, false),
               {"effects.propagation.eye_pass=true", "effects.propagation.chroma_subsampling=true",
-               "effects.propagation.blend_axes=true"}),
+               "effects.propagation.blend_axes=true", "effects.propagation.filter=trilinear"}),
     };
     if (hasAmbientLight(scene)) {
         sweeps.push_back(sweep("raymarch+AO", "", m.march("raymarch", false, true), {"-"}));

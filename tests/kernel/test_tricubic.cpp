@@ -13,14 +13,6 @@
 namespace voxlux::test {
 namespace {
 
-// The uniform cubic B-spline centred on a voxel, at distance x from it.
-double bspline(double x) {
-    x = std::abs(x);
-    if (x < 1) return (4 - 6 * x * x + 3 * x * x * x) / 6;
-    if (x < 2) return (2 - x) * (2 - x) * (2 - x) / 6;
-    return 0;
-}
-
 // A 20^3 grid of values in [0.05, 0.1], a hundred times denser for x < 8 (brick 0 along x), so
 // the filter pulls large values across brick 1's - face.
 float noisyValue(int x, int y, int z) {
@@ -45,7 +37,7 @@ double bruteForce(glm::dvec3 p) {
         for (int y = int(std::floor(p.y)) - 1; y <= int(std::floor(p.y)) + 2; ++y)
             for (int x = int(std::floor(p.x)) - 1; x <= int(std::floor(p.x)) + 2; ++x) {
                 const bool inside = x >= 0 && y >= 0 && z >= 0 && x < 20 && y < 20 && z < 20;
-                if (inside) sum += bspline(p.x - x) * bspline(p.y - y) * bspline(p.z - z) * noisyValue(x, y, z);
+                if (inside) sum += cubicBSpline(p.x - x) * cubicBSpline(p.y - y) * cubicBSpline(p.z - z) * noisyValue(x, y, z);
             }
     return sum;
 }

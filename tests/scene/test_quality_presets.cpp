@@ -37,6 +37,11 @@ TEST(QualityPresets, EachPresetPicksItsMethodAndKnobs) {
     EXPECT_EQ(preview.effects.light_resolution, 128);
     EXPECT_TRUE(preview.effects.indirect);
     EXPECT_FALSE(preview.effects.propagation.chroma_subsampling);
+    // Both read the illumination volume by the B-spline, whatever the scene says.
+    nlohmann::json trilinear = litScene();
+    trilinear["effects"] = {{"propagation", {{"filter", "trilinear"}}}};
+    for (const char* fast : {"draft", "preview"})
+        EXPECT_EQ(withPreset(trilinear, fast).effects.propagation.filter, Filter::Tricubic) << fast;
     const Scene final_ = withPreset(litScene(), "final");
     EXPECT_EQ(final_.render.method, RenderMethod::Reference);
     EXPECT_EQ(final_.render.reference.spp, 256);

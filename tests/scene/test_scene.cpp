@@ -119,7 +119,8 @@ TEST(Scene, RoundTripThroughJson) {
         "camera": {"position": [0, 1, 10], "look_at": [0, 1, 0], "fov": 35},
         "render": {"resolution": [320, 240], "step": 0.25, "exposure": 1.5, "filter": "tricubic", "backend": "cpu"},
         "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": true,
-                    "cone": {"angle": 4, "samples": 30, "growth": 0.2}, "light_resolution": 96, "light_memory_mb": 512},
+                    "cone": {"angle": 4, "samples": 30, "growth": 0.2}, "light_resolution": 96, "light_memory_mb": 512,
+                    "propagation": {"filter": "trilinear"}},
         "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth", "ambient"]}})",
                          "shot.json", "");
     // Every key, as written by hand from the scene above and the defaults of docs/scene.md.
@@ -138,7 +139,8 @@ TEST(Scene, RoundTripThroughJson) {
                    "reference": {"spp": 64, "max_bounces": 16, "seed": 1, "roulette_depth": 3}},
         "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": 1,
                     "cone": {"angle": 4, "samples": 30, "growth": 0.2},
-                    "propagation": {"blend_axes": false, "eye_pass": false, "chroma_subsampling": false, "coherent": true},
+                    "propagation": {"blend_axes": false, "eye_pass": false, "chroma_subsampling": false, "coherent": true,
+                                    "filter": "trilinear"},
                     "indirect": false, "surface": false, "perturbation": false,
                     "light_resolution": 96, "light_memory_mb": 512},
         "color": {},
@@ -218,7 +220,7 @@ TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
     const nlohmann::json expected_effects = nlohmann::json::parse(R"({
         "shadows": "propagation", "ambient_occlusion": false, "color_bleeding": 0,
         "cone": {"angle": 2, "samples": 20, "growth": 0.05},
-        "propagation": {"blend_axes": false, "eye_pass": true, "chroma_subsampling": true, "coherent": true},
+        "propagation": {"blend_axes": false, "eye_pass": true, "chroma_subsampling": true, "coherent": true, "filter": "tricubic"},
         "indirect": {"model": "kniss", "strength": 1, "angle": 40, "samples": 13, "phase": "henyey_greenstein", "exponent": 4,
                      "g": 0.7, "transport_color": [1, 0.5, 0.25]},
         "surface": {"gradient_low": 0.1, "gradient_high": 0.3, "specular": 0.5, "shininess": 32},
@@ -275,7 +277,9 @@ TEST(Scene, PropagationEffectsAreValidated) {
     EXPECT_EQ(sceneErrorOf(v + R"({"perturbation": {"displacement": -1}}})"),
               "shot.json: /effects/perturbation/displacement: must lie in [0, 64] voxels");
     EXPECT_EQ(sceneErrorOf(v + R"({"propagation": {"eye": true}}})"),
-              "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling, coherent)");
+              "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling, coherent, filter)");
+    EXPECT_EQ(sceneErrorOf(v + R"({"propagation": {"filter": "cubic"}}})"),
+              "shot.json: /effects/propagation/filter: 'cubic' is not one of trilinear, tricubic");
 }
 
 // The emission list: every kind, its defaults and the round trip.

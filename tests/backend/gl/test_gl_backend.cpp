@@ -334,7 +334,8 @@ TEST(GlBackend, MatchesCpuWithSatLighting) {
 
 // Propagation shadows with indirect light (Kniss's transport colour, and the diffusion model of a
 // coloured albedo), the eye pass, chroma subsampling, perturbation and surface shading: the
-// illumination volume is swept by each backend, then marched.
+// illumination volume is swept by each backend, then marched, and read trilinearly and by the
+// B-spline.
 TEST(GlBackend, MatchesCpuWithPropagation) {
     VOXLUX_REQUIRE_GL(gl);
     for (IndirectModel model : {IndirectModel::Kniss, IndirectModel::Diffusion}) {
@@ -348,6 +349,8 @@ TEST(GlBackend, MatchesCpuWithPropagation) {
         s.effects.indirect = in;
         s.effects.propagation.eye_pass = true;
         s.effects.propagation.chroma_subsampling = true;
+        // Each read of the illumination volume once: the B-spline with the diffusion model.
+        s.effects.propagation.filter = model == IndirectModel::Kniss ? Filter::Trilinear : Filter::Tricubic;
         Perturbation p;
         p.density = 0.6f;
         p.transport = 0.3f;
