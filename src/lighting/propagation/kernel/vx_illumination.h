@@ -30,20 +30,16 @@ vec3 vx_illum_spline(vec3 q, ivec3 dims, int offset) {
         oy[n] = 3 * dims.x * clamp(lo.y + n, 0, dims.y - 1);
         oz[n] = 3 * dims.x * dims.y * clamp(lo.z + n, 0, dims.z - 1);
     }
-    // The weights sum to 1, but rounding may carry a sum of values near the float maximum past
-    // it: the sums clamp there, as radiance does everywhere.
+    // Each term is a weight product times a value, never more than the value: a sum over values
+    // near the float maximum can round past it to inf (clamped below), but never meets inf * 0.
     vec3 sum = vec3(0.0f);
-    for (int c = 0; c < 4; ++c) {
-        vec3 plane = vec3(0.0f);
+    for (int c = 0; c < 4; ++c)
         for (int b = 0; b < 4; ++b) {
+            float wyz = wy[b] * wz[c];
             int row_at = offset + oy[b] + oz[c];
-            vec3 row = vec3(0.0f);
-            for (int a = 0; a < 4; ++a) row = vx_radiance_add(row, wx[a] * vx_illum_rgb(row_at + ox[a]));
-            plane = vx_radiance_add(plane, wy[b] * row);
+            for (int a = 0; a < 4; ++a) sum += (wyz * wx[a]) * vx_illum_rgb(row_at + ox[a]);
         }
-        sum = vx_radiance_add(sum, wz[c] * plane);
-    }
-    return sum;
+    return vx_radiance_add(vec3(0.0f), sum);
 }
 
 // RGB at grid point q of the block of `dims` cells that starts at float `offset`.
