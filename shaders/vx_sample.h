@@ -117,8 +117,9 @@ struct VxSplineWeights {
 VX_INLINE VxSplineWeights vx_spline_weights(vec3 t) {
     vec3 t2 = t * t;
     vec3 t3 = t2 * t;
+    vec3 u = 1.0f - t;
     VxSplineWeights w;
-    w.w0 = (1.0f - 3.0f * t + 3.0f * t2 - t3) / 6.0f;
+    w.w0 = u * u * u / 6.0f;    // (1 - t)^3 / 6, not expanded: it would cancel to below 0 near t = 1
     w.w1 = (4.0f - 6.0f * t2 + 3.0f * t3) / 6.0f;
     w.w3 = t3 / 6.0f;
     w.w2 = 1.0f - w.w0 - w.w1 - w.w3;

@@ -56,6 +56,8 @@ openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigm
     return g;
 }
 
+double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
 double cubicBSpline(double x) {
     x = std::abs(x);
     if (x < 1) return (4 - 6 * x * x + 3 * x * x * x) / 6;

@@ -55,6 +55,9 @@ openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigm
 // file, since the renderer keys its caches on it.
 std::string writeBall(const std::string& dir);
 
+// Rec. 709 luminance of scene-linear RGB.
+double luminance(glm::vec3 rgb);
+
 // The uniform cubic B-spline centred on a grid point, at distance x from it: the brute-force
 // weights the tricubic filters are tested against.
 double cubicBSpline(double x);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "lighting/propagation/emitted_light.h"
+#include "lighting/propagation/propagation_stages.h"
 #include "reference/reference_renderer.h"
 
 namespace voxlux {
@@ -65,7 +66,7 @@ StageActivity MarchStage::activity(const Scene& s) const {
             march += s.effects.ambient_occlusion ? ", occluded ambient" : ", unoccluded ambient";
     }
     if (s.render.filter == Filter::Tricubic) march += ", tricubic B-spline filter";
-    if (!reference && s.effects.shadows == ShadowMethod::Propagation && s.effects.propagation.filter == Filter::Trilinear)
+    if (illuminationVolumeRuns(s) && s.effects.propagation.filter == Filter::Trilinear)
         march += ", illumination volume read trilinear";
     if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation && !reference) march += ", noise-perturbed";

@@ -35,8 +35,6 @@ Light ambientLight(float radiance) {
     return l;
 }
 
-double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
 double meanLuminance(const RenderImage& img) {
     double sum = 0.0;
     for (const auto& p : img.pixels) sum += luminance(glm::vec3(p.rgba));

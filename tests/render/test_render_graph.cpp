@@ -352,6 +352,7 @@ std::string otherString(const std::string& key, const std::string& value) {
         {"pixel_type", {"half", "float"}},
         {"compression", {"zip", "piz"}},
         {"phase", {"phong", "henyey_greenstein"}},
+        {"filter", {"trilinear", "tricubic"}},
         {"output_space", {"ACEScct", "ACES2065-1"}},
         {"space", {"ACEScct", "ACES2065-1"}},
         {"look", {"Warm", "ACES 1.3 Reference Gamut Compression"}},

@@ -280,6 +280,8 @@ uint64_t nextGridGeneration() {
 
 }  // namespace
 
+bool illuminationVolumeRuns(const Scene& scene) { return propagationActivity(scene, "").runs; }
+
 size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission) {
     const size_t cells = size_t(d.x) * d.y * d.z;
     // The light grid, its mask, the direct RGB, and an x pass's slice-major copies of the

@@ -33,6 +33,10 @@ namespace voxlux {
 // The lights' 2D slice buffers are left out: two slices per light.
 size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emission);
 
+// Whether `scene` lights the march from an illumination volume: propagation shadows, a light or
+// lit emission to propagate, and not the Monte Carlo reference.
+bool illuminationVolumeRuns(const Scene& scene);
+
 // What one update of the light sweeps did, for logs, the light-edit report and tests.
 struct LightUpdate {
     enum class Mode { Kept, Entire, Selective };

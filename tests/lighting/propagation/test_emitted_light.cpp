@@ -12,8 +12,6 @@
 namespace voxlux::test {
 namespace {
 
-double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
 // A ball of radius 20 voxels (voxel 0.1): a core of radius 6 voxels, extinction `core` per world
 // unit, holding a "flame" grid of 1, in a shell of extinction `shell`. Written to a file, as the
 // renderer reads one.

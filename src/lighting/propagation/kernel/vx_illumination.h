@@ -15,7 +15,9 @@ VX_INLINE vec3 vx_illum_rgb(int at) { return vec3(vx_illum(at), vx_illum(at + 1)
 // the 4x4x4 cells around q, the edge cells repeated past the grid's faces (as the trilinear read
 // clamps to the outer centres).
 vec3 vx_illum_spline(vec3 q, ivec3 dims, int offset) {
-    vec3 g = q - vec3(0.5f);
+    // Clamped first, so that the int conversions below stay defined for any q; a cell two past a
+    // face reads the edge as well.
+    vec3 g = clamp(q - vec3(0.5f), vec3(-2.0f), vec3(dims) + vec3(1.0f));
     vec3 first = floor(g);
     VxSplineWeights w = vx_spline_weights(g - first);
     vec4 wx = vec4(w.w0.x, w.w1.x, w.w2.x, w.w3.x);
