@@ -15,6 +15,7 @@ packages=(
   libglfw3-dev libimgui-dev   # voxlux view: the window and its panels
   xvfb xdotool python3        # the viewer's tests: a virtual X display and real X events
   clang libclang-rt-14-dev   # the sanitizer build and its libFuzzer targets (tests/run.sh)
+  slurm-wlm munge             # voxlux farm's test: a one-node Slurm cluster on localhost (docs/farm.md)
 )
 missing=()
 for p in "${packages[@]}"; do

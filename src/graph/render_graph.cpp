@@ -144,7 +144,8 @@ bool RenderGraph::reads(const std::string& stage, const std::string& pointer) co
 
 std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::json& document,
                                           KernelBackend& backend, const std::vector<std::string>& targets, std::vector<std::string>& reused,
-                                          std::vector<std::string>& warnings, const std::function<bool()>& cancelled) {
+                                          std::vector<std::string>& warnings, const std::function<bool()>& cancelled,
+                                          const std::function<void(const std::string&)>& starting) {
     const auto stop = [&] { return cancelled && cancelled(); };
     const std::map<std::string, std::string> keys = this->keys(scene, document);
     std::vector<StageReport> reports;
@@ -183,6 +184,7 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
             last_keys_.erase(s->name());
             s->output_warnings_.clear();
             StageRun run{scene, document, backend, reports, kept_inside, s->output_warnings_, keys};
+            if (starting) starting(s->name());
             const auto start = std::chrono::steady_clock::now();
             s->run(run);
             report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -131,9 +131,11 @@ public:
     // `cancelled`, when given, is asked before each stage and after each run: once it is true the
     // run throws Cancelled, and a stage that ran meanwhile (its parallel loops may have stopped
     // early under a cancelled TBB context) releases its output and keeps no key, so it runs again.
+    // `starting`, when given, is told each stage's name before it runs.
     std::vector<StageReport> run(const Scene& scene, const nlohmann::json& document, KernelBackend& backend,
                                  const std::vector<std::string>& targets, std::vector<std::string>& reused,
-                                 std::vector<std::string>& warnings, const std::function<bool()>& cancelled = {});
+                                 std::vector<std::string>& warnings, const std::function<bool()>& cancelled = {},
+                                 const std::function<void(const std::string&)>& starting = {});
 
     // Outputs that stages share (a frame's grids and bricks) are kept past their key within
     // `bytes` (OutputCache; 0, the default, keeps none), and taken back when the key returns.

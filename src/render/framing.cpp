@@ -27,16 +27,18 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
     return frameActiveVoxels(volume, scene);
 }
 
-SequenceFraming frameSequence(const Scene& scene, int first, int last) {
+SequenceFraming frameSequence(const Scene& scene) {
+    const FrameSet& frames = scene.volume.frames.value();
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     int up = -1;
     SequenceFraming out;
     openvdb::Index64 most = 0;
-    for (int64_t frame = first; frame <= last; ++frame) {
-        const LoadedVolume volume = loadVolume(expandFramePattern(scene.volume.path, int(frame)), densityOnly(scene.volume));
+    for (int64_t k = 0; k < frames.count(); ++k) {
+        const int frame = frames.at(k);
+        const LoadedVolume volume = loadVolume(expandFramePattern(scene.volume.path, frame), densityOnly(scene.volume));
         const openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
         if (box.empty()) continue;
-        if (volume.density->activeVoxelCount() > most) most = volume.density->activeVoxelCount(), out.fullest_frame = int(frame);
+        if (volume.density->activeVoxelCount() > most) most = volume.density->activeVoxelCount(), out.fullest_frame = frame;
         glm::vec3 frame_lo, frame_hi;
         voxelBoxWorldBounds(volume.index_to_world, box, frame_lo, frame_hi);
         lo = glm::min(lo, frame_lo);
@@ -44,7 +46,7 @@ SequenceFraming frameSequence(const Scene& scene, int first, int last) {
         if (up < 0) up = upAxisOf(scene, volume);
     }
     if (up < 0)
-        throw InputError(scene.volume.path + ": frames " + std::to_string(first) + "-" + std::to_string(last) +
+        throw InputError(scene.volume.path + ": frames " + frames.text() +
                          " have no active voxels in grid '" + scene.volume.density.name + "' to frame");
     out.camera = frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), up);
     return out;

@@ -17,9 +17,9 @@ struct SequenceFraming {
     int fullest_frame = 0;   // the frame with the most active voxels
 };
 
-// Frames frames first..last of the scene's #### volume path together, read in order (a missing
+// Frames the scene's volume.frames of its #### volume path together, read in order (a missing
 // frame stops it, naming the file); empty frames count for nothing. Throws InputError when every
 // frame is empty.
-SequenceFraming frameSequence(const Scene& scene, int first, int last);
+SequenceFraming frameSequence(const Scene& scene);
 
 }  // namespace voxlux

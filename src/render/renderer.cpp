@@ -65,7 +65,7 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
 
 FrameResult Renderer::runGraph(std::optional<int> frame, bool allow_empty, const std::vector<std::string>& targets) {
     FrameResult r;
-    r.stages = graph_.run(scene_, document(frame, allow_empty), backend(), targets, r.reused, r.warnings, cancelled_);
+    r.stages = graph_.run(scene_, document(frame, allow_empty), backend(), targets, r.reused, r.warnings, cancelled_, stage_start_);
     for (const StageReport& s : r.stages) {
         if (s.status == StageStatus::Ran) r.stage_seconds.emplace_back(s.name, s.seconds);
         if (s.name == "propagation" && s.status == StageStatus::Ran) r.light_update = propagation_.lastUpdate();

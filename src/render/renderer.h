@@ -62,6 +62,8 @@ public:
     // Asked between stages while rendering (RenderGraph::run): the viewer cancels a render its
     // next edit makes stale. Renders then throw Cancelled.
     void setCancellation(std::function<bool()> cancelled) { cancelled_ = std::move(cancelled); }
+    // Told the name of each stage as it starts to run: a sequence's progress bar shows it.
+    void setStageStart(std::function<void(const std::string&)> starting) { stage_start_ = std::move(starting); }
     // A reference render whose sample count grows continues its image (MarchStage::keepReferenceSums).
     void keepReferenceSums(bool keep) { march_.keepReferenceSums(keep); }
     // Keeps the grids and bricks of frames rendered before within `bytes`, so that coming back
@@ -97,6 +99,7 @@ private:
 
     Scene scene_;
     std::function<bool()> cancelled_;
+    std::function<void(const std::string&)> stage_start_;
     std::unique_ptr<KernelBackend> owned_backend_;
     KernelBackend* backend_ = nullptr;
     ColorSpaceStage color_space_;

@@ -78,6 +78,12 @@ void WriteStage::run(StageRun& run) {
                                " samples above the half-float range clamped to 65504 (use output.pixel_type \"float\")");
 }
 
-std::string sceneHash(const Scene& scene) { return hashText(jsonText(sceneToJson(scene))); }
+std::string sceneHash(const Scene& scene) {
+    nlohmann::json j = sceneToJson(scenePathsRelativeTo(scene, "/"));
+    j["volume"].erase("frames");
+    j["output"].erase("path");
+    j["output"].erase("preview");
+    return hashText(jsonText(j));
+}
 
 }  // namespace voxlux

@@ -31,7 +31,10 @@ private:
     std::string path_, preview_path_;
 };
 
-// FNV-1a of the scene as rendered (canonical JSON), hex; written into the EXR metadata.
+// FNV-1a of what decides a frame's pixels, hex: the scene as rendered (canonical JSON, with its
+// input paths absolute), less volume.frames and the output paths, so that a frame rendered alone,
+// in a farm's chunk or in the whole sequence carries the same hash. Written into the EXR metadata;
+// `--resume` and `farm collect` compare it.
 std::string sceneHash(const Scene& scene);
 
 }  // namespace voxlux

@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/frame_set.h"
+
 namespace voxlux {
 
 // A grid chosen by name; `index` picks among several grids with the same name.
@@ -24,7 +26,7 @@ enum class UpAxis { Auto, X, Y, Z };
 
 struct VolumeSpec {
     std::string path;                      // may contain a #### frame pattern
-    std::optional<std::array<int, 2>> frames;  // inclusive range for a #### pattern
+    std::optional<FrameSet> frames;        // the frames of a #### pattern: [first, last], or "1-240x2,300"
     GridRef density{"density", 0};
     std::optional<GridRef> color;          // Cd, vec3
     LevelSetPolicy level_set = LevelSetPolicy::Reject;

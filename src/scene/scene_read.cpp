@@ -40,13 +40,19 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
     VolumeSpec v;
     v.path = o.string("path");
     v.path = resolvePath(v.path, base_dir);
-    if (o.has("frames")) {
+    if (o.has("frames") && o.raw("frames").is_string()) {
+        try {
+            v.frames = FrameSet::parse(o.string("frames"));
+        } catch (const std::invalid_argument& e) {
+            o.fail("frames", e.what());
+        }
+    } else if (o.has("frames")) {
         auto f = o.numbers("frames", 2);
         // Checked before converting: a float outside int's range has no int value.
         const auto frameNumber = [](float x) { return x >= -2147483648.0f && x < 2147483648.0f && x == std::floor(x); };
         if (!frameNumber(f[0]) || !frameNumber(f[1]) || f[0] > f[1])
-            o.fail("frames", "expected [first, last] integers with first <= last");
-        v.frames = std::array<int, 2>{int(f[0]), int(f[1])};
+            o.fail("frames", "expected [first, last] integers with first <= last, or a string such as \"1-240x2,300\"");
+        v.frames = FrameSet(int(f[0]), int(f[1]));
     }
     if (o.has("density")) v.density = readGridRef(o, "density");
     if (o.has("color")) v.color = readGridRef(o, "color");

@@ -118,7 +118,10 @@ nlohmann::json sceneToJson(const Scene& s) {
     nlohmann::json j;
     auto& v = j["volume"];
     v["path"] = s.volume.path;
-    if (s.volume.frames) v["frames"] = {(*s.volume.frames)[0], (*s.volume.frames)[1]};
+    if (s.volume.frames) {
+        if (s.volume.frames->isRange()) v["frames"] = {s.volume.frames->first(), s.volume.frames->last()};
+        else v["frames"] = s.volume.frames->text();
+    }
     v["density"] = gridRefToJson(s.volume.density);
     if (s.volume.color) v["color"] = gridRefToJson(*s.volume.color);
     v["level_set"] = s.volume.level_set == LevelSetPolicy::ConvertToFog ? "fog" : "reject";

@@ -1,8 +1,5 @@
 #include "tools/commands.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,7 +14,9 @@
 #include "core/error.h"
 #include "io/exr_writer.h"
 #include "core/frame_pattern.h"
+#include "core/peak_memory.h"
 #include "core/progress.h"
+#include "tools/sequence_render.h"
 #include "volume/make_cloud.h"
 #include "render/light_edits.h"
 #include "render/renderer.h"
@@ -36,33 +35,6 @@ namespace {
 bool isSceneFile(const std::string& path) {
     auto ext = std::filesystem::path(path).extension().string();
     return ext == ".json";
-}
-
-// The frames a render covers, taken one at a time: a range is never expanded up front, so
-// `--frames 1-2000000000` costs nothing before its first frame.
-struct FrameSpan {
-    std::optional<int> first;   // none: one file without a frame pattern
-    int last = 0;
-
-    int64_t count() const { return first ? int64_t(last) - *first + 1 : 1; }
-    std::optional<int> at(int64_t k) const { return first ? std::optional<int>(int(*first + k)) : std::nullopt; }
-};
-
-FrameSpan framesOf(const Scene& s) {
-    if (!hasFramePattern(s.volume.path)) return {};
-    if (!s.volume.frames)
-        throw InputError(s.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
-    if (!s.output.path.empty() && !hasFramePattern(s.output.path) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
-        throw InputError(s.output.path + ": several frames need a #### pattern in the output path");
-    if (!s.output.preview.empty() && !hasFramePattern(s.output.preview) && (*s.volume.frames)[0] != (*s.volume.frames)[1])
-        throw InputError(s.output.preview + ": several frames need a #### pattern in the preview path");
-    return {(*s.volume.frames)[0], (*s.volume.frames)[1]};
-}
-
-size_t peakRssBytes() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return size_t(u.ru_maxrss) * 1024;
 }
 
 std::string secondsText(double s) {
@@ -144,17 +116,16 @@ int runLightEdits(const Scene& scene, const std::string& edits_file, std::option
 Scene sceneFor(const std::string& input, const SceneOverrides& overrides, std::vector<std::string>& notes) {
     const bool quick = !isSceneFile(input);
     Scene scene = applyOverrides(quick ? quickScene(input) : loadSceneFile(input), overrides);
-    const FrameSpan frames = framesOf(scene);
+    const std::optional<FrameSet> frames = sequenceFrames(scene);
     std::optional<int> reference = overrides.frame_on;
-    if (!scene.camera && frames.first) {
+    if (!scene.camera && frames) {
         if (overrides.frame_on) {
             scene.camera = frameVolumeCamera(expandFramePattern(scene.volume.path, *overrides.frame_on), scene);
         } else {
-            const SequenceFraming framing = frameSequence(scene, *frames.first, frames.last);
+            const SequenceFraming framing = frameSequence(scene);
             scene.camera = framing.camera;
             reference = framing.fullest_frame;
-            notes.push_back("camera framed on frames " + std::to_string(*frames.first) + "-" + std::to_string(frames.last) +
-                            " together (--frame-on N for one frame)");
+            notes.push_back("camera framed on frames " + frames->text() + " together (--frame-on N for one frame)");
         }
     }
     if (quick) scene = completeQuickScene(scene, overrides, reference, notes);
@@ -173,8 +144,8 @@ std::vector<std::string> missingInputs(const Scene& scene) {
     if (const auto problem = outputPathProblem(scene)) problems.push_back(*problem);
     std::vector<std::string> files{scene.volume.path};
     try {
-        const FrameSpan frames = framesOf(scene);
-        if (frames.first) files = {expandFramePattern(scene.volume.path, *frames.first), expandFramePattern(scene.volume.path, frames.last)};
+        if (const auto frames = sequenceFrames(scene))
+            files = {expandFramePattern(scene.volume.path, frames->first()), expandFramePattern(scene.volume.path, frames->last())};
     } catch (const InputError& e) {
         problems.push_back(e.what());
         return problems;
@@ -229,44 +200,21 @@ int runRender(const RenderCommand& cmd) {
     if (cmd.explain) return explainRender(cmd);
     std::vector<std::string> notes;
     const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
-    const FrameSpan frames = framesOf(scene);
-    const bool sequence = frames.first.has_value();
-    if (cmd.light_edits) return runLightEdits(scene, *cmd.light_edits, frames.first, cmd.stats);
-
-    if (cmd.stats) checkWritable(*cmd.stats);  // before any frame: every output or none
-    if (const auto problem = outputPathProblem(scene)) throw InputError(*problem);
-    Renderer renderer(scene);
-    nlohmann::json stats = {{"backend", renderer.backendName()}, {"frames", nlohmann::json::array()}};
-    size_t emptyFrames = 0;
-    const auto progress = sequence ? std::make_unique<ProgressTask>("sequence", frames.count(), "frames") : nullptr;
-    for (int64_t k = 0; k < frames.count(); ++k) {
-        const std::optional<int> frame = frames.at(k);
-        if (progress) progress->describe("frame " + std::to_string(*frame));
-        FrameResult r = renderer.renderToFile(frame, sequence);
-        if (progress) progress->advance();
-        clearProgressLine();
-        for (const auto& w : r.warnings) std::cerr << "voxlux: warning: " << w << "\n";
-        emptyFrames += r.empty;
-        std::cout << "wrote " << r.path << (r.preview_path.empty() ? "" : " and " + r.preview_path) << " ("
-                  << renderer.backendName() << ", " << r.bricks << " bricks)";
-        nlohmann::json stages;
-        double total = 0;
-        for (const auto& [stage, seconds] : r.stage_seconds) {
-            std::cout << "  " << stage << " " << secondsText(seconds);
-            stages[stage] = seconds;
-            total += seconds;
-        }
-        std::cout << "\n";
-        nlohmann::json fj = {{"stages", stages}, {"total_seconds", total}, {"bricks", r.bricks},
-                             {"atlas_bytes", r.atlas_bytes}, {"empty", r.empty}};
-        if (frame) fj["frame"] = *frame;
-        stats["frames"].push_back(fj);
+    if (cmd.light_edits) {
+        const auto frames = sequenceFrames(scene);
+        return runLightEdits(scene, *cmd.light_edits, frames ? std::optional<int>(frames->first()) : std::nullopt, cmd.sequence.stats);
     }
-    if (emptyFrames) std::cerr << "voxlux: warning: " << emptyFrames << " empty frame(s) rendered transparent\n";
-    stats["peak_rss_bytes"] = peakRssBytes();
-    if (cmd.stats) writeFileAtomically(*cmd.stats, jsonText(stats, 2) + "\n");
+    const int status = renderSequence(scene, cmd.sequence, std::cout, std::cerr);
     printNotes(notes, std::cout);
-    return 0;
+    return status;
+}
+
+int runFarmSubmit(const FarmSubmitCommand& cmd) {
+    std::vector<std::string> notes;
+    const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
+    const int status = farmSubmit(scene, cmd.input, cmd.options, std::cout);
+    printNotes(notes, std::cout);
+    return status;
 }
 
 int runStudyCommand(const StudyCommand& cmd) {

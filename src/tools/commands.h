@@ -6,6 +6,8 @@
 
 #include "tools/scene_overrides.h"
 #include "tools/calibrate.h"
+#include "tools/farm/farm_commands.h"
+#include "tools/sequence_render.h"
 #include "tools/study.h"
 
 namespace voxlux {
@@ -14,7 +16,7 @@ struct RenderCommand {
     std::string input;                          // scene .json, or a .vdb for the quick form
     SceneOverrides overrides;
     bool explain = false;
-    std::optional<std::string> stats;
+    SequenceOptions sequence;                   // --resume, --fail-fast, --log-json, --stats
     std::optional<std::string> light_edits;     // replay these light edits, then write the final frame
 };
 
@@ -40,6 +42,14 @@ struct SceneCommand {
 };
 
 int runScene(const SceneCommand& cmd);
+
+struct FarmSubmitCommand {
+    std::string input;                          // scene .json, or a #### .vdb for the quick form
+    SceneOverrides overrides;
+    FarmSubmitOptions options;
+};
+
+int runFarmSubmit(const FarmSubmitCommand& cmd);
 
 struct ViewCommand {
     std::string input;                          // scene .json, or a .vdb for the quick form

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "tools/commands.h"
+#include "tools/farm/process.h"
 #include "core/error.h"
 #include "core/progress.h"
 
@@ -39,19 +40,9 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--backend", o.backend, "auto|cpu|gl (render.backend)");
     cmd.add_option("--method", o.method, "march|reference: Monte Carlo reference on the CPU (render.method)");
     cmd.add_option("--spp", o.spp, "reference samples per pixel (render.reference.spp)");
-    cmd.add_option("--frames", o.frames, "FIRST-LAST for a #### volume path (volume.frames)");
+    cmd.add_option("--frames", o.frames, "FIRST-LAST[xSTEP] or a list, e.g. 1-240x2,300, for a #### volume path (volume.frames)");
     cmd.add_option("--pixel-type", o.pixel_type, "half|float (output.pixel_type)");
     cmd.add_option("--aovs", o.aovs, "direct,ambient,indirect,emission,transmittance,depth,variance (output.aovs)")->delimiter(',');
-}
-
-// `arg` as a POSIX shell reads it back: quoted when it holds anything but plain characters.
-std::string shellQuoted(const std::string& arg) {
-    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                             "0123456789_./=,:+-") == std::string::npos;
-    if (plain) return arg;
-    std::string quoted = "'";
-    for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return quoted + "'";
 }
 
 }  // namespace
@@ -68,7 +59,13 @@ int main(int argc, char** argv) {
     renderCmd->add_option("--preview", render.overrides.preview,
                           "also write an 8-bit PNG through the display and view (output.preview; #### for frames)");
     renderCmd->add_flag("--explain", render.explain, "print the render graph (stages, why each runs, what each reads) and exit");
-    renderCmd->add_option("--stats", render.stats, "write per-stage times and peak memory as JSON");
+    renderCmd->add_option("--stats", render.sequence.stats, "write per-stage times and peak memory as JSON");
+    renderCmd->add_flag("--resume", render.sequence.resume,
+                        "skip frames whose EXR is whole and was rendered from this scene (voxlux/sceneHash); docs/farm.md");
+    renderCmd->add_flag("--fail-fast", render.sequence.fail_fast,
+                        "stop at the first frame that fails (default: render the others, exit 3 naming the failed frames)");
+    renderCmd->add_option("--log-json", render.sequence.log_json,
+                          "append one JSON line per frame to this file: status, seconds, stages, warnings, error");
     renderCmd->add_option("--light-edit", render.light_edits,
                           "EDITS.json: replay light edits (selective updates), print each one's time, write the last frame");
     addSceneOverrides(*renderCmd, render.overrides);
@@ -124,6 +121,30 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(size_t(0), size_t(1) << 20))->capture_default_str();
     addSceneOverrides(*viewCmd, view.overrides);
 
+    auto* farmCmd = app.add_subcommand("farm", "render a sequence on a scheduler's farm in chunks that resume (docs/farm.md)");
+    farmCmd->require_subcommand(1);
+    voxlux::FarmSubmitCommand farmSubmit;
+    auto* submitCmd = farmCmd->add_subcommand("submit", "write a job folder and submit the sequence's chunks as one job array");
+    submitCmd->add_option("input", farmSubmit.input, "scene .json, or a #### .vdb")->required();
+    submitCmd->add_option("--chunk", farmSubmit.options.chunk, "frames per task")->check(CLI::Range(int64_t(1), int64_t(1) << 31))
+        ->capture_default_str();
+    submitCmd->add_option("--job-dir", farmSubmit.options.job_dir, "the job folder (default: NAME.farm, after the input)");
+    submitCmd->add_option("--scheduler", farmSubmit.options.scheduler, "slurm")->capture_default_str();
+    submitCmd->add_option("--partition", farmSubmit.options.partition, "the scheduler's partition (queue); default: its own");
+    submitCmd->add_flag("--dry-run", farmSubmit.options.dry_run, "write the job folder and script, print the submit command, submit nothing");
+    submitCmd->add_flag("--wait", farmSubmit.options.wait, "wait for the job to end, then check its frames as collect does");
+    submitCmd->add_option("-o,--output", farmSubmit.overrides.output, "output .exr with #### (output.path)");
+    submitCmd->add_option("--preview", farmSubmit.overrides.preview, "also write 8-bit PNGs, #### (output.preview)");
+    addSceneOverrides(*submitCmd, farmSubmit.overrides);
+    std::string farmJobDir;
+    auto* statusCmd = farmCmd->add_subcommand("status", "each chunk's state in the scheduler");
+    statusCmd->add_option("job", farmJobDir, "the job folder")->required();
+    voxlux::FarmCollectOptions collect;
+    auto* collectCmd = farmCmd->add_subcommand("collect", "check every frame (whole EXR, this scene's hash); list what is missing");
+    collectCmd->add_option("job", farmJobDir, "the job folder")->required();
+    collectCmd->add_flag("--resubmit", collect.resubmit, "submit again the chunks with frames missing or corrupt");
+    collectCmd->add_flag("--wait", collect.wait, "wait for queued and running tasks first, and for the resubmission");
+
     std::string cloudOutput;
     int cloudResolution = 96;
     unsigned cloudSeed = 1;
@@ -155,10 +176,13 @@ int main(int argc, char** argv) {
         if (*sceneCmd) return voxlux::runScene(scene);
         if (*studyCmd) {
             study.options.command = "voxlux";
-            for (int i = 1; i < argc; ++i) study.options.command += " " + shellQuoted(argv[i]);
+            for (int i = 1; i < argc; ++i) study.options.command += " " + voxlux::shellQuoted(argv[i]);
             return voxlux::runStudyCommand(study);
         }
         if (*calibrateCmd) return voxlux::runCalibrateCommand(calibrate);
+        if (*submitCmd) return voxlux::runFarmSubmit(farmSubmit);
+        if (*statusCmd) return voxlux::farmStatus(farmJobDir, std::cout);
+        if (*collectCmd) return voxlux::farmCollect(farmJobDir, collect, std::cout);
         if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
         if (*viewCmd) return voxlux::runView(view);
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);

@@ -74,8 +74,8 @@ Scene quickScene(const std::string& vdb) {
 Scene completeQuickScene(Scene scene, const SceneOverrides& o, std::optional<int> frame, std::vector<std::string>& notes) {
     std::string file = scene.volume.path;
     if (scene.volume.frames && hasFramePattern(file)) {
-        const auto [first, last] = *scene.volume.frames;
-        file = expandFramePattern(file, frame.value_or(int((int64_t(first) + last) / 2)));
+        const FrameSet& frames = *scene.volume.frames;
+        file = expandFramePattern(file, frame.value_or(frames.at(frames.count() / 2)));
     }
     const LoadedVolume volume = loadVolume(file, scene.volume, scene.emission);
     const int up = upAxisOf(scene, volume);

@@ -103,14 +103,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
             if (o.emission_grid) sources.push_back({{"grid", *o.emission_grid}, {"kind", "constant"}, {"color", {1, 1, 1}}});
             if (o.blackbody_grid) sources.push_back(blackbodySource(*o.blackbody_grid));
         });
-    if (o.frames) {
-        const std::string flag = "--frames " + *o.frames;
-        auto range = split(*o.frames, '-');
-        if (range.size() == 1) range.push_back(range[0]);
-        if (range.size() != 2) throw InputError(flag + ": expected FIRST-LAST");
-        const nlohmann::json frames = {parseFloat(range[0], flag), parseFloat(range[1], flag)};
-        apply(flag, [frames](nlohmann::json& s) { s["volume"]["frames"] = frames; });
-    }
+    if (o.frames) apply("--frames " + *o.frames, [&o](nlohmann::json& s) { s["volume"]["frames"] = *o.frames; });
     if (o.resolution) {
         const std::string flag = "--res " + *o.resolution;
         auto wh = split(*o.resolution, 'x');

@@ -35,7 +35,7 @@ std::optional<int> studyFrame(const Scene& scene) {
     if (!hasFramePattern(scene.volume.path)) return std::nullopt;
     if (!scene.volume.frames)
         throw InputError(scene.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
-    return (*scene.volume.frames)[0];
+    return scene.volume.frames->first();
 }
 
 namespace {

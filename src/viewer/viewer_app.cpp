@@ -332,8 +332,8 @@ void ViewerApp::drawFrame(GLFWwindow* window) {
 int ViewerApp::run(GLFWwindow* window) {
     const Scene& scene = state_.editor.scene();
     if (scene.volume.frames) {
-        state_.first_frame = int((*scene.volume.frames)[0]);
-        state_.last_frame = int((*scene.volume.frames)[1]);
+        state_.first_frame = scene.volume.frames->first();
+        state_.last_frame = scene.volume.frames->last();
         state_.frame = state_.first_frame;
     }
     state_.save_path = std::filesystem::path(options_.source).stem().string() + "-view.json";

@@ -93,9 +93,10 @@ def smaller_res(value):
 
 
 def first_frames(value):
-    """FIRST-LAST cut to its first three frames."""
-    m = re.fullmatch(r"(-?\d+)-(-?\d+)", value)
-    return f"{m[1]}-{min(int(m[2]), int(m[1]) + 2)}" if m else value
+    """FIRST-LAST[xSTEP] cut to its first three frames."""
+    m = re.fullmatch(r"(-?\d+)-(-?\d+)(?:x(\d+))?", value)
+    step = int(m[3]) if m and m[3] else 1
+    return f"{m[1]}-{min(int(m[2]), int(m[1]) + 2 * step)}" + (f"x{step}" if step > 1 else "") if m else value
 
 
 REDUCTIONS = [

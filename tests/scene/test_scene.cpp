@@ -109,6 +109,19 @@ TEST(Scene, JsonTextEscapesBytesThatAreNotUtf8) {
     EXPECT_NE(jsonText(nlohmann::json(latin1)), jsonText(nlohmann::json("caf\xe8.vdb")));
 }
 
+// volume.frames: [first, last], or a farm's spec as a string, written back in the form read.
+TEST(Scene, FramesAreARangeOrASpec) {
+    const Scene range = parseScene(R"({"volume": {"path": "f_####.vdb", "frames": [1, 60]}})", "shot.json", "");
+    EXPECT_EQ(sceneToJson(range)["volume"]["frames"], nlohmann::json::array({1, 60}));
+    const Scene spec = parseScene(R"({"volume": {"path": "f_####.vdb", "frames": "1-60x2,100"}})", "shot.json", "");
+    EXPECT_EQ(spec.volume.frames->count(), 31);
+    EXPECT_EQ(sceneToJson(spec)["volume"]["frames"], "1-59x2,100");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "frames": "1-60x"}})"),
+              "shot.json: /volume/frames: expected FIRST-LAST[xSTEP] or a list of them, e.g. 1-240x2,300");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "frames": [5, 1]}})"),
+              "shot.json: /volume/frames: expected [first, last] integers with first <= last, or a string such as \"1-240x2,300\"");
+}
+
 TEST(Scene, RoundTripThroughJson) {
     Scene s = parseScene(R"({
         "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},

@@ -362,7 +362,8 @@ TEST(Cli, AnOutputThatCannotBeWrittenLeavesNoOther) {
 
 // A range is walked one frame at a time, never allocated up front: the sequence is framed on
 // its frames in order, and with 2e9 frames the second, missing, stops the run with its name
-// before any frame renders. With --frame-on, nothing is read ahead: frame 1 renders first.
+// before any frame renders. With --frame-on, nothing is read ahead: frame 1 renders first, and
+// --fail-fast stops at frame 2.
 TEST(Cli, AHugeFrameRangeStopsAtItsFirstMissingFrame) {
     const std::string dir = tempDir("huge_range");
     fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud.0001.vdb");
@@ -372,14 +373,15 @@ TEST(Cli, AHugeFrameRangeStopsAtItsFirstMissingFrame) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: " + dir + "/cloud.0002.vdb: no such file\n");
     EXPECT_FALSE(fs::exists(dir + "/out.0001.exr"));
-    r = runCli(command + " --frame-on 1");
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "voxlux: error: " + dir + "/cloud.0002.vdb: no such file\n");
+    r = runCli(command + " --frame-on 1 --fail-fast");
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_EQ(r.err, "voxlux: error: frame 2: " + dir + "/cloud.0002.vdb: no such file\n"
+                     "voxlux: error: 1 of 2000000000 frames failed: 2 (stopped there, --fail-fast; 1999999998 not rendered)\n");
     EXPECT_TRUE(fs::exists(dir + "/out.0001.exr"));
     // Frame numbers beyond 32 bits have no int value and are refused.
     r = runCli("render " + dir + "/cloud.####.vdb --frames 1-3000000000 -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "voxlux: error: --frames 1-3000000000: /volume/frames: expected [first, last] integers with first <= last\n");
+    EXPECT_EQ(r.err, "voxlux: error: --frames 1-3000000000: /volume/frames: expected FIRST-LAST[xSTEP] or a list of them, e.g. 1-240x2,300\n");
 }
 
 TEST(Cli, SequenceWithAnEmptyFrameRendersItTransparent) {

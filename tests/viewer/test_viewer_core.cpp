@@ -314,7 +314,7 @@ TEST(ProgressiveRender, ScrubbingBackToAFrameTakesItsBricksFromTheCache) {
     openvdb::io::File(dir + "/cloud_0002.vdb").write({boxGrid({-20, -20, -20}, {20, 20, 20}, 1.0f, 0.02)});
     Scene scene = smallCloud();
     scene.volume.path = dir + "/cloud_####.vdb";
-    scene.volume.frames = std::array<int, 2>{1, 2};
+    scene.volume.frames = FrameSet(1, 2);
     ProgressiveRender view(scene, 1, size_t(256) << 20);
     ASSERT_TRUE(view.waitConverged(120.0));
     const std::vector<glm::vec4> first = view.latest()->display;

@@ -1,0 +1,114 @@
+#include "core/frame_set.h"
+
+#include <algorithm>
+#include <charconv>
+#include <stdexcept>
+
+namespace voxlux {
+namespace {
+
+const char* const kSyntax = "expected FIRST-LAST[xSTEP] or a list of them, e.g. 1-240x2,300";
+
+int64_t rangeCount(const FrameRange& r) { return (int64_t(r.last) - r.first) / r.step + 1; }
+
+// A frame number (a leading '-' allowed) or step: digits only, within int.
+int parseNumber(std::string_view text) {
+    int value = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size()) throw std::invalid_argument(kSyntax);
+    return value;
+}
+
+}  // namespace
+
+FrameSet::FrameSet(int first, int last) {
+    if (first > last) throw std::invalid_argument("the first frame is after the last");
+    ranges_.push_back({first, last, 1});
+}
+
+void FrameSet::append(FrameRange r) {
+    if (!ranges_.empty() && r.first <= ranges_.back().last)
+        throw std::invalid_argument("frames must increase: " + std::to_string(r.first) + " follows " + std::to_string(ranges_.back().last));
+    ranges_.push_back(r);
+}
+
+FrameSet FrameSet::parse(const std::string& spec) {
+    FrameSet set;
+    size_t begin = 0;
+    do {
+        const size_t comma = std::min(spec.find(',', begin), spec.size());
+        const std::string_view item = std::string_view(spec).substr(begin, comma - begin);
+        const size_t dash = item.find('-', 1), times = item.find('x');   // "-5--1": a frame may be negative
+        FrameRange r;
+        r.first = parseNumber(item.substr(0, std::min(dash, times)));
+        r.last = dash == std::string_view::npos ? r.first : parseNumber(item.substr(dash + 1, times - std::min(times, dash + 1)));
+        if (times != std::string_view::npos) {
+            if (dash == std::string_view::npos || times < dash) throw std::invalid_argument(kSyntax);
+            r.step = parseNumber(item.substr(times + 1));
+            if (r.step < 1) throw std::invalid_argument("the step must be at least 1");
+        }
+        if (r.first > r.last)
+            throw std::invalid_argument("frames " + std::string(item) + ": the first frame is after the last");
+        r.last -= int((int64_t(r.last) - r.first) % r.step);   // the last frame the step reaches
+        if (r.first == r.last) r.step = 1;
+        set.append(r);
+        begin = comma + 1;
+    } while (begin <= spec.size());
+    return set;
+}
+
+void FrameSet::add(int frame) {
+    if (!ranges_.empty() && ranges_.back().step == 1 && int64_t(frame) == int64_t(ranges_.back().last) + 1) ranges_.back().last = frame;
+    else append({frame, frame, 1});
+}
+
+int64_t FrameSet::count() const {
+    int64_t n = 0;
+    for (const auto& r : ranges_) n += rangeCount(r);
+    return n;
+}
+
+int FrameSet::at(int64_t index) const {
+    for (const auto& r : ranges_) {
+        if (index < rangeCount(r)) return int(r.first + index * r.step);
+        index -= rangeCount(r);
+    }
+    throw std::out_of_range("frame index past the last frame");
+}
+
+bool FrameSet::contains(int frame) const {
+    for (const auto& r : ranges_)
+        if (frame >= r.first && frame <= r.last && (int64_t(frame) - r.first) % r.step == 0) return true;
+    return false;
+}
+
+FrameSet FrameSet::slice(int64_t begin, int64_t count) const {
+    FrameSet out;
+    for (const auto& r : ranges_) {
+        const int64_t n = rangeCount(r);
+        if (begin >= n) {
+            begin -= n;
+            continue;
+        }
+        const int64_t take = std::min(count, n - begin);
+        if (take <= 0) break;
+        const int first = int(r.first + begin * r.step);
+        out.ranges_.push_back({first, int(first + (take - 1) * r.step), take == 1 ? 1 : r.step});
+        count -= take;
+        begin = 0;
+    }
+    return out;
+}
+
+std::string FrameSet::text() const {
+    std::string out;
+    for (const auto& r : ranges_) {
+        if (!out.empty()) out += ",";
+        out += std::to_string(r.first);
+        if (r.last != r.first) out += "-" + std::to_string(r.last);
+        if (r.step != 1 && r.last != r.first) out += "x" + std::to_string(r.step);
+    }
+    return out;
+}
+
+}  // namespace voxlux

@@ -1,0 +1,144 @@
+// `voxlux render` over frames as a farm runs it: frame specs, --resume against the EXR's scene
+// hash, failed frames named with exit 3 while the others render, --fail-fast, the JSON log, and
+// the progress bar's stage on a terminal.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <ImfStringAttribute.h>
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+namespace fs = std::filesystem;
+
+// Four frames of the bundled cloud, cloud.0001.vdb .. cloud.0004.vdb, in a fresh folder.
+std::string cloudFrames(const std::string& name) {
+    const std::string dir = tempDir(name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const char* f : {"0001", "0002", "0003", "0004"})
+        fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud." + f + ".vdb");
+    return dir;
+}
+
+std::string renderArgs(const std::string& dir, const std::string& frames) {
+    return "render " + dir + "/cloud.####.vdb --frames " + frames + " --frame-on 1 --res 16x16 --backend cpu --shadows none -o " + dir +
+           "/out.####.exr";
+}
+
+std::string sceneHashOf(const std::string& exr) {
+    return readExr(exr).header.typedAttribute<Imf::StringAttribute>("voxlux/sceneHash").value();
+}
+
+std::vector<nlohmann::json> logLines(const std::string& path) {
+    std::vector<nlohmann::json> lines;
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
+    return lines;
+}
+
+size_t countOf(const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
+// A chunk rendered alone carries the hash of the whole sequence's frames, so a resumed run skips
+// it; a frame cut short, and every frame once the scene changes, renders again.
+TEST(Sequence, ResumeSkipsDoneFramesAndRendersTheRest) {
+    const std::string dir = cloudFrames("resume");
+    CliResult chunk = runCli(renderArgs(dir, "1-2"));
+    ASSERT_EQ(chunk.exit_code, 0) << chunk.err;
+    const auto first_written = fs::last_write_time(dir + "/out.0001.exr");
+    fs::resize_file(dir + "/out.0002.exr", fs::file_size(dir + "/out.0002.exr") / 2);
+
+    CliResult resumed = runCli(renderArgs(dir, "1-4") + " --resume --log-json " + dir + "/log.jsonl");
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+    EXPECT_NE(resumed.out.find("skipped frame 1: " + dir + "/out.0001.exr is done\n"), std::string::npos) << resumed.out;
+    EXPECT_EQ(countOf(resumed.out, "wrote "), 3u) << resumed.out;
+    EXPECT_NE(resumed.out.find("resumed: 1 of 4 frames were done and skipped\n"), std::string::npos);
+    EXPECT_EQ(fs::last_write_time(dir + "/out.0001.exr"), first_written);
+    EXPECT_EQ(sceneHashOf(dir + "/out.0001.exr"), sceneHashOf(dir + "/out.0004.exr"));
+    // The same cloud in every frame: the re-rendered frame equals the one kept.
+    EXPECT_EQ(readExr(dir + "/out.0002.exr").planes, readExr(dir + "/out.0001.exr").planes);
+
+    const std::vector<nlohmann::json> log = logLines(dir + "/log.jsonl");
+    ASSERT_EQ(log.size(), 4u);
+    EXPECT_EQ(log[0]["status"], "skipped");
+    EXPECT_EQ(log[0]["frame"], 1);
+    for (int k = 1; k < 4; ++k) {
+        EXPECT_EQ(log[k]["status"], "rendered");
+        EXPECT_EQ(log[k]["frame"], k + 1);
+        EXPECT_EQ(log[k]["path"], dir + "/out.000" + std::to_string(k + 1) + ".exr");
+        EXPECT_GT(log[k]["seconds"].get<double>(), 0.0);
+        EXPECT_TRUE(log[k]["stages"].contains("march"));
+    }
+    // Later frames reuse what the frame change left valid: the colour transforms.
+    EXPECT_EQ(log[3]["reused"], nlohmann::json::array({"color_space", "color_transforms"}));
+
+    const std::string hash = sceneHashOf(dir + "/out.0001.exr");
+    CliResult other = runCli(renderArgs(dir, "1-4") + " --density-scale 3 --resume");
+    ASSERT_EQ(other.exit_code, 0) << other.err;
+    EXPECT_EQ(countOf(other.out, "wrote "), 4u) << other.out;
+    EXPECT_NE(sceneHashOf(dir + "/out.0001.exr"), hash);
+}
+
+// A missing and a corrupt frame fail on their own: each is named, the others render, and the
+// exit code is 3 with the failed frames listed. --fail-fast stops at the first.
+TEST(Sequence, FailedFramesAreNamedAndTheOthersRender) {
+    const std::string dir = cloudFrames("failed_frames");
+    fs::remove(dir + "/cloud.0002.vdb");
+    { std::ofstream(dir + "/cloud.0003.vdb", std::ios::trunc) << "not a vdb"; }
+    CliResult r = runCli(renderArgs(dir, "1-4") + " --log-json " + dir + "/log.jsonl");
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find("voxlux: error: frame 2: " + dir + "/cloud.0002.vdb: no such file\n"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("voxlux: error: frame 3: " + dir + "/cloud.0003.vdb: "), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.substr(r.err.rfind("voxlux: error: ")), "voxlux: error: 2 of 4 frames failed: 2-3\n");
+    EXPECT_TRUE(fs::exists(dir + "/out.0001.exr"));
+    EXPECT_TRUE(fs::exists(dir + "/out.0004.exr"));
+    EXPECT_FALSE(fs::exists(dir + "/out.0002.exr"));
+    const std::vector<nlohmann::json> log = logLines(dir + "/log.jsonl");
+    ASSERT_EQ(log.size(), 4u);
+    EXPECT_EQ(log[1]["status"], "failed");
+    EXPECT_EQ(log[1]["error"], dir + "/cloud.0002.vdb: no such file");
+    EXPECT_EQ(log[3]["status"], "rendered");
+
+    fs::remove(dir + "/out.0004.exr");
+    r = runCli(renderArgs(dir, "1-4") + " --fail-fast");
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_EQ(r.err, "voxlux: error: frame 2: " + dir + "/cloud.0002.vdb: no such file\n"
+                     "voxlux: error: 1 of 4 frames failed: 2 (stopped there, --fail-fast; 2 not rendered)\n");
+    EXPECT_FALSE(fs::exists(dir + "/out.0004.exr"));
+}
+
+// Every second frame, and a list: only those frames render.
+TEST(Sequence, StepsAndListsRenderTheirFramesOnly) {
+    const std::string dir = cloudFrames("frame_lists");
+    CliResult r = runCli(renderArgs(dir, "1-4x2"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir + "/out.0001.exr") && fs::exists(dir + "/out.0003.exr"));
+    EXPECT_FALSE(fs::exists(dir + "/out.0002.exr") || fs::exists(dir + "/out.0004.exr"));
+    r = runCli(renderArgs(dir, "2,4"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(countOf(r.out, "wrote "), 2u);
+    EXPECT_TRUE(fs::exists(dir + "/out.0004.exr"));
+    r = runCli(renderArgs(dir, "4,2"));
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: --frames 4,2: /volume/frames: frames must increase: 2 follows 4\n");
+}
+
+// On a terminal the bar names the frame and the stage running (script(1) gives the render one).
+TEST(Sequence, TheProgressBarShowsTheFrameAndStage) {
+    const std::string dir = cloudFrames("progress_bar");
+    CliResult r = runShell("script -qec '" + std::string(VOXLUX_BINARY) + " " + renderArgs(dir, "1-2") + "' /dev/null");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("] sequence 0/2 frames  elapsed 0m00s  frame 1: march"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("] sequence 1/2 frames  elapsed "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("frame 2: march"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace voxlux::test
