@@ -8,12 +8,29 @@ uniform int vx_row_offset;   // image row of the band's first row
 // 20 floats per pixel of the band, row-major: rgba, direct, ambient, emission, indirect,
 // transmittance, depth, samples, pad (the byte layout of the C++ VxPixel).
 layout(std430, binding = VX_BIND_BAND) writeonly buffer Band { float vx_band[]; };
+// With P.deep_samples > 0: per pixel of the band, its sample count then 6 floats a sample (rgb,
+// alpha, z, z_back: VxDeepSample's member order), 1 + 6 * P.deep_samples floats in all.
+layout(std430, binding = VX_BIND_DEEP_BAND) writeonly buffer DeepBand { float vx_deep_band[]; };
 
 void main() {
     int x = int(gl_GlobalInvocationID.x);
     int y = int(gl_GlobalInvocationID.y);
     if (x >= P.width || y + vx_row_offset >= P.height) return;
-    VxPixel px = vx_render_pixel(x, y + vx_row_offset);
+    VxDeepRay deep;
+    VxPixel px = vx_render_pixel(x, y + vx_row_offset, deep);
+    if (P.deep_samples > 0) {
+        int d = (1 + 6 * P.deep_samples) * (y * P.width + x);
+        vx_deep_band[d] = float(deep.count);
+        for (int i = 0; i < deep.count; ++i) {
+            int e = d + 1 + 6 * i;
+            vx_deep_band[e] = deep.s[i].rgb.x;
+            vx_deep_band[e + 1] = deep.s[i].rgb.y;
+            vx_deep_band[e + 2] = deep.s[i].rgb.z;
+            vx_deep_band[e + 3] = deep.s[i].alpha;
+            vx_deep_band[e + 4] = deep.s[i].z;
+            vx_deep_band[e + 5] = deep.s[i].z_back;
+        }
+    }
     int o = 20 * (y * P.width + x);
     vx_band[o] = px.rgba.x;
     vx_band[o + 1] = px.rgba.y;

@@ -3,6 +3,7 @@
 #pragma once
 #include "lighting/extinction_sat/kernel/vx_cache.h"
 #include "lighting/propagation/kernel/vx_illumination.h"
+#include "vx_deep.h"
 #include "vx_noise.h"
 
 // Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.
@@ -257,8 +258,14 @@ VX_INLINE float vx_chunk_depth(float T_before, int k, int n, int lanes, float dt
     return sum;
 }
 
-// March one camera ray (world origin, unit world direction, camera forward for depth).
-VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
+// The pixel's radiance so far: its four light AOVs summed.
+VX_INLINE vec3 vx_pixel_radiance(VxPixel px) {
+    return vx_radiance_add(vx_radiance_add(px.direct, px.ambient), vx_radiance_add(px.emission, px.indirect));
+}
+
+// March one camera ray (world origin, unit world direction, camera forward for depth). With
+// P.deep_samples > 0 the ray's deep samples go to `deep` (vx_deep.h).
+VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) deep) {
     VxPixel px;
     px.rgba = vec4(0.0f);
     px.direct = vec3(0.0f);
@@ -269,6 +276,8 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
     px.depth = 0.0f;
     px.samples = 0.0f;
     px.variance = 0.0f;
+    vx_deep_begin(deep);
+    bool deep_on = P.deep_samples > 0;
 
     vec3 o = vx_to_index_point(origin);
     vec3 d = vx_to_index_dir(dir);
@@ -316,6 +325,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
             vx_chunk_transmittance(tau, lanes, dt, chunk);
             px.samples += float(n);
             if (constant_light) {
+                if (deep_on) vx_deep_span(deep, float(k) * dt * cos_forward, float(k + n) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
                 float T_after = chunk.T[n - 1];
                 px.direct = vx_radiance_add(px.direct, P.albedo * directional * (T - T_after));
                 px.ambient = vx_radiance_add(px.ambient, P.albedo * ambient * (T - T_after));
@@ -330,6 +340,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
                 vec3 le = vec3(0.0f);
                 if (emits && occupied) le = vx_emission(vx_taps_at(slot, s.brick, o + d * t));
                 if (sigma <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
+                if (deep_on) vx_deep_span(deep, float(k + j) * dt * cos_forward, float(k + j + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
                 // Exact integral of a constant segment: the light scattered in a segment of
                 // extinction sigma is albedo * L_in * (T_k - T_k+1); emission integrates to
                 // Le * (T_k - T_k+1) / sigma, which tends to Le * T_k * dt as sigma -> 0.
@@ -355,7 +366,8 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward) {
         vx_dda_advance(s);
     }
     float alpha = 1.0f - T;
-    px.rgba = vec4(vx_radiance_add(vx_radiance_add(px.direct, px.ambient), vx_radiance_add(px.emission, px.indirect)), alpha);
+    px.rgba = vec4(vx_pixel_radiance(px), alpha);
+    if (deep_on) vx_deep_close(deep, T, vec3(px.rgba));
     px.transmittance = T;
     px.depth = alpha > 0.0f ? depth_weighted / alpha : 0.0f;
     return px;
@@ -372,10 +384,10 @@ void vx_camera_ray(int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(v
     forward = normalize(vec3(P.camera_to_world * vec4(0.0f, 0.0f, -1.0f, 0.0f)));
 }
 
-VxPixel vx_render_pixel(int x, int y) {
+VxPixel vx_render_pixel(int x, int y, VX_INOUT(VxDeepRay) deep) {
     vec3 origin;
     vec3 dir;
     vec3 forward;
     vx_camera_ray(x, y, origin, dir, forward);
-    return vx_march_ray(origin, dir, forward);
+    return vx_march_ray(origin, dir, forward, deep);
 }

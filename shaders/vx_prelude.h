@@ -96,6 +96,7 @@
 #define VX_BIND_EMISSION_LUT 18
 #define VX_BIND_SAT_SCAN 19        // sat_scan.comp: the table it scans
 #define VX_BIND_PIXELS 20          // grade.comp: the pixels it transforms
+#define VX_BIND_DEEP_BAND 21       // march.comp: the rows' deep samples (output.deep)
 
 #define VX_LIGHTS_ALL 0            // which lights vx_in_scattered sums
 #define VX_LIGHTS_DIRECTIONAL 1

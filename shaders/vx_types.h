@@ -91,7 +91,7 @@ struct VxParams {
     float noise_transport;  // transport-colour amplitude
     int voxel_filter;       // VX_FILTER_* (filter is a GLSL reserved word)
     int light_filter;       // VX_FILTER_*: how the illumination volume is read between cells
-    int pad0;
+    int deep_samples;       // deep samples per ray (output.deep_samples), 0 = no deep output
     int pad1;
     int pad2;
 };
@@ -179,6 +179,14 @@ struct VxPixel {
     float samples;          // samples the march evaluated (its cost; the benchmark counts these)
     float variance;         // of the pixel's luminance estimate (Monte Carlo reference); 0 from the march.
                             // 20 floats: whole vec4s
+};
+
+// One deep sample of a camera ray (shaders/vx_deep.h): a stretch of medium in camera-space depth.
+struct VxDeepSample {
+    vec3 rgb;               // premultiplied colour, as seen from the sample's front
+    float alpha;            // opacity of the stretch
+    float z;                // front and back, camera-space depth
+    float z_back;
 };
 
 // The page table's layout: an open-addressed table with linear probing, whose slot for a brick

@@ -76,12 +76,6 @@ int FrameSet::at(int64_t index) const {
     throw std::out_of_range("frame index past the last frame");
 }
 
-bool FrameSet::contains(int frame) const {
-    for (const auto& r : ranges_)
-        if (frame >= r.first && frame <= r.last && (int64_t(frame) - r.first) % r.step == 0) return true;
-    return false;
-}
-
 FrameSet FrameSet::slice(int64_t begin, int64_t count) const {
     FrameSet out;
     for (const auto& r : ranges_) {

@@ -29,7 +29,6 @@ public:
     int at(int64_t index) const;                 // 0 <= index < count()
     int first() const { return ranges_.front().first; }
     int last() const { return ranges_.back().last; }
-    bool contains(int frame) const;
     bool isRange() const { return ranges_.size() == 1 && ranges_[0].step == 1; }   // [first, last] in a scene file
     // Appends `frame`, after the last; a frame next to the last extends its range ("3-7" + 8: "3-8").
     void add(int frame);
@@ -37,7 +36,6 @@ public:
     FrameSet slice(int64_t begin, int64_t count) const;
     // The canonical spec parse() reads back: "1-239x2,300".
     std::string text() const;
-    const std::vector<FrameRange>& ranges() const { return ranges_; }
     bool operator==(const FrameSet&) const = default;
 
 private:

@@ -16,6 +16,17 @@ void transformPlane(RenderImage& image, PixelRgb member, const OCIO::ConstProces
     for (size_t i = 0; i < plane.size(); ++i) image.pixels[i].*member = glm::vec3(plane[i]);
 }
 
+// The deep samples go through what the beauty does, each on its own: their composite is the
+// graded beauty wherever the grade is linear (exposure, colour-space matrices).
+void gradeDeepSamples(DeepSamples& deep, const ColorPipeline& color, ColorTransformer& transformer) {
+    if (deep.samples.empty() || (color.grade->isNoOp() && color.output->isNoOp())) return;
+    std::vector<glm::vec4> colors(deep.samples.size());
+    for (size_t i = 0; i < colors.size(); ++i) colors[i] = glm::vec4(deep.samples[i].rgb, deep.samples[i].alpha);
+    if (!color.grade->isNoOp()) transformer.transformColors(color.grade, colors, color.unpremultiply);
+    if (!color.output->isNoOp()) transformer.transformColors(color.output, colors, color.unpremultiply);
+    for (size_t i = 0; i < colors.size(); ++i) deep.samples[i].rgb = glm::vec3(colors[i]);
+}
+
 }  // namespace
 
 std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color, const std::vector<std::string>& aovs,
@@ -40,6 +51,7 @@ std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color
             if (std::find(aovs.begin(), aovs.end(), name) != aovs.end()) transformPlane(image, member, color.output, transformer);
     }
     for (size_t i = 0; i < beauty.size(); ++i) image.pixels[i].rgba = beauty[i];
+    gradeDeepSamples(image.deep, color, transformer);
     return preview;
 }
 

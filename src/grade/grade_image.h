@@ -18,7 +18,7 @@ namespace voxlux {
 // color.unpremultiply) then color.output; the colour AOVs named in `aovs` (direct, ambient,
 // indirect, emission) through color.output only, so they stay ungraded. Returns the preview's
 // display-referred RGBA (the graded beauty over black through color.preview), or nothing when
-// the pipeline has no preview.
+// the pipeline has no preview. Deep samples go through the beauty's processors, each on its own.
 std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color, const std::vector<std::string>& aovs,
                                   ColorTransformer& transformer);
 

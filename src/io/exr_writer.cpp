@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <map>
 #include <stdexcept>
 
 #include <signal.h>
@@ -17,29 +16,14 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
-#include <ImfStandardAttributes.h>
-#include <ImfStringAttribute.h>
-#include <ImfFloatAttribute.h>
-#include <ImfIntAttribute.h>
 
 #include "core/error.h"
+#include "io/exr_common.h"
 
 namespace voxlux {
 namespace fs = std::filesystem;
 
 namespace {
-
-// The names of knownCompressions(). DWA is lossy only for channels OpenEXR classifies as colour
-// (R, G, B, Y with any layer prefix); it keeps A, depth.Z and the rest lossless.
-Imf::Compression compressionOf(const std::string& name) {
-    static const std::map<std::string, Imf::Compression> compressions{
-        {"none", Imf::NO_COMPRESSION}, {"zip", Imf::ZIP_COMPRESSION},   {"zips", Imf::ZIPS_COMPRESSION},
-        {"piz", Imf::PIZ_COMPRESSION}, {"dwaa", Imf::DWAA_COMPRESSION}, {"dwab", Imf::DWAB_COMPRESSION},
-        {"rle", Imf::RLE_COMPRESSION}};
-    auto found = compressions.find(name);
-    if (found == compressions.end()) throw std::invalid_argument("unknown EXR compression '" + name + "'");
-    return found->second;
-}
 
 Imf::PixelType imfType(PixelType t) { return t == PixelType::Half ? Imf::HALF : Imf::FLOAT; }
 
@@ -47,13 +31,6 @@ Imf::PixelType imfType(PixelType t) { return t == PixelType::Half ? Imf::HALF : 
 Imf::PixelType layerType(const OutputSpec& spec, const AovSpec& aov) {
     if (aov.pixel_type) return imfType(*aov.pixel_type);
     return aov.name == "depth" ? Imf::FLOAT : imfType(spec.pixel_type);
-}
-
-Imath::M44f toImath(const glm::mat4& m) {
-    Imath::M44f out;  // Imath multiplies row vectors; glm's m[c][r] holds the same numbers
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) out[i][j] = m[i][j];
-    return out;
 }
 
 struct Channel {
@@ -167,39 +144,12 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         if (aov.name == "variance") add("variance.Y", type, [](const kernel::VxPixel& p) { return p.variance; });
     }
 
-    // No NaN or Inf reaches a file; half channels saturate instead of overflowing to Inf.
     ExrWriteReport report;
-    constexpr float kHalfMax = 65504.0f;
     for (auto& c : channels)
-        for (float& v : c.plane) {
-            if (!std::isfinite(v)) {
-                v = 0.0f;
-                ++report.non_finite;
-            } else if (c.type == Imf::HALF && std::abs(v) > kHalfMax) {
-                v = std::copysign(kHalfMax, v);
-                ++report.half_overflow;
-            }
-        }
+        for (float& v : c.plane) v = exrStorable(v, c.type == Imf::HALF, report);
 
-    Imf::Header header(img.width, img.height);
-    header.compression() = compressionOf(spec.compression);
-    header.insert("voxlux/version", Imf::StringAttribute(VOXLUX_VERSION));
-    header.insert("voxlux/sceneHash", Imf::StringAttribute(meta.scene_hash));
-    if (meta.frame) header.insert("voxlux/frame", Imf::IntAttribute(*meta.frame));
-    for (const auto& [stage, seconds] : meta.stage_seconds)
-        header.insert("voxlux/seconds/" + stage, Imf::FloatAttribute(float(seconds)));
-    Imf::addWorldToCamera(header, toImath(meta.world_to_camera));
-    Imf::addWorldToNDC(header, toImath(meta.world_to_ndc));
-    if (!meta.color_space.empty()) {
-        header.insert("oiio:ColorSpace", Imf::StringAttribute(meta.color_space));
-        header.insert("voxlux/colorSpace", Imf::StringAttribute(meta.color_space));
-    }
-    if (!meta.color_config.empty()) header.insert("voxlux/config", Imf::StringAttribute(meta.color_config));
-    header.insert("voxlux/exposure", Imf::FloatAttribute(meta.exposure));
-    if (const auto& c = meta.chromaticities) {
-        auto xy = [](glm::vec2 v) { return Imath::V2f(v.x, v.y); };
-        Imf::addChromaticities(header, Imf::Chromaticities(xy((*c)[0]), xy((*c)[1]), xy((*c)[2]), xy((*c)[3])));
-    }
+    Imf::Header header = voxluxExrHeader(img.width, img.height, meta);
+    header.compression() = exrCompression(spec.compression);
     Imf::FrameBuffer fb;
     for (auto& c : channels) {
         header.channels().insert(c.name, Imf::Channel(c.type));

@@ -12,10 +12,18 @@
 
 namespace voxlux {
 
+// Deep samples of an image (output.deep; shaders/vx_deep.h), pixel by pixel in the pixels' order,
+// each pixel's front to back.
+struct DeepSamples {
+    std::vector<uint32_t> counts;                  // per pixel; empty: no deep output
+    std::vector<kernel::VxDeepSample> samples;
+};
+
 struct RenderImage {
     int width = 0;
     int height = 0;
     std::vector<kernel::VxPixel> pixels;   // row-major, row 0 at the top
+    DeepSamples deep;
 };
 
 enum class Device { Cpu, Gl };

@@ -42,6 +42,7 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     P.step = r.step * edge;
     P.voxel_filter = r.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
     P.light_filter = scene.effects.propagation.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
+    P.deep_samples = scene.output.deep ? scene.output.deep_samples : 0;
     P.shadow_step = r.shadow_step * edge;
     P.transmittance_cutoff = r.transmittance_cutoff;
     P.anisotropy = m.anisotropy;

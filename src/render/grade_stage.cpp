@@ -36,8 +36,9 @@ StageActivity GradeStage::activity(const Scene& s) const {
 
 namespace {
 
-// Exposure scales light, so the beauty's colour, the light AOVs and the variance (by the square);
-// alpha, transmittance and depth stay. Results above the float maximum stay at it.
+// Exposure scales light, so the beauty's colour, the light AOVs, the deep samples' colour and the
+// variance (by the square); alpha, transmittance and depth stay. Results above the float maximum
+// stay at it.
 void expose(RenderImage& image, float stops) {
     if (stops == 0.0f) return;
     const float gain = std::exp2(stops);
@@ -50,6 +51,7 @@ void expose(RenderImage& image, float stops) {
         p.indirect = scale(p.indirect, gain);
         p.variance = std::min(p.variance * gain * gain, std::numeric_limits<float>::max());
     }
+    for (kernel::VxDeepSample& s : image.deep.samples) s.rgb = scale(s.rgb, gain);
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ StageReads MarchStage::reads() const {
     return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
              "/render/method", "/render/reference", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
-             "/emission", "/input/frame"},
+             "/emission", "/output/deep", "/output/deep_samples", "/input/frame"},
             {"color_space", "brick", "classify", "empty_check", "camera", "light_cache", "propagation", "eye_pass"}};
 }
 
@@ -70,6 +70,7 @@ StageActivity MarchStage::activity(const Scene& s) const {
         march += ", illumination volume read trilinear";
     if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation && !reference) march += ", noise-perturbed";
+    if (s.output.deep) march += ", deep samples (up to " + std::to_string(s.output.deep_samples) + " a pixel)";
     for (size_t i = 0; i < s.emission.size(); ++i) march += (i ? ", " : ", emission: ") + emissionDescription(s.emission[i]);
     return {true, march};
 }

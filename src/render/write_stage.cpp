@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "scene/camera.h"
+#include "io/deep_exr_writer.h"
 #include "io/exr_writer.h"
 #include "core/frame_pattern.h"
 #include "io/png_writer.h"
@@ -27,7 +28,8 @@ void makeParentFolder(const std::string& path) {
 
 StageActivity WriteStage::activity(const Scene& s) const {
     return {true, "EXR, " + std::string(s.output.pixel_type == PixelType::Half ? "half" : "float") + ", " + s.output.compression +
-                      (s.output.aovs.empty() ? "" : ", AOVs") + (s.output.preview.empty() ? "" : ", and an 8-bit PNG preview")};
+                      (s.output.aovs.empty() ? "" : ", AOVs") + (s.output.deep ? ", a deep EXR" : "") +
+                      (s.output.preview.empty() ? "" : ", and an 8-bit PNG preview")};
 }
 
 void WriteStage::run(StageRun& run) {
@@ -54,8 +56,9 @@ void WriteStage::run(StageRun& run) {
         const Chromaticities& c = *cp.output_chromaticities;
         meta.chromaticities = {{c.red, c.green, c.blue, c.white}};
     }
-    // A frame's outputs are written together or not at all: the preview first, and taken away
-    // again when the EXR cannot be written.
+    // A frame's outputs are written together or not at all: the preview and the deep image first,
+    // and taken away again when the EXR cannot be written; the EXR last, as it marks the frame done
+    // (--resume).
     if (!scene.output.preview.empty()) {
         preview_path_ = framePath(scene.output.preview, frame);
         makeParentFolder(preview_path_);
@@ -64,11 +67,16 @@ void WriteStage::run(StageRun& run) {
             run.warnings.push_back(preview_path_ + ": " + std::to_string(png.non_finite) + " non-finite samples written as 0");
     }
     ExrWriteReport written;
+    const std::string deep_path = scene.output.deep ? deepPath(path_) : "";
     try {
-        written = writeExr(path_, image, scene.output, meta);
+        if (!deep_path.empty()) written = writeDeepExr(deep_path, image, scene.output, meta);
+        const ExrWriteReport flat = writeExr(path_, image, scene.output, meta);
+        written.non_finite += flat.non_finite;
+        written.half_overflow += flat.half_overflow;
     } catch (const InputError&) {
         std::error_code ec;
         if (!preview_path_.empty()) std::filesystem::remove(preview_path_, ec);
+        if (!deep_path.empty()) std::filesystem::remove(deep_path, ec);
         throw;
     }
     if (written.non_finite)

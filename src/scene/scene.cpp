@@ -15,6 +15,11 @@ const std::vector<std::string>& knownAovs() {
     return aovs;
 }
 
+std::string deepPath(const std::string& output_path) {
+    const size_t dot = output_path.size() >= 4 ? output_path.size() - 4 : 0;   // ".exr", in any case (scene_read.cpp checks)
+    return output_path.substr(0, dot) + ".deep" + output_path.substr(dot);
+}
+
 const std::vector<std::string>& knownCompressions() {
     static const std::vector<std::string> names{"none", "zip", "zips", "piz", "dwaa", "dwab", "rle"};
     return names;

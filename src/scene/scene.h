@@ -233,7 +233,12 @@ struct OutputSpec {
     std::string compression = "zip";       // one of knownCompressions()
     std::vector<AovSpec> aovs;             // each of knownAovs() at most once
     std::string preview;                   // 8-bit PNG through color.display/view; "" = none; may contain ####
+    bool deep = false;                     // also write deep samples to deepPath(path) (docs/farm.md, Deep output)
+    int deep_samples = 16;                 // at most this many a pixel, 1..64
 };
+
+// Where the deep image of an output goes: "fire.####.exr" -> "fire.####.deep.exr".
+std::string deepPath(const std::string& output_path);
 
 // One grading step, applied in order to the beauty in the working space.
 enum class GradeKind { Look, Cdl, CdlFile, Lut };

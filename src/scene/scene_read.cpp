@@ -47,12 +47,15 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
             o.fail("frames", e.what());
         }
     } else if (o.has("frames")) {
-        auto f = o.numbers("frames", 2);
-        // Checked before converting: a float outside int's range has no int value.
-        const auto frameNumber = [](float x) { return x >= -2147483648.0f && x < 2147483648.0f && x == std::floor(x); };
-        if (!frameNumber(f[0]) || !frameNumber(f[1]) || f[0] > f[1])
+        // Read as doubles, exact for every int (floats are not past 2^24); checked before converting.
+        const nlohmann::json& range = o.raw("frames");
+        const auto frameNumber = [](const nlohmann::json& x) {
+            return x.is_number() && x.get<double>() >= -2147483648.0 && x.get<double>() < 2147483648.0 && x.get<double>() == std::floor(x.get<double>());
+        };
+        if (!range.is_array() || range.size() != 2 || !frameNumber(range[0]) || !frameNumber(range[1]) ||
+            range[0].get<double>() > range[1].get<double>())
             o.fail("frames", "expected [first, last] integers with first <= last, or a string such as \"1-240x2,300\"");
-        v.frames = FrameSet(int(f[0]), int(f[1]));
+        v.frames = FrameSet(int(range[0].get<double>()), int(range[1].get<double>()));
     }
     if (o.has("density")) v.density = readGridRef(o, "density");
     if (o.has("color")) v.color = readGridRef(o, "color");
@@ -347,7 +350,7 @@ AovSpec readAov(const JsonObject& output, size_t index) {
 }
 
 OutputSpec readOutput(const JsonObject& o) {
-    o.rejectUnknown({"path", "pixel_type", "compression", "aovs", "preview"});
+    o.rejectUnknown({"path", "pixel_type", "compression", "aovs", "preview", "deep", "deep_samples"});
     OutputSpec out;
     out.path = o.string("path", "");
     out.preview = o.string("preview", "");
@@ -363,6 +366,9 @@ OutputSpec readOutput(const JsonObject& o) {
         o.fail("preview", "'" + out.preview + "' does not end in .png: the preview is written as PNG");
     out.pixel_type = readPixelType(o);
     out.compression = o.choice("compression", knownCompressions(), "zip");
+    out.deep = o.boolean("deep", out.deep);
+    out.deep_samples = o.integer("deep_samples", out.deep_samples);
+    if (out.deep_samples < 1 || out.deep_samples > 64) o.fail("deep_samples", "must lie in 1..64");
     if (o.has("aovs")) {
         const auto& list = o.raw("aovs");
         if (!list.is_array()) o.fail("aovs", "expected an array of AOV names or objects");
@@ -553,6 +559,8 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
         for (const auto& e : sources) s.emission.push_back(readEmissionSource(e));
     }
     if (root.has("output")) s.output = readOutput(root.object("output"));
+    if (s.render.method == RenderMethod::Reference && s.output.deep)
+        root.fail("output", "deep is a march-only output (render.method is \"reference\"): the Monte Carlo reference writes no deep samples");
     return s;
 }
 

@@ -212,6 +212,8 @@ nlohmann::json sceneToJson(const Scene& s) {
     if (!s.output.preview.empty()) o["preview"] = s.output.preview;
     o["pixel_type"] = pixelTypeName(s.output.pixel_type);
     o["compression"] = s.output.compression;
+    o["deep"] = s.output.deep;
+    o["deep_samples"] = s.output.deep_samples;
     o["aovs"] = nlohmann::json::array();
     for (const AovSpec& a : s.output.aovs)
         o["aovs"].push_back(a.pixel_type ? nlohmann::json{{"name", a.name}, {"pixel_type", pixelTypeName(*a.pixel_type)}}

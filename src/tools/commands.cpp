@@ -201,6 +201,8 @@ int runRender(const RenderCommand& cmd) {
     std::vector<std::string> notes;
     const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
     if (cmd.light_edits) {
+        if (cmd.sequence.resume || cmd.sequence.fail_fast || cmd.sequence.log_json)
+            throw InputError("--light-edit: renders one frame; --resume, --fail-fast and --log-json are for sequences");
         const auto frames = sequenceFrames(scene);
         return runLightEdits(scene, *cmd.light_edits, frames ? std::optional<int>(frames->first()) : std::nullopt, cmd.sequence.stats);
     }

@@ -2,6 +2,7 @@
 
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfIntAttribute.h>
 #include <ImfStringAttribute.h>
 
 #include <filesystem>
@@ -30,6 +31,14 @@ FrameCheck checkFrame(const Scene& scene, std::optional<int> frame, const std::s
                        ", this scene's " + hash + ")";
             return c;
         }
+        // One output path may serve several frames (--frames 5 -o out.exr, then --frames 6).
+        const auto* written_frame = file.header().findTypedAttribute<Imf::IntAttribute>("voxlux/frame");
+        if (frame.has_value() != (written_frame != nullptr) || (frame && written_frame->value() != *frame)) {
+            c.state = FrameCheck::State::OtherScene;
+            c.reason = c.path + ": holds " + (written_frame ? "frame " + std::to_string(written_frame->value()) : std::string("no frame")) +
+                       ", not " + (frame ? "frame " + std::to_string(*frame) : std::string("a single file"));
+            return c;
+        }
     } catch (const std::exception& e) {
         c.state = FrameCheck::State::Corrupt;
         c.reason = e.what();
@@ -37,6 +46,10 @@ FrameCheck checkFrame(const Scene& scene, std::optional<int> frame, const std::s
     }
     if (!scene.output.preview.empty() && !std::filesystem::exists(expand(scene.output.preview))) {
         c.reason = expand(scene.output.preview) + ": preview not written";
+        return c;
+    }
+    if (scene.output.deep && !std::filesystem::exists(deepPath(c.path))) {
+        c.reason = deepPath(c.path) + ": deep image not written";
         return c;
     }
     c.state = FrameCheck::State::Done;

@@ -1,6 +1,6 @@
 // Whether a frame's outputs are done: its EXR exists, reads whole, and carries the scene's hash
-// (voxlux/sceneHash, src/render/write_stage.h), and its preview PNG exists when the scene asks for
-// one. `render --resume` skips such frames and `farm collect` accepts them. Cost: one read of the
+// (voxlux/sceneHash, src/render/write_stage.h) and the frame's number (voxlux/frame), and its preview PNG and deep EXR exist when the
+// scene asks for them (they are written before the EXR, which is renamed into place last). `render --resume` skips such frames and `farm collect` accepts them. Cost: one read of the
 // EXR (milliseconds at 512^2), since only a full read finds a file cut short.
 #pragma once
 #include <optional>

@@ -42,6 +42,7 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--spp", o.spp, "reference samples per pixel (render.reference.spp)");
     cmd.add_option("--frames", o.frames, "FIRST-LAST[xSTEP] or a list, e.g. 1-240x2,300, for a #### volume path (volume.frames)");
     cmd.add_option("--pixel-type", o.pixel_type, "half|float (output.pixel_type)");
+    cmd.add_flag("--deep", o.deep, "also write a deep EXR, NAME.deep.exr: RGBA, Z, ZBack samples (output.deep)");
     cmd.add_option("--aovs", o.aovs, "direct,ambient,indirect,emission,transmittance,depth,variance (output.aovs)")->delimiter(',');
 }
 
@@ -131,6 +132,8 @@ int main(int argc, char** argv) {
     submitCmd->add_option("--job-dir", farmSubmit.options.job_dir, "the job folder (default: NAME.farm, after the input)");
     submitCmd->add_option("--scheduler", farmSubmit.options.scheduler, "slurm")->capture_default_str();
     submitCmd->add_option("--partition", farmSubmit.options.partition, "the scheduler's partition (queue); default: its own");
+    submitCmd->add_option("--cpus", farmSubmit.options.cpus, "cores each task asks for (sbatch --cpus-per-task); default: the scheduler's")
+        ->check(CLI::Range(1, 4096));
     submitCmd->add_flag("--dry-run", farmSubmit.options.dry_run, "write the job folder and script, print the submit command, submit nothing");
     submitCmd->add_flag("--wait", farmSubmit.options.wait, "wait for the job to end, then check its frames as collect does");
     submitCmd->add_option("-o,--output", farmSubmit.overrides.output, "output .exr with #### (output.path)");

@@ -103,6 +103,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
             if (o.emission_grid) sources.push_back({{"grid", *o.emission_grid}, {"kind", "constant"}, {"color", {1, 1, 1}}});
             if (o.blackbody_grid) sources.push_back(blackbodySource(*o.blackbody_grid));
         });
+    if (o.deep) apply("--deep", [](nlohmann::json& s) { s["output"]["deep"] = true; });
     if (o.frames) apply("--frames " + *o.frames, [&o](nlohmann::json& s) { s["volume"]["frames"] = *o.frames; });
     if (o.resolution) {
         const std::string flag = "--res " + *o.resolution;

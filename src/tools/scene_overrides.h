@@ -24,6 +24,7 @@ struct SceneOverrides {
     std::optional<int> spp;                     // render.reference.spp
     std::optional<std::vector<std::string>> aovs;
     std::optional<std::string> output, preview;
+    bool deep = false;                          // output.deep
     std::optional<std::string> quality;         // draft|preview|final: applied before every other override
     std::vector<std::string> sets;              // "dotted.key=JSON value", any scene key
     std::optional<std::string> up;              // x|y|z|auto (volume.up)

@@ -108,6 +108,7 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
         }
         current = name;
         const auto start = std::chrono::steady_clock::now();
+        bool frame_failed = false;
         try {
             const FrameResult r = renderer.renderToFile(frame, frames.has_value());
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -133,8 +134,7 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
             if (frame) fj["frame"] = *frame;
             stats["frames"].push_back(fj);
             line.update({{"status", "rendered"}, {"path", r.path}, {"seconds", seconds}, {"stages", stages},
-                         {"reused", r.reused}, {"warnings", r.warnings}, {"empty", r.empty}, {"time", utcNow()}});
-            log.write(line);
+                         {"reused", r.reused}, {"warnings", r.warnings}, {"empty", r.empty}});
         } catch (const Interrupted&) {
             throw;
         } catch (const std::exception& e) {
@@ -147,7 +147,12 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
             ++failed;
             failed_frames.add(*frame);
             err << "voxlux: error: " << name << ": " << message << "\n";
-            if (options.fail_fast) break;
+            frame_failed = true;
+        }
+        if (frame_failed && options.fail_fast) break;
+        if (!frame_failed) {   // outside the frame's try: a log that cannot be written stops the run
+            line["time"] = utcNow();
+            log.write(line);
         }
         if (progress) {
             progress->advance();

@@ -122,7 +122,9 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out) {
     const Scene base_scene = parseScene(base.dump(), "study scene", "");
     const std::optional<int> frame = studyFrame(base_scene);
     const StudyPlan plan = planStudy(base, o.spps, base_scene.render.reference.seed);
-    const std::string hash = sceneHash(base_scene);
+    // The scene's hash leaves the frames out (a frame's outputs carry one hash wherever it
+    // renders); the study's truth and rows are of one frame, so its key names it.
+    const std::string hash = frame ? hashText(sceneHash(base_scene) + ":frame " + std::to_string(*frame)) : sceneHash(base_scene);
 
     const ColorPipeline color = buildColorPipeline(base_scene.color, false);
     if (!color.xyz_to_working)

@@ -25,8 +25,6 @@ TEST(FrameSet, RangesStepsAndListsWalkInOrder) {
     EXPECT_EQ(allFrames(FrameSet::parse("-3--1")), (std::vector<int>{-3, -2, -1}));
     EXPECT_TRUE(FrameSet::parse("1-240").isRange());
     EXPECT_FALSE(FrameSet::parse("1-240x2").isRange());
-    EXPECT_TRUE(FrameSet::parse("1-240x2").contains(239));
-    EXPECT_FALSE(FrameSet::parse("1-240x2").contains(240));
 }
 
 TEST(FrameSet, AHugeRangeIsNeverExpanded) {

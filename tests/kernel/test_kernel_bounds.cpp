@@ -43,9 +43,10 @@ TEST(KernelBounds, AMarchWithMoreLightsThanItsArrayTraps) {
     camera.look_at = glm::vec3(8.0f);
     auto prepared = prepare(volumeFromGrid(boxGrid({0, 0, 0}, {15, 15, 15}, 0.5f)), scene, camera);
     kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
-    EXPECT_GT(k.vx_render_pixel(4, 4).rgba.w, 0.0f);
+    kernel::CpuKernel::VxDeepRay deep;
+    EXPECT_GT(k.vx_render_pixel(4, 4, deep).rgba.w, 0.0f);
     k.P.light_count = 2;
-    EXPECT_DEATH(k.vx_render_pixel(4, 4), "voxlux: kernel light index 1 outside \\[0, 1\\)");
+    EXPECT_DEATH(k.vx_render_pixel(4, 4, deep), "voxlux: kernel light index 1 outside \\[0, 1\\)");
 }
 
 TEST(KernelBounds, ACacheChannelPastTheCellTraps) {

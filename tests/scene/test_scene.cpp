@@ -134,7 +134,7 @@ TEST(Scene, RoundTripThroughJson) {
         "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": true,
                     "cone": {"angle": 4, "samples": 30, "growth": 0.2}, "light_resolution": 96, "light_memory_mb": 512,
                     "propagation": {"filter": "trilinear"}},
-        "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth", "ambient"]}})",
+        "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth", "ambient"], "deep": true, "deep_samples": 8}})",
                          "shot.json", "");
     // Every key, as written by hand from the scene above and the defaults of docs/scene.md.
     const nlohmann::json expected = nlohmann::json::parse(R"({
@@ -157,7 +157,8 @@ TEST(Scene, RoundTripThroughJson) {
                     "indirect": false, "surface": false, "perturbation": false,
                     "light_resolution": 96, "light_memory_mb": 512},
         "color": {},
-        "output": {"path": "out_####.exr", "pixel_type": "float", "compression": "zip", "aovs": ["depth", "ambient"]}})");
+        "output": {"path": "out_####.exr", "pixel_type": "float", "compression": "zip", "aovs": ["depth", "ambient"],
+                   "deep": true, "deep_samples": 8}})");
     EXPECT_EQ(sceneToJson(s), expected) << sceneToJson(s).dump(2);
     // And the reader takes back every key the writer writes.
     const Scene again = parseScene(expected.dump(), "again.json", "");
@@ -184,7 +185,7 @@ TEST(Scene, OutputAovsWithPixelTypesAndCompressions) {
     EXPECT_EQ(s.output.aovs[2], (AovSpec{"depth", std::nullopt}));
     EXPECT_EQ(s.output.compression, "dwab");
     EXPECT_EQ(sceneToJson(s)["output"].dump(),
-              R"({"aovs":["direct",{"name":"emission","pixel_type":"float"},"depth"],"compression":"dwab","pixel_type":"half"})");
+              R"({"aovs":["direct",{"name":"emission","pixel_type":"float"},"depth"],"compression":"dwab","deep":false,"deep_samples":16,"pixel_type":"half"})");
     for (const std::string& c : knownCompressions())
         EXPECT_EQ(parseScene(R"({"volume": {"path": "a.vdb"}, "output": {"compression": ")" + c + R"("}})", "s.json", "")
                       .output.compression,
@@ -192,6 +193,10 @@ TEST(Scene, OutputAovsWithPixelTypesAndCompressions) {
 }
 
 TEST(Scene, OutputAovsAndCompressionAreValidated) {
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "output": {"deep_samples": 65}})"),
+              "shot.json: /output/deep_samples: must lie in 1..64");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "output": {"deep": "yes"}})"),
+              "shot.json: /output/deep: expected true or false, got string");
     const std::string v = R"({"volume": {"path": "a.vdb"}, "output": )";
     EXPECT_EQ(sceneErrorOf(v + R"({"compression": "b44"}})"),
               "shot.json: /output/compression: 'b44' is not one of none, zip, zips, piz, dwaa, dwab, rle");

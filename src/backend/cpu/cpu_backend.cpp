@@ -1,6 +1,7 @@
 // CPU backend: the shared kernel with TBB, the march over 16x16 pixel tiles, reading the march
 // inputs through the kernel binding (src/kernel/cpu_kernel.cpp) the reference renderer and the
 // light grid use too.
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
@@ -21,13 +22,40 @@ public:
         img.width = in.params.width;
         img.height = in.params.height;
         img.pixels.resize(size_t(img.width) * img.height);
+        if (in.params.deep_samples > 0) {
+            marchDeep(k, img);
+            return img;
+        }
         tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 16, 0, img.width, 16),
                           [&](const tbb::blocked_range2d<int>& r) {
+                              kernel::CpuKernel::VxDeepRay unused;
                               for (int y = r.rows().begin(); y < r.rows().end(); ++y)
                                   for (int x = r.cols().begin(); x < r.cols().end(); ++x)
-                                      img.pixels[size_t(y) * img.width + x] = k.vx_render_pixel(x, y);
+                                      img.pixels[size_t(y) * img.width + x] = k.vx_render_pixel(x, y, unused);
                           });
         return img;
+    }
+
+private:
+    // With deep samples, row by row: each row's samples are kept apart, then joined in order, so
+    // memory follows the samples made, not the most a pixel may hold.
+    static void marchDeep(kernel::CpuKernel& k, RenderImage& img) {
+        std::vector<std::vector<kernel::VxDeepSample>> rows(size_t(img.height));
+        img.deep.counts.resize(img.pixels.size());
+        tbb::parallel_for(tbb::blocked_range<int>(0, img.height), [&](const tbb::blocked_range<int>& r) {
+            kernel::CpuKernel::VxDeepRay ray;
+            for (int y = r.begin(); y < r.end(); ++y)
+                for (int x = 0; x < img.width; ++x) {
+                    const size_t i = size_t(y) * img.width + x;
+                    img.pixels[i] = k.vx_render_pixel(x, y, ray);
+                    img.deep.counts[i] = uint32_t(ray.count);
+                    rows[size_t(y)].insert(rows[size_t(y)].end(), ray.s, ray.s + ray.count);
+                }
+        });
+        for (auto& row : rows) {
+            img.deep.samples.insert(img.deep.samples.end(), row.begin(), row.end());
+            std::vector<kernel::VxDeepSample>().swap(row);
+        }
     }
 };
 

@@ -30,7 +30,7 @@ constexpr int kGroupSize = 8;  // local_size_x/y in march.comp
 class GlBackend final : public KernelBackend {
 public:
     // Compiles the trilinear program up front, so a GL that cannot run the kernel fails here.
-    GlBackend() : context_(ensureGlContext()) { marchProgram(VX_FILTER_TRILINEAR); }
+    GlBackend() : context_(ensureGlContext()) { marchProgram(VX_FILTER_TRILINEAR, 0); }
 
     std::string name() const override { return "gl (" + context_.renderer + ")"; }
     Device device() const override { return Device::Gl; }
@@ -43,7 +43,8 @@ public:
         img.pixels.resize(size_t(img.width) * img.height);
         if (img.pixels.empty()) return img;
 
-        const GLuint program = marchProgram(in.params.voxel_filter);
+        const int deep_samples = in.params.deep_samples;
+        const GLuint program = marchProgram(in.params.voxel_filter, deep_samples);
         const GLint row_offset = glGetUniformLocation(program, "vx_row_offset");
         params_.upload(&in.params, sizeof in.params, GL_STREAM_DRAW, "parameter");
         params_.bind(program, GL_UNIFORM_BLOCK, "Params");
@@ -78,6 +79,14 @@ public:
         checkStorageSize("Band", row_bytes * band_rows);
         band_.upload(nullptr, row_bytes * band_rows, GL_STREAM_READ, "Band");
         band_.bind(program, GL_SHADER_STORAGE_BLOCK, "Band");
+        // Deep samples: a fixed stride a pixel on the GPU, joined into the image's compact list.
+        const size_t deep_floats = deep_samples > 0 ? size_t(1 + 6 * deep_samples) : 1;
+        const size_t deep_row_bytes = deep_samples > 0 ? size_t(img.width) * deep_floats * sizeof(float) : sizeof(float);
+        checkStorageSize("DeepBand", deep_row_bytes * band_rows);
+        deep_band_.upload(nullptr, deep_row_bytes * (deep_samples > 0 ? band_rows : 1), GL_STREAM_READ, "DeepBand");
+        deep_band_.bind(program, GL_SHADER_STORAGE_BLOCK, "DeepBand");
+        std::vector<float> deep_rows(deep_samples > 0 ? deep_row_bytes / sizeof(float) * band_rows : 0);
+        if (deep_samples > 0) img.deep.counts.resize(img.pixels.size());
 
         glUseProgram(program);
         for (int y0 = 0; y0 < img.height; y0 += band_rows) {
@@ -89,6 +98,22 @@ public:
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
             glGetNamedBufferSubData(band_.id(), 0, GLsizeiptr(row_bytes * rows),
                                     &img.pixels[size_t(y0) * img.width]);
+            if (deep_samples == 0) continue;
+            glGetNamedBufferSubData(deep_band_.id(), 0, GLsizeiptr(deep_row_bytes * rows), deep_rows.data());
+            for (size_t p = 0; p < size_t(img.width) * rows; ++p) {
+                const float* pixel = &deep_rows[p * deep_floats];
+                const uint32_t count = uint32_t(pixel[0]);
+                img.deep.counts[size_t(y0) * img.width + p] = count;
+                for (uint32_t i = 0; i < count; ++i) {
+                    const float* s = pixel + 1 + 6 * i;
+                    kernel::VxDeepSample sample;
+                    sample.rgb = glm::vec3(s[0], s[1], s[2]);
+                    sample.alpha = s[3];
+                    sample.z = s[4];
+                    sample.z_back = s[5];
+                    img.deep.samples.push_back(sample);
+                }
+            }
         }
         if (GLenum error = glGetError(); error != GL_NO_ERROR)
             throw std::runtime_error("GL backend: the march failed with GL error " + std::to_string(error));
@@ -97,13 +122,15 @@ public:
 
 private:
     // The march program of a filter: one each, as the filter is a compile-time constant in GLSL
-    // (shaders/vx_sample.h).
-    static GLuint marchProgram(int filter) {
-        return kernelProgram("march.comp", filter == VX_FILTER_TRICUBIC ? "#define VX_ATLAS_FILTER VX_FILTER_TRICUBIC\n" : "");
+    // (shaders/vx_sample.h); and with room in each ray for exactly the deep samples asked for
+    // (vx_deep.h), as the array's size sets the program's cost.
+    static GLuint marchProgram(int filter, int deep_samples) {
+        return kernelProgram("march.comp", std::string(filter == VX_FILTER_TRICUBIC ? "#define VX_ATLAS_FILTER VX_FILTER_TRICUBIC\n" : "") +
+                                               "#define VX_DEEP_CAPACITY " + std::to_string(deep_samples + 1) + "\n");
     }
 
     const GlContextInfo& context_;
-    GlBuffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, emission_lut_, cache_, illum_, noise_, band_;
+    GlBuffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, emission_lut_, cache_, illum_, noise_, band_, deep_band_;
 };
 
 }  // namespace

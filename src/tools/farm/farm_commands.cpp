@@ -37,7 +37,7 @@ std::string thisBinary() {
 std::map<int64_t, TaskState> chunkStates(const FarmJob& job) {
     std::map<int64_t, TaskState> states;
     for (const FarmSubmission& s : job.submissions) {
-        const std::map<int64_t, TaskState> tasks = makeScheduler(s.scheduler)->tasks(job, s);
+        const std::map<int64_t, TaskState> tasks = makeScheduler(s.scheduler)->tasks(s);
         for (int64_t c : s.chunks) {
             const auto it = tasks.find(c);
             if (it != tasks.end()) states[c] = it->second;
@@ -61,12 +61,6 @@ void waitForJob(const FarmJob& job) {
     }
 }
 
-std::string listOf(const std::vector<int64_t>& chunks) {
-    std::string out;
-    for (int64_t c : chunks) out += (out.empty() ? "" : ",") + std::to_string(c);
-    return out;
-}
-
 }  // namespace
 
 int farmSubmit(const Scene& scene, const std::string& input, const FarmSubmitOptions& options, std::ostream& out) {
@@ -75,7 +69,7 @@ int farmSubmit(const Scene& scene, const std::string& input, const FarmSubmitOpt
     if (const auto problem = outputPathProblem(scene)) throw InputError(*problem);
     const std::unique_ptr<Scheduler> scheduler = makeScheduler(options.scheduler);
     FarmJob job = createFarmJob(scene, options.job_dir.empty() ? defaultJobDir(input) : options.job_dir, options.chunk,
-                                thisBinary(), options.partition);
+                                thisBinary(), options.partition, options.cpus);
     std::vector<int64_t> chunks;
     for (int64_t k = 0; k < job.chunkCount(); ++k) chunks.push_back(k);
     std::string id;
@@ -104,7 +98,7 @@ int farmStatus(const std::string& job_dir, std::ostream& out) {
     const FarmJob job = loadFarmJob(job_dir);
     out << job.dir << ": frames " << job.frames.text() << " in " << job.chunkCount() << " chunks of up to " << job.chunk << "\n";
     for (const FarmSubmission& s : job.submissions)
-        out << "  " << s.scheduler << " job " << s.job_id << ": chunks " << listOf(s.chunks) << "\n";
+        out << "  " << s.scheduler << " job " << s.job_id << ": chunks " << chunkList(s.chunks) << "\n";
     const std::map<int64_t, TaskState> states = chunkStates(job);
     std::map<std::string, int64_t> counts;
     for (int64_t k = 0; k < job.chunkCount(); ++k) {
@@ -140,16 +134,16 @@ int farmCollect(const std::string& job_dir, const FarmCollectOptions& options, s
     out << "collect: " << done << " of " << outcomes.size() << " frames done";
     if (bad_frames.count()) out << "; not done: frames " << bad_frames.text();
     out << "\n";
-    if (!running.empty()) out << "chunks " << listOf(running) << " are still queued or running\n";
+    if (!running.empty()) out << "chunks " << chunkList(running) << " are still queued or running\n";
     if (resubmit.empty() || !options.resubmit) {
-        if (!resubmit.empty()) out << "chunks " << listOf(resubmit) << " lack frames: voxlux farm collect " << job.dir << " --resubmit\n";
+        if (!resubmit.empty()) out << "chunks " << chunkList(resubmit) << " lack frames: voxlux farm collect " << job.dir << " --resubmit\n";
         return bad_frames.count() ? kFramesFailed : 0;
     }
     const std::string scheduler = job.submissions.empty() ? "slurm" : job.submissions.back().scheduler;
     const std::string id = makeScheduler(scheduler)->submit(job, resubmit, false);
     job.submissions.push_back({scheduler, id, resubmit});
     saveFarmJob(job);
-    out << "resubmitted chunks " << listOf(resubmit) << " as " << scheduler << " job " << id << "\n";
+    out << "resubmitted chunks " << chunkList(resubmit) << " as " << scheduler << " job " << id << "\n";
     if (!options.wait) return kFramesFailed;
     return farmCollect(job.dir, {false, true}, out);
 }

@@ -14,6 +14,7 @@ struct FarmSubmitOptions {
     int64_t chunk = 1;           // frames per task
     std::string scheduler = "slurm";
     std::string partition;
+    int cpus = 0;                // cores a task asks for; 0 = the scheduler's default
     bool dry_run = false;        // write the job folder and script, print the submit command, submit nothing
     bool wait = false;           // wait for the job to end, then check its frames as collect does
 };

@@ -20,8 +20,14 @@ std::vector<std::string> FarmJob::taskCommand(int64_t index) const {
             "--log-json", logDir() + "/chunk_" + std::to_string(index) + ".jsonl"};
 }
 
+std::string chunkList(const std::vector<int64_t>& chunks) {
+    FrameSet set;
+    for (int64_t c : chunks) set.add(int(c));
+    return set.text();
+}
+
 FarmJob createFarmJob(const Scene& scene, const std::string& dir, int64_t chunk, const std::string& voxlux,
-                      const std::string& partition) {
+                      const std::string& partition, int cpus) {
     if (chunk < 1) throw InputError("--chunk " + std::to_string(chunk) + ": must be at least 1 frame");
     FarmJob job;
     job.dir = fs::absolute(dir).lexically_normal().string();
@@ -32,6 +38,7 @@ FarmJob createFarmJob(const Scene& scene, const std::string& dir, int64_t chunk,
     job.chunk = chunk;
     job.voxlux = voxlux;
     job.partition = partition;
+    job.cpus = cpus;
     fs::create_directories(job.logDir());
 
     Scene task_scene = scenePathsRelativeTo(scene, job.dir);
@@ -44,7 +51,7 @@ FarmJob createFarmJob(const Scene& scene, const std::string& dir, int64_t chunk,
 
 void saveFarmJob(const FarmJob& job) {
     nlohmann::json j = {{"frames", job.frames.text()}, {"chunk", job.chunk}, {"voxlux", job.voxlux},
-                        {"partition", job.partition}, {"submissions", nlohmann::json::array()}};
+                        {"partition", job.partition}, {"cpus", job.cpus}, {"submissions", nlohmann::json::array()}};
     for (const auto& s : job.submissions)
         j["submissions"].push_back({{"scheduler", s.scheduler}, {"job_id", s.job_id}, {"chunks", s.chunks}});
     writeFileAtomically(job.dir + "/job.json", jsonText(j, 2) + "\n");
@@ -63,6 +70,7 @@ FarmJob loadFarmJob(const std::string& dir) {
         job.chunk = j.at("chunk").get<int64_t>();
         job.voxlux = j.at("voxlux").get<std::string>();
         job.partition = j.at("partition").get<std::string>();
+        job.cpus = j.at("cpus").get<int>();
         for (const auto& s : j.at("submissions"))
             job.submissions.push_back({s.at("scheduler").get<std::string>(), s.at("job_id").get<std::string>(),
                                        s.at("chunks").get<std::vector<int64_t>>()});

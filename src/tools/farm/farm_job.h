@@ -29,6 +29,7 @@ struct FarmJob {
     int64_t chunk = 1;               // frames per chunk
     std::string voxlux;              // the binary the tasks run, absolute
     std::string partition;           // the scheduler's queue; "" = its default
+    int cpus = 0;                    // cores a task asks for; 0 = the scheduler's default
     std::vector<FarmSubmission> submissions;   // oldest first
 
     std::string sceneFile() const { return dir + "/scene.json"; }
@@ -39,10 +40,13 @@ struct FarmJob {
     std::vector<std::string> taskCommand(int64_t index) const;
 };
 
+// Chunk indices, increasing, as a frame spec writes them ("0-2,5"): Slurm's --array reads the same.
+std::string chunkList(const std::vector<int64_t>& chunks);
+
 // Makes the job folder for `scene` (a sequence with a camera) and writes scene.json and job.json.
 // Throws InputError when the folder holds another job, or the chunk size is below 1.
 FarmJob createFarmJob(const Scene& scene, const std::string& dir, int64_t chunk, const std::string& voxlux,
-                      const std::string& partition);
+                      const std::string& partition, int cpus);
 // Throws InputError "<dir>/job.json: ..." when the folder holds no job.
 FarmJob loadFarmJob(const std::string& dir);
 void saveFarmJob(const FarmJob& job);

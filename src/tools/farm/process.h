@@ -7,9 +7,13 @@
 namespace voxlux {
 
 struct ProcessResult {
-    int exit_code = -1;    // 127 when the program cannot be run (not installed)
-    std::string output;    // standard output and standard error, interleaved as written; for 127, why
+    int exit_code = -1;    // 127 when the program cannot be run (not installed); 128 + N when signal N ended it
+    std::string output;    // standard output
+    std::string error;     // standard error; for 127, why
 };
+
+// The last line of `text` that is not empty ("" if none): what a tool says last.
+std::string lastLine(const std::string& text);
 
 ProcessResult runProcess(const std::vector<std::string>& argv);
 

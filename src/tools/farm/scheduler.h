@@ -27,8 +27,9 @@ public:
     // Throws InputError naming the scheduler's tool and its message when submission fails.
     virtual std::string submit(const FarmJob& job, const std::vector<int64_t>& chunks, bool dry_run) = 0;
     // The state of each task of `submission` the scheduler still knows, by chunk index; a chunk
-    // missing from the map has left the scheduler's memory (its frames tell how it went).
-    virtual std::map<int64_t, TaskState> tasks(const FarmJob& job, const FarmSubmission& submission) = 0;
+    // missing from the map has left the scheduler's memory (its frames tell how it went). Throws
+    // InputError when the scheduler cannot be asked: no answer is never read as "ended".
+    virtual std::map<int64_t, TaskState> tasks(const FarmSubmission& submission) = 0;
 };
 
 // "slurm"; throws InputError naming the schedulers there are for any other name.
