@@ -58,6 +58,7 @@ void vx_deep_close(VX_INOUT(VxDeepRay) r, float T, vec3 L) {
     c.z_back = r.z_back;
     c.alpha = clamp(1.0f - T / r.T0, 0.0f, 1.0f);
     c.rgb = max(L - r.L0, vec3(0.0f)) / r.T0;
+    VX_CHECK_INDEX(r.count, VX_DEEP_CAPACITY, "deep sample");
     r.s[r.count] = c;
     r.count += 1;
     if (r.count <= P.deep_samples) return;

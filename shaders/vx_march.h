@@ -325,7 +325,18 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) de
             vx_chunk_transmittance(tau, lanes, dt, chunk);
             px.samples += float(n);
             if (constant_light) {
-                if (deep_on) vx_deep_span(deep, float(k) * dt * cos_forward, float(k + n) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
+                if (deep_on) {   // the chunk as one stretch, from its first to its last sample with medium
+                    int first = n;
+                    int last = -1;
+                    for (int j = 0; j < n; ++j) {
+                        if (chunk.sigma[j] > 0.0f) {
+                            first = min(first, j);
+                            last = j;
+                        }
+                    }
+                    if (last >= 0)
+                        vx_deep_span(deep, float(k + first) * dt * cos_forward, float(k + last + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
+                }
                 float T_after = chunk.T[n - 1];
                 px.direct = vx_radiance_add(px.direct, P.albedo * directional * (T - T_after));
                 px.ambient = vx_radiance_add(px.ambient, P.albedo * ambient * (T - T_after));

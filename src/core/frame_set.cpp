@@ -97,10 +97,14 @@ FrameSet FrameSet::slice(int64_t begin, int64_t count) const {
 std::string FrameSet::text() const {
     std::string out;
     for (const auto& r : ranges_) {
-        if (!out.empty()) out += ",";
+        if (!out.empty()) out += ',';
         out += std::to_string(r.first);
-        if (r.last != r.first) out += "-" + std::to_string(r.last);
-        if (r.step != 1 && r.last != r.first) out += "x" + std::to_string(r.step);
+        if (r.last == r.first) continue;
+        out += '-';
+        out += std::to_string(r.last);
+        if (r.step == 1) continue;
+        out += 'x';
+        out += std::to_string(r.step);
     }
     return out;
 }

@@ -7,6 +7,7 @@
 #include <ImfPartType.h>
 
 #include <array>
+#include <stdexcept>
 
 #include "io/exr_common.h"
 
@@ -24,6 +25,11 @@ Imf::Compression deepCompression(const std::string& name) {
 ExrWriteReport writeDeepExr(const std::string& path, const RenderImage& img, const OutputSpec& spec, const ExrMetadata& meta) {
     const DeepSamples& deep = img.deep;
     const size_t pixels = size_t(img.width) * img.height, n = deep.samples.size();
+    size_t counted = 0;
+    for (uint32_t c : deep.counts) counted += c;
+    if (deep.counts.size() != pixels || counted != n)
+        throw std::logic_error("deep image: " + std::to_string(deep.counts.size()) + " sample counts for " + std::to_string(pixels) +
+                               " pixels, adding up to " + std::to_string(counted) + " of " + std::to_string(n) + " samples");
     const bool half = spec.pixel_type == PixelType::Half;
     ExrWriteReport report;
 

@@ -42,7 +42,7 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     P.step = r.step * edge;
     P.voxel_filter = r.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
     P.light_filter = scene.effects.propagation.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
-    P.deep_samples = scene.output.deep ? scene.output.deep_samples : 0;
+    P.deep_samples = scene.output.deep ? std::clamp(scene.output.deep_samples, 1, 64) : 0;   // a ray holds 65 (vx_deep.h)
     P.shadow_step = r.shadow_step * edge;
     P.transmittance_cutoff = r.transmittance_cutoff;
     P.anisotropy = m.anisotropy;

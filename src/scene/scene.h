@@ -233,7 +233,7 @@ struct OutputSpec {
     std::string compression = "zip";       // one of knownCompressions()
     std::vector<AovSpec> aovs;             // each of knownAovs() at most once
     std::string preview;                   // 8-bit PNG through color.display/view; "" = none; may contain ####
-    bool deep = false;                     // also write deep samples to deepPath(path) (docs/farm.md, Deep output)
+    bool deep = false;                     // also write deep samples to deepPath(path) (docs/scene.md, Deep output)
     int deep_samples = 16;                 // at most this many a pixel, 1..64
 };
 

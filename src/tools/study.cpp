@@ -28,6 +28,7 @@ nlohmann::json studyBase(const Scene& scene) {
     for (const char* key : {"output_space", "grade", "display", "view"}) j["color"].erase(key);
     j["output"]["aovs"] = nlohmann::json::array();
     j["output"]["preview"] = "";
+    j["output"]["deep"] = false;   // the reference makes none, and the march's timing is of the image
     return j;
 }
 

@@ -172,6 +172,7 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
     // path is never written (the viewer runs no write stage).
     Scene shown = scene;
     if (shown.output.preview.empty()) shown.output.preview = "viewer.png";
+    shown.output.deep = false;   // the viewer shows the flat image; deep samples would only cost
 
     // The lighting first, at full resolution, never cancelled: a light drag's next edit then
     // starts from this one's illumination and stays a selective update.

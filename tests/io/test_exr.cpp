@@ -63,7 +63,10 @@ const std::vector<float>& expected(const std::string& channel) {
 
 RenderImage patternImage() {
     const auto& planes = patternPlanes();
-    RenderImage img{kWidth, kHeight, std::vector<kernel::VxPixel>(size_t(kWidth) * kHeight)};
+    RenderImage img;
+    img.width = kWidth;
+    img.height = kHeight;
+    img.pixels.resize(size_t(kWidth) * kHeight);
     for (size_t i = 0; i < img.pixels.size(); ++i) {
         kernel::VxPixel& p = img.pixels[i];
         for (int k = 0; k < 4; ++k) p.rgba[k] = planes[k][i];

@@ -26,6 +26,8 @@ static_assert(offsetof(kernel::VxPixel, depth) == 17 * sizeof(float));
 // Rows per dispatch: keeps each submission short whatever the image size (and the band buffer small).
 constexpr int kBandRows = 64;
 constexpr int kGroupSize = 8;  // local_size_x/y in march.comp
+// The deep band's most bytes: 128 MiB, the shader storage block size every GL 4.3 driver supports.
+constexpr size_t kDeepBandBytes = size_t(128) << 20;
 
 class GlBackend final : public KernelBackend {
 public:
@@ -75,13 +77,14 @@ public:
         }
 
         const size_t row_bytes = size_t(img.width) * sizeof(kernel::VxPixel);
-        const int band_rows = std::min(kBandRows, img.height);
+        // Deep samples: a fixed stride a pixel on the GPU, joined into the image's compact list;
+        // their band holds fewer rows where a full one would pass the portable block size.
+        const size_t deep_floats = deep_samples > 0 ? size_t(1 + 6 * deep_samples) : 1;
+        const size_t deep_row_bytes = deep_samples > 0 ? size_t(img.width) * deep_floats * sizeof(float) : sizeof(float);
+        const int band_rows = std::max(1, std::min({kBandRows, img.height, int(kDeepBandBytes / deep_row_bytes)}));
         checkStorageSize("Band", row_bytes * band_rows);
         band_.upload(nullptr, row_bytes * band_rows, GL_STREAM_READ, "Band");
         band_.bind(program, GL_SHADER_STORAGE_BLOCK, "Band");
-        // Deep samples: a fixed stride a pixel on the GPU, joined into the image's compact list.
-        const size_t deep_floats = deep_samples > 0 ? size_t(1 + 6 * deep_samples) : 1;
-        const size_t deep_row_bytes = deep_samples > 0 ? size_t(img.width) * deep_floats * sizeof(float) : sizeof(float);
         checkStorageSize("DeepBand", deep_row_bytes * band_rows);
         deep_band_.upload(nullptr, deep_row_bytes * (deep_samples > 0 ? band_rows : 1), GL_STREAM_READ, "DeepBand");
         deep_band_.bind(program, GL_SHADER_STORAGE_BLOCK, "DeepBand");
@@ -102,7 +105,7 @@ public:
             glGetNamedBufferSubData(deep_band_.id(), 0, GLsizeiptr(deep_row_bytes * rows), deep_rows.data());
             for (size_t p = 0; p < size_t(img.width) * rows; ++p) {
                 const float* pixel = &deep_rows[p * deep_floats];
-                const uint32_t count = uint32_t(pixel[0]);
+                const uint32_t count = std::min(uint32_t(pixel[0]), uint32_t(deep_samples));
                 img.deep.counts[size_t(y0) * img.width + p] = count;
                 for (uint32_t i = 0; i < count; ++i) {
                     const float* s = pixel + 1 + 6 * i;
