@@ -4,6 +4,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform int vx_row_offset;   // image row of the band's first row
+uniform int vx_ray;          // which of a pixel's P.time_samples rays (vx_render_ray)
 
 // 20 floats per pixel of the band, row-major: rgba, direct, ambient, emission, indirect,
 // transmittance, depth, samples, pad (the byte layout of the C++ VxPixel).
@@ -17,7 +18,7 @@ void main() {
     int y = int(gl_GlobalInvocationID.y);
     if (x >= P.width || y + vx_row_offset >= P.height) return;
     VxDeepRay deep;
-    VxPixel px = vx_render_pixel(x, y + vx_row_offset, deep);
+    VxPixel px = vx_render_ray(x, y + vx_row_offset, vx_ray, deep);
     if (P.deep_samples > 0) {
         int d = (1 + 6 * P.deep_samples) * (y * P.width + x);
         vx_deep_band[d] = float(deep.count);

@@ -9,7 +9,9 @@ layout(std140, binding = VX_BIND_PROP_PARAMS) uniform PropParams { VxPropParams 
 
 layout(std430, binding = VX_BIND_ATLAS_DENSITY) readonly buffer AtlasDensity { float vx_density_data[]; };
 layout(std430, binding = VX_BIND_ATLAS_EMISSION) readonly buffer AtlasEmission { float vx_emission_data[]; };
-layout(std430, binding = VX_BIND_ATLAS_COLOR) readonly buffer AtlasColor { float vx_color_data[]; };   // 3 floats per voxel
+// The colour grid's 3 floats a voxel, then from P.velocity_offset the velocity's (one block: a
+// compute program may have 16).
+layout(std430, binding = VX_BIND_ATLAS_VECTORS) readonly buffer AtlasVectors { float vx_vector_data[]; };
 layout(std430, binding = VX_BIND_PAGE_TABLE) readonly buffer PageTable { ivec4 vx_page_data[]; };
 layout(std430, binding = VX_BIND_LIGHTS) readonly buffer Lights { VxLight vx_light_data[]; };
 layout(std430, binding = VX_BIND_TRANSFER_LUT) readonly buffer TransferLut { vec4 vx_tf_data[]; };
@@ -24,7 +26,11 @@ layout(std430, binding = VX_BIND_EMISSION_LUT) readonly buffer EmissionLut { vec
 
 float vx_atlas_density(int i) { return vx_density_data[i]; }
 float vx_atlas_emission(int i) { return vx_emission_data[i]; }
-vec3 vx_atlas_color(int i) { return vec3(vx_color_data[3 * i], vx_color_data[3 * i + 1], vx_color_data[3 * i + 2]); }
+vec3 vx_atlas_color(int i) { return vec3(vx_vector_data[3 * i], vx_vector_data[3 * i + 1], vx_vector_data[3 * i + 2]); }
+vec3 vx_atlas_velocity(int i) {
+    int v = P.velocity_offset + 3 * i;
+    return vec3(vx_vector_data[v], vx_vector_data[v + 1], vx_vector_data[v + 2]);
+}
 ivec4 vx_page_entry(int i) { return vx_page_data[i]; }
 VxLight vx_light(int i) { return vx_light_data[i]; }
 vec4 vx_tf_lut(int i) { return vx_tf_data[i]; }

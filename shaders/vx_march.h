@@ -4,6 +4,7 @@
 #include "lighting/extinction_sat/kernel/vx_cache.h"
 #include "lighting/propagation/kernel/vx_illumination.h"
 #include "vx_deep.h"
+#include "vx_motion.h"
 #include "vx_noise.h"
 
 // Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.
@@ -74,9 +75,6 @@ void vx_dda_advance(VX_INOUT(VxDda) s) {
 int vx_first_sample(float t, float inv_dt) {
     return max(int(ceil(t * inv_dt - 0.5f)), 0);
 }
-
-vec3 vx_to_index_point(vec3 x) { return vec3(P.world_to_index * vec4(x, 1.0f)); }
-vec3 vx_to_index_dir(vec3 v) { return vec3(P.world_to_index * vec4(v, 0.0f)); }
 
 // Extinction at index point p (world point x) under the perturbation (Kniss 2003 Sec. III.D):
 // the lookup displaced by the noise vector, the result scaled by the noise.
@@ -197,19 +195,39 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxGridCell cell, VxSurface sur
 // loop. Tricubic samples are looked up one by one (their taps may cross into other bricks).
 // Samples past the brick read clamped, in-bounds voxels and are ignored by the caller. Under a
 // perturbation every sample is looked up on its own (its displaced point may lie in any brick);
-// wo + wd * t is the sample's world point.
+// wo + wd * t is the sample's world point. A ray at a `time` where the medium moves looks each
+// sample up where the medium was (vx_motion.h) and keeps how far it moved in `shift`.
 struct VxChunk {
     float sigma[VX_CHUNK];
     float tau[VX_CHUNK];    // optical depth from the camera to the end of each sample's segment
     float T[VX_CHUNK];      // exp(-tau)
+    vec3 shift[VX_CHUNK];   // world distance the medium at each sample has moved (set while moving)
 };
 
-VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 wo, vec3 wd, int k, int lanes, float dt,
-                                   VX_INOUT(VxChunk) c) {
+// The moved samples' extinction in place of the unmoved ones that vx_chunk_extinction looked up,
+// for the first n lanes: the brick's own samples (the caller ignores the rest).
+VX_INLINE void vx_chunk_move(int slot, ivec3 brick, vec3 o, vec3 d, int k, int n, float dt, float time, VX_INOUT(VxChunk) c) {
+    for (int j = 0; j < n; ++j) {
+        float t = (float(k + j) + 0.5f) * dt;
+        vec3 p = o + d * t;
+        c.shift[j] = vx_motion_shift(slot, brick, p, time);
+        if (vx_is_zero(c.shift[j])) continue;
+        bool found;
+        VxTaps moved = vx_moved_taps(slot, brick, p, c.shift[j], found);
+        c.sigma[j] = found ? vx_extinction(moved) : 0.0f;
+    }
+}
+
+VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 wo, vec3 wd, int k, int n, int lanes, float dt,
+                                   float time, VX_INOUT(VxChunk) c) {
     if (vx_perturbed()) {
+        bool moving = vx_moving(time);
         for (int j = 0; j < lanes; ++j) {
             float t = (float(k + j) + 0.5f) * dt;
-            c.sigma[j] = vx_perturbed_extinction(o + d * t, wo + wd * t);
+            vec3 p = o + d * t;
+            vec3 shift = vx_motion_shift(slot, brick, p, time);
+            if (moving) c.shift[j] = shift;
+            c.sigma[j] = vx_perturbed_extinction(p - vx_to_index_dir(shift), wo + wd * t - shift);
         }
         return;
     }
@@ -218,6 +236,7 @@ VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 w
             float t = (float(k + j) + 0.5f) * dt;
             c.sigma[j] = vx_extinction(vx_taps_at(slot, brick, o + d * t));
         }
+        if (vx_moving(time)) vx_chunk_move(slot, brick, o, d, k, n, dt, time, c);
         return;
     }
     // Scalars only inside the loops (vector temporaries would be spilled per SIMD lane); two loops
@@ -232,6 +251,7 @@ VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 w
     VX_SIMD_LOOP
     for (int j = 0; j < lanes; ++j)
         c.sigma[j] = vx_value_extinction(c.sigma[j]);
+    if (vx_moving(time)) vx_chunk_move(slot, brick, o, d, k, n, dt, time, c);
 }
 
 // Optical depth is accumulated as a sum (Schlegel 2011, Eq. 2) and turned into transmittance
@@ -263,9 +283,12 @@ VX_INLINE vec3 vx_pixel_radiance(VxPixel px) {
     return vx_radiance_add(vx_radiance_add(px.direct, px.ambient), vx_radiance_add(px.emission, px.indirect));
 }
 
-// March one camera ray (world origin, unit world direction, camera forward for depth). With
-// P.deep_samples > 0 the ray's deep samples go to `deep` (vx_deep.h).
-VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) deep) {
+// March one camera ray (world origin, unit world direction, camera forward for depth) at `time`
+// (frames from the frame's own, vx_motion.h). With P.deep_samples > 0 the ray's deep samples go
+// to `deep` (vx_deep.h). Under motion blur every lookup of a sample (medium, lights, the light
+// stages' volumes) is made where the medium was at `time`: the light stages are the frame's own,
+// carried along with the medium.
+VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
     VxPixel px;
     px.rgba = vec4(0.0f);
     px.direct = vec3(0.0f);
@@ -305,6 +328,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) de
     // telescopes exactly to albedo * L * (T before - T after): no per-sample work beyond the
     // SIMD batches.
     bool constant_light = per_ray_directional && plain_albedo && !emits && P.local_light_count == 0 && !cached;
+    bool moving = vx_moving(time);
     float tau = 0.0f;
     float T = 1.0f;
     float depth_weighted = 0.0f;
@@ -321,7 +345,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) de
             // A brick often holds only a few samples of a ray: evaluate whole SIMD widths, not the
             // whole batch.
             int lanes = min(VX_CHUNK, (n + VX_LANES - 1) / VX_LANES * VX_LANES);
-            vx_chunk_extinction(slot, s.brick, o, d, origin, dir, k, lanes, dt, chunk);
+            vx_chunk_extinction(slot, s.brick, o, d, origin, dir, k, n, lanes, dt, time, chunk);
             vx_chunk_transmittance(tau, lanes, dt, chunk);
             px.samples += float(n);
             if (constant_light) {
@@ -348,8 +372,13 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) de
             for (int j = 0; j < n; ++j) {
                 float sigma = chunk.sigma[j];
                 float t = (float(k + j) + 0.5f) * dt;
+                vec3 p = o + d * t;
+                vec3 shift = moving ? chunk.shift[j] : vec3(0.0f);
+                bool here = occupied;    // whether the sample's medium lies in a stored brick
+                VxTaps taps;
+                if (occupied && (emits || !plain_albedo)) taps = vx_moved_taps(slot, s.brick, p, shift, here);
                 vec3 le = vec3(0.0f);
-                if (emits && occupied) le = vx_emission(vx_taps_at(slot, s.brick, o + d * t));
+                if (emits && here) le = vx_emission(taps);
                 if (sigma <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
                 if (deep_on) vx_deep_span(deep, float(k + j) * dt * cos_forward, float(k + j + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
                 // Exact integral of a constant segment: the light scattered in a segment of
@@ -359,10 +388,10 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) de
                 float T_next = chunk.T[j];
                 float absorbed = T - T_next;
                 if (absorbed > 0.0f) {
-                    vec3 x = origin + dir * t;
-                    vec3 albedo = plain_albedo || !occupied ? P.albedo : vx_albedo(vx_taps_at(slot, s.brick, o + d * t));
+                    vec3 x = origin + dir * t - shift;
+                    vec3 albedo = plain_albedo || !here ? P.albedo : vx_albedo(taps);
                     VxGridCell cell = cached ? vx_cache_cell(x) : no_cell;
-                    VxSurface surface = shaded_surface ? vx_surface(o + d * t) : vx_no_surface();
+                    VxSurface surface = shaded_surface ? vx_surface(moving ? p - vx_to_index_dir(shift) : p) : vx_no_surface();
                     vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, cell, surface));
                     px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
                     if (P.indirect_weight > 0.0f)
@@ -384,21 +413,78 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) de
     return px;
 }
 
-// The camera ray through the centre of pixel (x, y); y = 0 is the top row.
-void vx_camera_ray(int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+// The ray of camera-to-world `m` through the centre of pixel (x, y); y = 0 is the top row.
+void vx_camera_ray_of(mat4 m, int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
     float w = float(P.width);
     float h = float(P.height);
     float sx = (2.0f * (float(x) + 0.5f) / w - 1.0f) * P.tan_half_fov * P.aspect;
     float sy = (1.0f - 2.0f * (float(y) + 0.5f) / h) * P.tan_half_fov;
-    origin = vec3(P.camera_to_world * vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    dir = normalize(vec3(P.camera_to_world * vec4(sx, sy, -1.0f, 0.0f)));
-    forward = normalize(vec3(P.camera_to_world * vec4(0.0f, 0.0f, -1.0f, 0.0f)));
+    origin = vec3(m * vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    dir = normalize(vec3(m * vec4(sx, sy, -1.0f, 0.0f)));
+    forward = normalize(vec3(m * vec4(0.0f, 0.0f, -1.0f, 0.0f)));
 }
 
-VxPixel vx_render_pixel(int x, int y, VX_INOUT(VxDeepRay) deep) {
+// The camera ray through pixel (x, y) at the frame's own time.
+void vx_camera_ray(int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+    vx_camera_ray_of(P.camera_to_world, x, y, origin, dir, forward);
+}
+
+// The same at `fraction` of the way from shutter open to close: where the camera moves, between
+// its open and close rays (origins linearly, directions normalised linearly, which follows the
+// rotation closely for the small turns of one shutter).
+void vx_camera_ray_at(int x, int y, float fraction, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+    if (P.camera_moves == 0) {
+        vx_camera_ray(x, y, origin, dir, forward);
+        return;
+    }
+    vec3 o1;
+    vec3 d1;
+    vec3 f1;
+    vx_camera_ray_of(P.camera_open, x, y, origin, dir, forward);
+    vx_camera_ray_of(P.camera_close, x, y, o1, d1, f1);
+    origin = mix(origin, o1, fraction);
+    dir = normalize(mix(dir, d1, fraction));
+    forward = normalize(mix(forward, f1, fraction));
+}
+
+// Adds ray `px`, the n-th of a pixel's (n >= 2), to the mean `m` of the ones before: a running
+// mean, which stays exactly the value of rays that all return the same. Depth is the opacity-
+// weighted mean, as one ray weighs its samples (alpha_sum: the rays' alpha so far); the samples
+// (the cost) add up.
+void vx_pixel_mean_add(VX_INOUT(VxPixel) m, VxPixel px, int n, VX_INOUT(float) alpha_sum) {
+    float w = 1.0f / float(n);
+    m.rgba += (px.rgba - m.rgba) * w;
+    m.direct += (px.direct - m.direct) * w;
+    m.ambient += (px.ambient - m.ambient) * w;
+    m.emission += (px.emission - m.emission) * w;
+    m.indirect += (px.indirect - m.indirect) * w;
+    m.transmittance += (px.transmittance - m.transmittance) * w;
+    m.samples += px.samples;
+    float alpha = px.rgba.w;
+    if (alpha <= 0.0f) return;
+    alpha_sum += alpha;
+    m.depth = alpha_sum == alpha ? px.depth : m.depth + (px.depth - m.depth) * (alpha / alpha_sum);
+}
+
+// Ray i of pixel (x, y)'s P.time_samples (without motion blur, its one ray at the frame's time).
+VxPixel vx_render_ray(int x, int y, int i, VX_INOUT(VxDeepRay) deep) {
     vec3 origin;
     vec3 dir;
     vec3 forward;
-    vx_camera_ray(x, y, origin, dir, forward);
-    return vx_march_ray(origin, dir, forward, deep);
+    if (P.motion_blur == 0) {
+        vx_camera_ray(x, y, origin, dir, forward);
+        return vx_march_ray(origin, dir, forward, 0.0f, deep);
+    }
+    float fraction = vx_shutter_fraction(i, P.time_samples, vx_pixel_time_offset(x, y));
+    vx_camera_ray_at(x, y, fraction, origin, dir, forward);
+    return vx_march_ray(origin, dir, forward, vx_shutter_time(fraction), deep);
+}
+
+// Pixel (x, y): the mean of its rays. The GL backend dispatches ray by ray instead and averages
+// with vx_pixel_mean_add on the host, which keeps each invocation as short as one ray's march.
+VxPixel vx_render_pixel(int x, int y, VX_INOUT(VxDeepRay) deep) {
+    VxPixel mean = vx_render_ray(x, y, 0, deep);
+    float alpha_sum = mean.rgba.w;
+    for (int i = 1; i < P.time_samples; ++i) vx_pixel_mean_add(mean, vx_render_ray(x, y, i, deep), i + 1, alpha_sum);
+    return mean;
 }

@@ -10,6 +10,7 @@
 //  - data comes only from accessor functions that each backend defines:
 //      float  vx_atlas_density(int index);   vec3 vx_atlas_color(int index);
 //      float  vx_atlas_emission(int index);  ivec4 vx_page_entry(int index);
+//      vec3   vx_atlas_velocity(int index);  (render.motion_blur's velocity grid)
 //      VxLight vx_light(int index);          vec4  vx_tf_lut(int index);
 //      vec4   vx_emission_lut(int index);    (emission tables, VX_EMISSION_LUT_SIZE rows per source)
 //      float  vx_cache(int index);           (light cache, read by the march)
@@ -77,7 +78,7 @@
 #define VX_BIND_PROP_PARAMS 2      // uniform VxPropParams Q (propagation sweeps)
 #define VX_BIND_ATLAS_DENSITY 0
 #define VX_BIND_ATLAS_EMISSION 1
-#define VX_BIND_ATLAS_COLOR 2
+#define VX_BIND_ATLAS_VECTORS 2    // colour, then velocity
 #define VX_BIND_PAGE_TABLE 3
 #define VX_BIND_LIGHTS 4
 #define VX_BIND_TRANSFER_LUT 5

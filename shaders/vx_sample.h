@@ -168,6 +168,10 @@ VX_DEFINE_RECONSTRUCT(float, vx_density_at, vx_atlas_density)
 VX_DEFINE_RECONSTRUCT(float, vx_emission_value_at, vx_atlas_emission)
 VX_DEFINE_RECONSTRUCT(vec3, vx_color_at, vx_atlas_color)
 
+// World points and directions in the grid's index space.
+vec3 vx_to_index_point(vec3 x) { return vec3(P.world_to_index * vec4(x, 1.0f)); }
+vec3 vx_to_index_dir(vec3 v) { return vec3(P.world_to_index * vec4(v, 0.0f)); }
+
 // Raw density at index point p from whichever brick holds it (0 in empty bricks): for lookups
 // that may leave the brick being marched (displaced samples, gradients).
 float vx_density_index(vec3 p) {

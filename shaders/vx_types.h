@@ -92,8 +92,19 @@ struct VxParams {
     int voxel_filter;       // VX_FILTER_* (filter is a GLSL reserved word)
     int light_filter;       // VX_FILTER_*: how the illumination volume is read between cells
     int deep_samples;       // deep samples per ray (output.deep_samples), 0 = no deep output
-    int pad1;
+    int motion_blur;        // 1: camera rays take times within the shutter (vx_motion.h)
+    int time_samples;       // rays a pixel spreads over the shutter (the march; 1 without motion blur)
+
+    int use_velocity;       // 1 if a velocity grid is bound (atlas channel vx_atlas_velocity)
+    float velocity_per_frame;  // velocity_scale / fps: world units a frame per unit of the velocity grid
+    float shutter_open;     // frames from the frame's own time
+    float shutter_close;
+    int camera_moves;       // 1: rays move from camera_open to camera_close over the shutter
+    int velocity_offset;    // GL: first float of the velocity in its storage block (vx_gl_bindings.glsl)
     int pad2;
+    int pad3;
+    mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
+    mat4 camera_close;
 };
 
 // The light passes' parameters (Schlegel 2011): the extinction SAT over the light grid and the
@@ -195,6 +206,14 @@ struct VxDeepSample {
 // (vx_page_lookup) both use it.
 VX_INLINE uint vx_brick_hash(ivec3 b) {
     return (uint(b.x) * 73856093u) ^ (uint(b.y) * 19349663u) ^ (uint(b.z) * 83492791u);
+}
+
+// PCG hash (Jarzynski and Olano 2020): one well-mixed 32-bit word per input word. The march's
+// per-pixel shutter offsets and the reference's random numbers (src/reference/sample_sequence.cpp).
+VX_INLINE uint vx_hash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
 }
 
 // Radiance sums stop at the largest float rather than overflow to infinity, so HDR lights up to

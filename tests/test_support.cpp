@@ -13,6 +13,7 @@
 #include "backend/backend_choice.h"
 #include "core/error.h"
 #include "scene/scene_json.h"
+#include "volume/velocity.h"
 
 namespace voxlux::test {
 namespace fs = std::filesystem;
@@ -77,8 +78,8 @@ Camera cameraAlong(glm::vec3 centre, glm::vec3 dir, float distance, float fov) {
 std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const Camera& camera) {
     auto p = std::make_unique<Prepared>();
     p->volume = std::move(volume);
-    p->atlas = buildBrickAtlas(p->volume);
-    p->pages = buildPageTable(p->atlas.coords, pageTableBricks(p->atlas, scene));
+    p->atlas = buildBrickAtlas(p->volume, motionReachBricks(p->volume, scene.render.motion_blur));
+    p->pages = classifiedPageTable(p->atlas, scene);
     p->inputs = makeKernelInputs(scene, p->atlas, p->pages, 0.0f, kXyzD65ToAcescg, {&camera});
     return p;
 }

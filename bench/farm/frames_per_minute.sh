@@ -4,7 +4,8 @@
 #   2. by one process per frame (what a farm pays per task: start-up, scene and cache load);
 #   3. through Slurm on a one-node localhost cluster (tests/farm/slurm_cluster.sh), in chunks of
 #      CHUNK frames (default 10), submit to the last frame checked (farm submit --wait);
-#   4. by one process with a deep EXR beside each frame (--deep, 16 samples a pixel).
+#   4. by one process with a deep EXR beside each frame (--deep, 16 samples a pixel);
+#   5. by one process with velocity motion blur (8 rays a pixel, velocity_scale 0.5).
 # Every way renders the same scene file (the camera framed once on all 60 frames), so the frames
 # are the same. Needs the shared data beside the clone; the Slurm row needs root, slurm-wlm and
 # munge, and is left out when the cluster cannot start. Run from the repository's root:
@@ -41,6 +42,10 @@ start=$(now)
 "$voxlux" render "$out/shot.json" -o "$out/deep/fire.####.exr" --deep >/dev/null
 report "one process, all frames, --deep" "$start" "$(now)"
 echo "  deep files: $(du -sh "$out/deep" | cut -f1) with the images (images alone: $(du -sh "$out/one" | cut -f1))"
+
+start=$(now)
+"$voxlux" render "$out/shot.json" -o "$out/blur/fire.####.exr" --set 'render.motion_blur={"velocity_scale":0.5}' >/dev/null
+report "one process, all frames, motion blur" "$start" "$(now)"
 
 start=$(now)
 python3 - "$voxlux" "$out/shot.json" "$frames" "$out/each" <<'PY'

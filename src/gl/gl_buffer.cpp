@@ -24,12 +24,22 @@ GlBuffer::GlBuffer() { glCreateBuffers(1, &id_); }
 GlBuffer::~GlBuffer() { glDeleteBuffers(1, &id_); }
 
 void GlBuffer::upload(const void* data, size_t bytes, GLenum usage, const std::string& what) {
+    upload(data, bytes, nullptr, 0, usage, what);
+}
+
+void GlBuffer::upload(const void* first, size_t first_bytes, const void* second, size_t second_bytes, GLenum usage,
+                      const std::string& what) {
     static const float kZeros[4] = {};
-    if (bytes == 0) {
-        data = kZeros;
-        bytes = sizeof kZeros;
+    if (first_bytes + second_bytes == 0) {
+        first = kZeros;
+        first_bytes = sizeof kZeros;
     }
-    glNamedBufferData(id_, GLsizeiptr(bytes), data, usage);
+    const size_t bytes = first_bytes + second_bytes;
+    glNamedBufferData(id_, GLsizeiptr(bytes), second_bytes ? nullptr : first, usage);
+    if (second_bytes) {
+        if (first_bytes) glNamedBufferSubData(id_, 0, GLsizeiptr(first_bytes), first);
+        glNamedBufferSubData(id_, GLsizeiptr(first_bytes), GLsizeiptr(second_bytes), second);
+    }
     if (GLenum error = glGetError(); error != GL_NO_ERROR)
         throw std::runtime_error("GL backend: cannot allocate the " + what + " buffer of " + describeBytes(bytes) +
                                  (error == GL_OUT_OF_MEMORY ? ": out of memory" : ": GL error " + std::to_string(error)));

@@ -35,6 +35,7 @@ struct CpuKernel {
     KernelArray<float> density;
     KernelArray<float> emission;           // source-major channels (P.emission_source_floats each)
     KernelArray<float> color;              // 3 floats per voxel
+    KernelArray<float> velocity;           // 3 floats per voxel
     KernelArray<ivec4> page;
     KernelArray<VxLight> lights;
     KernelArray<vec4> tf_lut;
@@ -53,6 +54,9 @@ struct CpuKernel {
     float vx_atlas_emission(int i) const { return emission.at(i, "atlas emission"); }
     vec3 vx_atlas_color(int i) const {
         return vec3(color.at(3 * i, "atlas colour"), color.at(3 * i + 1, "atlas colour"), color.at(3 * i + 2, "atlas colour"));
+    }
+    vec3 vx_atlas_velocity(int i) const {
+        return vec3(velocity.at(3 * i, "atlas velocity"), velocity.at(3 * i + 1, "atlas velocity"), velocity.at(3 * i + 2, "atlas velocity"));
     }
     ivec4 vx_page_entry(int i) const { return page.at(i, "page table"); }
     VxLight vx_light(int i) const { return lights.at(i, "light"); }

@@ -11,10 +11,6 @@
 
 namespace voxlux {
 
-float voxelEdge(const glm::mat4& m) {
-    return std::min({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))});
-}
-
 namespace {
 
 kernel::VxLight packLight(const Light& l) {
@@ -157,6 +153,30 @@ void setKnissEffects(const Effects& fx, float edge, float frame, KernelInputs& i
     }
 }
 
+// Velocity motion blur (vx_motion.h): the shutter, the velocity's units, and the camera's motion.
+// Where neither the medium (a velocity grid of some speed) nor the camera moves, nothing blurs, and
+// a pixel takes one ray.
+void setMotionBlur(const Scene& scene, const BrickAtlas& atlas, const Camera* camera, KernelInputs& in) {
+    auto& P = in.params;
+    P.time_samples = 1;
+    const auto& mb = scene.render.motion_blur;
+    if (!mb) return;
+    const bool camera_moves = camera && camera->motion;
+    P.use_velocity = atlas.velocity.empty() || atlas.motion_reach == 0 ? 0 : 1;
+    P.velocity_offset = int(atlas.color.size());
+    if (!P.use_velocity && !camera_moves) return;
+    P.motion_blur = 1;
+    P.time_samples = mb->samples;
+    P.velocity_per_frame = mb->velocity_scale / mb->fps;
+    P.shutter_open = mb->shutter_open;
+    P.shutter_close = mb->shutter_close;
+    if (camera_moves) {
+        P.camera_moves = 1;
+        P.camera_open = (*camera->motion)[0];
+        P.camera_close = (*camera->motion)[1];
+    }
+}
+
 }  // namespace
 
 KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const PageTable& pages, float frame,
@@ -180,6 +200,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     setLights(scene, in);
     setLighting(scene, sources, in);
     setKnissEffects(scene.effects, voxelEdge(atlas.index_to_world), frame, in);
+    setMotionBlur(scene, atlas, sources.camera, in);
     return in;
 }
 

@@ -39,7 +39,4 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
                               float frame = 0.0f, const glm::mat3& xyz_to_working = kXyzD65ToAcescg,
                               const MarchSources& sources = {});
 
-// Smallest world length of one voxel edge: the march step unit.
-float voxelEdge(const glm::mat4& index_to_world);
-
 }  // namespace voxlux

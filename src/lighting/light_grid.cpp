@@ -39,12 +39,15 @@ struct OccupiedBrick {
     int slot;
 };
 
-// The page table's bricks in (z, y, x) order, so every cell sums its voxels in one fixed order.
+// The page table's bricks in the medium's box (PageTable::medium_min) in (z, y, x) order, so every
+// cell sums its voxels in one fixed order.
 std::vector<OccupiedBrick> occupiedBricks(const PageTable& pages) {
     std::vector<OccupiedBrick> out;
     out.reserve(pages.occupied);
     for (const glm::ivec4& e : pages.entries)
-        if (e.w != VX_PAGE_EMPTY) out.push_back({glm::ivec3(e) - pages.bricks_min, e.w});
+        if (e.w != VX_PAGE_EMPTY && glm::all(glm::greaterThanEqual(glm::ivec3(e), pages.medium_min)) &&
+            glm::all(glm::lessThanEqual(glm::ivec3(e), pages.medium_max)))
+            out.push_back({glm::ivec3(e) - pages.medium_min, e.w});
     std::sort(out.begin(), out.end(), [](const OccupiedBrick& a, const OccupiedBrick& b) {
         return std::tie(a.local.z, a.local.y, a.local.x) < std::tie(b.local.z, b.local.y, b.local.x);
     });
@@ -106,7 +109,7 @@ std::string clampedCellsWarning(const LightGrid& g) {
            std::to_string(int(kMaxCellOpticalDepth)) + " per cell (extreme extinction in the data)";
 }
 
-glm::vec3 occupiedExtent(const PageTable& pages) { return glm::vec3((pages.bricks_max - pages.bricks_min + 1) * VX_BRICK); }
+glm::vec3 occupiedExtent(const PageTable& pages) { return glm::vec3((pages.medium_max - pages.medium_min + 1) * VX_BRICK); }
 
 int cappedLightResolution(glm::vec3 extent, int requested) {
     return std::min(requested, 4 * int(std::max({extent.x, extent.y, extent.z})));
@@ -162,7 +165,7 @@ glm::vec3 meanEmission(kernel::CpuKernel& k, glm::ivec3 voxel) {
 
 LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding, bool emission) {
     kernel::CpuKernel k = bindCpuKernel(in);
-    const glm::ivec3 bmin = in.pages->bricks_min, bmax = in.pages->bricks_max;
+    const glm::ivec3 bmin = in.pages->medium_min, bmax = in.pages->medium_max;
     const glm::ivec3 voxels = (bmax - bmin + 1) * VX_BRICK;
     LightGrid g;
     g.planes = bleeding > 0.0f ? 4 : 1;

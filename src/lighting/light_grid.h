@@ -51,7 +51,7 @@ bool lightGridIndexable(glm::ivec3 dims, int planes, int cache_channels);
 // The warning for a grid with clamped cells.
 std::string clampedCellsWarning(const LightGrid& grid);
 
-// Index-space size of the occupied bricks' box, which light grids cover.
+// Index-space size of the medium's box (PageTable::medium_min), which light grids cover.
 glm::vec3 occupiedExtent(const PageTable& pages);
 
 // `requested` cells along the longest side, but no finer than a quarter voxel: finer cells would

@@ -21,11 +21,23 @@ namespace {
 using kernel::CpuKernel;
 
 // The tracker: the kernel bound to the inputs, and the extinction bounds of its slots. Rays are in
-// world units; the kernel's brick DDA walks them in index space with t as world distance.
+// world units; the kernel's brick DDA walks them in index space with t as world distance. Under
+// motion blur a path has one time, and every lookup along it sees the medium at that time.
 struct Tracker {
     CpuKernel& k;
     const ExtinctionBounds& bounds;
     std::atomic<uint64_t>& opaque_segments;
+    float time = 0.0f;    // the path's, frames from the frame's own (vx_motion.h)
+
+    // The medium at index point p of stored brick (slot, b) at the path's time; nothing where it
+    // came from no stored brick (all its values are 0).
+    std::optional<CpuKernel::VxTaps> medium(int slot, glm::ivec3 b, glm::vec3 p) const {
+        bool found = false;
+        const CpuKernel::VxTaps taps = k.vx_moved_taps(slot, b, p, k.vx_motion_shift(slot, b, p, time), found);
+        return found ? std::optional<CpuKernel::VxTaps>(taps) : std::nullopt;
+    }
+    float extinction(const std::optional<CpuKernel::VxTaps>& c) const { return c ? k.vx_extinction(*c) : 0.0f; }
+    glm::vec3 emission(const std::optional<CpuKernel::VxTaps>& c) const { return c ? k.vx_emission(*c) : glm::vec3(0.0f); }
 
     // Tentative collisions one brick's segment may take: m * length of them are expected, a
     // handful where the majorant is tight, 65536 at an optical-depth bound of 65536 in one brick
@@ -93,7 +105,7 @@ struct Tracker {
             if (T <= 0.0f) return false;
             if (!(residual > 0.0f)) return true;  // uniform here: exact
             return collisions(o, d, t, t_end, residual, rng, events, [&](float, glm::vec3 p, bool opaque) {
-                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (k.vx_extinction(k.vx_taps_at(slot, brick, p)) - c) / residual);
+                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (extinction(medium(slot, brick, p)) - c) / residual);
                 return T > 0.0f;
             });
         });
@@ -114,14 +126,14 @@ struct Tracker {
         const bool emits = k.P.emission_sources > 0;
         walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
             return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 p, bool opaque) {
-                const CpuKernel::VxTaps c = k.vx_taps_at(slot, brick, p);
+                const std::optional<CpuKernel::VxTaps> c = medium(slot, brick, p);
                 if (!opaque) {  // else the flight ends here
-                    if (emits) f.emitted += k.vx_emission(c) / m;
-                    if (rng.next() * m >= k.vx_extinction(c)) return true;  // a null collision
+                    if (emits) f.emitted += emission(c) / m;
+                    if (rng.next() * m >= extinction(c)) return true;  // a null collision
                 }
                 f.collided = true;
                 f.t = at;
-                f.cell = c;
+                f.cell = c ? *c : k.vx_taps_at(slot, brick, p);   // opaque where nothing came from: any albedo
                 return false;
             });
         });
@@ -168,10 +180,10 @@ struct Tracker {
         walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
             return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 point, bool opaque) {
                 // A segment taken as opaque (nextCollision): all of T scatters here.
-                const CpuKernel::VxTaps c = k.vx_taps_at(slot, brick, point);
-                const float sigma = opaque ? m : k.vx_extinction(c);
+                const std::optional<CpuKernel::VxTaps> c = medium(slot, brick, point);
+                const float sigma = opaque ? m : extinction(c);
                 const float term = opaque ? T : T * std::min(1.0f, sigma / m);
-                if (emits && !opaque) p.emitted += T * k.vx_emission(c) / m;
+                if (emits && !opaque) p.emitted += T * emission(c) / m;
                 if (term > 0.0f) {
                     p.weight += term;
                     if (choose) candidates.push_back({p.weight, at, slot, brick, point});
@@ -186,7 +198,8 @@ struct Tracker {
         const auto chosen = std::min(std::upper_bound(candidates.begin(), candidates.end(), target,
                                                       [](float v, const Candidate& c) { return v < c.cumulative; }),
                                      candidates.end() - 1);
-        p.scatter = {true, chosen->t, k.vx_taps_at(chosen->slot, chosen->brick, chosen->index_point), glm::vec3(0.0f)};
+        const std::optional<CpuKernel::VxTaps> cell = medium(chosen->slot, chosen->brick, chosen->index_point);
+        p.scatter = {true, chosen->t, cell ? *cell : k.vx_taps_at(chosen->slot, chosen->brick, chosen->index_point), glm::vec3(0.0f)};
         return p;
     }
 };
@@ -279,17 +292,30 @@ ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
     const bool tf = k.P.use_transfer != 0;
     const float floor_emitting = 1.0f / voxelEdge(atlas.index_to_world);
     ExtinctionBounds b{std::vector<float>(slots, 0.0f), std::vector<float>(slots, 0.0f)};
-    // The slots a sample in slot s reads: s itself, and under the B-spline its 26 neighbours
-    // (absent ones read 0).
-    const bool tricubic = k.P.voxel_filter == VX_FILTER_TRICUBIC;
+    // The slots a sample in slot s reads: s itself, under the B-spline its 26 neighbours (absent
+    // ones read 0), and under motion blur every slot the medium can move from (atlas.motion_reach
+    // bricks around; the velocity is only read in stored bricks). Past 2 bricks of reach, every
+    // slot takes the bounds of all of them: (2 reach + 1)^3 lookups a slot would outweigh the
+    // events a looser majorant adds.
+    const int reach = (k.P.voxel_filter == VX_FILTER_TRICUBIC ? 1 : 0) + (k.P.use_velocity ? atlas.motion_reach : 0);
+    const bool global = reach > 2;
+    float global_lo = 0.0f, global_hi = 0.0f;   // absent bricks read 0
+    bool global_emitting = false;
+    for (size_t s = 0; global && s < slots; ++s) {
+        global_hi = std::max(global_hi, atlas.density_range[s].y);
+        global_lo = std::min(global_lo, atlas.density_range[s].x);
+        for (int e = 0; e < k.P.emission_sources; ++e) global_emitting |= atlas.emission_max[size_t(e) * slots + s] > 0.0f;
+    }
     for (size_t s = 0; s < slots; ++s) {
         // Filtered values stay within the range of the blocks they read (both filters are convex
         // combinations of voxels); the transfer function is linear between its table rows, so its
         // extremes over the range are at an end or at a row.
-        float lo = atlas.density_range[s].x, hi = atlas.density_range[s].y;
-        bool emitting = false;
-        for (int n = tricubic ? 0 : 13; n < (tricubic ? 27 : 14); ++n) {
-            const int read = k.vx_page_lookup(atlas.coords[s] + brickNeighbourOffset(n));
+        float lo = global ? global_lo : atlas.density_range[s].x, hi = global ? global_hi : atlas.density_range[s].y;
+        bool emitting = global_emitting;
+        const int side = global ? 0 : 2 * reach + 1;
+        for (int n = 0; n < side * side * side; ++n) {
+            const glm::ivec3 offset(n % side - reach, n / side % side - reach, n / (side * side) - reach);
+            const int read = k.vx_page_lookup(atlas.coords[s] + offset);
             if (read == VX_PAGE_EMPTY) {
                 lo = std::min(lo, 0.0f);
                 continue;
@@ -346,13 +372,20 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 const uint32_t pixel = uint32_t(y) * uint32_t(img.width) + uint32_t(x);
                 glm::vec3 origin, dir, forward;
                 k.vx_camera_ray(x, y, origin, dir, forward);
+                const bool moving = k.P.motion_blur != 0;
                 // Sums in double, written clamped to the float maximum: HDR lights up to 3.4e38 are
                 // legal, and a float sum of several such samples (or a luminance squared) overflows.
                 ReferenceSums::Pixel local;
                 ReferenceSums::Pixel& acc = sums ? sums->pixels[pixel] : local;
                 for (int s = first; s < rs.spp; ++s) {
                     ReferenceRng rng(uint32_t(rs.seed), pixel, uint32_t(s));
-                    const PathSample p = tracePath(tracker, rs, origin, dir, forward, rng);
+                    Tracker at_time = tracker;
+                    if (moving) {   // a time within the shutter, stratified over the pixel's samples
+                        const float fraction = rng.stratified(ReferenceRng::kShutterTime);
+                        at_time.time = k.vx_shutter_time(fraction);
+                        k.vx_camera_ray_at(x, y, fraction, origin, dir, forward);
+                    }
+                    const PathSample p = tracePath(at_time, rs, origin, dir, forward, rng);
                     acc.direct += p.direct;
                     acc.indirect += p.indirect;
                     acc.ambient += p.ambient;

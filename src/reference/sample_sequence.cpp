@@ -2,15 +2,13 @@
 
 #include <boost/random/sobol.hpp>
 
+#include "kernel/kernel_types.h"
+
 namespace voxlux {
 namespace {
 
-// PCG hash (Jarzynski and Olano 2020): one well-mixed 32-bit word per input word.
-uint32_t pcgHash(uint32_t v) {
-    const uint32_t state = v * 747796405u + 2891336453u;
-    const uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
+// The kernel's PCG hash (vx_types.h).
+uint32_t pcgHash(uint32_t v) { return kernel::vx_hash(v); }
 
 uint32_t reverseBits(uint32_t x) {
     x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);

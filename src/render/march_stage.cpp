@@ -43,7 +43,7 @@ std::string MarchStage::referenceSetupKey(const StageRun& run) const {
 StageReads MarchStage::reads() const {
     // Every render key but exposure, which only the grade applies.
     return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
-             "/render/method", "/render/reference", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
+             "/render/method", "/render/reference", "/render/motion_blur", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
              "/emission", "/output/deep", "/output/deep_samples", "/input/frame"},
             {"color_space", "brick", "classify", "empty_check", "camera", "light_cache", "propagation", "eye_pass"}};
@@ -71,6 +71,10 @@ StageActivity MarchStage::activity(const Scene& s) const {
     if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation && !reference) march += ", noise-perturbed";
     if (s.output.deep) march += ", deep samples (up to " + std::to_string(s.output.deep_samples) + " a pixel)";
+    if (const auto& mb = s.render.motion_blur)
+        march += reference ? ", motion-blurred where the medium or camera moves (a time a path)"
+                           : ", motion-blurred where the medium or camera moves (" + std::to_string(mb->samples) +
+                                 (mb->samples == 1 ? " ray" : " rays") + " a pixel)";
     for (size_t i = 0; i < s.emission.size(); ++i) march += (i ? ", " : ", emission: ") + emissionDescription(s.emission[i]);
     return {true, march};
 }

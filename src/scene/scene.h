@@ -73,6 +73,9 @@ struct Camera {
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     std::optional<glm::mat4> matrix;       // camera-to-world; overrides position/look_at/up
     float fov = 40.0f;                     // vertical, degrees
+    // Camera-to-world at shutter open and close (camera.motion), blurred under render.motion_blur;
+    // the transform above stays the frame's own (EXR metadata, the eye sweep).
+    std::optional<std::array<glm::mat4, 2>> motion;
 };
 
 enum class Backend { Auto, Cpu, Gl };
@@ -92,6 +95,17 @@ struct ReferenceSettings {
 // (shaders/vx_sample.h), which hides the voxel staircase of a low-resolution cache.
 enum class Filter { Trilinear, Tricubic };
 
+// Velocity motion blur (docs/scene.md, "Motion blur"): each camera ray takes a time within the
+// shutter, and the medium is looked up where the velocity grid says it was at that time.
+struct MotionBlur {
+    float shutter_open = -0.25f;           // frames from the frame's own time
+    float shutter_close = 0.25f;
+    std::optional<GridRef> velocity;       // unset: the first of vel, v, velocity the file has
+    float velocity_scale = 1.0f;
+    float fps = 24.0f;                     // the velocity grid is per second; motion is per frame
+    int samples = 8;                       // times a pixel spreads over the shutter
+};
+
 struct RenderSettings {
     int width = 512;
     int height = 512;
@@ -103,6 +117,7 @@ struct RenderSettings {
     Backend backend = Backend::Auto;
     RenderMethod method = RenderMethod::March;
     ReferenceSettings reference;           // read only with method reference
+    std::optional<MotionBlur> motion_blur;
 };
 
 // Raymarch: a shadow ray per sample and light (the reference). SatCone: Schlegel 2011 cones of

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "kernel/kernel_types.h"
+#include "scene/camera.h"
 
 namespace voxlux {
 namespace fs = std::filesystem;
@@ -114,11 +115,9 @@ glm::vec3 readDirection(const JsonObject& o, const std::string& key) {
     return std::isfinite(length) && length > 1e-18f ? glm::normalize(d) : glm::normalize(d / largest);
 }
 
-Camera readCamera(const JsonObject& o) {
-    o.rejectUnknown({"position", "look_at", "up", "matrix", "fov"});
+// The camera's transform: a matrix, or position, look_at and up.
+Camera readCameraPose(const JsonObject& o) {
     Camera c;
-    c.fov = o.number("fov", c.fov);
-    if (!(c.fov > 0 && c.fov < 180)) o.fail("fov", "must lie in (0, 180) degrees");
     if (o.has("matrix")) {
         auto m = o.numbers("matrix", 16);
         glm::mat4 mat;
@@ -144,6 +143,24 @@ Camera readCamera(const JsonObject& o) {
     return c;
 }
 
+Camera readCamera(const JsonObject& o) {
+    o.rejectUnknown({"position", "look_at", "up", "matrix", "fov", "motion"});
+    Camera c = readCameraPose(o);
+    c.fov = o.number("fov", c.fov);
+    if (!(c.fov > 0 && c.fov < 180)) o.fail("fov", "must lie in (0, 180) degrees");
+    if (o.has("motion")) {
+        const JsonObject m = o.object("motion");
+        m.rejectUnknown({"open", "close"});
+        const auto pose = [&](const std::string& key) {
+            const JsonObject p = m.object(key);
+            p.rejectUnknown({"position", "look_at", "up", "matrix"});
+            return cameraToWorld(readCameraPose(p));
+        };
+        c.motion = std::array<glm::mat4, 2>{pose("open"), pose("close")};
+    }
+    return c;
+}
+
 ReferenceSettings readReference(const JsonObject& o) {
     o.rejectUnknown({"spp", "max_bounces", "seed", "roulette_depth"});
     ReferenceSettings r;
@@ -157,8 +174,38 @@ ReferenceSettings readReference(const JsonObject& o) {
     return r;
 }
 
+// Optional effects: `true` takes the defaults, `false` turns the effect off, an object sets knobs.
+template <class T>
+std::optional<T> readOptional(const JsonObject& o, const std::string& key, T (*read)(const JsonObject&)) {
+    const auto& v = o.raw(key);
+    if (v.is_boolean()) return v.get<bool>() ? std::optional<T>(read(JsonObject(nlohmann::json::object(), "", ""))) : std::nullopt;
+    if (!v.is_object()) o.fail(key, "expected true, false or an object");
+    return read(o.object(key));
+}
+
+MotionBlur readMotionBlur(const JsonObject& o) {
+    o.rejectUnknown({"shutter", "velocity", "velocity_scale", "fps", "samples"});
+    MotionBlur m;
+    if (o.has("shutter")) {
+        const auto shutter = o.numbers("shutter", 2);
+        if (!(shutter[0] >= -1 && shutter[0] <= shutter[1] && shutter[1] <= 1))
+            o.fail("shutter", "expected [open, close] in frames, -1 <= open <= close <= 1");
+        m.shutter_open = shutter[0];
+        m.shutter_close = shutter[1];
+    }
+    if (o.has("velocity")) m.velocity = readGridRef(o, "velocity");
+    m.velocity_scale = o.number("velocity_scale", m.velocity_scale);
+    if (!(std::abs(m.velocity_scale) <= 1e6f)) o.fail("velocity_scale", "must lie in [-1e6, 1e6]");
+    m.fps = o.number("fps", m.fps);
+    if (!(m.fps >= 1e-3f && m.fps <= 1e4f)) o.fail("fps", "must lie in [0.001, 10000] frames per second");
+    m.samples = o.integer("samples", m.samples);
+    if (m.samples < 1 || m.samples > 64) o.fail("samples", "must lie in 1..64");
+    return m;
+}
+
 RenderSettings readRender(const JsonObject& o) {
-    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "exposure", "filter", "backend", "method", "reference"});
+    o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "exposure", "filter", "backend", "method", "reference",
+                     "motion_blur"});
     RenderSettings r;
     if (o.has("resolution")) {
         auto res = o.numbers("resolution", 2);
@@ -185,17 +232,10 @@ RenderSettings readRender(const JsonObject& o) {
     if (r.method == RenderMethod::Reference && r.backend == Backend::Gl)
         o.fail("method", "reference runs on the cpu backend only (render.backend is \"gl\")");
     if (o.has("reference")) r.reference = readReference(o.object("reference"));
+    if (o.has("motion_blur")) r.motion_blur = readOptional(o, "motion_blur", readMotionBlur);
     return r;
 }
 
-// Optional effects: `true` takes the defaults, `false` turns the effect off, an object sets knobs.
-template <class T>
-std::optional<T> readOptional(const JsonObject& o, const std::string& key, T (*read)(const JsonObject&)) {
-    const auto& v = o.raw(key);
-    if (v.is_boolean()) return v.get<bool>() ? std::optional<T>(read(JsonObject(nlohmann::json::object(), "", ""))) : std::nullopt;
-    if (!v.is_object()) o.fail(key, "expected true, false or an object");
-    return read(o.object(key));
-}
 
 AmbientOcclusion readAmbientOcclusion(const JsonObject& ao) {
     ao.rejectUnknown({"shells", "radius"});
@@ -561,6 +601,8 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     if (root.has("output")) s.output = readOutput(root.object("output"));
     if (s.render.method == RenderMethod::Reference && s.output.deep)
         root.fail("output", "deep is a march-only output (render.method is \"reference\"): the Monte Carlo reference writes no deep samples");
+    if (s.render.motion_blur && s.output.deep)
+        root.fail("output", "deep output is made at one time and render.motion_blur spreads a pixel over the shutter: turn one of them off");
     return s;
 }
 

@@ -36,6 +36,13 @@ double decimal(float f) {
 
 nlohmann::json vec(glm::vec3 v) { return {decimal(v.x), decimal(v.y), decimal(v.z)}; }
 
+// Column-major, as camera.matrix reads it.
+nlohmann::json matrixToJson(const glm::mat4& m) {
+    nlohmann::json out = nlohmann::json::array();
+    for (int i = 0; i < 16; ++i) out.push_back(decimal(m[i / 4][i % 4]));
+    return out;
+}
+
 nlohmann::json colorToJson(const ColorSettings& c) {
     nlohmann::json j = nlohmann::json::object();
     if (!c.config.empty()) j["config"] = c.config;
@@ -145,12 +152,15 @@ nlohmann::json sceneToJson(const Scene& s) {
         auto& c = j["camera"];
         c["fov"] = decimal(s.camera->fov);
         if (s.camera->matrix) {
-            for (int i = 0; i < 16; ++i) c["matrix"].push_back(decimal((*s.camera->matrix)[i / 4][i % 4]));
+            c["matrix"] = matrixToJson(*s.camera->matrix);
         } else {
             c["position"] = vec(s.camera->position);
             c["look_at"] = vec(s.camera->look_at);
             c["up"] = vec(s.camera->up);
         }
+        if (s.camera->motion)
+            c["motion"] = {{"open", {{"matrix", matrixToJson((*s.camera->motion)[0])}}},
+                           {"close", {{"matrix", matrixToJson((*s.camera->motion)[1])}}}};
     }
 
     auto& r = j["render"];
@@ -164,6 +174,13 @@ nlohmann::json sceneToJson(const Scene& s) {
     r["method"] = s.render.method == RenderMethod::Reference ? "reference" : "march";
     const ReferenceSettings& ref = s.render.reference;
     r["reference"] = {{"spp", ref.spp}, {"max_bounces", ref.max_bounces}, {"seed", ref.seed}, {"roulette_depth", ref.roulette_depth}};
+    if (const auto& mb = s.render.motion_blur) {
+        r["motion_blur"] = {{"shutter", {decimal(mb->shutter_open), decimal(mb->shutter_close)}}, {"velocity_scale", decimal(mb->velocity_scale)},
+                            {"fps", decimal(mb->fps)}, {"samples", mb->samples}};
+        if (mb->velocity) r["motion_blur"]["velocity"] = gridRefToJson(*mb->velocity);
+    } else {
+        r["motion_blur"] = false;
+    }
 
     auto& e = j["effects"];
     e["shadows"] = s.effects.shadows == ShadowMethod::None          ? "none"

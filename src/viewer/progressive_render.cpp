@@ -173,6 +173,7 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
     Scene shown = scene;
     if (shown.output.preview.empty()) shown.output.preview = "viewer.png";
     shown.output.deep = false;   // the viewer shows the flat image; deep samples would only cost
+    shown.render.motion_blur.reset();   // the frame's own time: navigation moves the camera, not its shutter poses
 
     // The lighting first, at full resolution, never cancelled: a light drag's next edit then
     // starts from this one's illumination and stays a selective update.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 #include <tbb/combinable.h>
@@ -20,12 +21,24 @@ constexpr int kVoxels = VX_BRICK_VOXELS;
 
 // The bricks to store: those holding active values, plus their neighbours on the - side, whose
 // + apron reaches into them (without those, the filter's ramp into a data brick from an empty
-// one would be skipped by the march).
-std::vector<glm::ivec3> bricksToStore(const LoadedVolume& v, std::vector<glm::ivec3>& active) {
+// one would be skipped by the march). Under motion blur, also the velocity's bricks within
+// `motion_reach` of those: where the moving medium can be looked up from.
+std::vector<glm::ivec3> bricksToStore(const LoadedVolume& v, int motion_reach, std::vector<glm::ivec3>& active) {
     collectBricks(v.density->tree(), active, v.file);
     for (const auto& e : v.emission) collectBricks(e->tree(), active, v.file);
     if (v.color) collectBricks(v.color->tree(), active, v.file);
     uniqueBricks(active);
+    if (v.velocity && motion_reach > 0) {
+        std::vector<glm::ivec3> moving;
+        collectBricks(v.velocity->tree(), moving, v.file);
+        uniqueBricks(moving);
+        const std::vector<char> reached = bricksWithinReach(moving, active, motion_reach);
+        const size_t before = active.size();
+        for (size_t i = 0; i < moving.size(); ++i)
+            if (reached[i] && !std::binary_search(active.begin(), active.begin() + std::ptrdiff_t(before), moving[i], brickLess))
+                active.push_back(moving[i]);
+        uniqueBricks(active);
+    }
     std::vector<glm::ivec3> all;
     all.reserve(active.size() * 2);
     for (const auto& b : active)
@@ -34,6 +47,11 @@ std::vector<glm::ivec3> bricksToStore(const LoadedVolume& v, std::vector<glm::iv
     if (all.size() > kMaxBricks)
         throw InputError(v.file + ": " + std::to_string(all.size()) + " bricks exceed the limit of " +
                          std::to_string(kMaxBricks));
+    // The kernel indexes the atlas with 32-bit ints: a vector channel's 3 floats a voxel bound it.
+    if ((v.color || v.velocity) && all.size() * kVoxels * 3 > size_t(INT32_MAX))
+        throw InputError(v.file + ": " + std::to_string(all.size()) + " bricks with a vector grid (" +
+                         (v.color ? "colour" : "velocity") + ") exceed the limit of " +
+                         std::to_string(size_t(INT32_MAX) / (kVoxels * 3)));
     return all;
 }
 
@@ -68,20 +86,31 @@ void fillScalar(Accessor& acc, const glm::ivec3& b, float* dst, SanitizeCounts& 
             }
 }
 
+// How fillVector treats a vector grid's values.
+enum class VectorKind {
+    Colour,     // components clamped to [0, 1]
+    Velocity,   // inactive voxels read 0: the values maxSpeed bounds (a staggered grid's inactive
+                // faces were never centred)
+};
+
+// Fills one brick's 9^3 block of a vector grid, 3 floats a voxel; non-finite components become 0.
 template <typename Accessor>
-void fillColor(Accessor& acc, const glm::ivec3& b, float* dst, SanitizeCounts& fixes) {
+void fillVector(Accessor& acc, const glm::ivec3& b, float* dst, SanitizeCounts& fixes, VectorKind kind) {
+    const bool unit = kind == VectorKind::Colour;
     const openvdb::Coord origin(b.x * 8, b.y * 8, b.z * 8);
     for (int z = 0; z < kStride; ++z)
         for (int y = 0; y < kStride; ++y)
             for (int x = 0; x < kStride; ++x) {
                 openvdb::Vec3s v;
-                const bool counted = acc.probeValue(origin.offsetBy(x, y, z), v) && x < 8 && y < 8 && z < 8;
+                const bool active = acc.probeValue(origin.offsetBy(x, y, z), v);
+                if (!active && kind == VectorKind::Velocity) v = openvdb::Vec3s(0.0f);
+                const bool counted = active && x < 8 && y < 8 && z < 8;
                 float* out = dst + 3 * ((z * kStride + y) * kStride + x);
                 for (int k = 0; k < 3; ++k) {
                     float c = v[k];
                     if (!std::isfinite(c)) { c = 0.0f; fixes.non_finite += counted; }
-                    else if (c < 0.0f) { c = 0.0f; fixes.negative += counted; }
-                    else if (c > 1.0f) { c = 1.0f; fixes.above_one += counted; }
+                    else if (unit && c < 0.0f) { c = 0.0f; fixes.negative += counted; }
+                    else if (unit && c > 1.0f) { c = 1.0f; fixes.above_one += counted; }
                     out[k] = c;
                 }
             }
@@ -96,7 +125,7 @@ void addCounts(SanitizeCounts& into, const SanitizeCounts& c) {
 }  // namespace
 
 size_t BrickAtlas::bytes() const {
-    return coords.size() * sizeof(glm::ivec3) + (density.size() + emission.size() + color.size()) * sizeof(float) +
+    return coords.size() * sizeof(glm::ivec3) + (density.size() + emission.size() + color.size() + velocity.size()) * sizeof(float) +
            density_range.size() * sizeof(glm::vec2) + emission_max.size() * sizeof(float);
 }
 
@@ -105,20 +134,22 @@ float BrickAtlas::emissionGridMax(size_t source) const {
     return std::accumulate(first, first + std::ptrdiff_t(slots()), 0.0f, [](float a, float b) { return std::max(a, b); });
 }
 
-BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
+BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
     BrickAtlas atlas;
     atlas.index_to_world = v.index_to_world;
     atlas.active_voxels = v.density->activeVoxelCount();
+    atlas.motion_reach = v.velocity ? motion_reach : 0;
     std::vector<glm::ivec3> active;
-    std::vector<glm::ivec3> candidates = bricksToStore(v, active);
+    std::vector<glm::ivec3> candidates = bricksToStore(v, atlas.motion_reach, active);
 
     const size_t n = candidates.size(), sources = v.emission.size();
-    std::vector<float> density(n * kVoxels), emission(sources * n * kVoxels), color(v.color ? n * kVoxels * 3 : 0);
+    std::vector<float> density(n * kVoxels), emission(sources * n * kVoxels), color(v.color ? n * kVoxels * 3 : 0),
+        velocity(v.velocity ? n * kVoxels * 3 : 0);
     struct Fixes {
-        SanitizeCounts density, color;
+        SanitizeCounts density, color, velocity;
         std::vector<SanitizeCounts> emission;
     };
-    tbb::combinable<Fixes> fixes([&] { return Fixes{{}, {}, std::vector<SanitizeCounts>(sources)}; });
+    tbb::combinable<Fixes> fixes([&] { return Fixes{{}, {}, {}, std::vector<SanitizeCounts>(sources)}; });
     using FloatAcc = openvdb::FloatGrid::ConstAccessor;
     tbb::enumerable_thread_specific<FloatAcc> densityAcc([&] { return v.density->getConstAccessor(); });
     tbb::enumerable_thread_specific<std::vector<FloatAcc>> emissionAcc([&] {
@@ -126,7 +157,7 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
         for (const auto& e : v.emission) accs.push_back(e->getConstAccessor());
         return accs;
     });
-    tbb::enumerable_thread_specific<std::unique_ptr<openvdb::Vec3SGrid::ConstAccessor>> colorAcc;
+    tbb::enumerable_thread_specific<std::unique_ptr<openvdb::Vec3SGrid::ConstAccessor>> colorAcc, velocityAcc;
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16), [&](const tbb::blocked_range<size_t>& r) {
         Fixes& f = fixes.local();
@@ -139,7 +170,12 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
             if (v.color) {
                 auto& acc = colorAcc.local();
                 if (!acc) acc = std::make_unique<openvdb::Vec3SGrid::ConstAccessor>(v.color->getConstAccessor());
-                fillColor(*acc, candidates[i], &color[i * kVoxels * 3], f.color);
+                fillVector(*acc, candidates[i], &color[i * kVoxels * 3], f.color, VectorKind::Colour);
+            }
+            if (v.velocity) {
+                auto& acc = velocityAcc.local();
+                if (!acc) acc = std::make_unique<openvdb::Vec3SGrid::ConstAccessor>(v.velocity->getConstAccessor());
+                fillVector(*acc, candidates[i], &velocity[i * kVoxels * 3], f.velocity, VectorKind::Velocity);
             }
         }
     });
@@ -148,6 +184,7 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
     fixes.combine_each([&](const Fixes& f) {
         addCounts(atlas.density_fixes, f.density);
         addCounts(atlas.color_fixes, f.color);
+        addCounts(atlas.velocity_fixes, f.velocity);
         for (size_t e = 0; e < sources; ++e) addCounts(atlas.emission_fixes[e], f.emission[e]);
     });
 
@@ -181,6 +218,7 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
         atlas.density_range.push_back(range[i]);
         std::copy_n(&density[i * kVoxels], kVoxels, &density[j * kVoxels]);
         if (v.color) std::copy_n(&color[i * kVoxels * 3], kVoxels * 3, &color[j * kVoxels * 3]);
+        if (v.velocity) std::copy_n(&velocity[i * kVoxels * 3], kVoxels * 3, &velocity[j * kVoxels * 3]);
     }
     for (size_t e = 0; e < sources; ++e)
         for (size_t j = 0; j < slots; ++j) {
@@ -190,9 +228,11 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v) {
     density.resize(slots * kVoxels);
     emission.resize(sources * slots * kVoxels);
     color.resize(v.color ? slots * kVoxels * 3 : 0);
+    velocity.resize(v.velocity ? slots * kVoxels * 3 : 0);
     atlas.density = std::move(density);
     atlas.emission = std::move(emission);
     atlas.color = std::move(color);
+    atlas.velocity = std::move(velocity);
     return atlas;
 }
 
@@ -210,6 +250,7 @@ std::vector<std::string> sanitizeReport(const BrickAtlas& a, const LoadedVolume&
     report(a.density_fixes, v.density.get());
     for (size_t e = 0; e < a.emission_sources; ++e) report(a.emission_fixes[e], v.emission[e].get());
     report(a.color_fixes, v.color.get());
+    report(a.velocity_fixes, v.velocity.get());
     return out;
 }
 

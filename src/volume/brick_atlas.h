@@ -27,19 +27,23 @@ struct BrickAtlas {
     // One channel per emission source, source-major: (source * slots + slot) * 729 + offset.
     std::vector<float> emission;
     std::vector<float> color;                // empty, or 3 floats per voxel
+    std::vector<float> velocity;             // empty, or 3 floats per voxel (world units per second)
     std::vector<glm::vec2> density_range;    // min and max over each slot's 9^3 block
     std::vector<float> emission_max;         // max over each 9^3 block: source * slots + slot
     size_t emission_sources = 0;
-    SanitizeCounts density_fixes, color_fixes;
+    SanitizeCounts density_fixes, color_fixes, velocity_fixes;
     std::vector<SanitizeCounts> emission_fixes;  // one per source
     uint64_t active_voxels = 0;              // of the density grid
+    int motion_reach = 0;                    // bricks the blurred medium can move (motionReachBricks)
 
     size_t slots() const { return coords.size(); }
     float emissionGridMax(size_t source) const;  // the largest value of a source's grid (0 if no slots)
     size_t bytes() const;
 };
 
-BrickAtlas buildBrickAtlas(const LoadedVolume& volume);
+// With `motion_reach` > 0 (motionReachBricks) it also stores the velocity grid's bricks within
+// that many bricks of the medium: where the blurred medium can be seen (vx_motion.h).
+BrickAtlas buildBrickAtlas(const LoadedVolume& volume, int motion_reach = 0);
 
 // Human-readable lines for the counts above (empty when nothing was replaced).
 std::vector<std::string> sanitizeReport(const BrickAtlas& atlas, const LoadedVolume& volume);

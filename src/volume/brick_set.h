@@ -44,6 +44,11 @@ inline bool brickLess(const glm::ivec3& a, const glm::ivec3& b) {
     return a.z != b.z ? a.z < b.z : a.y != b.y ? a.y < b.y : a.x < b.x;
 }
 
+// For each of `bricks`, whether some brick of `sources` lies within `reach` bricks of it along
+// every axis. Cost: one hash of `sources`, and per brick the sources in the 27 buckets of
+// (reach + 1)^3 bricks around it.
+std::vector<char> bricksWithinReach(const std::vector<glm::ivec3>& bricks, const std::vector<glm::ivec3>& sources, int reach);
+
 // Sorts (brickLess) and removes repeats.
 void uniqueBricks(std::vector<glm::ivec3>& bricks);
 

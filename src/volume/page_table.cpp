@@ -47,10 +47,22 @@ std::vector<char> withNeighbours(const std::vector<glm::ivec3>& coords, const st
     return out;
 }
 
+// `visible` with every stored brick within `reach` bricks of a visible one added: under motion
+// blur, where the moving medium can be seen (the atlas stores velocity there).
+std::vector<char> withinMotionReach(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible, int reach) {
+    std::vector<glm::ivec3> sources;
+    for (size_t i = 0; i < coords.size(); ++i)
+        if (visible[i]) sources.push_back(coords[i]);
+    std::vector<char> out = bricksWithinReach(coords, sources, reach);
+    for (size_t i = 0; i < out.size(); ++i) out[i] |= visible[i];
+    return out;
+}
+
 }  // namespace
 
-std::vector<char> pageTableBricks(const BrickAtlas& atlas, const Scene& scene) {
-    const std::vector<char> visible = classifyBricks(atlas, scene.material, scene.emission);
+std::vector<char> pageTableBricks(const BrickAtlas& atlas, const Scene& scene, bool motion_reach) {
+    std::vector<char> visible = classifyBricks(atlas, scene.material, scene.emission);
+    if (motion_reach && atlas.motion_reach > 0) visible = withinMotionReach(atlas.coords, visible, atlas.motion_reach);
     return scene.render.filter == Filter::Tricubic ? withNeighbours(atlas.coords, visible) : visible;
 }
 
@@ -78,7 +90,19 @@ PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vecto
         t.entries[h] = glm::ivec4(b, int(slot));
         t.max_probe = std::max(t.max_probe, probe);
     }
+    t.medium_min = t.bricks_min;
+    t.medium_max = t.bricks_max;
     return t;
+}
+
+PageTable classifiedPageTable(const BrickAtlas& atlas, const Scene& scene) {
+    PageTable pages = buildPageTable(atlas.coords, pageTableBricks(atlas, scene));
+    if (atlas.motion_reach > 0 && !pages.empty()) {
+        const PageTable medium = buildPageTable(atlas.coords, pageTableBricks(atlas, scene, false));
+        pages.medium_min = medium.bricks_min;
+        pages.medium_max = medium.bricks_max;
+    }
+    return pages;
 }
 
 }  // namespace voxlux

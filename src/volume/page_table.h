@@ -15,6 +15,9 @@ struct PageTable {
     std::vector<glm::ivec4> entries;   // (brick x, y, z, slot); slot VX_PAGE_EMPTY marks a free entry
     int max_probe = 0;                 // longest probe sequence of any stored brick
     glm::ivec3 bricks_min{0}, bricks_max{-1};
+    // The box of the bricks the medium occupies in the frame, without the bricks motion blur adds
+    // around it: the light grids' box (the march reads them only where the medium was).
+    glm::ivec3 medium_min{0}, medium_max{-1};
     size_t occupied = 0;
     bool empty() const { return occupied == 0; }
 };
@@ -24,12 +27,16 @@ struct PageTable {
 std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material,
                                  const std::vector<EmissionSource>& emission);
 
-// The bricks the page table holds for `scene`: classifyBricks, and under the tricubic filter the
+// The bricks the page table holds for `scene`: classifyBricks, under motion blur the stored
+// bricks within the atlas's motion_reach of those, and under the tricubic filter the
 // stored neighbours (of the 26 around) of every visible brick too. That filter reads them and
 // must find their real values (colour, density a transfer function makes transparent), not the 0
 // of a brick missing from the page table.
-std::vector<char> pageTableBricks(const BrickAtlas& atlas, const Scene& scene);
+std::vector<char> pageTableBricks(const BrickAtlas& atlas, const Scene& scene, bool motion_reach = true);
 
 PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible);
+
+// The page table of `scene` over `atlas` (pageTableBricks), its medium box without motion blur's reach.
+PageTable classifiedPageTable(const BrickAtlas& atlas, const Scene& scene);
 
 }  // namespace voxlux

@@ -1,5 +1,6 @@
 #include "volume/vdb_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <mutex>
@@ -11,6 +12,7 @@
 
 #include "volume/brick_set.h"
 #include "volume/vdb_file.h"
+#include "volume/velocity.h"
 #include "core/error.h"
 #include "kernel/kernel_types.h"
 #include "scene/camera.h"
@@ -70,7 +72,7 @@ openvdb::FloatGrid::Ptr asFogFloat(openvdb::GridBase::Ptr g, const std::string& 
     return out;
 }
 
-openvdb::Vec3SGrid::Ptr asColor(openvdb::GridBase::Ptr g, const std::string& file) {
+openvdb::Vec3SGrid::Ptr asVector(openvdb::GridBase::Ptr g, const std::string& file, const std::string& role) {
     if (auto v = openvdb::GridBase::grid<openvdb::Vec3SGrid>(g)) return v;
     if (auto d = openvdb::GridBase::grid<openvdb::Vec3DGrid>(g)) {
         auto out = openvdb::Vec3SGrid::create(openvdb::Vec3STree::Ptr(new openvdb::Vec3STree(d->tree())));
@@ -78,7 +80,7 @@ openvdb::Vec3SGrid::Ptr asColor(openvdb::GridBase::Ptr g, const std::string& fil
         out->setName(d->getName());
         return out;
     }
-    throw InputError(file + ": grid " + describe(*g) + " cannot be used as colour (it needs vec3 values)");
+    throw InputError(file + ": grid " + describe(*g) + " cannot be used as " + role + " (it needs vec3 values)");
 }
 
 // Emission and colour grids are resampled onto the density grid's index space when they differ.
@@ -135,6 +137,22 @@ std::string bboxMetadataMismatch(const openvdb::GridBase& g, const openvdb::Coor
            " (the metadata is ignored)";
 }
 
+// The velocity grid motion blur reads: the one it names, else the first of velocityGridNames()
+// the file has, else none.
+std::optional<GridRef> velocityGrid(const VdbFile& f, const MotionBlur& motion) {
+    if (motion.velocity) return motion.velocity;
+    for (const auto& name : velocityGridNames())
+        for (const auto& grid : f.grids())
+            if (grid.name == name) return GridRef{name, 0};
+    return std::nullopt;
+}
+
+std::string joinedVelocityNames() {
+    std::string out;
+    for (const auto& name : velocityGridNames()) out += (out.empty() ? "looked for " : ", ") + name;
+    return out;
+}
+
 }  // namespace
 
 void initOpenVdb() {
@@ -144,6 +162,10 @@ void initOpenVdb() {
         // voxlux reports what matters itself, one line each; OpenVDB's own warnings would repeat it.
         openvdb::logging::setLevel(openvdb::logging::Level::Error);
     });
+}
+
+float voxelEdge(const glm::mat4& m) {
+    return std::min({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))});
 }
 
 void voxelBoxWorldBounds(const glm::mat4& index_to_world, const openvdb::CoordBBox& box, glm::vec3& lo, glm::vec3& hi) {
@@ -173,7 +195,8 @@ glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file) {
     return out;
 }
 
-LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::vector<EmissionSource>& emission) {
+LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::vector<EmissionSource>& emission,
+                        const std::optional<MotionBlur>& motion) {
     initOpenVdb();
     VdbFile f = openFile(file);
     LoadedVolume v;
@@ -186,8 +209,21 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const s
             asFogFloat(readGrid(f, file, source.grid, v.warnings), file, spec, "emission"), *density, file,
             v.warnings));
     if (spec.color)
-        v.color = matchTransform<openvdb::Vec3SGrid>(asColor(readGrid(f, file, *spec.color, v.warnings), file),
+        v.color = matchTransform<openvdb::Vec3SGrid>(asVector(readGrid(f, file, *spec.color, v.warnings), file, "colour"),
                                                      *density, file, v.warnings);
+    if (motion) {
+        if (std::optional<GridRef> ref = velocityGrid(f, *motion)) {
+            const auto velocity = matchTransform<openvdb::Vec3SGrid>(
+                velocityAtVoxelCentres(asVector(readGrid(f, file, *ref, v.warnings), file, "velocity")), *density, file, v.warnings);
+            v.max_speed = maxSpeed(*velocity);
+            const float reach = motionReachVoxels(v.max_speed, voxelEdge(v.index_to_world), *motion, file, velocity->getName());
+            extendVelocity(*velocity, int(std::ceil(reach)));
+            v.velocity = velocity;
+        } else {
+            v.warnings.push_back(file + ": no velocity grid (" + joinedVelocityNames() + "; grids: " + f.gridList() +
+                                 "); only a moving camera blurs (set render.motion_blur.velocity to name one)");
+        }
+    }
     v.density = density;
     return v;
 }

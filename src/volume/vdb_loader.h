@@ -17,6 +17,8 @@ struct LoadedVolume {
     openvdb::FloatGrid::ConstPtr density;
     std::vector<openvdb::FloatGrid::ConstPtr> emission;  // one per emission source, in its order
     openvdb::Vec3SGrid::ConstPtr color;      // null unless the spec names one
+    openvdb::Vec3SGrid::ConstPtr velocity;   // render.motion_blur's, on the voxel centres; else null
+    float max_speed = 0.0f;                  // the velocity's largest length (world units per second)
     glm::mat4 index_to_world{1.0f};          // affine, from the density grid
     UpAxisGuess up;                          // as the file says, from the density grid
     std::vector<std::string> warnings;
@@ -44,13 +46,18 @@ struct GridSummary {
 
 void initOpenVdb();
 
-// The grids `spec` names and each emission source's grid. Throws InputError "<file>: <problem>".
+// The grids `spec` names, each emission source's grid, and with motion blur the velocity grid.
+// Throws InputError "<file>: <problem>".
 LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec,
-                        const std::vector<EmissionSource>& emission = {});
+                        const std::vector<EmissionSource>& emission = {},
+                        const std::optional<MotionBlur>& motion = std::nullopt);
 std::vector<GridSummary> summarizeFile(const std::string& file);
 
 // Index-to-world of a grid as a column-major matrix; throws for non-affine transforms.
 glm::mat4 indexToWorld(const openvdb::GridBase& grid, const std::string& file);
+
+// Smallest world length of one voxel edge: the march step unit.
+float voxelEdge(const glm::mat4& index_to_world);
 
 // World-space axis-aligned box of the voxels of index box `box` (OpenVDB's inclusive bounds, as
 // evalActiveVoxelBoundingBox gives them) under `index_to_world`.

@@ -1,6 +1,7 @@
 #include "volume/volume_stages.h"
 
 #include "scene/camera.h"
+#include "volume/velocity.h"
 #include "core/error.h"
 
 namespace voxlux {
@@ -20,35 +21,51 @@ std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas) {
 }  // namespace
 
 StageReads LoadStage::reads() const {
-    return {{"/input/file", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/emission/*/grid"}, {}};
+    return {{"/input/file", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/emission/*/grid",
+             "/render/motion_blur?", "/render/motion_blur/velocity", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale",
+             "/render/motion_blur/fps"},
+            {}};
 }
 
 StageActivity LoadStage::activity(const Scene& s) const {
     std::string grids = "density '" + s.volume.density.name + "'";
     if (s.volume.color) grids += ", colour '" + s.volume.color->name + "'";
     for (size_t i = 0; i < s.emission.size(); ++i) grids += (i ? ", '" : ", emission '") + s.emission[i].grid.name + "'";
+    if (const auto& mb = s.render.motion_blur) {
+        std::string names;
+        for (const auto& name : velocityGridNames()) names += (names.empty() ? "" : ", ") + name;
+        grids += mb->velocity ? ", velocity '" + mb->velocity->name + "'" : ", velocity (the first of " + names + ")";
+    }
     return {true, "reads " + grids + " from " + (given_ ? "grids in memory" : s.volume.path)};
 }
 
 void LoadStage::run(StageRun& run) {
     volume_ = std::make_shared<const LoadedVolume>(
-        given_ ? *given_ : loadVolume(run.document["input"]["file"]["path"], run.scene.volume, run.scene.emission));
+        given_ ? *given_
+               : loadVolume(run.document["input"]["file"]["path"], run.scene.volume, run.scene.emission, run.scene.render.motion_blur));
     run.warnings = volume_->warnings;
 }
 
 size_t LoadStage::outputBytes() const {
     if (!volume_) return 0;
-    size_t bytes = volume_->density->memUsage() + (volume_->color ? volume_->color->memUsage() : 0);
+    size_t bytes = volume_->density->memUsage() + (volume_->color ? volume_->color->memUsage() : 0) +
+                   (volume_->velocity ? volume_->velocity->memUsage() : 0);
     for (const auto& grid : volume_->emission) bytes += grid->memUsage();
     return bytes;
 }
 
-StageActivity BrickStage::activity(const Scene&) const {
-    return {true, "densifies active voxels into 8^3 bricks with a +1 apron"};
+StageReads BrickStage::reads() const {
+    return {{"/render/motion_blur?", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps"}, {"load"}};
+}
+
+StageActivity BrickStage::activity(const Scene& s) const {
+    return {true, std::string("densifies active voxels into 8^3 bricks with a +1 apron") +
+                      (s.render.motion_blur ? "; and the velocity, over the bricks the blurred medium can reach" : "")};
 }
 
 void BrickStage::run(StageRun& run) {
-    atlas_ = std::make_shared<const BrickAtlas>(buildBrickAtlas(load_.volume()));
+    const LoadedVolume& volume = load_.volume();
+    atlas_ = std::make_shared<const BrickAtlas>(buildBrickAtlas(volume, motionReachBricks(volume, run.scene.render.motion_blur)));
     run.warnings = sanitizeReport(*atlas_, load_.volume());
 }
 
@@ -57,13 +74,14 @@ StageReads ClassifyStage::reads() const { return {{"/material", "/emission", "/r
 StageActivity ClassifyStage::activity(const Scene& s) const {
     std::string what = s.material.transfer.empty() ? "drops bricks with zero density and emission"
                                                    : "drops bricks the transfer function makes transparent";
+    if (s.render.motion_blur) what += "; keeps the bricks the blurred medium can reach";
     if (s.render.filter == Filter::Tricubic) what += "; keeps the neighbours of visible ones, which the tricubic filter reads";
     return {true, what};
 }
 
 void ClassifyStage::run(StageRun& run) {
     const BrickAtlas& atlas = brick_.atlas();
-    pages_ = buildPageTable(atlas.coords, pageTableBricks(atlas, run.scene));
+    pages_ = classifiedPageTable(atlas, run.scene);
     empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas) : "";
 }
 

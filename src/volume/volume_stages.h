@@ -40,8 +40,8 @@ class BrickStage final : public Stage {
 public:
     explicit BrickStage(const LoadStage& load) : load_(load) {}
     std::string name() const override { return "brick"; }
-    StageReads reads() const override { return {{}, {"load"}}; }
-    StageActivity activity(const Scene&) const override;
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     void stale() override { atlas_.reset(); }
     std::shared_ptr<const void> sharedOutput() const override { return atlas_; }

@@ -23,7 +23,7 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
               "shot.json: /lights/0/direction: required key is missing");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
               "shot.json: /render/stepp: unknown key (expected one of resolution, step, shadow_step, "
-              "transmittance_cutoff, exposure, filter, backend, method, reference)");
+              "transmittance_cutoff, exposure, filter, backend, method, reference, motion_blur)");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"filter": "cubic"}})"),
               "shot.json: /render/filter: 'cubic' is not one of trilinear, tricubic");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),
@@ -149,7 +149,7 @@ TEST(Scene, RoundTripThroughJson) {
         "camera": {"fov": 35, "position": [0, 1, 10], "look_at": [0, 1, 0], "up": [0, 1, 0]},
         "render": {"resolution": [320, 240], "step": 0.25, "shadow_step": 1, "transmittance_cutoff": 0.0001,
                    "exposure": 1.5, "filter": "tricubic", "backend": "cpu", "method": "march",
-                   "reference": {"spp": 64, "max_bounces": 16, "seed": 1, "roulette_depth": 3}},
+                   "reference": {"spp": 64, "max_bounces": 16, "seed": 1, "roulette_depth": 3}, "motion_blur": false},
         "effects": {"shadows": "sat_cone", "ambient_occlusion": {"shells": 7, "radius": 1.5}, "color_bleeding": 1,
                     "cone": {"angle": 4, "samples": 30, "growth": 0.2},
                     "propagation": {"blend_axes": false, "eye_pass": false, "chroma_subsampling": false, "coherent": true,

@@ -12,6 +12,7 @@
 #include "gl/gl_buffer.h"
 #include "gl/gl_context.h"
 #include "backend/backend_choice.h"
+#include "kernel/cpu_kernel.h"
 
 namespace voxlux {
 namespace {
@@ -48,6 +49,7 @@ public:
         const int deep_samples = in.params.deep_samples;
         const GLuint program = marchProgram(in.params.voxel_filter, deep_samples);
         const GLint row_offset = glGetUniformLocation(program, "vx_row_offset");
+        const GLint ray_uniform = glGetUniformLocation(program, "vx_ray");
         params_.upload(&in.params, sizeof in.params, GL_STREAM_DRAW, "parameter");
         params_.bind(program, GL_UNIFORM_BLOCK, "Params");
         const BrickAtlas& atlas = *in.atlas;
@@ -59,7 +61,6 @@ public:
         } arrays[] = {
             {density_, "AtlasDensity", atlas.density.data(), atlas.density.size() * sizeof(float)},
             {emission_, "AtlasEmission", atlas.emission.data(), atlas.emission.size() * sizeof(float)},
-            {color_, "AtlasColor", atlas.color.data(), atlas.color.size() * sizeof(float)},
             {pages_, "PageTable", in.pages->entries.data(), in.pages->entries.size() * sizeof(glm::ivec4)},
             {lights_, "Lights", in.lights.data(), in.lights.size() * sizeof(kernel::VxLight)},
             {tf_lut_, "TransferLut", in.tf_lut.data(), in.tf_lut.size() * sizeof(glm::vec4)},
@@ -75,6 +76,11 @@ public:
             a.buffer.upload(a.data, a.bytes, GL_STATIC_DRAW, a.block);
             a.buffer.bind(program, GL_SHADER_STORAGE_BLOCK, a.block);
         }
+        // Colour and velocity share a block: llvmpipe allows a compute program 16 storage blocks.
+        const size_t color_bytes = atlas.color.size() * sizeof(float), velocity_bytes = atlas.velocity.size() * sizeof(float);
+        checkStorageSize("AtlasVectors", color_bytes + velocity_bytes);
+        vectors_.upload(atlas.color.data(), color_bytes, atlas.velocity.data(), velocity_bytes, GL_STATIC_DRAW, "AtlasVectors");
+        vectors_.bind(program, GL_SHADER_STORAGE_BLOCK, "AtlasVectors");
 
         const size_t row_bytes = size_t(img.width) * sizeof(kernel::VxPixel);
         // Deep samples: a fixed stride a pixel on the GPU, joined into the image's compact list;
@@ -91,16 +97,28 @@ public:
         std::vector<float> deep_rows(deep_samples > 0 ? deep_row_bytes / sizeof(float) * band_rows : 0);
         if (deep_samples > 0) img.deep.counts.resize(img.pixels.size());
 
+        // Under motion blur a pixel's rays are dispatched one at a time and averaged here by the
+        // kernel's own running mean, so that no invocation runs longer than one ray's march.
+        kernel::CpuKernel mean_of = bindCpuKernel(in);
+        std::vector<kernel::VxPixel> ray_band(in.params.time_samples > 1 ? size_t(img.width) * band_rows : 0);
+        std::vector<float> alpha_sums(ray_band.size());
         glUseProgram(program);
         for (int y0 = 0; y0 < img.height; y0 += band_rows) {
             const int rows = std::min(band_rows, img.height - y0);
+            kernel::VxPixel* band_pixels = &img.pixels[size_t(y0) * img.width];
             glProgramUniform1i(program, row_offset, y0);
-            glDispatchCompute(GLuint((img.width + kGroupSize - 1) / kGroupSize),
-                              GLuint((rows + kGroupSize - 1) / kGroupSize), 1);
-            // Reading the band back waits for the dispatch, so only one band is ever in flight.
-            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-            glGetNamedBufferSubData(band_.id(), 0, GLsizeiptr(row_bytes * rows),
-                                    &img.pixels[size_t(y0) * img.width]);
+            for (int ray = 0; ray < in.params.time_samples; ++ray) {
+                glProgramUniform1i(program, ray_uniform, ray);
+                glDispatchCompute(GLuint((img.width + kGroupSize - 1) / kGroupSize),
+                                  GLuint((rows + kGroupSize - 1) / kGroupSize), 1);
+                // Reading the band back waits for the dispatch, so only one band is ever in flight.
+                glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+                glGetNamedBufferSubData(band_.id(), 0, GLsizeiptr(row_bytes * rows), ray == 0 ? band_pixels : ray_band.data());
+                for (size_t p = 0; p < size_t(img.width) * rows; ++p) {
+                    if (ray == 0 && !ray_band.empty()) alpha_sums[p] = band_pixels[p].rgba.w;
+                    if (ray > 0) mean_of.vx_pixel_mean_add(band_pixels[p], ray_band[p], ray + 1, alpha_sums[p]);
+                }
+            }
             if (deep_samples == 0) continue;
             glGetNamedBufferSubData(deep_band_.id(), 0, GLsizeiptr(deep_row_bytes * rows), deep_rows.data());
             for (size_t p = 0; p < size_t(img.width) * rows; ++p) {
@@ -133,7 +151,7 @@ private:
     }
 
     const GlContextInfo& context_;
-    GlBuffer params_, density_, emission_, color_, pages_, lights_, tf_lut_, emission_lut_, cache_, illum_, noise_, band_, deep_band_;
+    GlBuffer params_, density_, emission_, vectors_, pages_, lights_, tf_lut_, emission_lut_, cache_, illum_, noise_, band_, deep_band_;
 };
 
 }  // namespace

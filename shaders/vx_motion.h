@@ -1,0 +1,48 @@
+// Velocity motion blur (render.motion_blur; docs/scene.md, "Motion blur"). Each camera ray takes a
+// time within the shutter, stratified over a pixel's rays, and the medium is looked up where it was
+// at that time: first-order Eulerian advection, as production renderers blur volume caches. What
+// sits at x at time t (frames from the frame's own time) is what the frame holds at x - v(x) t, v
+// the velocity grid in world units a frame. The camera moves from its open to its close transform.
+// Cost: the march runs P.time_samples rays a pixel; a sample where the medium moves reads the
+// velocity (one more reconstruction) and the moved point, with a page lookup when that lies in
+// another brick.
+#pragma once
+#include "vx_sample.h"
+
+VX_DEFINE_RECONSTRUCT(vec3, vx_velocity_at, vx_atlas_velocity)
+
+VX_INLINE bool vx_is_zero(vec3 v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; }
+
+// Whether a ray at `time` looks the medium up elsewhere than the frame holds it.
+VX_INLINE bool vx_moving(float time) { return P.use_velocity != 0 && time != 0.0f; }
+
+// How far, in world units, the medium at index point p of stored brick (slot, b) has moved by
+// `time`: 0 where no velocity is bound, at the frame's own time, and outside stored bricks.
+VX_INLINE vec3 vx_motion_shift(int slot, ivec3 b, vec3 p, float time) {
+    if (!vx_moving(time) || slot == VX_PAGE_EMPTY) return vec3(0.0f);
+    return vx_velocity_at(vx_taps_at(slot, b, p)) * (P.velocity_per_frame * time);
+}
+
+// The reconstruction at index point p of stored brick (slot, b) moved back by world `shift`: where
+// the medium now at p was in the frame. `found` is false where that point lies in no stored brick
+// (its values are all 0 there). Unmoved, it is vx_taps_at(slot, b, p) itself, so a still medium
+// renders bit for bit as without blur.
+VX_INLINE VxTaps vx_moved_taps(int slot, ivec3 b, vec3 p, vec3 shift, VX_OUT(bool) found) {
+    found = true;
+    if (vx_is_zero(shift)) return vx_taps_at(slot, b, p);
+    vec3 q = p - vx_to_index_dir(shift);
+    ivec3 qb = ivec3(floor(q / float(VX_BRICK)));
+    int qs = all(equal(qb, b)) ? slot : vx_page_lookup(qb);
+    found = qs != VX_PAGE_EMPTY;
+    return vx_taps_at(found ? qs : slot, qb, q);    // not found: any stored cell, unused
+}
+
+// Where in [0, 1) pixel (x, y) shifts its rays' strata: one offset a pixel, so the copies of a
+// moving edge that a pixel's few rays see turn into fine noise across pixels, not bands.
+VX_INLINE float vx_pixel_time_offset(int x, int y) {
+    return float(vx_hash(uint(x) * 1973u + vx_hash(uint(y) + 9277u)) >> 8) * (1.0f / 16777216.0f);
+}
+
+// Ray i of a pixel's n: its fraction of the way from shutter open to close, and its time in frames.
+VX_INLINE float vx_shutter_fraction(int i, int n, float offset) { return (float(i) + offset) / float(n); }
+VX_INLINE float vx_shutter_time(float fraction) { return P.shutter_open + (P.shutter_close - P.shutter_open) * fraction; }
