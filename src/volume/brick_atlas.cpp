@@ -33,10 +33,8 @@ std::vector<glm::ivec3> bricksToStore(const LoadedVolume& v, int motion_reach, s
         collectBricks(v.velocity->tree(), moving, v.file);
         uniqueBricks(moving);
         const std::vector<char> reached = bricksWithinReach(moving, active, motion_reach);
-        const size_t before = active.size();
         for (size_t i = 0; i < moving.size(); ++i)
-            if (reached[i] && !std::binary_search(active.begin(), active.begin() + std::ptrdiff_t(before), moving[i], brickLess))
-                active.push_back(moving[i]);
+            if (reached[i]) active.push_back(moving[i]);
         uniqueBricks(active);
     }
     std::vector<glm::ivec3> all;

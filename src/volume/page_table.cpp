@@ -58,13 +58,15 @@ std::vector<char> withinMotionReach(const std::vector<glm::ivec3>& coords, const
     return out;
 }
 
-}  // namespace
-
-std::vector<char> pageTableBricks(const BrickAtlas& atlas, const Scene& scene, bool motion_reach) {
-    std::vector<char> visible = classifyBricks(atlas, scene.material, scene.emission);
-    if (motion_reach && atlas.motion_reach > 0) visible = withinMotionReach(atlas.coords, visible, atlas.motion_reach);
-    return scene.render.filter == Filter::Tricubic ? withNeighbours(atlas.coords, visible) : visible;
+// The box of the flagged bricks (lo > hi when none is).
+void flaggedBox(const std::vector<glm::ivec3>& coords, const std::vector<char>& flags, glm::ivec3& lo, glm::ivec3& hi) {
+    lo = glm::ivec3(INT32_MAX);
+    hi = glm::ivec3(INT32_MIN);
+    for (size_t i = 0; i < coords.size(); ++i)
+        if (flags[i]) lo = glm::min(lo, coords[i]), hi = glm::max(hi, coords[i]);
 }
+
+}  // namespace
 
 PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible) {
     PageTable t;
@@ -73,14 +75,11 @@ PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vecto
     while (capacity < 2 * t.occupied) capacity *= 2;
     t.entries.assign(capacity, glm::ivec4(0, 0, 0, VX_PAGE_EMPTY));
     if (t.occupied == 0) return t;
-    t.bricks_min = glm::ivec3(INT32_MAX);
-    t.bricks_max = glm::ivec3(INT32_MIN);
+    flaggedBox(coords, visible, t.bricks_min, t.bricks_max);
     const uint32_t mask = uint32_t(capacity - 1);
     for (size_t slot = 0; slot < coords.size(); ++slot) {
         if (!visible[slot]) continue;
         const glm::ivec3 b = coords[slot];
-        t.bricks_min = glm::min(t.bricks_min, b);
-        t.bricks_max = glm::max(t.bricks_max, b);
         uint32_t h = kernel::vx_brick_hash(b) & mask;  // the kernel's own hash: lookups agree
         int probe = 0;
         while (t.entries[h].w != VX_PAGE_EMPTY) {
@@ -96,12 +95,13 @@ PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vecto
 }
 
 PageTable classifiedPageTable(const BrickAtlas& atlas, const Scene& scene) {
-    PageTable pages = buildPageTable(atlas.coords, pageTableBricks(atlas, scene));
-    if (atlas.motion_reach > 0 && !pages.empty()) {
-        const PageTable medium = buildPageTable(atlas.coords, pageTableBricks(atlas, scene, false));
-        pages.medium_min = medium.bricks_min;
-        pages.medium_max = medium.bricks_max;
-    }
+    const bool tricubic = scene.render.filter == Filter::Tricubic;
+    const auto withFilterReads = [&](const std::vector<char>& flags) { return tricubic ? withNeighbours(atlas.coords, flags) : flags; };
+    const std::vector<char> visible = classifyBricks(atlas, scene.material, scene.emission);
+    const std::vector<char> medium = withFilterReads(visible);
+    if (atlas.motion_reach == 0) return buildPageTable(atlas.coords, medium);
+    PageTable pages = buildPageTable(atlas.coords, withFilterReads(withinMotionReach(atlas.coords, visible, atlas.motion_reach)));
+    if (!pages.empty()) flaggedBox(atlas.coords, medium, pages.medium_min, pages.medium_max);
     return pages;
 }
 

@@ -27,16 +27,14 @@ struct PageTable {
 std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& material,
                                  const std::vector<EmissionSource>& emission);
 
-// The bricks the page table holds for `scene`: classifyBricks, under motion blur the stored
+// The page table of `scene` over `atlas`. It holds classifyBricks, under motion blur the stored
 // bricks within the atlas's motion_reach of those, and under the tricubic filter the
 // stored neighbours (of the 26 around) of every visible brick too. That filter reads them and
 // must find their real values (colour, density a transfer function makes transparent), not the 0
-// of a brick missing from the page table.
-std::vector<char> pageTableBricks(const BrickAtlas& atlas, const Scene& scene, bool motion_reach = true);
+// of a brick missing from the page table. Its medium box (PageTable::medium_min) leaves out the
+// motion reach.
+PageTable classifiedPageTable(const BrickAtlas& atlas, const Scene& scene);
 
 PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible);
-
-// The page table of `scene` over `atlas` (pageTableBricks), its medium box without motion blur's reach.
-PageTable classifiedPageTable(const BrickAtlas& atlas, const Scene& scene);
 
 }  // namespace voxlux

@@ -99,24 +99,25 @@ public:
 
         // Under motion blur a pixel's rays are dispatched one at a time and averaged here by the
         // kernel's own running mean, so that no invocation runs longer than one ray's march.
-        kernel::CpuKernel mean_of = bindCpuKernel(in);
-        std::vector<kernel::VxPixel> ray_band(in.params.time_samples > 1 ? size_t(img.width) * band_rows : 0);
+        const int rays = in.params.time_samples;
+        kernel::CpuKernel mean_of = rays > 1 ? bindCpuKernel(in) : kernel::CpuKernel{};
+        std::vector<kernel::VxPixel> ray_band(rays > 1 ? size_t(img.width) * band_rows : 0);
         std::vector<float> alpha_sums(ray_band.size());
         glUseProgram(program);
         for (int y0 = 0; y0 < img.height; y0 += band_rows) {
             const int rows = std::min(band_rows, img.height - y0);
             kernel::VxPixel* band_pixels = &img.pixels[size_t(y0) * img.width];
             glProgramUniform1i(program, row_offset, y0);
-            for (int ray = 0; ray < in.params.time_samples; ++ray) {
+            for (int ray = 0; ray < rays; ++ray) {
                 glProgramUniform1i(program, ray_uniform, ray);
                 glDispatchCompute(GLuint((img.width + kGroupSize - 1) / kGroupSize),
                                   GLuint((rows + kGroupSize - 1) / kGroupSize), 1);
                 // Reading the band back waits for the dispatch, so only one band is ever in flight.
                 glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
                 glGetNamedBufferSubData(band_.id(), 0, GLsizeiptr(row_bytes * rows), ray == 0 ? band_pixels : ray_band.data());
-                for (size_t p = 0; p < size_t(img.width) * rows; ++p) {
-                    if (ray == 0 && !ray_band.empty()) alpha_sums[p] = band_pixels[p].rgba.w;
-                    if (ray > 0) mean_of.vx_pixel_mean_add(band_pixels[p], ray_band[p], ray + 1, alpha_sums[p]);
+                for (size_t p = 0; rays > 1 && p < size_t(img.width) * rows; ++p) {
+                    if (ray == 0) alpha_sums[p] = band_pixels[p].rgba.w;
+                    else mean_of.vx_pixel_mean_add(band_pixels[p], ray_band[p], ray + 1, alpha_sums[p]);
                 }
             }
             if (deep_samples == 0) continue;
