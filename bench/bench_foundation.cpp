@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     PageTable pages;
     const double tLoad = best(repeats, [&] { volume = loadVolume(cache, scene.volume); });
     const double tBrick = best(repeats, [&] { atlas = buildBrickAtlas(volume); });
-    const double tClassify = best(repeats, [&] { pages = buildPageTable(atlas.coords, pageTableBricks(atlas, scene)); });
+    const double tClassify = best(repeats, [&] { pages = classifiedPageTable(atlas, scene); });
     const Camera camera = frameActiveVoxels(volume, scene);
 
     std::printf("voxlux_bench: %s, %dx%d, step %.2f voxel, 1 directional light\n", cache.c_str(), res, res,
@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
         Scene cubic = scene;
         cubic.effects.shadows = shadows;
         cubic.render.filter = Filter::Tricubic;
-        const PageTable cubic_pages = buildPageTable(atlas.coords, pageTableBricks(atlas, cubic));
+        const PageTable cubic_pages = classifiedPageTable(atlas, cubic);
         KernelInputs inputs = makeKernelInputs(cubic, atlas, cubic_pages, 0.0f, kXyzD65ToAcescg, {&camera});
         auto cpu = makeCpuBackend();
         const double tricubic = best(shadows == ShadowMethod::None ? repeats : 1, [&] { image = cpu->march(inputs); });

@@ -68,7 +68,7 @@ VX_INLINE VxCorners vx_corners_at(int slot, ivec3 b, vec3 p) {
 // weights per axis into 2 trilinear taps, at i - 1 + w1 / (w0 + w1) and i + 1 + w3 / (w2 + w3),
 // weighted w0 + w1 and w2 + w3: 8 taps combined trilinearly with fractions s. A tap in a brick
 // missing from the page table reads 0 (present = 0); under this filter the page table holds every
-// stored neighbour of a visible brick (pageTableBricks), so that is a brick with no active values
+// stored neighbour of a visible brick (classifiedPageTable), so that is a brick with no active values
 // in any grid, which the march does not enter either. The B-spline is a
 // convex combination of the 4^3 voxels around the sample: smooth (C2), never overshooting, and a
 // little softer than the data (it does not interpolate it).
