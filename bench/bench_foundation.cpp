@@ -1,10 +1,11 @@
 // Stage timings of the foundation pipeline on one cache (default: the shared Houdini smoke),
 // for both backends: load, brick, classify, march without and with ray-marched shadows (and on the
-// CPU with the tricubic filter), write.
+// CPU with the tricubic filter, against the step, and across empty space), write.
 // Prints figures; it asserts nothing. docs/performance.md quotes its output.
 //
 //   build/voxlux_bench [cache.vdb] [--res 512] [--backends cpu,gl] [--repeats 3]
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -42,6 +43,51 @@ double totalSamples(const RenderImage& img) {
     double n = 0;
     for (const auto& p : img.pixels) n += p.samples;
     return n;
+}
+
+// The cache's density with a copy of it `offset` voxels away: two parts with empty space between.
+LoadedVolume withCopyAt(const LoadedVolume& one, openvdb::Coord offset) {
+    openvdb::FloatGrid::Ptr two = one.density->deepCopy();
+    auto acc = two->getAccessor();
+    for (auto it = one.density->cbeginValueOn(); it; ++it) {
+        const openvdb::CoordBBox box = it.getBoundingBox();
+        for (auto c = box.begin(); c; ++c) acc.setValue(*c + offset, *it);
+    }
+    LoadedVolume v = one;
+    v.density = two;
+    return v;
+}
+
+// The march's cost across empty space: the cache alone, then with a copy of it behind it along the
+// camera's view, far enough that the occupied box gains `gap` bricks along the view, all empty
+// between the parts. The camera stays the one-part framing, so rays cross the gap into the copy.
+void emptySpaceRows(const LoadedVolume& volume, const Scene& scene, const Camera& camera, int repeats) {
+    const glm::vec3 forward = glm::normalize(camera.look_at - camera.position);
+    const glm::vec3 axis_forward = glm::vec3(glm::inverse(volume.index_to_world) * glm::vec4(forward, 0.0f));
+    const openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
+    const float extent = float(box.dim().asVec3d().length());
+    auto cpu = makeCpuBackend();
+    std::printf("  cpu march without shadows, the cache alone and with a copy of it behind it:\n");
+    double alone = 0.0;
+    for (float gap_extents : {0.0f, 1.0f, 8.0f}) {
+        const glm::vec3 shift = glm::normalize(axis_forward) * extent * (1.0f + gap_extents);
+        const LoadedVolume parts = gap_extents == 0.0f ? volume
+                                                       : withCopyAt(volume, openvdb::Coord(int(std::lround(shift.x / 8)) * 8,
+                                                                                            int(std::lround(shift.y / 8)) * 8,
+                                                                                            int(std::lround(shift.z / 8)) * 8));
+        const BrickAtlas atlas = buildBrickAtlas(parts);
+        const PageTable pages = classifiedPageTable(atlas, scene);
+        const glm::ivec3 span = pages.bricks_max - pages.bricks_min + 1;
+        const double box_bricks = double(span.x) * span.y * span.z;
+        KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
+        RenderImage image;
+        const double t = best(repeats, [&] { image = cpu->march(inputs); });
+        if (gap_extents == 0.0f) alone = t;
+        char label[64];
+        std::snprintf(label, sizeof label, gap_extents == 0.0f ? "alone" : "copy %.0f extents behind", 1.0f + gap_extents);
+        std::printf("    %-26s %9.4f s  %5.2fx alone  %6zu bricks  %9.0f empty bricks in their box  %7.1f M samples\n",
+                    label, t, t / alone, pages.occupied, box_bricks - double(pages.occupied), totalSamples(image) / 1e6);
+    }
 }
 
 }  // namespace
@@ -143,6 +189,9 @@ int main(int argc, char** argv) {
         std::printf("    step %6.3f voxel  %9.4f s  %7.1f M samples  %7.1f M samples/s\n", step, t, samples / 1e6,
                     samples / t / 1e6);
     }
+
+    scene.render.step = 0.5f;
+    emptySpaceRows(volume, scene, camera, repeats);
 
     const std::string out = (std::filesystem::temp_directory_path() / "voxlux_bench.exr").string();
     OutputSpec spec;
