@@ -11,6 +11,7 @@ namespace voxlux {
 namespace {
 
 using U96 = kernel::CpuKernel::VxU96;
+__extension__ using U128 = unsigned __int128;
 
 // Cell value -> integer quanta. Scaling by a power of two is exact; rounding is the only
 // quantisation. Negative values never reach here (the atlas clamps them), but stay 0 if they do.
@@ -49,7 +50,11 @@ void prepareSummedVolume(const LightGrid& g, SummedVolume& s) {
     const size_t cells = g.cells();
     for (int p = 0; p < g.planes; ++p) {
         const float* v = g.values.data() + p * cells;
-        s.quantum[p] = satQuantum(*std::max_element(v, v + cells));
+        // A SIMD max (std::max_element returns a position, so it runs one cell at a time).
+        float max_value = 0.0f;
+#pragma omp simd reduction(max : max_value)
+        for (size_t i = 0; i < cells; ++i) max_value = std::max(max_value, v[i]);
+        s.quantum[p] = satQuantum(max_value);
     }
 }
 
@@ -93,25 +98,28 @@ void buildSummedVolume(const LightGrid& g, SummedVolume& s) {
         for (int z = 1; z <= dz; ++z) {
             const size_t base = size_t(z) * slice;
             tbb::parallel_for(tbb::blocked_range<int>(0, dy + 1, 16), [&](const tbb::blocked_range<int>& rows) {
-                kernel::CpuKernel k;
                 std::vector<uint64_t> quanta(static_cast<size_t>(dx));
                 for (int y = rows.begin(); y < rows.end(); ++y) {
                     const size_t row = base + size_t(y) * sx;
-                    U96 run{0u, 0u, 0u};
-                    w.store(row, run);
+                    w.store(row, {0u, 0u, 0u});
                     if (y == 0) {  // the y = 0 face
                         std::fill(w.lo + row, w.lo + row + sx, 0u);
                         std::fill(w.mid + row, w.mid + row + sx, 0u);
                         std::fill(w.hi + row, w.hi + row + sx, 0u);
                         continue;
                     }
-                    // Quantise the row as one SIMD loop, then the (serial) running sum.
+                    // Quantise the row as one SIMD loop, then the (serial) running sum, held as
+                    // one 128-bit integer: an add with carry per cell, where three 32-bit words
+                    // chain compares. Its low 96 bits are the same sum modulo 2^96.
                     const float* cells = v + (size_t(z - 1) * dy + size_t(y - 1)) * dx;
                     for (int x = 0; x < dx; ++x) quanta[size_t(x)] = quantize(cells[x], inv_q);
+                    U128 sum = 0;
                     for (int x = 0; x < dx; ++x) {
-                        const uint64_t n = quanta[size_t(x)];
-                        run = k.vx_u96_add(run, {uint32_t(n), uint32_t(n >> 32), 0u});
-                        w.store(row + size_t(x) + 1, run);
+                        sum += quanta[size_t(x)];
+                        const size_t e = row + size_t(x) + 1;
+                        w.lo[e] = uint32_t(sum);
+                        w.mid[e] = uint32_t(uint64_t(sum) >> 32);
+                        w.hi[e] = uint32_t(sum >> 64);
                     }
                 }
             });
