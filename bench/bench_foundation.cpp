@@ -59,19 +59,20 @@ LoadedVolume withCopyAt(const LoadedVolume& one, openvdb::Coord offset) {
 }
 
 // The march's cost across empty space: the cache alone, then with a copy of it behind it along the
-// camera's view, far enough that the occupied box gains `gap` bricks along the view, all empty
-// between the parts. The camera stays the one-part framing, so rays cross the gap into the copy.
+// camera's view, 2 and 9 of the cache's diagonals away (a gap of 1 and 8 diagonals), with only
+// empty bricks between the parts. The camera stays the one-part framing, so rays cross the gap
+// into the copy.
 void emptySpaceRows(const LoadedVolume& volume, const Scene& scene, const Camera& camera, int repeats) {
     const glm::vec3 forward = glm::normalize(camera.look_at - camera.position);
     const glm::vec3 axis_forward = glm::vec3(glm::inverse(volume.index_to_world) * glm::vec4(forward, 0.0f));
     const openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
-    const float extent = float(box.dim().asVec3d().length());
+    const float diagonal = float(box.dim().asVec3d().length());
     auto cpu = makeCpuBackend();
     std::printf("  cpu march without shadows, the cache alone and with a copy of it behind it:\n");
     double alone = 0.0;
-    for (float gap_extents : {0.0f, 1.0f, 8.0f}) {
-        const glm::vec3 shift = glm::normalize(axis_forward) * extent * (1.0f + gap_extents);
-        const LoadedVolume parts = gap_extents == 0.0f ? volume
+    for (float gap_diagonals : {0.0f, 1.0f, 8.0f}) {
+        const glm::vec3 shift = glm::normalize(axis_forward) * diagonal * (1.0f + gap_diagonals);
+        const LoadedVolume parts = gap_diagonals == 0.0f ? volume
                                                        : withCopyAt(volume, openvdb::Coord(int(std::lround(shift.x / 8)) * 8,
                                                                                             int(std::lround(shift.y / 8)) * 8,
                                                                                             int(std::lround(shift.z / 8)) * 8));
@@ -82,9 +83,9 @@ void emptySpaceRows(const LoadedVolume& volume, const Scene& scene, const Camera
         KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
         RenderImage image;
         const double t = best(repeats, [&] { image = cpu->march(inputs); });
-        if (gap_extents == 0.0f) alone = t;
+        if (gap_diagonals == 0.0f) alone = t;
         char label[64];
-        std::snprintf(label, sizeof label, gap_extents == 0.0f ? "alone" : "copy %.0f extents behind", 1.0f + gap_extents);
+        std::snprintf(label, sizeof label, gap_diagonals == 0.0f ? "alone" : "copy %.0f diagonals behind", 1.0f + gap_diagonals);
         std::printf("    %-26s %9.4f s  %5.2fx alone  %6zu bricks  %9.0f empty bricks in their box  %7.1f M samples\n",
                     label, t, t / alone, pages.occupied, box_bricks - double(pages.occupied), totalSamples(image) / 1e6);
     }
