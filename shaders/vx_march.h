@@ -1,25 +1,12 @@
-// Ray marching through the brick atlas: brick-level DDA with empty-space skipping, optical depth
+// Ray marching through the brick atlas: the brick walk of vx_dda.h, which skips empty space, optical depth
 // accumulated as a sum (tau += sigma * dt, T = exp(-tau)), brute-force shadow rays, compositing.
 #pragma once
 #include "lighting/extinction_sat/kernel/vx_cache.h"
 #include "lighting/propagation/kernel/vx_illumination.h"
+#include "vx_dda.h"
 #include "vx_deep.h"
 #include "vx_motion.h"
 #include "vx_noise.h"
-
-// Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.
-struct VxDda {
-    ivec3 brick;
-    ivec3 step;
-    vec3 t_next;    // t at which the ray crosses the next brick plane on each axis
-    vec3 t_delta;   // t between brick planes on each axis
-    float t;        // t at which the ray entered the current brick
-    float t_end;
-};
-
-float vx_safe_inv(float x) {
-    return abs(x) > 1e-20f ? 1.0f / x : (x >= 0.0f ? 1e30f : -1e30f);
-}
 
 // Clips [t0, t1] against the box of occupied bricks (grown by the perturbation's displacement,
 // which can pull density outwards). Returns false when nothing is left.
@@ -35,39 +22,6 @@ bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
     t0 = max(t0, max(tmin.x, max(tmin.y, tmin.z)));
     t1 = min(t1, min(tmax.x, min(tmax.y, tmax.z)));
     return t0 < t1;
-}
-
-VxDda vx_dda_begin(vec3 o, vec3 d, float t0, float t1) {
-    VxDda s;
-    s.t = t0;
-    s.t_end = t1;
-    vec3 inv = vec3(vx_safe_inv(d.x), vx_safe_inv(d.y), vx_safe_inv(d.z));
-    // Locate the first brick a hair inside the clipped segment so a start on a plane is stable.
-    vec3 p = o + d * (t0 + 1e-5f * (t1 - t0));
-    s.brick = ivec3(floor(p / float(VX_BRICK)));
-    s.step = ivec3(d.x >= 0.0f ? 1 : -1, d.y >= 0.0f ? 1 : -1, d.z >= 0.0f ? 1 : -1);
-    vec3 next_plane = vec3(s.brick + max(s.step, ivec3(0))) * float(VX_BRICK);
-    s.t_next = (next_plane - o) * inv;
-    s.t_delta = abs(inv) * float(VX_BRICK);
-    return s;
-}
-
-float vx_dda_exit(VxDda s) {
-    return min(s.t_end, min(s.t_next.x, min(s.t_next.y, s.t_next.z)));
-}
-
-void vx_dda_advance(VX_INOUT(VxDda) s) {
-    s.t = vx_dda_exit(s);
-    if (s.t_next.x <= s.t_next.y && s.t_next.x <= s.t_next.z) {
-        s.brick.x += s.step.x;
-        s.t_next.x += s.t_delta.x;
-    } else if (s.t_next.y <= s.t_next.z) {
-        s.brick.y += s.step.y;
-        s.t_next.y += s.t_delta.y;
-    } else {
-        s.brick.z += s.step.z;
-        s.t_next.z += s.t_delta.z;
-    }
 }
 
 // Index of the first sample t_k = (k + 0.5f) * dt with t_k >= t (inv_dt = 1 / dt). The same t
@@ -88,6 +42,19 @@ float vx_perturbed_extinction(vec3 p, vec3 x) {
 // density into empty bricks.
 VX_INLINE bool vx_visits(int slot) { return slot != VX_PAGE_EMPTY || vx_displaced(); }
 
+// Whether the march may step over regions that hold no brick: only when the page table has a
+// regions' table (most regions of the box are empty), not when displacement can pull density into
+// them, and not in GLSL. Mesa's llvmpipe (22.3, the only GL we can test on) mis-runs
+// the region step: with it compiled in, some rays of a work group drop samples, even of scenes
+// with no empty region (GlBackend.MatchesCpuWithTransferFunction), so GL keeps the brick walk.
+VX_INLINE bool vx_skips_regions() {
+#ifdef VX_GLSL
+    return false;
+#else
+    return P.region_capacity > 0 && !vx_displaced();
+#endif
+}
+
 // Transmittance from world point x towards a light at distance `dist` along unit direction wi.
 // Reference quality: fixed step P.shadow_step, stops only below the transmittance cutoff.
 float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
@@ -101,6 +68,9 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
     float tau = 0.0f;
     float tau_cut = -log(P.transmittance_cutoff);
     VxDda s = vx_dda_begin(o, d, t0, t1);
+    bool skips = vx_skips_regions();
+    ivec3 region = vx_no_region();
+    vx_dda_skip_empty(s, region, skips);
     while (s.t < s.t_end) {
         int slot = vx_page_lookup(s.brick);
         if (vx_visits(slot)) {
@@ -112,7 +82,7 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
             }
             if (tau > tau_cut) return 0.0f;
         }
-        vx_dda_advance(s);
+        vx_dda_next(s, region, skips);
     }
     return vx_exp(-tau);
 }
@@ -336,6 +306,9 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     VxChunk chunk;
     VxDda s = vx_dda_begin(o, d, t0, t1);
     float inv_dt = 1.0f / dt;
+    bool skips = vx_skips_regions();
+    ivec3 region = vx_no_region();
+    vx_dda_skip_empty(s, region, skips);
     while (s.t < s.t_end && T > cutoff) {
         int slot = vx_page_lookup(s.brick);
         bool occupied = slot != VX_PAGE_EMPTY;
@@ -403,7 +376,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                 T = T_next;
             }
         }
-        vx_dda_advance(s);
+        vx_dda_next(s, region, skips);
     }
     float alpha = 1.0f - T;
     px.rgba = vec4(vx_pixel_radiance(px), alpha);

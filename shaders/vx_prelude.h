@@ -51,6 +51,8 @@
 #define VX_BRICK_STRIDE 9          // stored edge: brick + 1-voxel apron on the + side for trilinear
 #define VX_BRICK_VOXELS 729        // VX_BRICK_STRIDE^3
 #define VX_PAGE_EMPTY -1
+#define VX_REGION_SHIFT 3          // a region (the march's coarse empty-space level) is 8^3 bricks
+#define VX_REGION_BRICKS (1 << VX_REGION_SHIFT)
 #define VX_TF_LUT_SIZE 256
 #define VX_MAX_EMISSION 4          // emission sources (grids) per scene
 #define VX_EMISSION_LUT_SIZE 256   // rows of one source's table: radiance over grid values [0, max]

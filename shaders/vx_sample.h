@@ -4,19 +4,31 @@
 #pragma once
 #include "vx_types.h"
 
+// The value stored for `key` in the open-addressed table at page entries [first, first +
+// capacity) (vx_brick_hash, linear probing), or VX_PAGE_EMPTY.
+VX_INLINE int vx_table_find(ivec3 key, int first, int capacity, int max_probe) {
+    uint mask = uint(capacity - 1);
+    uint h = vx_brick_hash(key) & mask;
+    for (int probe = 0; probe <= max_probe; ++probe) {
+        ivec4 e = vx_page_entry(first + int(h));
+        if (e.w == VX_PAGE_EMPTY) return VX_PAGE_EMPTY;
+        if (e.x == key.x && e.y == key.y && e.z == key.z) return e.w;
+        h = (h + 1u) & mask;
+    }
+    return VX_PAGE_EMPTY;
+}
+
 // Atlas slot of brick `b`, or VX_PAGE_EMPTY.
 VX_INLINE int vx_page_lookup(ivec3 b) {
     if (any(lessThan(b, P.bricks_min)) || any(greaterThan(b, P.bricks_max)))
         return VX_PAGE_EMPTY;
-    uint mask = uint(P.page_capacity - 1);
-    uint h = vx_brick_hash(b) & mask;
-    for (int probe = 0; probe <= P.page_max_probe; ++probe) {
-        ivec4 e = vx_page_entry(int(h));
-        if (e.w == VX_PAGE_EMPTY) return VX_PAGE_EMPTY;
-        if (e.x == b.x && e.y == b.y && e.z == b.z) return e.w;
-        h = (h + 1u) & mask;
-    }
-    return VX_PAGE_EMPTY;
+    return vx_table_find(b, 0, P.page_capacity, P.page_max_probe);
+}
+
+// Whether region `r` (VX_REGION_BRICKS^3 bricks, vx_region_of) holds any brick of the
+// page table. The regions' table follows the bricks' in the page entries.
+VX_INLINE bool vx_region_occupied(ivec3 r) {
+    return vx_table_find(r, P.page_capacity, P.region_capacity, P.region_max_probe) != VX_PAGE_EMPTY;
 }
 
 // The trilinear cell of a point at brick-local index coordinates (lx, ly, lz) (the point minus

@@ -101,8 +101,8 @@ struct VxParams {
     float shutter_close;
     int camera_moves;       // 1: rays move from camera_open to camera_close over the shutter
     int velocity_offset;    // GL: first float of the velocity in its storage block (vx_gl_bindings.glsl)
-    int pad2;
-    int pad3;
+    int region_capacity;    // entries of the regions' table, after the bricks' in the page entries
+    int region_max_probe;   // longest probe sequence in it
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
 };
@@ -206,6 +206,12 @@ struct VxDeepSample {
 // (vx_page_lookup) both use it.
 VX_INLINE uint vx_brick_hash(ivec3 b) {
     return (uint(b.x) * 73856093u) ^ (uint(b.y) * 19349663u) ^ (uint(b.z) * 83492791u);
+}
+
+// The region (the march's coarse level, shaders/vx_dda.h) holding brick `b`: floor(b / 8), as an
+// arithmetic shift (GLSL and C++20 both extend the sign; division would round negatives up).
+VX_INLINE ivec3 vx_region_of(ivec3 b) {
+    return b >> VX_REGION_SHIFT;
 }
 
 // PCG hash (Jarzynski and Olano 2020): one well-mixed 32-bit word per input word. The march's

@@ -194,8 +194,10 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     }
     P.bricks_min = pages.bricks_min;
     P.bricks_max = pages.bricks_max;
-    P.page_capacity = int(pages.entries.size());
+    P.page_capacity = pages.brick_capacity;
     P.page_max_probe = pages.max_probe;
+    P.region_capacity = pages.region_capacity;
+    P.region_max_probe = pages.region_max_probe;
     setMedium(scene, atlas, xyz_to_working, in);
     setLights(scene, in);
     setLighting(scene, sources, in);

@@ -32,7 +32,8 @@ std::string assembleComputeShader(const std::string& entry, const std::string& d
     // The GL bindings declare `P` and the data accessors, which the later headers call.
     static const char* kKernel[] = {"vx_prelude.h", "vx_types.h", "vx_gl_bindings.glsl", "vx_sample.h",
                                     "vx_optics.h", "vx_grid.h", "vx_cache.h", "vx_illumination.h", "vx_noise.h",
-                                    "vx_motion.h", "vx_deep.h", "vx_march.h", "vx_sat.h", "vx_propagation.h"};
+                                    "vx_motion.h", "vx_deep.h", "vx_dda.h", "vx_march.h", "vx_sat.h",
+                                    "vx_propagation.h"};
     std::string out = kHeader + defines;
     for (const char* f : kKernel) appendFile(out, f);
     appendFile(out, entry);

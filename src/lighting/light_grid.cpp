@@ -44,10 +44,12 @@ struct OccupiedBrick {
 std::vector<OccupiedBrick> occupiedBricks(const PageTable& pages) {
     std::vector<OccupiedBrick> out;
     out.reserve(pages.occupied);
-    for (const glm::ivec4& e : pages.entries)
+    for (int i = 0; i < pages.brick_capacity; ++i) {
+        const glm::ivec4& e = pages.entries[size_t(i)];
         if (e.w != VX_PAGE_EMPTY && glm::all(glm::greaterThanEqual(glm::ivec3(e), pages.medium_min)) &&
             glm::all(glm::lessThanEqual(glm::ivec3(e), pages.medium_max)))
             out.push_back({glm::ivec3(e) - pages.medium_min, e.w});
+    }
     std::sort(out.begin(), out.end(), [](const OccupiedBrick& a, const OccupiedBrick& b) {
         return std::tie(a.local.z, a.local.y, a.local.x) < std::tie(b.local.z, b.local.y, b.local.x);
     });

@@ -65,12 +65,15 @@ struct Tracker {
         float t0 = 0.0f, t1 = t_max;
         if (!k.vx_clip_to_bricks(o, d, t0, t1)) return;
         CpuKernel::VxDda s = k.vx_dda_begin(o, d, t0, t1);
+        const bool skips = k.vx_skips_regions();
+        glm::ivec3 region = k.vx_no_region();
+        k.vx_dda_skip_empty(s, region, skips);
         while (s.t < s.t_end) {
             const int slot = k.vx_page_lookup(s.brick);
             if (slot != VX_PAGE_EMPTY && bounds.majorant[slot] > 0.0f &&
                 !visit(slot, s.brick, o, d, s.t, k.vx_dda_exit(s), bounds.majorant[slot]))
                 return;
-            k.vx_dda_advance(s);
+            k.vx_dda_next(s, region, skips);
         }
     }
 

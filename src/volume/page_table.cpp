@@ -1,6 +1,8 @@
 #include "volume/page_table.h"
 
 #include <algorithm>
+#include <map>
+#include <tuple>
 
 #include "kernel/kernel_types.h"
 #include "volume/brick_set.h"
@@ -66,28 +68,55 @@ void flaggedBox(const std::vector<glm::ivec3>& coords, const std::vector<char>& 
         if (flags[i]) lo = glm::min(lo, coords[i]), hi = glm::max(hi, coords[i]);
 }
 
+// An open-addressed table of `keys` (value: their `values`) appended to `entries`: a power of two
+// of at least twice the keys, probed linearly from the kernel's own hash, so lookups agree.
+// Returns the table's capacity and sets its longest probe sequence.
+int appendTable(std::vector<glm::ivec4>& entries, const std::vector<glm::ivec4>& keyed, int& max_probe) {
+    size_t capacity = 16;
+    while (capacity < 2 * keyed.size()) capacity *= 2;
+    const size_t first = entries.size();
+    entries.resize(first + capacity, glm::ivec4(0, 0, 0, VX_PAGE_EMPTY));
+    const uint32_t mask = uint32_t(capacity - 1);
+    max_probe = 0;
+    for (const glm::ivec4& e : keyed) {
+        uint32_t h = kernel::vx_brick_hash(glm::ivec3(e)) & mask;
+        int probe = 0;
+        while (entries[first + h].w != VX_PAGE_EMPTY) {
+            h = (h + 1) & mask;
+            ++probe;
+        }
+        entries[first + h] = e;
+        max_probe = std::max(max_probe, probe);
+    }
+    return int(capacity);
+}
+
 }  // namespace
 
 PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible) {
     PageTable t;
-    for (char v : visible) t.occupied += v != 0;
-    size_t capacity = 16;
-    while (capacity < 2 * t.occupied) capacity *= 2;
-    t.entries.assign(capacity, glm::ivec4(0, 0, 0, VX_PAGE_EMPTY));
-    if (t.occupied == 0) return t;
-    flaggedBox(coords, visible, t.bricks_min, t.bricks_max);
-    const uint32_t mask = uint32_t(capacity - 1);
+    std::vector<glm::ivec4> bricks;
+    std::map<std::tuple<int, int, int>, int> regions;   // region -> its bricks, in a fixed order
     for (size_t slot = 0; slot < coords.size(); ++slot) {
         if (!visible[slot]) continue;
         const glm::ivec3 b = coords[slot];
-        uint32_t h = kernel::vx_brick_hash(b) & mask;  // the kernel's own hash: lookups agree
-        int probe = 0;
-        while (t.entries[h].w != VX_PAGE_EMPTY) {
-            h = (h + 1) & mask;
-            ++probe;
-        }
-        t.entries[h] = glm::ivec4(b, int(slot));
-        t.max_probe = std::max(t.max_probe, probe);
+        bricks.emplace_back(b, int(slot));
+        const glm::ivec3 r = kernel::vx_region_of(b);
+        ++regions[{r.x, r.y, r.z}];
+    }
+    t.occupied = bricks.size();
+    t.brick_capacity = appendTable(t.entries, bricks, t.max_probe);
+    if (t.occupied == 0) return t;
+    flaggedBox(coords, visible, t.bricks_min, t.bricks_max);
+    // The regions' table only when most regions of the box hold no brick: checking regions costs
+    // the march about 15% on one compact cache whose box has a few empty corners
+    // (docs/performance.md, "Empty space"), and pays only across wide empty space.
+    const glm::ivec3 regions_in_box = kernel::vx_region_of(t.bricks_max) - kernel::vx_region_of(t.bricks_min) + 1;
+    if (double(regions_in_box.x) * regions_in_box.y * regions_in_box.z > 2.0 * double(regions.size())) {
+        std::vector<glm::ivec4> region_entries;
+        for (const auto& [r, count] : regions)
+            region_entries.emplace_back(std::get<0>(r), std::get<1>(r), std::get<2>(r), count);
+        t.region_capacity = appendTable(t.entries, region_entries, t.region_max_probe);
     }
     t.medium_min = t.bricks_min;
     t.medium_max = t.bricks_max;

@@ -1,6 +1,7 @@
 // Classify stage: decide which bricks the material makes visible and build the page table (an
 // open-addressed hash from brick coordinate to atlas slot) over only those. Empty bricks are
-// absent, so the march skips them without reading the atlas.
+// absent, so the march skips them without reading the atlas, and regions without any brick in
+// one step. Cost: linear in the atlas's bricks.
 #pragma once
 #include <vector>
 
@@ -11,9 +12,17 @@
 
 namespace voxlux {
 
+// The bricks' table, then the regions' (the march's coarse level, shaders/vx_dda.h): which regions
+// of VX_REGION_BRICKS^3 bricks hold any brick, so a ray crosses an empty one in one step. Both are
+// open-addressed tables sized by what they hold, never by the bounding box.
 struct PageTable {
-    std::vector<glm::ivec4> entries;   // (brick x, y, z, slot); slot VX_PAGE_EMPTY marks a free entry
+    // The brick_capacity entries (brick x, y, z, slot) of the bricks, then the region_capacity
+    // entries (region x, y, z, bricks in it); VX_PAGE_EMPTY in w marks a free entry.
+    std::vector<glm::ivec4> entries;
+    int brick_capacity = 0;
     int max_probe = 0;                 // longest probe sequence of any stored brick
+    int region_capacity = 0;           // 0: no table (most regions of the box hold bricks)
+    int region_max_probe = 0;
     glm::ivec3 bricks_min{0}, bricks_max{-1};
     // The box of the bricks the medium occupies in the frame, without the bricks motion blur adds
     // around it: the light grids' box (the march reads them only where the medium was).

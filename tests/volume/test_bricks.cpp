@@ -17,7 +17,7 @@ struct BrickHash {
 // are classified away, so a missing brick is right only for a zero voxel.
 void expectRoundTrip(const openvdb::FloatGrid& grid, const BrickAtlas& atlas, const PageTable& pages) {
     kernel::CpuKernel k;
-    k.P.page_capacity = int(pages.entries.size());
+    k.P.page_capacity = pages.brick_capacity;
     k.P.page_max_probe = pages.max_probe;
     k.P.bricks_min = pages.bricks_min;
     k.P.bricks_max = pages.bricks_max;
@@ -90,22 +90,71 @@ openvdb::FloatGrid::Ptr blob(openvdb::FloatGrid::Ptr g, openvdb::Coord centre, i
     return g;
 }
 
-size_t totalBytes(const openvdb::FloatGrid::Ptr& g) {
+// Bytes of the atlas and page table, and the entries of the page table's regions' table.
+std::pair<size_t, size_t> footprint(const openvdb::FloatGrid::Ptr& g) {
     auto volume = volumeFromGrid(g);
     BrickAtlas atlas = buildBrickAtlas(volume);
     PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, Material{}, {}));
-    return atlas.bytes() + pages.entries.size() * sizeof(glm::ivec4);
+    return {atlas.bytes() + pages.entries.size() * sizeof(glm::ivec4), size_t(pages.region_capacity)};
 }
 
 TEST(Bricks, MemoryFollowsActiveVoxelsNotTheBoundingBox) {
-    const size_t one = totalBytes(blob(openvdb::FloatGrid::create(0.0f), {0, 0, 0}, 20));
+    const auto [one, one_regions] = footprint(blob(openvdb::FloatGrid::create(0.0f), {0, 0, 0}, 20));
     auto two = blob(openvdb::FloatGrid::create(0.0f), {0, 0, 0}, 20);
     blob(two, {10000, 10000, 10000}, 20);  // 17,320 voxels apart along the diagonal
-    const size_t both = totalBytes(two);
-    // Two identical blobs: every brick and page-table entry doubles, and nothing else is added
-    // for the 10,000 empty voxels between them (a dense box would need 4e12 bytes).
-    EXPECT_LE(both, 2 * one);
+    const auto [both, both_regions] = footprint(two);
+    // Two identical blobs: every brick and page-table entry doubles, and the only addition for the
+    // 10,000 empty voxels between them (a dense box would need 4e12 bytes) is the regions' table,
+    // of at most twice the 16 regions the blobs touch (each spans 2 regions an axis).
+    EXPECT_EQ(one_regions, 0u);
+    EXPECT_LE(both_regions, 32u);
+    EXPECT_LE(both, 2 * one + both_regions * sizeof(glm::ivec4));
     EXPECT_GT(both, one);
+}
+
+// The regions' table (the march's coarse level): present only when most regions of the box hold
+// no brick, and then it answers for exactly the regions that hold one, with their brick counts.
+TEST(Bricks, RegionsTableListsTheOccupiedRegionsWhenSomeAreEmpty) {
+    const auto pagesOf = [](const openvdb::FloatGrid::Ptr& grid) {
+        BrickAtlas atlas = buildBrickAtlas(volumeFromGrid(grid));
+        return buildPageTable(atlas.coords, classifyBricks(atlas, Material{}, {}));
+    };
+    // Two regions side by side (voxels 0-127 along x), both holding bricks: no table.
+    const PageTable adjacent = pagesOf(boxGrid({0, 0, 0}, {127, 7, 7}, 1.0f));
+    EXPECT_EQ(adjacent.region_capacity, 0);
+
+    // Two parts far apart: every region of their box is checked against the bricks the page table
+    // holds in it (their aprons make the bricks on their - sides visible too).
+    auto grid = boxGrid({0, 0, 0}, {7, 7, 7}, 1.0f);
+    grid->denseFill(openvdb::CoordBBox({-24, 0, 512}, {-1, 7, 519}), 1.0f, true);
+    const PageTable parts = pagesOf(grid);
+    ASSERT_GT(parts.region_capacity, 0);
+    kernel::CpuKernel k;
+    k.P.page_capacity = parts.brick_capacity;
+    k.P.page_max_probe = parts.max_probe;
+    k.P.bricks_min = parts.bricks_min;
+    k.P.bricks_max = parts.bricks_max;
+    k.P.region_capacity = parts.region_capacity;
+    k.P.region_max_probe = parts.region_max_probe;
+    k.page = parts.entries;
+    EXPECT_EQ(kernel::vx_region_of(glm::ivec3(-3, 0, 64)), glm::ivec3(-1, 0, 8));  // floor(-3 / 8) = -1
+    const glm::ivec3 lo = kernel::vx_region_of(parts.bricks_min), hi = kernel::vx_region_of(parts.bricks_max);
+    int occupied = 0, empty = 0;
+    for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int x = lo.x; x <= hi.x; ++x) {
+                int bricks = 0;
+                for (int bz = 0; bz < 8; ++bz)
+                    for (int by = 0; by < 8; ++by)
+                        for (int bx = 0; bx < 8; ++bx)
+                            bricks += k.vx_page_lookup(glm::ivec3(x, y, z) * 8 + glm::ivec3(bx, by, bz)) != VX_PAGE_EMPTY;
+                const int found = k.vx_table_find({x, y, z}, parts.brick_capacity, parts.region_capacity, parts.region_max_probe);
+                EXPECT_EQ(found, bricks ? bricks : VX_PAGE_EMPTY) << "region " << x << ", " << y << ", " << z;
+                EXPECT_EQ(k.vx_region_occupied({x, y, z}), bricks > 0);
+                (bricks ? occupied : empty) += 1;
+            }
+    EXPECT_GE(occupied, 2);
+    EXPECT_GE(empty, 14);  // the regions between the parts (z = 1 to 7)
 }
 
 TEST(Bricks, EmptyGridGivesAnEmptyPageTable) {
