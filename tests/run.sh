@@ -4,7 +4,7 @@
 # AddressSanitizer and UndefinedBehaviorSanitizer with the CPU kernel's index checks
 # (VOXLUX_BOUNDS_CHECK) and the libFuzzer targets (VOXLUX_FUZZ): its `unit` and `shared-data`
 # tests run there (not `gl`: that build has no GL, and llvmpipe under ASan would be too slow; not
-# `slow`: 15 minutes under ASan, over CI's budget), then each fuzz target for 60 s (tests/fuzz/run.sh).
+# `slow`: over 20 minutes under ASan, over CI's budget), then each fuzz target for 60 s (tests/fuzz/run.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ctest --test-dir build --output-on-failure -j2
