@@ -38,6 +38,74 @@ float vx_perturbed_extinction(vec3 p, vec3 x) {
     return vx_perturb_extinction(vx_value_extinction(v), n);
 }
 
+// Extinction at the first `lanes` (a multiple of VX_LANES, at most VX_CHUNK) of the consecutive
+// samples t_j = (k + j + 0.5) * dt inside one brick. The samples are independent, so the C++
+// build evaluates trilinear ones as one SIMD batch (gathers from the atlas); a GPU thread runs the
+// loop. Tricubic samples are looked up one by one (their taps may cross into other bricks).
+// The batch's samples past the first n (past the brick) read clamped, in-bounds voxels; the
+// one-by-one lookups set them to 0; the caller ignores them. Under a
+// perturbation every sample is looked up on its own (its displaced point may lie in any brick);
+// wo + wd * t is the sample's world point. A ray at a `time` where the medium moves looks each
+// sample up where the medium was (vx_motion.h) and keeps how far it moved in `shift`.
+struct VxChunk {
+    float sigma[VX_CHUNK];
+    float tau[VX_CHUNK];    // optical depth from the camera to the end of each sample's segment
+    float T[VX_CHUNK];      // exp(-tau)
+    vec3 shift[VX_CHUNK];   // world distance the medium at each sample has moved (set while moving)
+};
+
+// The moved samples' extinction in place of the unmoved ones that vx_chunk_extinction looked up,
+// for the first n lanes: the brick's own samples (the caller ignores the rest).
+VX_INLINE void vx_chunk_move(int slot, ivec3 brick, vec3 o, vec3 d, int k, int n, float dt, float time, VX_INOUT(VxChunk) c) {
+    for (int j = 0; j < n; ++j) {
+        float t = (float(k + j) + 0.5f) * dt;
+        vec3 p = o + d * t;
+        c.shift[j] = vx_motion_shift(slot, brick, p, time);
+        if (vx_is_zero(c.shift[j])) continue;
+        bool found;
+        VxTaps moved = vx_moved_taps(slot, brick, p, c.shift[j], found);
+        c.sigma[j] = found ? vx_extinction(moved) : 0.0f;
+    }
+}
+
+VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 wo, vec3 wd, int k, int n, int lanes, float dt,
+                                   float time, VX_INOUT(VxChunk) c) {
+    if (vx_perturbed()) {
+        bool moving = vx_moving(time);
+        for (int j = 0; j < n; ++j) {
+            float t = (float(k + j) + 0.5f) * dt;
+            vec3 p = o + d * t;
+            vec3 shift = vx_motion_shift(slot, brick, p, time);
+            if (moving) c.shift[j] = shift;
+            c.sigma[j] = vx_perturbed_extinction(p - vx_to_index_dir(shift), wo + wd * t - shift);
+        }
+        for (int j = n; j < lanes; ++j) c.sigma[j] = 0.0f;
+        return;
+    }
+    if (VX_VOXEL_FILTER != VX_FILTER_TRILINEAR) {
+        for (int j = 0; j < n; ++j) {
+            float t = (float(k + j) + 0.5f) * dt;
+            c.sigma[j] = vx_extinction(vx_taps_at(slot, brick, o + d * t));
+        }
+        for (int j = n; j < lanes; ++j) c.sigma[j] = 0.0f;
+        if (vx_moving(time)) vx_chunk_move(slot, brick, o, d, k, n, dt, time, c);
+        return;
+    }
+    // Scalars only inside the loops (vector temporaries would be spilled per SIMD lane); two loops
+    // because reconstruction vectorises on its own and the transfer-function branch is uniform,
+    // so the compiler hoists it out of the second.
+    vec3 local = o - vec3(brick * VX_BRICK);
+    VX_SIMD_LOOP
+    for (int j = 0; j < lanes; ++j) {
+        float t = (float(k + j) + 0.5f) * dt;
+        c.sigma[j] = VX_TRILINEAR(vx_atlas_density, vx_corners(slot, local.x + d.x * t, local.y + d.y * t, local.z + d.z * t));
+    }
+    VX_SIMD_LOOP
+    for (int j = 0; j < lanes; ++j)
+        c.sigma[j] = vx_value_extinction(c.sigma[j]);
+    if (vx_moving(time)) vx_chunk_move(slot, brick, o, d, k, n, dt, time, c);
+}
+
 // Whether the march must visit a brick: occupied, or anywhere when displacement can pull
 // density into empty bricks.
 VX_INLINE bool vx_visits(int slot) { return slot != VX_PAGE_EMPTY || vx_displaced(); }
@@ -53,6 +121,32 @@ VX_INLINE bool vx_skips_regions() {
 #else
     return P.region_capacity > 0 && !vx_displaced();
 #endif
+}
+
+// Optical depth of a ray's samples t_k = (k + 0.5) * dt, k in [k0, k1), inside brick (slot, b),
+// in the medium at the frame's own time; x + wi * t is a sample's world point. Trilinear samples
+// are one SIMD sum on the CPU (gathers from the atlas, as vx_chunk_extinction's); perturbed and
+// tricubic ones are looked up one by one.
+VX_INLINE float vx_brick_optical_depth(int slot, ivec3 b, vec3 o, vec3 d, vec3 x, vec3 wi, int k0, int k1, float dt) {
+    float sum = 0.0f;
+    if (vx_perturbed()) {
+        for (int k = k0; k < k1; ++k) {
+            float t = (float(k) + 0.5f) * dt;
+            sum += vx_perturbed_extinction(o + d * t, x + wi * t);
+        }
+        return sum * dt;
+    }
+    if (VX_VOXEL_FILTER != VX_FILTER_TRILINEAR) {
+        for (int k = k0; k < k1; ++k) sum += vx_extinction(vx_taps_at(slot, b, o + d * (float(k) + 0.5f) * dt));
+        return sum * dt;
+    }
+    vec3 local = o - vec3(b * VX_BRICK);
+    VX_SIMD_SUM(sum)
+    for (int k = k0; k < k1; ++k) {
+        float t = (float(k) + 0.5f) * dt;
+        sum += vx_value_extinction(VX_TRILINEAR(vx_atlas_density, vx_corners(slot, local.x + d.x * t, local.y + d.y * t, local.z + d.z * t)));
+    }
+    return sum * dt;
 }
 
 // Transmittance from world point x towards a light at distance `dist` along unit direction wi.
@@ -74,12 +168,7 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
     while (s.t < s.t_end) {
         int slot = vx_page_lookup(s.brick);
         if (vx_visits(slot)) {
-            int k_end = vx_first_sample(vx_dda_exit(s), inv_dt);
-            for (int k = vx_first_sample(s.t, inv_dt); k < k_end; ++k) {
-                float t = (float(k) + 0.5f) * dt;
-                tau += (vx_perturbed() ? vx_perturbed_extinction(o + d * t, x + wi * t)
-                                       : vx_extinction(vx_taps_at(slot, s.brick, o + d * t))) * dt;
-            }
+            tau += vx_brick_optical_depth(slot, s.brick, o, d, x, wi, vx_first_sample(s.t, inv_dt), vx_first_sample(vx_dda_exit(s), inv_dt), dt);
             if (tau > tau_cut) return 0.0f;
         }
         vx_dda_next(s, region, skips);
@@ -157,71 +246,6 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxGridCell cell, VxSurface sur
                     unshadowed.z > 0.0f ? arrived.z / unshadowed.z : 0.0f);
     }
     return sum;
-}
-
-// Extinction at the first `lanes` (a multiple of VX_LANES, at most VX_CHUNK) of the consecutive
-// samples t_j = (k + j + 0.5) * dt inside one brick. The samples are independent, so the C++
-// build evaluates trilinear ones as one SIMD batch (gathers from the atlas); a GPU thread runs the
-// loop. Tricubic samples are looked up one by one (their taps may cross into other bricks).
-// Samples past the brick read clamped, in-bounds voxels and are ignored by the caller. Under a
-// perturbation every sample is looked up on its own (its displaced point may lie in any brick);
-// wo + wd * t is the sample's world point. A ray at a `time` where the medium moves looks each
-// sample up where the medium was (vx_motion.h) and keeps how far it moved in `shift`.
-struct VxChunk {
-    float sigma[VX_CHUNK];
-    float tau[VX_CHUNK];    // optical depth from the camera to the end of each sample's segment
-    float T[VX_CHUNK];      // exp(-tau)
-    vec3 shift[VX_CHUNK];   // world distance the medium at each sample has moved (set while moving)
-};
-
-// The moved samples' extinction in place of the unmoved ones that vx_chunk_extinction looked up,
-// for the first n lanes: the brick's own samples (the caller ignores the rest).
-VX_INLINE void vx_chunk_move(int slot, ivec3 brick, vec3 o, vec3 d, int k, int n, float dt, float time, VX_INOUT(VxChunk) c) {
-    for (int j = 0; j < n; ++j) {
-        float t = (float(k + j) + 0.5f) * dt;
-        vec3 p = o + d * t;
-        c.shift[j] = vx_motion_shift(slot, brick, p, time);
-        if (vx_is_zero(c.shift[j])) continue;
-        bool found;
-        VxTaps moved = vx_moved_taps(slot, brick, p, c.shift[j], found);
-        c.sigma[j] = found ? vx_extinction(moved) : 0.0f;
-    }
-}
-
-VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 wo, vec3 wd, int k, int n, int lanes, float dt,
-                                   float time, VX_INOUT(VxChunk) c) {
-    if (vx_perturbed()) {
-        bool moving = vx_moving(time);
-        for (int j = 0; j < lanes; ++j) {
-            float t = (float(k + j) + 0.5f) * dt;
-            vec3 p = o + d * t;
-            vec3 shift = vx_motion_shift(slot, brick, p, time);
-            if (moving) c.shift[j] = shift;
-            c.sigma[j] = vx_perturbed_extinction(p - vx_to_index_dir(shift), wo + wd * t - shift);
-        }
-        return;
-    }
-    if (VX_VOXEL_FILTER != VX_FILTER_TRILINEAR) {
-        for (int j = 0; j < lanes; ++j) {
-            float t = (float(k + j) + 0.5f) * dt;
-            c.sigma[j] = vx_extinction(vx_taps_at(slot, brick, o + d * t));
-        }
-        if (vx_moving(time)) vx_chunk_move(slot, brick, o, d, k, n, dt, time, c);
-        return;
-    }
-    // Scalars only inside the loops (vector temporaries would be spilled per SIMD lane); two loops
-    // because reconstruction vectorises on its own and the transfer-function branch is uniform,
-    // so the compiler hoists it out of the second.
-    vec3 local = o - vec3(brick * VX_BRICK);
-    VX_SIMD_LOOP
-    for (int j = 0; j < lanes; ++j) {
-        float t = (float(k + j) + 0.5f) * dt;
-        c.sigma[j] = VX_TRILINEAR(vx_atlas_density, vx_corners(slot, local.x + d.x * t, local.y + d.y * t, local.z + d.z * t));
-    }
-    VX_SIMD_LOOP
-    for (int j = 0; j < lanes; ++j)
-        c.sigma[j] = vx_value_extinction(c.sigma[j]);
-    if (vx_moving(time)) vx_chunk_move(slot, brick, o, d, k, n, dt, time, c);
 }
 
 // Optical depth is accumulated as a sum (Schlegel 2011, Eq. 2) and turned into transmittance
