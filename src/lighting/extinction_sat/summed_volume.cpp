@@ -11,6 +11,7 @@ namespace voxlux {
 namespace {
 
 using U96 = kernel::CpuKernel::VxU96;
+constexpr size_t kColumns = 64;  // columns per task of the y and z pass
 __extension__ using U128 = unsigned __int128;
 
 // Cell value -> integer quanta. Scaling by a power of two is exact; rounding is the only
@@ -92,9 +93,9 @@ void buildSummedVolume(const LightGrid& g, SummedVolume& s) {
         std::fill(w.lo, w.lo + slice, 0u);  // the z = 0 face
         std::fill(w.mid, w.mid + slice, 0u);
         std::fill(w.hi, w.hi + slice, 0u);
-        // Slice z from slice z - 1 (both in cache): S(y) = R(y) + S(y-1) + S'(y) - S'(y-1), where R
-        // is the row's x prefix sum and S' the previous slice. Rows are independent in the x scan;
-        // the y recurrence runs across x in SIMD.
+        // Slice z from slice z - 1 (both in cache): S(y) = S'(y) + C(y), C(y) = C(y-1) + R(y), where
+        // R is the row's x prefix sum, C the slice's own table and S' the previous slice. Rows are
+        // independent in the x scan; the y recurrence runs across x in SIMD.
         for (int z = 1; z <= dz; ++z) {
             const size_t base = size_t(z) * slice;
             tbb::parallel_for(tbb::blocked_range<int>(0, dy + 1, 16), [&](const tbb::blocked_range<int>& rows) {
@@ -123,15 +124,21 @@ void buildSummedVolume(const LightGrid& g, SummedVolume& s) {
                     }
                 }
             });
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, sx, 64), [&](const tbb::blocked_range<size_t>& cols) {
+            // Down each column, with C kept for the task's columns (a blocked_range splits down to at
+            // most kColumns): each cell reads two table entries, R(y) and S'(y), where
+            // R(y) + S(y-1) + S'(y) - S'(y-1) reads four.
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, sx, kColumns), [&](const tbb::blocked_range<size_t>& cols) {
                 kernel::CpuKernel k;
+                uint32_t c_lo[kColumns] = {}, c_mid[kColumns] = {}, c_hi[kColumns] = {};
+                const Words c{c_lo, c_mid, c_hi};
+                const size_t n = cols.size();
                 for (int y = 1; y <= dy; ++y) {
-                    const size_t row = base + size_t(y) * sx, up = row - sx, prev = row - slice, prev_up = up - slice;
-#pragma GCC ivdep  // the four rows are distinct
-                    for (size_t x = cols.begin(); x < cols.end(); ++x) {
-                        const U96 sum = k.vx_u96_add(k.vx_u96_add(w.load(row + x), w.load(up + x)),
-                                                     k.vx_u96_sub(w.load(prev + x), w.load(prev_up + x)));
-                        w.store(row + x, sum);
+                    const size_t row = base + size_t(y) * sx + cols.begin(), prev = row - slice;
+#pragma GCC ivdep  // the rows and the column sums are distinct
+                    for (size_t i = 0; i < n; ++i) {
+                        const U96 column = k.vx_u96_add(c.load(i), w.load(row + i));
+                        c.store(i, column);
+                        w.store(row + i, k.vx_u96_add(w.load(prev + i), column));
                     }
                 }
             });
