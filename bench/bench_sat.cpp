@@ -74,6 +74,11 @@ void paperComparison(int repeats) {
                     paper > 0 ? (std::to_string(paper / ours).substr(0, 4) + "x").c_str() : "-");
     };
 
+    // The roofline of a streaming pass: `bytes` moved in `t` seconds against the copy bandwidth.
+    auto roofline = [&](const char* what, double bytes, double t) {
+        std::printf("|  (%s %.0f MB: %.1f GB/s, %.0f%% of copy bandwidth) | | | |\n", what, bytes / 1e6, bytes / t / 1e9,
+                    100.0 * bytes / t / copy);
+    };
     SummedVolume sat;
     for (int planes : {1, 4}) {
         const LightGrid g = syntheticGrid(n, planes);
@@ -82,13 +87,17 @@ void paperComparison(int repeats) {
         const double t = best(repeats, [&] { buildSummedVolume(g, sat); });  // storage reused, as across frames
         std::printf("|  (first build, allocating: %.3f s) | | | |\n", first);
         row(planes == 1 ? "SAT build, extinction" : "SAT build, extinction + RGB bleeding", planes == 4 ? 0.311 : 0.0, t);
-        if (planes == 1) {
-            // At least 4 bytes in and 12 out per cell: the floor any SAT build must move.
-            const double floor_bytes = double(g.cells()) * (4.0 + 12.0);
-            std::printf("|  (moves >= %.0f MB: %.1f GB/s, %.0f%% of copy bandwidth) | | | |\n", floor_bytes / 1e6,
-                        floor_bytes / t / 1e9, 100.0 * floor_bytes / t / copy);
-        }
+        // At least 4 bytes in and 12 out per cell and plane: the floor any SAT build must move.
+        roofline("moves >=", double(g.cells()) * planes * (4.0 + 12.0), t);
     }
+    // A light pass reads the 12-byte table and writes a 4-byte channel. It moves at least the
+    // table once and the channel; a pass that streams the table once per cuboid (each cuboid's
+    // corner lines read once from memory) moves 12 B per cell and cuboid.
+    const auto lightPassRooflines = [&](int cuboids, double t) {
+        const double cells = double(n) * n * n;
+        roofline("moves >=", cells * (12.0 + 4.0), t);
+        roofline("the table once per cuboid:", cells * (12.0 * cuboids + 4.0), t);
+    };
     const LightGrid g = syntheticGrid(n, 1);
     buildSummedVolume(g, sat);
     LightCache cache;
@@ -108,6 +117,7 @@ void paperComparison(int repeats) {
         p.params.cell_world = 1.0f;
         const double t = best(repeats, [&] { fillLightChannelCpu(p, cache); });
         row(("AO, " + std::to_string(shells) + " shells").c_str(), paper_ao.at(shells), t);
+        lightPassRooflines(shells, t);
     }
     const std::map<int, double> paper_cone = {{20, 0.1821}, {50, 0.2671}};
     for (int light : {0, 1})
@@ -122,6 +132,7 @@ void paperComparison(int repeats) {
             const std::string label = std::string(light == 0 ? "cone shadows, directional, " : "cone shadows, point, ") +
                                       std::to_string(samples) + " cuboids";
             row(label.c_str(), light == 0 ? paper_cone.at(samples) : 0.0, t);
+            lightPassRooflines(samples, t);
         }
     std::printf("\n");
 }
