@@ -96,7 +96,7 @@ void paperComparison(int repeats) {
     const auto lightPassRooflines = [&](int cuboids, double t) {
         const double cells = double(n) * n * n;
         roofline("moves >=", cells * (12.0 + 4.0), t);
-        roofline("the table once per cuboid:", cells * (12.0 * cuboids + 4.0), t);
+        roofline("if each cuboid streams the table,", cells * (12.0 * cuboids + 4.0), t);
     };
     const LightGrid g = syntheticGrid(n, 1);
     buildSummedVolume(g, sat);

@@ -68,6 +68,12 @@ VX_INLINE void vx_chunk_move(int slot, ivec3 brick, vec3 o, vec3 d, int k, int n
     }
 }
 
+// Trilinear density at t along a ray inside stored brick `slot`, `local` being the ray's origin
+// minus the brick's first voxel: scalars only, so that the CPU's SIMD loops over t vectorise.
+VX_INLINE float vx_brick_density(int slot, vec3 local, vec3 d, float t) {
+    return VX_TRILINEAR(vx_atlas_density, vx_corners(slot, local.x + d.x * t, local.y + d.y * t, local.z + d.z * t));
+}
+
 VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 wo, vec3 wd, int k, int n, int lanes, float dt,
                                    float time, VX_INOUT(VxChunk) c) {
     if (vx_perturbed()) {
@@ -96,10 +102,8 @@ VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 w
     // so the compiler hoists it out of the second.
     vec3 local = o - vec3(brick * VX_BRICK);
     VX_SIMD_LOOP
-    for (int j = 0; j < lanes; ++j) {
-        float t = (float(k + j) + 0.5f) * dt;
-        c.sigma[j] = VX_TRILINEAR(vx_atlas_density, vx_corners(slot, local.x + d.x * t, local.y + d.y * t, local.z + d.z * t));
-    }
+    for (int j = 0; j < lanes; ++j)
+        c.sigma[j] = vx_brick_density(slot, local, d, (float(k + j) + 0.5f) * dt);
     VX_SIMD_LOOP
     for (int j = 0; j < lanes; ++j)
         c.sigma[j] = vx_value_extinction(c.sigma[j]);
@@ -137,15 +141,15 @@ VX_INLINE float vx_brick_optical_depth(int slot, ivec3 b, vec3 o, vec3 d, vec3 x
         return sum * dt;
     }
     if (VX_VOXEL_FILTER != VX_FILTER_TRILINEAR) {
-        for (int k = k0; k < k1; ++k) sum += vx_extinction(vx_taps_at(slot, b, o + d * (float(k) + 0.5f) * dt));
+        for (int k = k0; k < k1; ++k) {
+            float t = (float(k) + 0.5f) * dt;
+            sum += vx_extinction(vx_taps_at(slot, b, o + d * t));
+        }
         return sum * dt;
     }
     vec3 local = o - vec3(b * VX_BRICK);
     VX_SIMD_SUM(sum)
-    for (int k = k0; k < k1; ++k) {
-        float t = (float(k) + 0.5f) * dt;
-        sum += vx_value_extinction(VX_TRILINEAR(vx_atlas_density, vx_corners(slot, local.x + d.x * t, local.y + d.y * t, local.z + d.z * t)));
-    }
+    for (int k = k0; k < k1; ++k) sum += vx_value_extinction(vx_brick_density(slot, local, d, (float(k) + 0.5f) * dt));
     return sum * dt;
 }
 

@@ -11,7 +11,7 @@ namespace voxlux {
 namespace {
 
 using U96 = kernel::CpuKernel::VxU96;
-constexpr size_t kColumns = 64;  // columns per task of the y and z pass
+constexpr size_t kColumns = 64;  // columns whose sums the y and z pass keeps at once
 __extension__ using U128 = unsigned __int128;
 
 // Cell value -> integer quanta. Scaling by a power of two is exact; rounding is the only
@@ -124,21 +124,24 @@ void buildSummedVolume(const LightGrid& g, SummedVolume& s) {
                     }
                 }
             });
-            // Down each column, with C kept for the task's columns (a blocked_range splits down to at
-            // most kColumns): each cell reads two table entries, R(y) and S'(y), where
+            // Down each column, with C kept for kColumns columns at a time (the partitioner may hand
+            // a task more): each cell reads two table entries, R(y) and S'(y), where
             // R(y) + S(y-1) + S'(y) - S'(y-1) reads four.
             tbb::parallel_for(tbb::blocked_range<size_t>(0, sx, kColumns), [&](const tbb::blocked_range<size_t>& cols) {
                 kernel::CpuKernel k;
-                uint32_t c_lo[kColumns] = {}, c_mid[kColumns] = {}, c_hi[kColumns] = {};
+                uint32_t c_lo[kColumns], c_mid[kColumns], c_hi[kColumns];
                 const Words c{c_lo, c_mid, c_hi};
-                const size_t n = cols.size();
-                for (int y = 1; y <= dy; ++y) {
-                    const size_t row = base + size_t(y) * sx + cols.begin(), prev = row - slice;
+                for (size_t x0 = cols.begin(); x0 < cols.end(); x0 += kColumns) {
+                    const size_t n = std::min(kColumns, cols.end() - x0);
+                    for (size_t i = 0; i < n; ++i) c.store(i, {0u, 0u, 0u});
+                    for (int y = 1; y <= dy; ++y) {
+                        const size_t row = base + size_t(y) * sx + x0, prev = row - slice;
 #pragma GCC ivdep  // the rows and the column sums are distinct
-                    for (size_t i = 0; i < n; ++i) {
-                        const U96 column = k.vx_u96_add(c.load(i), w.load(row + i));
-                        c.store(i, column);
-                        w.store(row + i, k.vx_u96_add(w.load(prev + i), column));
+                        for (size_t i = 0; i < n; ++i) {
+                            const U96 column = k.vx_u96_add(c.load(i), w.load(row + i));
+                            c.store(i, column);
+                            w.store(row + i, k.vx_u96_add(w.load(prev + i), column));
+                        }
                     }
                 }
             });

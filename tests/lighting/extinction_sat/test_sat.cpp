@@ -123,6 +123,14 @@ TEST(Sat, BoxSumsExactOnConstantGrid64) {
     expectExactBoxes(g, 5000, 64);
 }
 
+// Rows far wider than the build's column blocks (its y pass keeps 64 columns' sums at a time), so
+// that the sanitizer run, which leaves out the 512^3 case, covers a task of several blocks.
+TEST(Sat, BoxSumsExactOnAWideGrid) {
+    const glm::ivec3 d(1000, 6, 5);
+    SatGrid g(d, spanningValues(d, 3));
+    expectExactBoxes(g, 5000, 1000);
+}
+
 TEST(Sat, BoxSumsExactOn512Cubed) {
     const glm::ivec3 d(512);
     {
