@@ -124,7 +124,7 @@ TEST(Sat, BoxSumsExactOnConstantGrid64) {
 }
 
 // Rows far wider than the build's column blocks (its y pass keeps 64 columns' sums at a time), so
-// that the sanitizer run, which leaves out the 512^3 case, covers a task of several blocks.
+// that the sanitizer run, which leaves out the 512^3 case, covers rows of many blocks.
 TEST(Sat, BoxSumsExactOnAWideGrid) {
     const glm::ivec3 d(1000, 6, 5);
     SatGrid g(d, spanningValues(d, 3));
