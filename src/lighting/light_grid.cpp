@@ -165,18 +165,19 @@ glm::vec3 meanEmission(kernel::CpuKernel& k, glm::ivec3 voxel) {
 
 }  // namespace
 
-LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding, bool emission) {
+LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridContents contents) {
     kernel::CpuKernel k = bindCpuKernel(in);
+    const float bleeding = contents.bleeding;
     const glm::ivec3 bmin = in.pages->medium_min, bmax = in.pages->medium_max;
     const glm::ivec3 voxels = (bmax - bmin + 1) * VX_BRICK;
     LightGrid g;
-    g.planes = bleeding > 0.0f ? 4 : 1;
+    g.planes = !contents.extinction ? 0 : bleeding > 0.0f ? 4 : 1;
     g.dims = lightGridDims(glm::vec3(voxels), resolution);
     g.cell = float(std::max({voxels.x, voxels.y, voxels.z})) / float(resolution);
     // Voxel v's value holds on [v - 1/2, v + 1/2): the grid starts half a voxel below the first.
     g.origin = glm::vec3(bmin * VX_BRICK) - 0.5f;
     g.values.assign(g.cells() * g.planes, 0.0f);
-    const bool emits = emission && k.P.emission_sources > 0;
+    const bool emits = contents.emission && k.P.emission_sources > 0;
     if (emits) g.emission.assign(g.cells() * 3, 0.0f);
     const AxisCells ax{g.dims.x, voxels.x, g.cell}, ay{g.dims.y, voxels.y, g.cell}, az{g.dims.z, voxels.z, g.cell};
     const double inv_volume = 1.0 / (double(g.cell) * g.cell * g.cell);
@@ -210,16 +211,16 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding,
                         const glm::vec3 le =
                             emits ? meanEmission(k, (b->local + bmin) * VX_BRICK + glm::ivec3(ox, oy, oz)) : glm::vec3(0.0f);
                         if (sigma <= 0.0f && le == glm::vec3(0.0f)) continue;
-                        const glm::vec3 albedo = g.planes == 1 ? glm::vec3(0.0f) : k.vx_albedo(k.vx_single_tap(c));
+                        const glm::vec3 albedo = g.planes < 4 ? glm::vec3(0.0f) : k.vx_albedo(k.vx_single_tap(c));
                         ay.eachCellOf(first.y + oy, [&](int cy, double y_length) {
                             ax.eachCellOf(first.x + ox, [&](int cx, double x_length) {
                                 const double overlap = x_length * y_length * z_length;
                                 const size_t cell = size_t(cy) * g.dims.x + cx;
                                 if (emits)
                                     for (int ch = 0; ch < 3; ++ch) emitted[cell * 3 + ch] += overlap * le[ch];
-                                if (sigma <= 0.0f) return;
+                                if (sigma <= 0.0f || g.planes == 0) return;
                                 const double w = overlap * sigma;
-                                double* sum = &sums[cell * g.planes];
+                                double* sum = sums.data() + cell * g.planes;
                                 sum[0] += w;
                                 for (int ch = 1; ch < g.planes; ++ch) sum[ch] += w * (1.0 - double(bleeding) * albedo[ch - 1]);
                             });
@@ -228,8 +229,8 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding,
             }
         }
         for (size_t cell = 0; cell < size_t(g.dims.x) * g.dims.y; ++cell) {
-            double* sum = &sums[cell * g.planes];
-            if (sum[0] * inv_volume > max_sigma) {
+            double* sum = sums.data() + cell * g.planes;
+            if (g.planes > 0 && sum[0] * inv_volume > max_sigma) {
                 ++clamped;
                 for (int p = 1; p < g.planes; ++p) sum[p] *= max_sigma / (sum[0] * inv_volume);
                 sum[0] = max_sigma / inv_volume;
@@ -242,7 +243,23 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, float bleeding,
         }
     });
     g.clamped_cells = clamped;
-    g.needed = neededCells(g);
+    if (contents.extinction) g.needed = neededCells(g);
+    return g;
+}
+
+bool uniformAlbedo(const KernelInputs& in) { return in.params.use_transfer == 0 && in.params.use_color_grid == 0; }
+
+LightGrid withUniformBleeding(const LightGrid& extinction, glm::vec3 albedo, float bleeding) {
+    LightGrid g = extinction;
+    g.planes = 4;
+    const size_t plane = g.cells();
+    g.values.resize(4 * plane);
+    for (int c = 0; c < 3; ++c) {
+        const double weight = 1.0 - double(bleeding) * albedo[c];
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, plane, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) g.values[(c + 1) * plane + i] = float(double(g.values[i]) * weight);
+        });
+    }
     return g;
 }
 

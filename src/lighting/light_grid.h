@@ -24,7 +24,7 @@ struct LightGrid {
     glm::ivec3 dims{0};
     glm::vec3 origin{0.0f};        // index-space position of cell (0, 0, 0)'s low corner
     float cell = 1.0f;             // cell edge in index voxels
-    int planes = 1;                // 1: extinction; 4: and extinction * (1 - bleeding * albedo) rgb
+    int planes = 1;                // 1: extinction; 4: and extinction * (1 - bleeding * albedo) rgb; 0: emission only
     std::vector<float> values;     // plane-major; in a plane x fastest: mean value over the cell
     std::vector<uint8_t> needed;   // 1 where the march may read the light cache (near extinction)
     std::vector<float> emission;   // when asked for: RGB per cell, x fastest: mean emitted radiance
@@ -77,8 +77,22 @@ int fitGridResolution(glm::vec3 extent, int requested, size_t budget_bytes, cons
 int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_channels, size_t budget_bytes,
                        std::string& warning);
 
-// Box-filters the visible bricks into a light grid of `resolution` over the occupied bricks'
-// box. `bleeding` > 0 adds the three colour-bleeding planes; `emission` the emitted radiance.
-LightGrid buildLightGrid(const KernelInputs& inputs, int resolution, float bleeding, bool emission = false);
+// What buildLightGrid box-filters into the grid.
+struct LightGridContents {
+    bool extinction = true;   // the extinction plane and its `needed` mask
+    float bleeding = 0.0f;    // > 0, with extinction: the three colour-bleeding planes
+    bool emission = false;    // the emitted radiance, when the scene's sources emit
+};
+
+// Box-filters the visible bricks into a light grid of `resolution` over the occupied bricks' box.
+LightGrid buildLightGrid(const KernelInputs& inputs, int resolution, LightGridContents contents = {});
+
+// Whether every voxel has the material's albedo (no transfer function or colour grid scales it).
+bool uniformAlbedo(const KernelInputs& inputs);
+
+// `extinction` (one plane) with the three colour-bleeding planes of a uniform `albedo` added:
+// plane c is the extinction times (1 - bleeding * albedo_c), as buildLightGrid would box-filter it,
+// without a second walk over the bricks.
+LightGrid withUniformBleeding(const LightGrid& extinction, glm::vec3 albedo, float bleeding);
 
 }  // namespace voxlux

@@ -109,10 +109,10 @@ private:
     ClassifyStage classify_{load_, brick_};
     EmptyFrameStage empty_check_{classify_};
     CameraStage camera_{load_};
-    LightGridStage light_grid_{brick_, classify_};
-    SatStage sat_{light_grid_};
-    LightCacheStage light_cache_{brick_, classify_, light_grid_, sat_};
-    IlluminationGridStage illumination_grid_{[this] { return color_space_.xyzToWorking(); }, brick_, classify_};
+    LightGridStage light_grid_{brick_, classify_, {{"the SAT", lightCacheRuns}, {"the illumination volume", illuminationVolumeRuns}}};
+    SatStage sat_{brick_, classify_, light_grid_};
+    LightCacheStage light_cache_{brick_, classify_, sat_};
+    IlluminationGridStage illumination_grid_{[this] { return color_space_.xyzToWorking(); }, brick_, classify_, light_grid_};
     PropagationStage propagation_{brick_, classify_, illumination_grid_};
     EyePassStage eye_pass_{brick_, classify_, camera_, illumination_grid_, propagation_};
     MarchStage march_{color_space_, brick_, classify_, camera_, {light_cache_, propagation_, eye_pass_}};

@@ -1,6 +1,8 @@
 // The light grid (Schlegel 2011's extinction grid, src/lighting/light_grid.cpp): the exact box
 // filter of the voxels' piecewise-constant extinction, against brute force over every voxel of
-// the occupied box, and a cost that follows the occupied voxels rather than their box.
+// the occupied box, a cost that follows the occupied voxels rather than their box, and the
+// colour-bleeding planes the SAT derives from the shared grid.
+#include <algorithm>
 #include <random>
 
 #include "lighting/light_grid.h"
@@ -59,7 +61,7 @@ TEST(LightGrid, IsTheExactBoxFilterOfTheVoxels) {
     const glm::ivec3 voxels = (prepared->pages.bricks_max - prepared->pages.bricks_min + 1) * VX_BRICK;
     // Cells of 6 voxels (larger than a brick), 3.43 (not a whole number) and 0.75 (smaller than a voxel).
     for (int resolution : {4, 7, 32}) {
-        const LightGrid g = buildLightGrid(prepared->inputs, resolution, 0.0f);
+        const LightGrid g = buildLightGrid(prepared->inputs, resolution);
         double worst = 0, peak = 0;
         for (int z = 0; z < g.dims.z; ++z)
             for (int y = 0; y < g.dims.y; ++y)
@@ -74,6 +76,34 @@ TEST(LightGrid, IsTheExactBoxFilterOfTheVoxels) {
     }
 }
 
+// The SAT's colour-bleeding planes for a material of one albedo, derived from the shared
+// extinction grid, are the planes the box filter gives when it walks the voxels for them, to the
+// float rounding of one product.
+TEST(LightGrid, UniformBleedingPlanesAreTheBoxFilteredOnes) {
+    Scene scene = gridScene();
+    scene.material.albedo = glm::vec3(0.9f, 0.6f, 0.3f);
+    auto prepared = prepare(volumeFromGrid(randomGrid({-5, 3, 7}, {21, 13, 9}, 11)), scene, Camera{});
+    ASSERT_TRUE(uniformAlbedo(prepared->inputs));
+    const float bleeding = 0.7f;
+    const LightGrid walked = buildLightGrid(prepared->inputs, 7, {true, bleeding});
+    const LightGrid derived = withUniformBleeding(buildLightGrid(prepared->inputs, 7), scene.material.albedo, bleeding);
+    ASSERT_EQ(walked.planes, 4);
+    ASSERT_EQ(derived.planes, 4);
+    ASSERT_EQ(derived.values.size(), walked.values.size());
+    const size_t plane = walked.cells();
+    for (size_t p = 0; p < 4; ++p)
+        for (size_t i = 0; i < plane; ++i) {
+            const float a = walked.values[p * plane + i], b = derived.values[p * plane + i];
+            ASSERT_LE(std::abs(a - b), 2.5e-7f * std::abs(a)) << "plane " << p << " cell " << i;
+        }
+    // Plane c is the extinction times 1 - 0.7 * albedo_c: 0.37, 0.58 and 0.79 of plane 0's.
+    const size_t densest = size_t(std::max_element(walked.values.begin(), walked.values.begin() + plane) - walked.values.begin());
+    EXPECT_GT(walked.values[densest], 0.5f);
+    for (size_t c = 0; c < 3; ++c)
+        EXPECT_NEAR(derived.values[(c + 1) * plane + densest] / derived.values[densest], 1.0f - bleeding * scene.material.albedo[int(c)], 1e-6f) << c;
+    EXPECT_EQ(derived.needed, walked.needed);
+}
+
 // Two boxes 200,000 voxels apart on every axis: the occupied box has 1.5e13 bricks, which a
 // table over it would need 42 TB for. The grid's cost follows the 2 x 512 occupied voxels, and the
 // filter keeps their extinction exactly: the cells' integral is the voxels' sum.
@@ -84,7 +114,7 @@ TEST(LightGrid, PartsFarApartCostWhatThePartsCost) {
         for (int y = 0; y < 8; ++y)
             for (int x = 0; x < 8; ++x) acc.setValue(openvdb::Coord(200000 + x, 200000 + y, 200000 + z), 0.25f);
     auto prepared = prepare(volumeFromGrid(grid), gridScene(), Camera{});
-    const LightGrid g = buildLightGrid(prepared->inputs, 64, 0.0f);
+    const LightGrid g = buildLightGrid(prepared->inputs, 64);
     double integral = 0;
     for (float v : g.values) integral += double(v) * g.cell * g.cell * g.cell;
     const double voxels_sum = 512 * (0.5 + 0.25) * kDensityScale;

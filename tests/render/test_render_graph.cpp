@@ -289,9 +289,46 @@ TEST(RenderGraph, AFrameSeenBeforeReadsNothing) {
         if (s.cached) cached.push_back(s.name);
     }
     EXPECT_EQ(cached, (std::vector<std::string>{"load", "brick"}));
-    EXPECT_EQ(ran, (std::vector<std::string>{"classify", "empty_check", "camera", "illumination_grid", "propagation", "march"}));
+    EXPECT_EQ(ran, (std::vector<std::string>{"classify", "empty_check", "camera", "light_grid", "illumination_grid", "propagation", "march"}));
     EXPECT_EQ(maxDifference(back.image, one), 0.0f);
     EXPECT_EQ(renderer.graph().cache().entries(), 4u);   // both frames' grids and bricks
+}
+
+// The stages that ran in a frame, in order.
+std::vector<std::string> stagesRun(const FrameResult& frame) {
+    std::vector<std::string> ran;
+    for (const auto& [stage, seconds] : frame.stage_seconds) ran.push_back(stage);
+    return ran;
+}
+
+// Ambient occlusion from the SAT and shadows and indirect light from the propagation read one
+// light grid, built once. The colour-bleeding planes are the SAT's own and the 2x coarsening the
+// propagation's own, so editing either leaves the grid and the other method as they were.
+TEST(RenderGraph, TheSatAndThePropagationShareOneLightGrid) {
+    Scene scene = disabledLightScene(ShadowMethod::Propagation, Backend::Cpu);
+    Renderer renderer(scene);
+    EXPECT_EQ(stagesRun(renderer.render(std::nullopt, false)),
+              (std::vector<std::string>{"color_space", "color_transforms", "load", "brick", "classify", "empty_check", "camera",
+                                        "light_grid", "sat", "light_cache", "illumination_grid", "propagation", "march"}));
+    scene.effects.color_bleeding = 0.5f;
+    renderer.setScene(scene);
+    EXPECT_EQ(stagesRun(renderer.render(std::nullopt, false)), (std::vector<std::string>{"sat", "light_cache", "march"}));
+    scene.effects.propagation.chroma_subsampling = true;
+    renderer.setScene(scene);
+    EXPECT_EQ(stagesRun(renderer.render(std::nullopt, false)),
+              (std::vector<std::string>{"illumination_grid", "propagation", "march"}));
+    // A budget the SAT's four planes and its cache do not fit at 96 cells, the propagation without
+    // indirect light does: the SAT sums a coarser grid of its own and says so, the propagation
+    // keeps the shared one.
+    scene.effects.indirect.reset();
+    scene.effects.light_memory_mb = 16;
+    scene.effects.light_resolution = 96;
+    renderer.setScene(scene);
+    const FrameResult tight = renderer.render(std::nullopt, false);
+    EXPECT_EQ(stagesRun(tight), (std::vector<std::string>{"light_grid", "sat", "light_cache", "illumination_grid", "propagation", "march"}));
+    ASSERT_EQ(tight.warnings.size(), 1u);
+    EXPECT_EQ(tight.warnings[0], "light grid of 96 cells needs 29 MiB, over effects.light_memory_mb = 16; using 78 cells instead");
+    EXPECT_EQ(maxDifference(tight.image, Renderer(scene).render(std::nullopt, false).image), 0.0f);
 }
 
 // A light-edit replay prepares the lighting allowing empty frames, then writes the last frame

@@ -52,46 +52,50 @@ uint64_t nextSatGeneration() {
 
 }  // namespace
 
-StageReads LightGridStage::reads() const {
-    return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/color_bleeding",
-             "/effects/ambient_occlusion?", "/effects/shadows", "/lights/*/type", "/lights/*/enabled"},
-            {"brick", "classify"}};
-}
+bool lightCacheRuns(const Scene& scene) { return satActivity(scene, "").runs; }
 
-StageActivity LightGridStage::activity(const Scene& s) const {
-    const std::string bleeding = bleedingOf(s) > 0.0f ? ", with three colour-bleeding planes" : "";
-    return satActivity(s, "extinction box-filtered into a " + std::to_string(s.effects.light_resolution) +
-                              "-cell light grid over the occupied bricks" + bleeding);
-}
-
-void LightGridStage::run(StageRun& run) {
-    const PageTable& pages = classify_.pages();
-    const Effects& fx = run.scene.effects;
-    const float bleeding = bleedingOf(run.scene);
-    const glm::vec3 extent = occupiedExtent(pages);
-    std::string warning;
-    resolution_ = fitLightResolution(extent, cappedLightResolution(extent, fx.light_resolution), bleeding > 0.0f ? 4 : 1,
-                                     cacheLayout(run.scene, enabledLightCount(run.scene, false)).channels,
-                                     size_t(fx.light_memory_mb) << 20, warning);
-    if (!warning.empty()) run.warnings.push_back(warning);
-    grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), pages), resolution_, bleeding);
-    if (grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(grid_));
+StageReads SatStage::reads() const {
+    // What its grid holds beyond the shared extinction (bleeding) and what the SAT and cache cost
+    // (planes, and a channel per light), which may lower its resolution below the shared grid's.
+    return {{"/effects/color_bleeding", "/effects/ambient_occlusion?", "/effects/shadows", "/lights/*/type",
+             "/lights/*/enabled", "/render/backend"},
+            {"brick", "classify", "light_grid"}};
 }
 
 StageActivity SatStage::activity(const Scene& s) const {
     return satActivity(s, std::string("integer summed-area table of the light grid") +
-                              (bleedingOf(s) > 0.0f ? ", four planes" : ""));
+                              (bleedingOf(s) > 0.0f ? ", with three colour-bleeding planes" : ""));
+}
+
+void SatStage::release() {
+    own_grid_ = LightGrid{};
+    sat_ = SummedVolume{};
 }
 
 void SatStage::run(StageRun& run) {
+    release();
+    const float bleeding = bleedingOf(run.scene);
+    const glm::vec3 extent = occupiedExtent(classify_.pages());
+    std::string warning;
+    resolution_ = fitLightResolution(extent, cappedLightResolution(extent, run.scene.effects.light_resolution),
+                                     bleeding > 0.0f ? 4 : 1, cacheLayout(run.scene, enabledLightCount(run.scene, false)).channels,
+                                     size_t(run.scene.effects.light_memory_mb) << 20, warning);
+    if (!warning.empty()) run.warnings.push_back(warning);
+    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages());
+    if (resolution_ != shared_.resolution() || (bleeding > 0.0f && !uniformAlbedo(inputs))) {
+        own_grid_ = buildLightGrid(inputs, resolution_, {true, bleeding});
+        if (own_grid_.clamped_cells && resolution_ != shared_.resolution()) run.warnings.push_back(clampedCellsWarning(own_grid_));
+    } else if (bleeding > 0.0f) {
+        own_grid_ = withUniformBleeding(shared_.grid(), inputs.params.albedo, bleeding);
+    }
     generation_ = nextSatGeneration();
-    passes_.on(run.backend).buildSat(grid_.grid(), sat_);
+    passes_.on(run.backend).buildSat(grid(), sat_);
 }
 
 StageReads LightCacheStage::reads() const {
     return {{"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows", "/lights/*/type",
              "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/render/backend"},
-            {"brick", "classify", "light_grid", "sat"}};
+            {"brick", "classify", "sat"}};
 }
 
 StageActivity LightCacheStage::activity(const Scene& s) const {
@@ -121,7 +125,7 @@ void LightCacheStage::release() {
 
 void LightCacheStage::run(StageRun& run) {
     const Effects& fx = run.scene.effects;
-    const LightGrid& grid = grid_.grid();
+    const LightGrid& grid = sat_.grid();
     const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages());
     LightCache layout = cacheLayout(run.scene, int(inputs.lights.size()));
     // The cache is kept as it is while its layout is, so unchanged channels survive.
@@ -165,7 +169,7 @@ void LightCacheStage::run(StageRun& run) {
         // Beyond the grid's longest side a larger radius changes nothing (and would overflow k_i).
         const float longest = float(std::max({grid.dims.x, grid.dims.y, grid.dims.z}));
         const float radius_cells =
-            std::min(ao.radius > 0.0f ? ao.radius / cell_world : 0.06f * float(grid_.resolution()), longest);
+            std::min(ao.radius > 0.0f ? ao.radius / cell_world : 0.06f * float(sat_.resolution()), longest);
         S.shells = ao.shells;
         S.shell_radius = radius_cells;
         S.cell_world = cell_world;

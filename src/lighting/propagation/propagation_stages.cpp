@@ -303,18 +303,19 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission)
 StageReads IlluminationGridStage::reads() const {
     return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
              "/effects/propagation/chroma_subsampling", "/emission"},
-            {"color_space", "brick", "classify"}};
+            {"color_space", "brick", "classify", "light_grid"}};
 }
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
     const bool chroma = s.effects.indirect && s.effects.propagation.chroma_subsampling;
-    return propagationActivity(s, std::string(emissionLightsTheMedium(s) ? "extinction and emission" : "extinction") +
-                                      " box-filtered into a " + std::to_string(s.effects.light_resolution) +
-                                      "-cell grid over the occupied bricks" + (chroma ? ", and its 2x coarsening" : ""));
+    return propagationActivity(s, std::string("the light grid as the sweeps' grid") +
+                                      (emissionLightsTheMedium(s) ? ", with the emission box-filtered into its cells" : "") +
+                                      (chroma ? ", and its 2x coarsening" : ""));
 }
 
 void IlluminationGridStage::release() {
-    grid_ = LightGrid{};
+    own_grid_ = LightGrid{};
+    emission_.clear();
     chroma_sigma_.clear();
     chroma_emission_.clear();
     fine_ = coarse_ = SweepGrid{};
@@ -337,28 +338,37 @@ void IlluminationGridStage::run(StageRun& run) {
     const int resolution = fitGridResolution(extent, cappedLightResolution(extent, fx.light_resolution),
                                              size_t(fx.light_memory_mb) << 20, cost, "illumination volume", warning);
     if (!warning.empty()) run.warnings.push_back(warning);
-    grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), pages, 0.0f, xyz_to_working_()), resolution, 0.0f,
-                           emission);
-    if (grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(grid_));
+    // The shared light grid, unless this volume's memory lowered the resolution below it; the
+    // emitted radiance is this stage's own either way.
+    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), pages, 0.0f, xyz_to_working_());
+    const bool shared = resolution == shared_.resolution();
+    if (!shared) {
+        own_grid_ = buildLightGrid(inputs, resolution, {true, 0.0f, emission});
+        if (own_grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(own_grid_));
+        emission_ = std::move(own_grid_.emission);
+    } else if (emission) {
+        emission_ = buildLightGrid(inputs, resolution, {false, 0.0f, true}).emission;
+    }
+    const LightGrid& grid = shared ? shared_.grid() : own_grid_;
 
-    fine_.grid_to_world = brick_.atlas().index_to_world * grid_.lightToIndex();
+    fine_.grid_to_world = brick_.atlas().index_to_world * grid.lightToIndex();
     fine_.world_to_grid = glm::inverse(fine_.grid_to_world);
-    fine_.dims = grid_.dims;
-    fine_.cells_per_voxel = 1.0f / grid_.cell;
-    fine_.sigma = &grid_.values;
-    fine_.emission = grid_.emission.empty() ? nullptr : &grid_.emission;
+    fine_.dims = grid.dims;
+    fine_.cells_per_voxel = 1.0f / grid.cell;
+    fine_.sigma = &grid.values;
+    fine_.emission = emission_.empty() ? nullptr : &emission_;
     coarse_ = fine_;
     if (chroma > 1) {
-        chroma_sigma_ = halveGrid(grid_.values, grid_.dims, 1);
+        chroma_sigma_ = halveGrid(grid.values, grid.dims, 1);
         if (fine_.emission) {   // only the coarse grid's is swept
-            chroma_emission_ = halveGrid(grid_.emission, grid_.dims, 3);
+            chroma_emission_ = halveGrid(emission_, grid.dims, 3);
             coarse_.emission = &chroma_emission_;
             fine_.emission = nullptr;
-            grid_.emission = std::vector<float>();
+            emission_ = std::vector<float>();
         }
         coarse_.grid_to_world = fine_.grid_to_world * glm::scale(glm::mat4(1.0f), glm::vec3(float(chroma)));
         coarse_.world_to_grid = glm::inverse(coarse_.grid_to_world);
-        coarse_.dims = coarserDims(grid_.dims, chroma);
+        coarse_.dims = coarserDims(grid.dims, chroma);
         coarse_.cells_per_voxel = fine_.cells_per_voxel / float(chroma);
         coarse_.sigma = &chroma_sigma_;
     }

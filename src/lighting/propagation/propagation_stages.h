@@ -1,7 +1,8 @@
 // Illumination propagation (Ropinski 2010 with the Kniss 2003 optical model; Sunden 2015 for many
 // lights) as three stages of the render graph:
-//  illumination_grid  the visible bricks' extinction in a dense grid over the occupied bricks, and
-//                     its 2^3 average for chroma-subsampled indirect light;
+//  illumination_grid  the shared light grid (src/lighting/light_grid_stage.h) as the sweeps' grid,
+//                     with the emitted radiance when it lights the medium, and its 2^3 average for
+//                     chroma-subsampled indirect light;
 //  propagation        every light swept slice by slice through the grid, grouped into at most six
 //                     passes, adding its direct and (blurred, transport-attenuated) indirect RGB
 //                     into one illumination volume. When only lights change it takes the changed
@@ -19,7 +20,7 @@
 #include <vector>
 
 #include "lighting/propagation/kernel/illumination_volume.h"
-#include "lighting/light_grid.h"
+#include "lighting/light_grid_stage.h"
 #include "lighting/propagation/propagation_passes.h"
 #include "graph/render_graph.h"
 #include "volume/volume_stages.h"
@@ -81,8 +82,9 @@ struct SweepGrid {
 class IlluminationGridStage final : public Stage {
 public:
     // `xyz_to_working`: the colour-space stage's matrix, which emission colours are converted by.
-    IlluminationGridStage(std::function<glm::mat3()> xyz_to_working, const BrickStage& brick, const ClassifyStage& classify)
-        : xyz_to_working_(std::move(xyz_to_working)), brick_(brick), classify_(classify) {}
+    IlluminationGridStage(std::function<glm::mat3()> xyz_to_working, const BrickStage& brick, const ClassifyStage& classify,
+                          const LightGridStage& shared)
+        : xyz_to_working_(std::move(xyz_to_working)), brick_(brick), classify_(classify), shared_(shared) {}
     std::string name() const override { return "illumination_grid"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -99,7 +101,9 @@ private:
     std::function<glm::mat3()> xyz_to_working_;
     const BrickStage& brick_;
     const ClassifyStage& classify_;
-    LightGrid grid_;
+    const LightGridStage& shared_;
+    LightGrid own_grid_;   // empty unless this volume's memory lowered its resolution below the shared grid's
+    std::vector<float> emission_;   // RGB emitted radiance per cell, when it lights the medium
     std::vector<float> chroma_sigma_;   // the light grid averaged over 2^3 cells (chroma subsampling)
     std::vector<float> chroma_emission_;   // and its emission
     SweepGrid fine_, coarse_;

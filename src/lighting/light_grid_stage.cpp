@@ -1,0 +1,39 @@
+#include "lighting/light_grid_stage.h"
+
+#include <climits>
+
+#include "kernel/kernel_inputs.h"
+
+namespace voxlux {
+
+StageReads LightGridStage::reads() const {
+    return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb"}, {"brick", "classify"}};
+}
+
+StageActivity LightGridStage::activity(const Scene& s) const {
+    std::string readers;
+    for (const LightGridReader& r : readers_)
+        if (r.runs(s)) readers += (readers.empty() ? "" : " and ") + r.name;
+    if (readers.empty()) {
+        if (s.render.method == RenderMethod::Reference)
+            return {false, "skipped: the Monte Carlo reference (render.method) computes all light itself"};
+        return {false, "skipped: no lighting method in the scene reads a light grid"};
+    }
+    return {true, "extinction box-filtered into a " + std::to_string(s.effects.light_resolution) +
+                      "-cell light grid over the occupied bricks, for " + readers};
+}
+
+void LightGridStage::run(StageRun& run) {
+    const glm::vec3 extent = occupiedExtent(classify_.pages());
+    // The grid and its mask alone. Every method that reads it needs more memory than this, so a
+    // method fits at this resolution or below, and its own warning names its own memory.
+    const GridCost cost{[](glm::ivec3 d) { return size_t(d.x) * d.y * d.z * (sizeof(float) + 1); },
+                        [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z < uint64_t(INT32_MAX); }, "light grid"};
+    std::string methods_warn;
+    resolution_ = fitGridResolution(extent, cappedLightResolution(extent, run.scene.effects.light_resolution),
+                                    size_t(run.scene.effects.light_memory_mb) << 20, cost, "light grid", methods_warn);
+    grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), classify_.pages()), resolution_);
+    if (grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(grid_));
+}
+
+}  // namespace voxlux
