@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <cmath>
 #include <tuple>
 
@@ -141,7 +142,7 @@ int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_ch
                        std::string& warning) {
     GridCost cost{[&](glm::ivec3 d) { return lightGridBytes(d, planes, cache_channels); },
                   [&](glm::ivec3 d) { return lightGridIndexable(d, planes, cache_channels); }, "SAT or light cache"};
-    return fitGridResolution(extent, requested, budget, cost, "light grid", warning);
+    return fitGridResolution(extent, requested, budget, cost, "light cache", warning);
 }
 
 namespace {
@@ -250,6 +251,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
 bool uniformAlbedo(const KernelInputs& in) { return in.params.use_transfer == 0 && in.params.use_color_grid == 0; }
 
 LightGrid withUniformBleeding(const LightGrid& extinction, glm::vec3 albedo, float bleeding) {
+    assert(extinction.planes == 1);
     LightGrid g = extinction;
     g.planes = 4;
     const size_t plane = g.cells();

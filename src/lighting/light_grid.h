@@ -72,8 +72,8 @@ int fitGridResolution(glm::vec3 extent, int requested, size_t budget_bytes, cons
                       const std::string& what, std::string& warning);
 
 // The resolution actually used: `requested`, or the largest below it whose light grid, SAT and
-// cache fit in `budget_bytes` and are indexable. Sets `warning` (naming both resolutions) when it
-// had to reduce.
+// cache fit in `budget_bytes` and are indexable. Sets `warning` (naming the light cache and both
+// resolutions) when it had to reduce.
 int fitLightResolution(glm::vec3 extent, int requested, int planes, int cache_channels, size_t budget_bytes,
                        std::string& warning);
 

@@ -15,8 +15,7 @@ StageActivity LightGridStage::activity(const Scene& s) const {
     for (const LightGridReader& r : readers_)
         if (r.runs(s)) readers += (readers.empty() ? "" : " and ") + r.name;
     if (readers.empty()) {
-        if (s.render.method == RenderMethod::Reference)
-            return {false, "skipped: the Monte Carlo reference (render.method) computes all light itself"};
+        if (s.render.method == RenderMethod::Reference) return {false, kReferenceComputesAllLight};
         return {false, "skipped: no lighting method in the scene reads a light grid"};
     }
     return {true, "extinction box-filtered into a " + std::to_string(s.effects.light_resolution) +
@@ -29,9 +28,9 @@ void LightGridStage::run(StageRun& run) {
     // method fits at this resolution or below, and its own warning names its own memory.
     const GridCost cost{[](glm::ivec3 d) { return size_t(d.x) * d.y * d.z * (sizeof(float) + 1); },
                         [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z < uint64_t(INT32_MAX); }, "light grid"};
-    std::string methods_warn;
+    std::string unused_warning;
     resolution_ = fitGridResolution(extent, cappedLightResolution(extent, run.scene.effects.light_resolution),
-                                    size_t(run.scene.effects.light_memory_mb) << 20, cost, "light grid", methods_warn);
+                                    size_t(run.scene.effects.light_memory_mb) << 20, cost, "light grid", unused_warning);
     grid_ = buildLightGrid(makeKernelInputs(run.scene, brick_.atlas(), classify_.pages()), resolution_);
     if (grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(grid_));
 }

@@ -4,10 +4,12 @@
 // propagation's illumination volume (Ropinski 2010) both sweep or sum this one grid, so a scene
 // with both builds it once. What only one method needs (the colour-bleeding planes, the emitted
 // radiance) that method adds in its own stage, so editing it never re-runs the other.
-// Cost: one pass over the occupied voxels, linear in them, and one float per cell.
+// Cost: one pass over the occupied voxels, linear in them; a float and a byte (the `needed` mask) per
+// cell.
 #pragma once
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "graph/render_graph.h"
@@ -15,6 +17,9 @@
 #include "volume/volume_stages.h"
 
 namespace voxlux {
+
+// Why every light stage is skipped under render.method = reference.
+inline const char* const kReferenceComputesAllLight = "skipped: the Monte Carlo reference (render.method) computes all light itself";
 
 // A lighting method that reads the shared grid: its name, and whether it runs for a scene.
 struct LightGridReader {

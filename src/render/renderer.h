@@ -4,8 +4,8 @@
 //
 //   color_space -> color_transforms ---------------------------------------------------.
 //   load -> brick -> classify -> empty_check -------------------------------------------+
-//       |                \-> light_grid -> sat -> light_cache ---------------------------+-> march -> grade -> write
-//       |                 \-> illumination_grid -> propagation -> eye_pass -------------+
+//       |                \-> light_grid -+-> sat -> light_cache --------------------------+-> march -> grade -> write
+//       |                                 \-> illumination_grid -> propagation -> eye_pass -+
 //        `-> camera --------------------------------------------------------------------'
 //   (color_space also feeds illumination_grid, whose emission is in the working space, and the march.)
 #pragma once

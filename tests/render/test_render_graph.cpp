@@ -327,8 +327,18 @@ TEST(RenderGraph, TheSatAndThePropagationShareOneLightGrid) {
     const FrameResult tight = renderer.render(std::nullopt, false);
     EXPECT_EQ(stagesRun(tight), (std::vector<std::string>{"light_grid", "sat", "light_cache", "illumination_grid", "propagation", "march"}));
     ASSERT_EQ(tight.warnings.size(), 1u);
-    EXPECT_EQ(tight.warnings[0], "light grid of 96 cells needs 29 MiB, over effects.light_memory_mb = 16; using 78 cells instead");
+    EXPECT_EQ(tight.warnings[0], "light cache of 96 cells needs 29 MiB, over effects.light_memory_mb = 16; using 78 cells instead");
     EXPECT_EQ(maxDifference(tight.image, Renderer(scene).render(std::nullopt, false).image), 0.0f);
+    // And the other way: indirect light on and no bleeding, the illumination volume does not fit
+    // and sweeps a coarser grid of its own, the SAT sums the shared one.
+    scene.effects.indirect = Indirect{};
+    scene.effects.color_bleeding = 0.0f;
+    renderer.setScene(scene);
+    const FrameResult other = renderer.render(std::nullopt, false);
+    EXPECT_EQ(stagesRun(other), (std::vector<std::string>{"sat", "light_cache", "illumination_grid", "propagation", "march"}));
+    ASSERT_EQ(other.warnings.size(), 1u);
+    EXPECT_EQ(other.warnings[0], "illumination volume of 96 cells needs 18 MiB, over effects.light_memory_mb = 16; using 90 cells instead");
+    EXPECT_EQ(maxDifference(other.image, Renderer(scene).render(std::nullopt, false).image), 0.0f);
 }
 
 // A light-edit replay prepares the lighting allowing empty frames, then writes the last frame

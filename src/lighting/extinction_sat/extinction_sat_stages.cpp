@@ -16,7 +16,7 @@ bool needsConeShadows(const Scene& s) { return s.effects.shadows == ShadowMethod
 
 StageActivity satActivity(const Scene& s, const std::string& what) {
     if (s.render.method == RenderMethod::Reference)
-        return {false, "skipped: the Monte Carlo reference (render.method) computes all light itself"};
+        return {false, kReferenceComputesAllLight};
     if (!needsAmbientOcclusion(s) && !needsConeShadows(s)) {
         std::string why = "skipped: no effect in the scene needs a precomputed light cache";
         if (s.effects.ambient_occlusion) why += " (ambient_occlusion is on but no ambient light is in the scene)";

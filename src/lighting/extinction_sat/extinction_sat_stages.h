@@ -5,7 +5,8 @@
 //               colour-bleeding planes when ambient occlusion bleeds colour;
 //  light_cache  per grid cell, the optical depth of the ambient-occlusion shells and of each
 //               light's cone of cuboids, each read from the SAT in O(1) per cuboid.
-// Cost: sat is linear in grid cells; light_cache is cells x (shells + lights x cuboids) SAT
+// Cost: sat is linear in grid cells (and in the occupied voxels when it walks them for a grid of
+// its own: colour bleeding with a varying albedo, or a budget below the shared grid's); light_cache is cells x (shells + lights x cuboids) SAT
 // queries, recomputed only for the channels a change invalidates: a moved light recomputes its own
 // channel, a brighter one none.
 #pragma once

@@ -121,7 +121,7 @@ TEST(LightStage, MemoryBudgetLowersTheResolutionAndSaysSo) {
     EXPECT_LT(r, 256);
     EXPECT_LE(lightGridBytes(lightGridDims(extent, r), 1, 2), size_t(16) << 20);
     EXPECT_GT(lightGridBytes(lightGridDims(extent, r + 1), 1, 2), size_t(16) << 20);
-    EXPECT_EQ(warning, "light grid of 256 cells needs " +
+    EXPECT_EQ(warning, "light cache of 256 cells needs " +
                            std::to_string(lightGridBytes(lightGridDims(extent, 256), 1, 2) >> 20) +
                            " MiB, over effects.light_memory_mb = 16; using " + std::to_string(r) + " cells instead");
     std::string none;
@@ -132,7 +132,7 @@ TEST(LightStage, MemoryBudgetLowersTheResolutionAndSaysSo) {
     const int big = fitLightResolution(glm::vec3(1000), 1024, 4, 4, size_t(1) << 50, indices);
     EXPECT_TRUE(lightGridIndexable(lightGridDims(glm::vec3(1000), big), 4, 4));
     EXPECT_FALSE(lightGridIndexable(lightGridDims(glm::vec3(1000), big + 1), 4, 4));
-    EXPECT_EQ(indices, "light grid of 1024 cells is beyond the kernel's 32-bit indices (SAT or light cache over 2^31 "
+    EXPECT_EQ(indices, "light cache of 1024 cells is beyond the kernel's 32-bit indices (SAT or light cache over 2^31 "
                        "values); using " + std::to_string(big) + " cells instead");
 
     const std::string vdb = writeBall(tempDir("light_budget"));
@@ -141,7 +141,7 @@ TEST(LightStage, MemoryBudgetLowersTheResolutionAndSaysSo) {
     scene.effects.light_memory_mb = 1;
     const FrameResult small = Renderer(scene).render(std::nullopt, false);
     ASSERT_EQ(small.warnings.size(), 1u);
-    EXPECT_NE(small.warnings[0].find("light grid of 160 cells needs"), std::string::npos) << small.warnings[0];
+    EXPECT_NE(small.warnings[0].find("light cache of 160 cells needs"), std::string::npos) << small.warnings[0];
 }
 
 // Hard inputs through the whole light stage: NaN, infinite and huge voxels, an HDR light inside the
