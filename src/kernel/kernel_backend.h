@@ -51,6 +51,8 @@ public:
         }
         return *passes_;
     }
+    // Drops the passes and what they keep between runs (device buffers, scratch copies).
+    void release() { passes_.reset(); }
 
 private:
     Factory make_;

@@ -145,6 +145,9 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
     const kernel::VxParams march{};   // no perturbation
     Indirect blur;
     blur.angle = 40.0f;
+    // One scratch for every pass, as a device keeps it: the x passes after the first read the
+    // slice-major extinction the first one made.
+    CpuSweepScratch scratch;
     for (int axis = 0; axis < 3; ++axis)
         for (int sign : {-1, 1})
             for (const char* kind : {"direct", "indirect", "source"}) {
@@ -179,8 +182,9 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 pass.sweeps = {Q};
                 pass.march = &march;
                 pass.sigma = &sigma;
+                pass.sigma_generation = 1;
                 if (source) pass.input = &sources;
-                propagateCpu(pass, batched);
+                propagateCpu(pass, batched, scratch);
 
                 kernel::CpuKernel k;
                 k.P = march;

@@ -33,15 +33,30 @@ struct SliceMajor {
         });
     }
 
-    // `channels` floats per cell from natural to x-major order.
-    std::vector<float> toSlices(const float* in, int channels) const {
-        std::vector<float> out(size_t(dims.x) * dims.y * dims.z * channels);
+    // `channels` floats per cell from natural to x-major order, into `out`.
+    void toSlices(const float* in, int channels, std::vector<float>& out) const {
+        out.resize(size_t(dims.x) * dims.y * dims.z * channels);
         forEachCell([&](size_t n, size_t s) {
             for (int c = 0; c < channels; ++c) out[s * channels + c] = in[n * channels + c];
         });
-        return out;
     }
 };
+
+// The slice-major copy of the pass's extinction: the one kept for its grid, or made into the slot
+// used least recently.
+const std::vector<float>& slicedSigma(const PropagationPass& pass, const SliceMajor& layout, CpuSweepScratch& scratch) {
+    CpuSweepScratch::SlicedSigma* slot = nullptr;
+    for (auto& s : scratch.sigma)
+        if (pass.sigma_generation != 0 && s.generation == pass.sigma_generation) slot = &s;
+    if (!slot) {
+        slot = scratch.sigma[0].last_use <= scratch.sigma[1].last_use ? &scratch.sigma[0] : &scratch.sigma[1];
+        slot->generation = 0;   // stays 0 if the copy throws
+        layout.toSlices(pass.sigma->data(), 1, slot->values);
+        slot->generation = pass.sigma_generation;
+    }
+    slot->last_use = ++scratch.uses;
+    return slot->values;
+}
 
 // The CPU's batch form of vx_prop_cell for the common case: a directional light (or a source
 // sweep along an axis), no perturbation. Every cell then reads the previous slice (and, for the extinction
@@ -107,23 +122,24 @@ public:
                     tau[q] += w * glm::mix(in_prev, in_here, f);
                 }
             }
-            for (int c = 0; c < channels; ++c) {
-                float acc[kMaxRow] = {};
-                for (const Read& r : taps_) {
-                    const float* p0 = k_.prop_prev.data + size_t(j + r.dj) * nu_ * channels + c;
-                    const float* p1 = p0 + size_t(nu_) * channels;
-                    const float ta = r.ta, tb = r.tb, w = r.w;
-                    const int di = r.di;
+            // The blur taps. A tap reads every channel at the same offsets with the same weights,
+            // so on the interleaved slice (channels floats per cell) a run of n cells is one run of
+            // n * channels contiguous floats, its neighbour along u `channels` floats on.
+            float acc[kMaxRow * 3] = {};
+            const int floats = n * channels;
+            for (const Read& r : taps_) {
+                const float* p0 = k_.prop_prev.data + (size_t(j + r.dj) * nu_ + size_t(base + r.di)) * channels;
+                const float* p1 = p0 + size_t(nu_) * channels;
+                const float ta = r.ta, tb = r.tb, w = r.w;
 #pragma omp simd
-                    for (int q = 0; q < n; ++q) {
-                        const size_t i = size_t(base + q + di) * channels;
-                        acc[q] = kernel::vx_radiance_add(acc[q], w * VX_BILERP(p0[i], p0[i + channels], p1[i], p1[i + channels], ta, tb));
-                    }
-                }
+                for (int m = 0; m < floats; ++m)
+                    acc[m] = kernel::vx_radiance_add(acc[m], w * VX_BILERP(p0[m], p0[m + channels], p1[m], p1[m + channels], ta, tb));
+            }
+            for (int c = 0; c < channels; ++c) {
                 const float kc = atten_[c];
                 if (Q.source_sweep == 0) {
 #pragma omp simd
-                    for (int q = 0; q < n; ++q) out[size_t(base + q) * channels + c] = acc[q] * k_.vx_exp(-kc * tau[q]);
+                    for (int q = 0; q < n; ++q) out[size_t(base + q) * channels + c] = acc[q * channels + c] * k_.vx_exp(-kc * tau[q]);
                     continue;
                 }
                 // A source sweep adds the cell's own source over the step, as vx_prop_cell does.
@@ -133,7 +149,7 @@ public:
                 for (int q = 0; q < n; ++q) {
                     const float kt = kc * tau[q];
                     out[size_t(base + q) * channels + c] =
-                        kernel::vx_radiance_add(acc[q] * k_.vx_exp(-kt), src[size_t(base + q) * 3] * (step * k_.vx_exp_integral(kt)));
+                        kernel::vx_radiance_add(acc[q * channels + c] * k_.vx_exp(-kt), src[size_t(base + q) * 3] * (step * k_.vx_exp_integral(kt)));
                 }
             }
         }
@@ -176,7 +192,7 @@ private:
 
 }  // namespace
 
-void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
+void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSweepScratch& scratch) {
     const kernel::VxPropParams& first = pass.sweeps.front();
     const glm::ivec3 dims = first.dims;
     const int channels = first.channels;
@@ -187,19 +203,19 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
     float* block = volume.values.data() + pass.offset;   // RGB per cell
 
     // The pass reads the extinction (and the eye input) once for all its lights: for an x sweep,
-    // one slice-major copy shared by every light, and one result added back at the end.
+    // one slice-major copy shared by every light (and kept for the grid's next x pass), and one
+    // result added back at the end.
     const SliceMajor layout{dims};
     const bool x_major = axis == 0;
-    std::vector<float> sigma, input;
-    std::unique_ptr<float[]> result;   // every cell is written: no need to clear it first
+    const std::vector<float>* sigma = pass.sigma;
     if (x_major) {
-        sigma = layout.toSlices(pass.sigma->data(), 1);
-        if (pass.input) input = layout.toSlices(pass.input->data(), 3);
-        result.reset(new float[sigma.size() * 3]);
+        sigma = &slicedSigma(pass, layout, scratch);
+        if (pass.input) layout.toSlices(pass.input->data(), 3, scratch.input);
+        scratch.result.resize(sigma->size() * 3);   // every cell is written: no need to clear it
     }
     const glm::ivec3 stride = x_major ? glm::ivec3(dims.z * dims.y, 1, dims.y) : glm::ivec3(1, dims.x, dims.x * dims.y);
     // Where a cell's RGB goes: the x-major result or the block itself.
-    float* out = x_major ? result.get() : block;
+    float* out = x_major ? scratch.result.data() : block;
 
     // One lane per light: its own kernel parameters and its own pair of 2D slice buffers.
     struct Lane {
@@ -214,8 +230,8 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
         lane->k.Q = Q;
         lane->k.Q.strides = stride;
         if (pass.noise) lane->k.noise = *pass.noise;
-        lane->k.prop_sigma = x_major ? sigma : *pass.sigma;
-        if (pass.input) lane->k.prop_in = x_major ? input : *pass.input;
+        lane->k.prop_sigma = *sigma;
+        if (pass.input) lane->k.prop_in = x_major ? scratch.input : *pass.input;
         lane->prev.assign(size_t(nu) * nv * channels, 0.0f);
         lane->cur.assign(lane->prev.size(), 0.0f);
         lane->batch = std::make_unique<RowBatch>(lane->k, nu, nv);
@@ -271,7 +287,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume) {
     layout.forEachCell([&](size_t n, size_t s) {
         for (int ch = 0; ch < 3; ++ch) {
             float& cell = block[n * 3 + ch];
-            cell = eye ? result[s * 3 + ch] : kernel::vx_radiance_add(cell, result[s * 3 + ch]);
+            cell = eye ? scratch.result[s * 3 + ch] : kernel::vx_radiance_add(cell, scratch.result[s * 3 + ch]);
         }
     });
 }

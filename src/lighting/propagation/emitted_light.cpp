@@ -30,6 +30,7 @@ void sweepSources(const std::vector<float>& input, kernel::VxPropParams Q, const
     pass.march = &inputs.params;
     pass.noise = &inputs.noise;
     pass.sigma = g.sigma;
+    pass.sigma_generation = g.sigma_generation;
     pass.offset = 0;
     pass.input = &input;
     for (int axis = 0; axis < 3; ++axis)

@@ -2,6 +2,7 @@
 // (propagation_passes.h) through a grid of extinction into the illumination volume; its cost is one
 // walk over the grid's slices, whatever the number of sweeps it carries.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -20,6 +21,7 @@ struct PropagationPass {
     std::vector<kernel::VxPropParams> sweeps;       // same dims, axis and direction
     const kernel::VxParams* march = nullptr;        // noise and transport parameters
     const std::vector<float>* sigma = nullptr;      // the sweeps' dims cells
+    uint64_t sigma_generation = 0;                  // changes whenever *sigma does (0: unknown, a device keeps no copy)
     const std::vector<glm::vec4>* noise = nullptr;  // perturbation table (VX_NOISE_SIZE^3)
     size_t offset = 0;
     const std::vector<float>* input = nullptr;      // eye or source sweeps: 3 floats per cell

@@ -12,7 +12,10 @@ namespace {
 
 class CpuPropagationPasses final : public PropagationPasses {
 public:
-    void propagate(const PropagationPass& pass, IlluminationVolume& volume) override { propagateCpu(pass, volume); }
+    void propagate(const PropagationPass& pass, IlluminationVolume& volume) override { propagateCpu(pass, volume, scratch_); }
+
+private:
+    CpuSweepScratch scratch_;
 };
 
 }  // namespace

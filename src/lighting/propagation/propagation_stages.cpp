@@ -181,6 +181,7 @@ void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool
     pass.march = &inputs.params;
     pass.noise = &inputs.noise;
     pass.sigma = g.sigma;
+    pass.sigma_generation = g.sigma_generation;
     pass.offset = offset;
     for (const auto& sweeps : passes) {
         if (sweeps.empty()) continue;
@@ -226,6 +227,7 @@ void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const Sweep
     pass.march = &inputs.params;
     pass.noise = &inputs.noise;
     pass.sigma = coarse.sigma;
+    pass.sigma_generation = coarse.sigma_generation;
     pass.offset = volume.indirectOffset();
     pass.input = &before;
     device.propagate(pass, volume);
@@ -261,7 +263,7 @@ std::vector<kernel::VxLight> missingFrom(const std::vector<kernel::VxLight>& fro
 
 StageActivity propagationActivity(const Scene& s, const std::string& what) {
     if (s.render.method == RenderMethod::Reference)
-        return {false, "skipped: the Monte Carlo reference (render.method) computes all light itself"};
+        return {false, kReferenceComputesAllLight};
     if (s.effects.shadows != ShadowMethod::Propagation || (enabledLightCount(s, false) == 0 && !emissionLightsTheMedium(s))) {
         std::string why = "skipped: no effect in the scene needs an illumination volume";
         if (s.effects.shadows == ShadowMethod::Propagation) why += " (propagation shadows but no light or lit emission to propagate)";
@@ -346,7 +348,7 @@ void IlluminationGridStage::run(StageRun& run) {
         own_grid_ = buildLightGrid(inputs, resolution, {true, 0.0f, emission});
         if (own_grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(own_grid_));
         emission_ = std::move(own_grid_.emission);
-    } else if (emission) {
+    } else if (emission && inputs.params.emission_sources > 0) {
         emission_ = buildLightGrid(inputs, resolution, {false, 0.0f, true}).emission;
     }
     const LightGrid& grid = shared ? shared_.grid() : own_grid_;
@@ -356,6 +358,7 @@ void IlluminationGridStage::run(StageRun& run) {
     fine_.dims = grid.dims;
     fine_.cells_per_voxel = 1.0f / grid.cell;
     fine_.sigma = &grid.values;
+    fine_.sigma_generation = generation_;
     fine_.emission = emission_.empty() ? nullptr : &emission_;
     coarse_ = fine_;
     if (chroma > 1) {
@@ -371,6 +374,7 @@ void IlluminationGridStage::run(StageRun& run) {
         coarse_.dims = coarserDims(grid.dims, chroma);
         coarse_.cells_per_voxel = fine_.cells_per_voxel / float(chroma);
         coarse_.sigma = &chroma_sigma_;
+        coarse_.sigma_generation = nextGridGeneration();
     }
 }
 
@@ -409,6 +413,7 @@ StageActivity PropagationStage::activity(const Scene& s) const {
 
 void PropagationStage::release() {
     volume_ = IlluminationVolume{};
+    passes_.release();
     setup_key_.clear();
     applied_.clear();
     drift_ = 0.0;

@@ -76,6 +76,7 @@ struct SweepGrid {
     glm::ivec3 dims{0};
     float cells_per_voxel = 1.0f;          // grid cells per index voxel (for displacement)
     const std::vector<float>* sigma = nullptr;
+    uint64_t sigma_generation = 0;         // changes whenever sigma does (PropagationPass)
     const std::vector<float>* emission = nullptr;   // RGB emitted radiance per cell, when it lights the medium
 };
 
@@ -145,7 +146,10 @@ public:
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     bool idle() const override { return classify_.pages().empty(); }
-    void release() override { volume_ = IlluminationVolume{}; }
+    void release() override {
+        volume_ = IlluminationVolume{};
+        passes_.release();
+    }
     const IlluminationVolume& volume() const { return volume_; }
 
 private:

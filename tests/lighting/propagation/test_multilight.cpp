@@ -235,12 +235,13 @@ TEST(MultiLight, PointSweepsComputeFarEnoughSideways) {
                 PropagationPass pass;
                 pass.march = &march;
                 pass.sigma = &sigma;
+                CpuSweepScratch scratch;
                 for (int axis = 0; axis < 3; ++axis)
                     for (int sign : {-1, 1}) {
                         Q.axis = axis;
                         Q.direction = sign;
                         pass.sweeps = {Q};
-                        propagateCpu(pass, v);
+                        propagateCpu(pass, v, scratch);
                     }
                 return v.values;
             };
