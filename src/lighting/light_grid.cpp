@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/huge_pages.h"
 #include "kernel/cpu_kernel.h"
 
 namespace voxlux {
@@ -177,6 +178,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
     g.cell = float(std::max({voxels.x, voxels.y, voxels.z})) / float(resolution);
     // Voxel v's value holds on [v - 1/2, v + 1/2): the grid starts half a voxel below the first.
     g.origin = glm::vec3(bmin * VX_BRICK) - 0.5f;
+    reserveInHugePages(g.values, g.cells() * g.planes);
     g.values.assign(g.cells() * g.planes, 0.0f);
     const bool emits = contents.emission && k.P.emission_sources > 0;
     if (emits) g.emission.assign(g.cells() * 3, 0.0f);

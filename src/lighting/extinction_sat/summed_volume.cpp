@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/huge_pages.h"
 #include "kernel/cpu_kernel.h"
 
 namespace voxlux {
@@ -47,6 +48,7 @@ namespace {
 void prepareSummedVolume(const LightGrid& g, SummedVolume& s) {
     s.dims = g.dims;
     s.planes = g.planes;
+    reserveInHugePages(s.words, s.planeEntries() * size_t(s.planes) * 3);
     s.words.resize(s.planeEntries() * size_t(s.planes) * 3);
     const size_t cells = g.cells();
     for (int p = 0; p < g.planes; ++p) {

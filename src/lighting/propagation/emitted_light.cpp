@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/huge_pages.h"
+
 namespace voxlux {
 namespace {
 
@@ -25,6 +27,7 @@ void sweepSources(const std::vector<float>& input, kernel::VxPropParams Q, const
     Q.tint = glm::vec3(1.0f);
     Q.weight = kFourPi / 6.0f;
     Q.light = kernel::VxLight{};
+    reserveInHugePages(volume.values, input.size());
     volume.values.assign(input.size(), 0.0f);
     PropagationPass pass;
     pass.march = &inputs.params;

@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/parallel_for.h>
 
+#include "core/huge_pages.h"
 #include "scene/camera.h"
 #include "kernel/cpu_kernel.h"
 #include "lighting/propagation/emitted_light.h"
@@ -507,6 +508,7 @@ void PropagationStage::run(StageRun& run) {
             volume_.chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
             volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
             volume_.world_to_illum = fine.world_to_grid;
+            reserveInHugePages(volume_.values, 3 * volume_.cells() + 3 * volume_.chromaCells());
             volume_.values.assign(3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
             report.mode = LightUpdate::Mode::Entire;
             report.lights_in = int(inputs.lights.size());
