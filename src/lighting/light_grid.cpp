@@ -59,24 +59,37 @@ std::vector<OccupiedBrick> occupiedBricks(const PageTable& pages) {
 }
 
 // 1 for cells within one cell of a cell with extinction: the trilinear cache lookup of any sample
-// the march shades reads only those. The 3x3x3 dilation runs as three one-axis passes.
+// the march shades reads only those. The 3x3x3 dilation runs as three one-axis passes, row by row
+// (a row's neighbours along y and z are whole rows one row or one slice away).
 std::vector<uint8_t> neededCells(const LightGrid& g) {
     const glm::ivec3 d = g.dims;
+    const size_t row = size_t(d.x), slice = size_t(d.x) * d.y;
     std::vector<uint8_t> a(g.cells()), b(g.cells());
-    for (size_t i = 0; i < g.cells(); ++i) a[i] = g.values[i] > 0.0f;
-    const size_t stride[3] = {1, size_t(d.x), size_t(d.x) * d.y};
-    for (int axis = 0; axis < 3; ++axis) {
-        const int n = d[axis];
-        const size_t s = stride[axis];
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, g.cells(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                const int at = int(i / s % size_t(n));
-                b[i] = a[i] | (at > 0 ? a[i - s] : 0) | (at + 1 < n ? a[i + s] : 0);
-            }
+    const auto eachRow = [&](auto&& f) {
+        tbb::parallel_for(0, d.z, [&](int z) {
+            for (int y = 0; y < d.y; ++y) f(y, z, (size_t(z) * d.y + y) * row);
         });
-        std::swap(a, b);
+    };
+    eachRow([&](int, int, size_t r) {
+        for (size_t x = 0; x < row; ++x) a[r + x] = g.values[r + x] > 0.0f;
+    });
+    eachRow([&](int, int, size_t r) {
+        const uint8_t* in = &a[r];
+        for (size_t x = 0; x < row; ++x) b[r + x] = in[x] | (x > 0 ? in[x - 1] : 0) | (x + 1 < row ? in[x + 1] : 0);
+    });
+    // Along y (from b into a), then z (from a into b): the rows before and after, where there are.
+    for (int axis = 1; axis < 3; ++axis) {
+        const std::vector<uint8_t>& from = axis == 1 ? b : a;
+        std::vector<uint8_t>& to = axis == 1 ? a : b;
+        const size_t step = axis == 1 ? row : slice;
+        eachRow([&](int y, int z, size_t r) {
+            const int at = axis == 1 ? y : z;
+            const bool before = at > 0, after = at + 1 < d[axis];
+            for (size_t x = 0; x < row; ++x)
+                to[r + x] = from[r + x] | (before ? from[r - step + x] : 0) | (after ? from[r + step + x] : 0);
+        });
     }
-    return a;
+    return b;
 }
 
 }  // namespace

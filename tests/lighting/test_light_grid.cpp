@@ -76,6 +76,33 @@ TEST(LightGrid, IsTheExactBoxFilterOfTheVoxels) {
     }
 }
 
+// The cells the light passes compute: every cell with extinction within one cell (its 3x3x3
+// neighbourhood), against brute force over the neighbourhood.
+TEST(LightGrid, NeededCellsAreTheExtinctionDilatedByOneCell) {
+    auto prepared = prepare(volumeFromGrid(randomGrid({-5, 3, 7}, {21, 13, 9}, 13)), gridScene(), Camera{});
+    const LightGrid g = buildLightGrid(prepared->inputs, 48);
+    const glm::ivec3 d = g.dims;
+    ASSERT_EQ(g.needed.size(), g.cells());
+    auto index = [&](glm::ivec3 c) { return (size_t(c.z) * d.y + c.y) * d.x + c.x; };
+    size_t needed = 0, empty = 0;
+    for (int z = 0; z < d.z; ++z)
+        for (int y = 0; y < d.y; ++y)
+            for (int x = 0; x < d.x; ++x) {
+                bool expected = false;
+                for (int k = 0; k < 27; ++k) {
+                    const glm::ivec3 c = glm::ivec3(x, y, z) + glm::ivec3(k % 3, k / 3 % 3, k / 9) - 1;
+                    if (glm::all(glm::greaterThanEqual(c, glm::ivec3(0))) && glm::all(glm::lessThan(c, d)))
+                        expected |= g.values[index(c)] > 0.0f;
+                }
+                ASSERT_EQ(g.needed[index({x, y, z})], expected ? 1 : 0) << x << ", " << y << ", " << z;
+                needed += expected;
+                empty += g.values[index({x, y, z})] == 0.0f;
+            }
+    // Both kinds occur: needed cells without extinction, and cells left out.
+    EXPECT_GT(needed + empty, g.cells());
+    EXPECT_LT(needed, g.cells());
+}
+
 // The SAT's colour-bleeding planes for a material of one albedo, derived from the shared
 // extinction grid, are the planes the box filter gives when it walks the voxels for them, to the
 // float rounding of one product.
