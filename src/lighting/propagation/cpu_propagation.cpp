@@ -1,6 +1,7 @@
 #include "lighting/propagation/cpu_propagation.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <memory>
 
@@ -217,6 +218,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
         scratch.result.resize(sigma->size() * 3);   // every cell is written: no need to clear it
     }
     const glm::ivec3 stride = x_major ? glm::ivec3(dims.z * dims.y, 1, dims.y) : glm::ivec3(1, dims.x, dims.x * dims.y);
+    assert(stride[u] == 1);   // rows are contiguous: the row batch and the row writes below rely on it
     // Where a cell's RGB goes: the x-major result or the block itself.
     float* out = x_major ? scratch.result.data() : block;
 
@@ -257,30 +259,47 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
                     float* row = &lane->cur[size_t(j) * nu * channels];
                     int first_batched = 0, last_batched = 0;
                     lane->batch->row(j, previous, row, first_batched, last_batched);
-                    const bool per_cell_weight = k.Q.per_cell_flow != 0;
-                    const glm::vec3 tint = k.Q.tint;
-                    for (int i = 0; i < nu; ++i) {
-                        float* slot = row + size_t(i) * channels;
-                        if (i < first_batched || i >= last_batched) {
+                    // The cells the batch left (the row's ends, or the whole row): the per-cell kernel.
+                    const auto perCell = [&](int from, int to) {
+                        for (int i = from; i < to; ++i) {
                             const glm::vec3 value = k.vx_prop_cell(i, j);
-                            for (int ch = 0; ch < channels; ++ch) slot[ch] = value[ch];
+                            for (int ch = 0; ch < channels; ++ch) row[size_t(i) * channels + ch] = value[ch];
                         }
-                        const float w = eye ? 1.0f : per_cell_weight ? k.vx_prop_weight(i, j) : k.Q.weight;
-                        for (int ch = 0; ch < 3; ++ch) {
-                            float& sum = rgb[size_t(i) * 3 + ch];
-                            sum = kernel::vx_radiance_add(sum, w * tint[ch] * slot[channels == 1 ? 0 : ch]);
+                    };
+                    perCell(0, first_batched);
+                    perCell(std::max(first_batched, last_batched), nu);
+                    const glm::vec3 tint = k.Q.tint;
+                    if (!eye && k.Q.per_cell_flow != 0) {   // a point or spot light: each cell's own weight
+                        for (int i = 0; i < nu; ++i) {
+                            const float w = k.vx_prop_weight(i, j);
+                            for (int ch = 0; ch < 3; ++ch) {
+                                float& sum = rgb[size_t(i) * 3 + ch];
+                                sum = kernel::vx_radiance_add(sum, w * tint[ch] * row[size_t(i) * channels + (channels == 1 ? 0 : ch)]);
+                            }
                         }
+                        continue;
+                    }
+                    // One weight for the row: (w * tint) * light, as the per-cell form multiplies.
+                    const float w = eye ? 1.0f : k.Q.weight;
+                    const float wt0 = w * tint[0], wt1 = w * tint[1], wt2 = w * tint[2];
+                    const int step = channels == 1 ? 0 : 1;
+#pragma omp simd
+                    for (int i = 0; i < nu; ++i) {
+                        const float* slot = row + size_t(i) * channels;
+                        float* sum = &rgb[size_t(i) * 3];
+                        sum[0] = kernel::vx_radiance_add(sum[0], wt0 * slot[0]);
+                        sum[1] = kernel::vx_radiance_add(sum[1], wt1 * slot[step]);
+                        sum[2] = kernel::vx_radiance_add(sum[2], wt2 * slot[2 * step]);
                     }
                 }
-                glm::ivec3 c;
-                c[axis] = slice;
-                c[v] = j;
-                for (int i = 0; i < nu; ++i) {
-                    c[u] = i;
-                    // Integer offsets: a float dot product is exact only below 2^24 cells.
-                    float* cell = out + (size_t(c.x) * stride.x + size_t(c.y) * stride.y + size_t(c.z) * stride.z) * 3;
-                    for (int ch = 0; ch < 3; ++ch)
-                        cell[ch] = x_major || eye ? rgb[size_t(i) * 3 + ch] : kernel::vx_radiance_add(cell[ch], rgb[size_t(i) * 3 + ch]);
+                // The row's cells are contiguous in `out` (u is the fastest axis of either layout).
+                // Integer offsets: a float dot product is exact only below 2^24 cells.
+                float* cells = out + (size_t(slice) * size_t(stride[axis]) + size_t(j) * size_t(stride[v])) * 3;
+                if (x_major || eye) {
+                    std::copy(rgb.begin(), rgb.end(), cells);
+                } else {
+#pragma omp simd
+                    for (size_t m = 0; m < rgb.size(); ++m) cells[m] = kernel::vx_radiance_add(cells[m], rgb[m]);
                 }
             }
         });
