@@ -142,9 +142,8 @@ std::string sweepList(const std::vector<Sweep>& sweeps) {
 
 // Bytes a sweep moves at least, per cell: the extinction grid read once (4 B) and the volume's
 // RGB block read and written once (3 floats, direct and indirect alike). x sweeps move more: they
-// also copy the extinction to a slice-major layout (a zero-filled vector: read 4, zero 4, write 4)
-// and write their result to an uncleared slice-major buffer that is added back (write + read):
-// 64 B.
+// run on a slice-major copy of the extinction (made once per grid, then kept) and write their
+// result to a slice-major buffer that is added back (write + read): 52 B.
 constexpr double kSweepBytes = 4.0 + 2.0 * 12.0;
 
 void paperComparison(bool quick) {

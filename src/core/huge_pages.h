@@ -15,15 +15,14 @@ namespace voxlux {
 void adviseHugePages(void* data, size_t bytes);
 
 // Room for n elements in v, memory newly allocated for it advised before any element is written
-// (then assign or resize as usual).
+// (then assign or resize as usual). Where it allocates, v's elements are dropped first, so the
+// old and new memory never coexist: for buffers about to be written whole.
 template <class T>
 void reserveInHugePages(std::vector<T>& v, size_t n) {
     if (v.capacity() >= n) return;
-    std::vector<T> fresh;
-    fresh.reserve(n);
-    adviseHugePages(fresh.data(), n * sizeof(T));
-    fresh.insert(fresh.end(), v.begin(), v.end());
-    v.swap(fresh);
+    v = std::vector<T>();
+    v.reserve(n);
+    adviseHugePages(v.data(), n * sizeof(T));
 }
 
 }  // namespace voxlux

@@ -337,7 +337,7 @@ TEST(RenderGraph, TheSatAndThePropagationShareOneLightGrid) {
     const FrameResult other = renderer.render(std::nullopt, false);
     EXPECT_EQ(stagesRun(other), (std::vector<std::string>{"sat", "light_cache", "illumination_grid", "propagation", "march"}));
     ASSERT_EQ(other.warnings.size(), 1u);
-    EXPECT_EQ(other.warnings[0], "illumination volume of 96 cells needs 18 MiB, over effects.light_memory_mb = 16; using 90 cells instead");
+    EXPECT_EQ(other.warnings[0], "illumination volume of 96 cells needs 20 MiB, over effects.light_memory_mb = 16; using 88 cells instead");
     EXPECT_EQ(maxDifference(other.image, Renderer(scene).render(std::nullopt, false).image), 0.0f);
 }
 

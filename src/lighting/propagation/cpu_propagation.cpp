@@ -50,7 +50,7 @@ struct SliceMajor {
 const std::vector<float>& slicedSigma(const PropagationPass& pass, const SliceMajor& layout, CpuSweepScratch& scratch) {
     CpuSweepScratch::SlicedSigma* slot = nullptr;
     for (auto& s : scratch.sigma)
-        if (pass.sigma_generation != 0 && s.generation == pass.sigma_generation) slot = &s;
+        if (pass.sigma_generation != 0 && s.generation == pass.sigma_generation && s.values.size() == pass.sigma->size()) slot = &s;
     if (!slot) {
         slot = scratch.sigma[0].last_use <= scratch.sigma[1].last_use ? &scratch.sigma[0] : &scratch.sigma[1];
         slot->generation = 0;   // stays 0 if the copy throws

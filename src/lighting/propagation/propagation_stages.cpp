@@ -294,8 +294,12 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission)
         const glm::ivec3 c = coarserDims(d, chroma);
         const size_t cc = size_t(c.x) * c.y * c.z;
         // With the eye pass's own volume and its input copy of the indirect cells, reserved whenever
-        // indirect light is on, so that toggling the eye pass never changes the grid.
-        bytes += cc * 3 * sizeof(float) + (chroma > 1 ? cc * sizeof(float) : 0) + (cells + 2 * cc) * 3 * sizeof(float);
+        // indirect light is on, so that toggling the eye pass never changes the grid. The CPU
+        // passes keep their x-pass copies between runs (CpuSweepScratch): the propagation's of the
+        // coarse extinction when chroma subsampled, and the eye pass's own of the extinction, its
+        // input and its result.
+        bytes += cc * 3 * sizeof(float) + (chroma > 1 ? 2 * cc * sizeof(float) : 0) + (cells + 2 * cc) * 3 * sizeof(float) +
+                 cc * 7 * sizeof(float);
         // The emission grid (and its coarsening), the two orders, the second's source and an x
         // pass's slice-major copy of a source.
         if (emission) bytes += (cells + (chroma > 1 ? cc : 0) + 4 * cc) * 3 * sizeof(float);
@@ -428,6 +432,9 @@ void PropagationStage::run(StageRun& run) {
     const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
     std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
+    // Copies the passes keep of another grid are of no more use; their memory goes with them.
+    if (grid_.generation() != passes_grid_) passes_.release();
+    passes_grid_ = grid_.generation();
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                             "/effects/indirect", "/effects/perturbation", "/material/albedo", "/material/anisotropy",
                             "/render/backend"})
@@ -539,6 +546,8 @@ StageActivity EyePassStage::activity(const Scene& s) const {
 }
 
 void EyePassStage::run(StageRun& run) {
+    if (grid_.generation() != passes_grid_) passes_.release();   // as the propagation's, above
+    passes_grid_ = grid_.generation();
     const IlluminationVolume& lit = propagation_.volume();
     volume_ = lit;
     const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));
