@@ -25,4 +25,19 @@ void reserveInHugePages(std::vector<T>& v, size_t n) {
     adviseHugePages(v.data(), n * sizeof(T));
 }
 
+// v.assign(n, value) in memory advised as above.
+template <class T>
+void assignInHugePages(std::vector<T>& v, size_t n, const T& value) {
+    reserveInHugePages(v, n);
+    v.assign(n, value);
+}
+
+// v.resize(n) in memory advised as above, for a buffer about to be written whole: where it
+// allocates, the old elements are not kept.
+template <class T>
+void resizeInHugePages(std::vector<T>& v, size_t n) {
+    reserveInHugePages(v, n);
+    v.resize(n);
+}
+
 }  // namespace voxlux

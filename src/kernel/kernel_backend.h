@@ -53,11 +53,17 @@ public:
     }
     // Drops the passes and what they keep between runs (device buffers, scratch copies).
     void release() { passes_.reset(); }
+    // Drops them when the data they keep copies of changes, named by its `generation`.
+    void keepFor(uint64_t generation) {
+        if (generation != kept_for_) release();
+        kept_for_ = generation;
+    }
 
 private:
     Factory make_;
     std::unique_ptr<Passes> passes_;
     Device device_ = Device::Cpu;
+    uint64_t kept_for_ = 0;
 };
 
 }  // namespace voxlux

@@ -191,8 +191,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
     g.cell = float(std::max({voxels.x, voxels.y, voxels.z})) / float(resolution);
     // Voxel v's value holds on [v - 1/2, v + 1/2): the grid starts half a voxel below the first.
     g.origin = glm::vec3(bmin * VX_BRICK) - 0.5f;
-    reserveInHugePages(g.values, g.cells() * g.planes);
-    g.values.assign(g.cells() * g.planes, 0.0f);
+    assignInHugePages(g.values, g.cells() * g.planes, 0.0f);
     const bool emits = contents.emission && k.P.emission_sources > 0;
     if (emits) g.emission.assign(g.cells() * 3, 0.0f);
     const AxisCells ax{g.dims.x, voxels.x, g.cell}, ay{g.dims.y, voxels.y, g.cell}, az{g.dims.z, voxels.z, g.cell};
@@ -267,10 +266,12 @@ bool uniformAlbedo(const KernelInputs& in) { return in.params.use_transfer == 0 
 
 LightGrid withUniformBleeding(const LightGrid& extinction, glm::vec3 albedo, float bleeding) {
     assert(extinction.planes == 1);
-    LightGrid g = extinction;
-    g.planes = 4;
+    // Every field but the values as they are; the values in one allocation for all four planes.
+    LightGrid g{.dims = extinction.dims, .origin = extinction.origin, .cell = extinction.cell, .planes = 4, .values = {},
+                .needed = extinction.needed, .emission = extinction.emission, .clamped_cells = extinction.clamped_cells};
     const size_t plane = g.cells();
-    g.values.resize(4 * plane);
+    resizeInHugePages(g.values, 4 * plane);
+    std::copy(extinction.values.begin(), extinction.values.end(), g.values.begin());
     for (int c = 0; c < 3; ++c) {
         const double weight = 1.0 - double(bleeding) * albedo[c];
         tbb::parallel_for(tbb::blocked_range<size_t>(0, plane, 1 << 16), [&](const tbb::blocked_range<size_t>& r) {

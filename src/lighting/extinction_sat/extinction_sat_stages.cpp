@@ -136,8 +136,7 @@ void LightCacheStage::run(StageRun& run) {
                              cache_.ambient_width == layout.ambient_width && cache_.shadow_channel == layout.shadow_channel &&
                              cache_.dims == layout.dims && !channel_keys_.empty();
     if (!same_layout) {
-        reserveInHugePages(layout.values, grid.cells() * size_t(layout.channels));
-        layout.values.assign(grid.cells() * size_t(layout.channels), 0.0f);
+        assignInHugePages(layout.values, grid.cells() * size_t(layout.channels), 0.0f);
         cache_ = std::move(layout);
         channel_keys_.assign(size_t(cache_.channels), "");
     }

@@ -48,8 +48,7 @@ namespace {
 void prepareSummedVolume(const LightGrid& g, SummedVolume& s) {
     s.dims = g.dims;
     s.planes = g.planes;
-    reserveInHugePages(s.words, s.planeEntries() * size_t(s.planes) * 3);
-    s.words.resize(s.planeEntries() * size_t(s.planes) * 3);
+    resizeInHugePages(s.words, s.planeEntries() * size_t(s.planes) * 3);
     const size_t cells = g.cells();
     for (int p = 0; p < g.planes; ++p) {
         const float* v = g.values.data() + p * cells;

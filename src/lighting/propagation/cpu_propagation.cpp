@@ -37,8 +37,7 @@ struct SliceMajor {
 
     // `channels` floats per cell from natural to x-major order, into `out`.
     void toSlices(const float* in, int channels, std::vector<float>& out) const {
-        reserveInHugePages(out, size_t(dims.x) * dims.y * dims.z * channels);
-        out.resize(size_t(dims.x) * dims.y * dims.z * channels);
+        resizeInHugePages(out, size_t(dims.x) * dims.y * dims.z * channels);
         forEachCell([&](size_t n, size_t s) {
             for (int c = 0; c < channels; ++c) out[s * channels + c] = in[n * channels + c];
         });
@@ -235,8 +234,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
     if (x_major) {
         sigma = &slicedSigma(pass, layout, scratch);
         if (pass.input) layout.toSlices(pass.input->data(), 3, scratch.input);
-        reserveInHugePages(scratch.result, sigma->size() * 3);
-        scratch.result.resize(sigma->size() * 3);   // every cell is written: no need to clear it
+        resizeInHugePages(scratch.result, sigma->size() * 3);   // every cell is written: no need to clear it
     }
     const glm::ivec3 stride = x_major ? glm::ivec3(dims.z * dims.y, 1, dims.y) : glm::ivec3(1, dims.x, dims.x * dims.y);
     assert(stride[u] == 1);   // rows are contiguous: the row batch and the row writes below rely on it

@@ -27,8 +27,7 @@ void sweepSources(const std::vector<float>& input, kernel::VxPropParams Q, const
     Q.tint = glm::vec3(1.0f);
     Q.weight = kFourPi / 6.0f;
     Q.light = kernel::VxLight{};
-    reserveInHugePages(volume.values, input.size());
-    volume.values.assign(input.size(), 0.0f);
+    assignInHugePages(volume.values, input.size(), 0.0f);
     PropagationPass pass;
     pass.march = &inputs.params;
     pass.noise = &inputs.noise;

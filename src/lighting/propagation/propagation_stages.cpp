@@ -432,9 +432,7 @@ void PropagationStage::run(StageRun& run) {
     const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
     std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
-    // Copies the passes keep of another grid are of no more use; their memory goes with them.
-    if (grid_.generation() != passes_grid_) passes_.release();
-    passes_grid_ = grid_.generation();
+    passes_.keepFor(grid_.generation());   // copies the passes keep of another grid go
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                             "/effects/indirect", "/effects/perturbation", "/material/albedo", "/material/anisotropy",
                             "/render/backend"})
@@ -515,8 +513,7 @@ void PropagationStage::run(StageRun& run) {
             volume_.chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
             volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
             volume_.world_to_illum = fine.world_to_grid;
-            reserveInHugePages(volume_.values, 3 * volume_.cells() + 3 * volume_.chromaCells());
-            volume_.values.assign(3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
+            assignInHugePages(volume_.values, 3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
             report.mode = LightUpdate::Mode::Entire;
             report.lights_in = int(inputs.lights.size());
             runPasses(all_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
@@ -546,8 +543,7 @@ StageActivity EyePassStage::activity(const Scene& s) const {
 }
 
 void EyePassStage::run(StageRun& run) {
-    if (grid_.generation() != passes_grid_) passes_.release();   // as the propagation's, above
-    passes_grid_ = grid_.generation();
+    passes_.keepFor(grid_.generation());   // as the propagation's, above
     const IlluminationVolume& lit = propagation_.volume();
     volume_ = lit;
     const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));

@@ -132,7 +132,6 @@ private:
     std::string setup_key_;             // the grid and knobs the light sweeps were computed with
     std::vector<kernel::VxLight> applied_;   // the lights the volume holds
     double drift_ = 0.0;                // peak radiance swept in and out since the last entire update
-    uint64_t passes_grid_ = 0;          // the grid generation the passes' kept copies are of
     LightUpdate last_update_;
     IlluminationVolume volume_;
 };
@@ -160,7 +159,6 @@ private:
     const IlluminationGridStage& grid_;
     const PropagationStage& propagation_;
     OnDevice<PropagationPasses> passes_{makePropagationPasses};
-    uint64_t passes_grid_ = 0;          // the grid generation the passes' kept copies are of
     IlluminationVolume volume_;
 };
 
