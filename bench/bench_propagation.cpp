@@ -203,10 +203,12 @@ void paperComparison(bool quick) {
         return s;
     };
     float nudge = 0.0f;
-    auto propagation = [&](const Scene& s) {
+    // Best of `repeats` propagation stages; `sweeps`, if given, gets how many sweeps the stage ran.
+    auto propagation = [&](const Scene& s, int* sweeps = nullptr) {
         double t = 1e30;
         for (int run = 0; run < repeats; ++run) {
             const FrameResult f = renderNudged(renderer, s, nudge += 1e-4f);
+            if (sweeps && f.light_update) *sweeps = f.light_update->sweeps;
             if (wasReused(f, "propagation")) std::printf("WARNING: propagation reused, not timed\n");
             if (!wasReused(f, "light_grid") || !wasReused(f, "illumination_grid")) std::printf("WARNING: light grid rebuilt\n");
             if (const size_t bad = nonFinitePixels(f)) std::printf("WARNING: %zu non-finite pixel channels\n", bad);
@@ -218,6 +220,7 @@ void paperComparison(bool quick) {
     std::printf("| light | blend_axes | sweeps (axis, weight) | indirect | propagation stage (s) | per sweep (s) | "
                 "ns/cell | B/cell | GB/s | of copy bw |\n|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<double> with_indirect(lights.size(), 0.0);   // the stage with 9 taps, per light
+    double y_sweep[2] = {0.0, 0.0};                           // the -y light's direct and indirect sweep
     for (size_t li = 0; li < lights.size(); ++li) {
         const PaperLight& l = lights[li];
         // The grid's cells are cubes, so the light's direction in grid space is its world direction.
@@ -233,6 +236,41 @@ void paperComparison(bool quick) {
         row("none", direct, direct / k, kSweepBytes);
         row("9 taps", both, (both - direct) / k, kSweepBytes);
         with_indirect[li] = both;
+        if (li == 1) {   // the -y light: what a point light's sweep is compared with below
+            y_sweep[0] = direct;
+            y_sweep[1] = both - direct;
+        }
+    }
+    std::printf("\n");
+
+    // Point lights: each cell reads the previous slice where its own ray from the light crosses it,
+    // and weighs its value by its own flow. Far above the volume one -y sweep carries the light (the
+    // volume's slopes stay under 0.25); just outside a corner of the box several sweeps do, each
+    // over the cells within slope 3 of the light.
+    const glm::vec3 centre(0.5f * float(n));
+    const float far = 0.5f * float(n) + 1.2f * std::sqrt(3.0f) * float(n), near = 1.05f * 0.5f * std::sqrt(3.0f) * float(n);
+    const struct {
+        const char* name;
+        glm::vec3 position;
+    } points[] = {{"above, 1.2 diagonals over the top", centre + glm::vec3(0.0f, far, 0.0f)},
+                  {"just outside a corner of the box", centre + near * glm::normalize(glm::vec3(0.6f, 1.0f, 0.45f))}};
+    std::printf("Point lights, the same stage; per sweep against the -y light's sweep above (direct: its stage; "
+                "indirect: its stage with 9 taps less without).\n\n");
+    std::printf("| point light | sweeps | indirect | propagation stage (s) | per sweep (s) | per sweep / -y sweep |\n"
+                "|---|---|---|---|---|---|\n");
+    for (const auto& point : points) {
+        Scene s = sceneFor(lights[1], false);
+        s.lights[0].type = LightType::Point;
+        s.lights[0].position = point.position;
+        s.lights[0].intensity = key.intensity * glm::dot(point.position - centre, point.position - centre);
+        int sweeps = 0;
+        const double direct = propagation(s, &sweeps);
+        s.effects.indirect = in;
+        const double both = propagation(s);
+        const double k = std::max(sweeps, 1);
+        std::printf("| %s | %d | none | %.3f | %.3f | %.2f |\n", point.name, sweeps, direct, direct / k, direct / k / y_sweep[0]);
+        std::printf("| %s | %d | 9 taps | %.3f | %.3f | %.2f |\n", point.name, sweeps, both, (both - direct) / k,
+                    (both - direct) / k / y_sweep[1]);
     }
     std::printf("\n");
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include "kernel/cpu_kernel.h"
 #include "lighting/extinction_sat/cpu_light_pass.h"
@@ -135,7 +136,9 @@ TEST(BatchPaths, LightPassRowsMatchThePerCellQueries) {
 
 // One sweep of a directional light along each axis both ways, direct (one channel, no blur),
 // indirect (RGB, blurred, attenuated by a transport colour) and a source sweep (indirect, adding
-// each cell's own source): the batched volume equals the per-cell sweep to float rounding.
+// each cell's own source), and of a point light inside the grid, direct and indirect (the cells
+// near its plane step several cells sideways, or read beyond the slice, and are redone per cell):
+// the batched volume equals the per-cell sweep to float rounding.
 TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
     const glm::ivec3 dims(24, 20, 18);
     const size_t cells = size_t(dims.x) * dims.y * dims.z;
@@ -152,9 +155,11 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
     CpuSweepScratch scratch;
     for (int axis = 0; axis < 3; ++axis)
         for (int sign : {-1, 1})
-            for (const char* kind : {"direct", "indirect", "source"}) {
-                const bool indirect = kind[0] != 'd', source = kind[0] == 's';
-                const int which = (2 * axis + (sign > 0) + (indirect ? 1 : 0) + (source ? 1 : 0)) % 3;
+            for (const std::string kind : {"direct", "indirect", "source", "point", "point indirect"}) {
+                const bool point = kind.rfind("point", 0) == 0;
+                const bool indirect = kind == "indirect" || kind == "source" || kind == "point indirect";
+                const bool source = kind == "source";
+                const int which = (2 * axis + (sign > 0) + (indirect ? 1 : 0) + (source ? 1 : 0) + (point ? 1 : 0)) % 3;
                 const std::vector<float>& sigma = sigmas[which];
                 // A flow mostly along the sweep's axis, oblique enough that reads fall between cells.
                 glm::vec3 travel(0.35f, -0.2f, 0.25f);
@@ -178,6 +183,15 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 Q.cells_per_voxel = 1.0f;
                 Q.tint = glm::vec3(1.0f, 0.8f, 0.6f);
                 Q.source_sweep = source ? 1 : 0;
+                if (point) {   // as the propagation stage sets a point light's sweep
+                    glm::vec3 at(0.4f * float(dims.x) + 0.13f, 0.55f * float(dims.y) + 0.27f, 0.45f * float(dims.z) + 0.31f);
+                    at[axis] = float(dims[axis]) * (sign > 0 ? 0.3f : 0.7f);
+                    Q.light = pointLight(glm::vec3(grid_to_world * glm::vec4(at, 1.0f)));
+                    Q.source = at;
+                    Q.source_is_position = 1;
+                    Q.per_cell_flow = 1;
+                    Q.max_slope = 3 + int(std::ceil(std::sqrt(3.0f) * Q.blur_tan));
+                }
 
                 IlluminationVolume batched;
                 batched.dims = dims;
@@ -219,7 +233,7 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 // Measured at most 1.1e-6 direct and 2.0e-6 for source sweeps: the batch sums the
                 // trapezoid as weights times samples. A stale extinction copy would be off by far more.
                 const double error = relativeError(batched.values, per_cell);
-                std::printf("  sweep, axis %d, sign %+d, %-8s max |batch - per cell| / peak %.2g\n", axis, sign, kind, error);
+                std::printf("  sweep, axis %d, sign %+d, %-14s max |batch - per cell| / peak %.2g\n", axis, sign, kind.c_str(), error);
                 EXPECT_LE(error, 3e-6) << "axis " << axis << ", sign " << sign << ", " << kind;
             }
 }

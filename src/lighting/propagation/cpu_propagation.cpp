@@ -213,6 +213,213 @@ private:
     float step_world_ = 0.0f;
 };
 
+// Bilinear read between cell centres of one slice (nu x nv cells, `stride` floats between rows),
+// 0 beyond it, as vx_prop_sigma_slice reads the extinction; (ga, gb) is the point less half a
+// cell. Indices are clamped, so that SIMD lanes may gather every corner and drop the outside ones.
+inline float cellOrZero(const float* slice, int nu, int nv, int stride, int a, int b) {
+    const bool inside = a >= 0 && b >= 0 && a < nu && b < nv;
+    const float value = slice[inside ? b * stride + a : 0];
+    return inside ? value : 0.0f;
+}
+inline float bilinearOrZero(const float* slice, int nu, int nv, int stride, float ga, float gb) {
+    const float fa = std::floor(ga), fb = std::floor(gb);
+    const int ia = int(fa), ib = int(fb);
+    return VX_BILERP(cellOrZero(slice, nu, nv, stride, ia, ib), cellOrZero(slice, nu, nv, stride, ia + 1, ib),
+                     cellOrZero(slice, nu, nv, stride, ia, ib + 1), cellOrZero(slice, nu, nv, stride, ia + 1, ib + 1), ga - fa,
+                     gb - fb);
+}
+
+// The CPU's batch form of vx_prop_cell for a point or spot light's sweep (Q.per_cell_flow),
+// unperturbed, on the slices past the one next to the light's plane. Each cell steps back along
+// its own ray from the light, so its reads land at offsets of its own (gathers), but every cell
+// goes through the same arithmetic: SIMD lanes over a row, in vx_prop_cell's order, and each
+// cell's weight as vx_prop_weight gives it. A lane whose step crosses more than kMaxPieces cells
+// sideways, or whose blur taps read beyond the slice (where the kernel reads the light itself), is
+// redone by vx_prop_cell, as is every cell of the first slice past the light's plane and of a
+// sweep that blends two axes (its weight needs the angles of vx_sweep_weight).
+class FlowRowBatch {
+public:
+    FlowRowBatch(kernel::CpuKernel& k, int nu, int nv) : k_(k), nu_(nu), nv_(nv) {
+        const kernel::VxPropParams& Q = k.Q;
+        axis_ = Q.axis;
+        u_ = k.vx_axis_u(axis_);
+        v_ = k.vx_axis_v(axis_);
+        usable_ = Q.per_cell_flow != 0 && Q.eye_sweep == 0 && Q.source_sweep == 0 && Q.blend_axes == 0 &&
+                  !k.vx_perturbed() && Q.strides[u_] == 1;
+        const float r_min = k.vx_prop_r_min();
+        r_min2_ = r_min * r_min;
+    }
+
+    bool usable() const { return usable_; }
+
+    // Row j's values (channels floats per cell) into `out` and its cells' weights into `weight`.
+    void row(int j, int prev, float* out, float* weight) const {
+        const kernel::VxPropParams& Q = k_.Q;
+        const float dir = float(Q.direction);
+        const float fa = float(Q.slice) + 0.5f - Q.source[axis_];   // the flow's component along the sweep
+        const bool lanes = usable_ && prev >= 0 && prev < Q.dims[axis_] && dir * fa > 0.0f &&
+                           dir * (float(prev) + 0.5f - Q.source[axis_]) > 0.0f;
+        if (!lanes) {
+            for (int i = 0; i < nu_; ++i) redo(i, j, out, weight);
+            return;
+        }
+        for (int base = 0; base < nu_; base += kMaxRow) {
+            Lanes l;
+            l.n = std::min(kMaxRow, nu_ - base);
+            if (axis_ == 0)
+                steps<0>(j, base, prev, fa, l, weight + base);
+            else if (axis_ == 1)
+                steps<1>(j, base, prev, fa, l, weight + base);
+            else
+                steps<2>(j, base, prev, fa, l, weight + base);
+            if (Q.channels == 1)
+                transport<1>(l, out + base);
+            else
+                transport<3>(l, out + size_t(base) * 3);
+            for (int q = 0; q < l.n; ++q)
+                if (l.state[q] == kRedo) redo(base + q, j, out, weight);
+        }
+    }
+
+private:
+    static constexpr int kMaxRow = 256;
+    static constexpr int kMaxPieces = 4;   // the default cone's sweeps reach slope 4 (Q.max_slope)
+    enum : int { kLanes, kDark, kRedo };
+
+    // A run of up to kMaxRow cells of a row, one SIMD lane each.
+    struct Lanes {
+        int n = 0;
+        float pu[kMaxRow], pv[kMaxRow];   // where the cell's step starts, on the previous slice
+        float radius[kMaxRow], tau[kMaxRow];
+        int state[kMaxRow];
+        float incoming[3][kMaxRow] = {};
+    };
+
+    // Each cell's step back to the previous slice, its optical depth (vx_prop_cell's composite
+    // trapezoid), its blur radius and its weight (vx_prop_weight without blending). The sweep's
+    // axis is a template argument, so that x, y and z of a step are known without a select.
+    template <int Axis>
+    void steps(int j, int base, int prev, float fa, Lanes& l, float* weight) const {
+        constexpr int U = Axis == 0 ? 1 : 0, V = Axis == 2 ? 1 : 2;   // vx_axis_u, vx_axis_v
+        const kernel::VxPropParams& Q = k_.Q;
+        const int nu = nu_, nv = nv_, n = l.n;
+        const int sv = Q.strides[V];
+        const float* sigma_here = k_.prop_sigma.data + size_t(Q.slice) * size_t(Q.strides[Axis]);
+        const float* sigma_prev = k_.prop_sigma.data + size_t(prev) * size_t(Q.strides[Axis]);
+        // Between the two slices the lower one is where the trilinear reads start.
+        const float* sigma_low = Q.direction > 0 ? sigma_prev : sigma_here;
+        const float* sigma_high = Q.direction > 0 ? sigma_here : sigma_prev;
+        const float den = std::max(std::abs(fa * Q.flow), 1e-6f), ba = fa * Q.flow / den;
+        const float fv = float(j) + 0.5f - Q.source[V], bv = fv * Q.flow / den;
+        const float su = Q.source[U], slope_limit = float(Q.max_slope) * (std::abs(fa) + 1.0f);
+        const float pa = float(Q.slice) + 0.5f - ba, flow = Q.flow, blur_tan = Q.blur_tan, w0 = Q.weight, r_min2 = r_min2_;
+        const glm::mat3 m(Q.grid_to_world);
+        float* __restrict pu = l.pu;
+        float* __restrict pv = l.pv;
+        float* __restrict radius = l.radius;
+        float* __restrict tau = l.tau;
+        int* __restrict state = l.state;
+        float bu[kMaxRow], sum[kMaxRow], step_world[kMaxRow];
+        int pieces[kMaxRow];
+#pragma omp simd
+        for (int q = 0; q < n; ++q) {
+            const int i = base + q;
+            const float fu = float(i) + 0.5f - su;
+            bu[q] = fu * flow / den;
+            float f[3], b[3];   // x, y, z
+            f[Axis] = fa, f[U] = fu, f[V] = fv;
+            b[Axis] = ba, b[U] = bu[q], b[V] = bv;
+            const float fx = f[0], fy = f[1], fz = f[2], bx = b[0], by = b[1], bz = b[2];
+            pu[q] = float(i) + 0.5f - bu[q];
+            pv[q] = float(j) + 0.5f - bv;
+            const float wx = m[0][0] * bx + m[1][0] * by + m[2][0] * bz, wy = m[0][1] * bx + m[1][1] * by + m[2][1] * bz,
+                        wz = m[0][2] * bx + m[1][2] * by + m[2][2] * bz;
+            step_world[q] = std::sqrt(wx * wx + wy * wy + wz * wz);
+            radius[q] = std::sqrt(bx * bx + by * by + bz * bz) * blur_tan;
+            pieces[q] = std::max(int(std::ceil(std::max(std::abs(bu[q]), std::abs(bv)) - 1e-3f)), 1);
+            const bool dark = std::max(std::abs(fu), std::abs(fv)) > slope_limit;
+            state[q] = dark ? kDark : (pieces[q] <= kMaxPieces ? kLanes : kRedo);
+            const float ax = std::abs(fx), ay = std::abs(fy), az = std::abs(fz);
+            const int principal = az >= ay && az >= ax ? 2 : (ay >= ax ? 1 : 0);
+            const float rx = m[0][0] * fx + m[1][0] * fy + m[2][0] * fz, ry = m[0][1] * fx + m[1][1] * fy + m[2][1] * fz,
+                        rz = m[0][2] * fx + m[1][2] * fy + m[2][2] * fz;
+            weight[q] = w0 * (principal == Axis ? 1.0f : 0.0f) / std::max(rx * rx + ry * ry + rz * rz, r_min2);
+        }
+#pragma omp simd
+        for (int q = 0; q < n; ++q)
+            sum[q] = 0.5f * (sigma_here[j * sv + base + q] + bilinearOrZero(sigma_prev, nu, nv, sv, pu[q] - 0.5f, pv[q] - 0.5f));
+        // The inner points of a step longer than a cell sideways: trilinear between the two slices,
+        // as far as the run's longest step needs (a light far away needs none).
+        int most = 1;
+#pragma omp simd reduction(max : most)
+        for (int q = 0; q < n; ++q) most = std::max(most, state[q] == kLanes ? pieces[q] : 1);
+        for (int piece = 1; piece < most; ++piece) {
+#pragma omp simd
+            for (int q = 0; q < n; ++q) {
+                const float f = float(piece) / float(pieces[q]);
+                const float ga = pa + ba * f - 0.5f, gu = pu[q] + bu[q] * f - 0.5f, gv = pv[q] + bv * f - 0.5f;
+                const float t = ga - std::floor(ga);
+                const float inner = glm::mix(bilinearOrZero(sigma_low, nu, nv, sv, gu, gv), bilinearOrZero(sigma_high, nu, nv, sv, gu, gv), t);
+                sum[q] += piece < pieces[q] ? inner : 0.0f;
+            }
+        }
+#pragma omp simd
+        for (int q = 0; q < n; ++q) tau[q] = sum[q] * step_world[q] / float(pieces[q]);
+    }
+
+    // The light a run of cells takes in from the previous slice, transmitted over its step, into
+    // `out` (C floats per cell): the blur taps (one, unblurred, for direct light) as bilinear reads
+    // around each cell's own point, every channel, times e^-(atten tau).
+    template <int C>
+    void transport(Lanes& l, float* __restrict out) const {
+        const kernel::VxPropParams& Q = k_.Q;
+        const int nu = nu_, nv = nv_, n = l.n, row = nu_ * C;
+        // The previous slice from each corner of a bilinear read: one 32-bit index for all four.
+        const float* c00 = k_.prop_prev.data;
+        const float *c10 = c00 + C, *c01 = c00 + row, *c11 = c00 + row + C;
+        const float* __restrict pu = l.pu;
+        const float* __restrict pv = l.pv;
+        const float* __restrict radius = l.radius;
+        int* __restrict state = l.state;
+        for (int t = 0; t < Q.tap_count; ++t) {
+            const float ox = Q.taps[t].offset.x, oy = Q.taps[t].offset.y, w = Q.taps[t].weight;
+            for (int c = 0; c < C; ++c) {
+                float* __restrict incoming = l.incoming[c];
+#pragma omp simd
+                for (int q = 0; q < n; ++q) {
+                    const float ga = pu[q] + radius[q] * ox - 0.5f, gb = pv[q] + radius[q] * oy - 0.5f;
+                    const float fa = std::floor(ga), fb = std::floor(gb);
+                    const int ia = int(fa), ib = int(fb);
+                    const bool inside = ia >= 0 && ib >= 0 && ia + 1 < nu && ib + 1 < nv;
+                    state[q] = !inside && state[q] == kLanes ? kRedo : state[q];
+                    const int at = inside ? ib * row + ia * C + c : 0;
+                    incoming[q] = kernel::vx_radiance_add(
+                        incoming[q], w * VX_BILERP(c00[at], c10[at], c01[at], c11[at], ga - fa, gb - fb));
+                }
+            }
+        }
+        for (int c = 0; c < C; ++c) {
+            const float kc = Q.atten[c];
+            const float* __restrict incoming = l.incoming[c];
+            const float* __restrict tau = l.tau;
+#pragma omp simd
+            for (int q = 0; q < n; ++q) out[q * C + c] = state[q] == kDark ? 0.0f : incoming[q] * k_.vx_exp(-kc * tau[q]);
+        }
+    }
+
+    void redo(int i, int j, float* out, float* weight) const {
+        const glm::vec3 value = k_.vx_prop_cell(i, j);
+        for (int ch = 0; ch < k_.Q.channels; ++ch) out[size_t(i) * k_.Q.channels + ch] = value[ch];
+        weight[i] = k_.vx_prop_weight(i, j);
+    }
+
+    kernel::CpuKernel& k_;
+    int nu_, nv_;
+    int axis_ = 0, u_ = 0, v_ = 0;
+    bool usable_ = false;
+    float r_min2_ = 0.0f;
+};
+
 }  // namespace
 
 void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSweepScratch& scratch) {
@@ -246,6 +453,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
         kernel::CpuKernel k;
         std::vector<float> prev, cur;
         std::unique_ptr<RowBatch> batch;
+        std::unique_ptr<FlowRowBatch> flow;
     };
     std::vector<std::unique_ptr<Lane>> lanes;
     for (const kernel::VxPropParams& Q : pass.sweeps) {
@@ -259,6 +467,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
         lane->prev.assign(size_t(nu) * nv * channels, 0.0f);
         lane->cur.assign(lane->prev.size(), 0.0f);
         lane->batch = std::make_unique<RowBatch>(lane->k, nu, nv);
+        lane->flow = std::make_unique<FlowRowBatch>(lane->k, nu, nv);
         lanes.push_back(std::move(lane));
     }
 
@@ -271,11 +480,35 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
         const int previous = slice - first.direction;
         tbb::parallel_for(tbb::blocked_range<int>(0, nv), [&](const tbb::blocked_range<int>& rows) {
             std::vector<float> rgb(size_t(nu) * 3);   // the row's light from every lane of the pass
+            std::vector<float> weights(nu);            // a point or spot light's weight per cell
             for (int j = rows.begin(); j < rows.end(); ++j) {
                 std::fill(rgb.begin(), rgb.end(), 0.0f);
                 for (auto& lane : lanes) {
                     kernel::CpuKernel& k = lane->k;
                     float* row = &lane->cur[size_t(j) * nu * channels];
+                    const glm::vec3 tint = k.Q.tint;
+                    const int step = channels == 1 ? 0 : 1;
+                    if (!eye && k.Q.per_cell_flow != 0) {   // a point or spot light: each cell's own weight
+                        if (lane->flow->usable()) {
+                            lane->flow->row(j, previous, row, weights.data());
+                        } else {
+                            for (int i = 0; i < nu; ++i) {
+                                const glm::vec3 value = k.vx_prop_cell(i, j);
+                                for (int ch = 0; ch < channels; ++ch) row[size_t(i) * channels + ch] = value[ch];
+                                weights[size_t(i)] = k.vx_prop_weight(i, j);
+                            }
+                        }
+#pragma omp simd
+                        for (int i = 0; i < nu; ++i) {
+                            const float* slot = row + size_t(i) * channels;
+                            float* sum = &rgb[size_t(i) * 3];
+                            const float w = weights[size_t(i)];
+                            sum[0] = kernel::vx_radiance_add(sum[0], w * tint[0] * slot[0]);
+                            sum[1] = kernel::vx_radiance_add(sum[1], w * tint[1] * slot[step]);
+                            sum[2] = kernel::vx_radiance_add(sum[2], w * tint[2] * slot[2 * step]);
+                        }
+                        continue;
+                    }
                     int first_batched = 0, last_batched = 0;
                     lane->batch->row(j, previous, row, first_batched, last_batched);
                     // The cells the batch left (the row's ends, or the whole row): the per-cell kernel.
@@ -287,21 +520,9 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
                     };
                     perCell(0, first_batched);
                     perCell(std::max(first_batched, last_batched), nu);
-                    const glm::vec3 tint = k.Q.tint;
-                    if (!eye && k.Q.per_cell_flow != 0) {   // a point or spot light: each cell's own weight
-                        for (int i = 0; i < nu; ++i) {
-                            const float w = k.vx_prop_weight(i, j);
-                            for (int ch = 0; ch < 3; ++ch) {
-                                float& sum = rgb[size_t(i) * 3 + ch];
-                                sum = kernel::vx_radiance_add(sum, w * tint[ch] * row[size_t(i) * channels + (channels == 1 ? 0 : ch)]);
-                            }
-                        }
-                        continue;
-                    }
                     // One weight for the row: (w * tint) * light, as the per-cell form multiplies.
                     const float w = eye ? 1.0f : k.Q.weight;
                     const float wt0 = w * tint[0], wt1 = w * tint[1], wt2 = w * tint[2];
-                    const int step = channels == 1 ? 0 : 1;
 #pragma omp simd
                     for (int i = 0; i < nu; ++i) {
                         const float* slot = row + size_t(i) * channels;

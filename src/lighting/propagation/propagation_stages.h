@@ -58,9 +58,9 @@ struct LightUpdate {
 // (docs/performance-multilight.md). They only have to order the two choices.
 struct SweepCost {
     static constexpr double kPass = 0.7;        // a pass's own walk over the extinction and the volume
-    static constexpr double kPointSweep = 8.0;  // a point or spot light's sweep (the per-cell kernel)
-    static constexpr double kIndirect = 6.0;    // times this for an indirect sweep (RGB, blurred)
-    static constexpr double kXAxis = 1.5;       // times this for an x pass (slice-major copies)
+    static constexpr double kPointSweep = 2.0;  // a point or spot light's sweep (its own step per cell)
+    static constexpr double kIndirect = 3.0;    // times this for an indirect sweep (RGB, blurred)
+    static constexpr double kXAxis = 1.2;       // times this for an x pass (slice-major copies)
 };
 
 // The volume is re-based (an entire update) before the light swept in and out since the last
