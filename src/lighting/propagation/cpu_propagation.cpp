@@ -244,8 +244,10 @@ public:
         axis_ = Q.axis;
         u_ = k.vx_axis_u(axis_);
         v_ = k.vx_axis_v(axis_);
+        // (A slice of at least 2 x 2 cells: a lane reading beyond it gathers at index 0, whose
+        // bilinear corners must still lie in the slice.)
         usable_ = Q.per_cell_flow != 0 && Q.eye_sweep == 0 && Q.source_sweep == 0 && Q.blend_axes == 0 &&
-                  !k.vx_perturbed() && Q.strides[u_] == 1;
+                  !k.vx_perturbed() && Q.strides[u_] == 1 && nu >= 2 && nv >= 2;
         const float r_min = k.vx_prop_r_min();
         r_min2_ = r_min * r_min;
     }

@@ -12,8 +12,8 @@
 //  eye_pass           the indirect light swept once more towards the camera (Ropinski Sec. 4.1):
 //                     the propagation's volume with its indirect block replaced, so a camera move
 //                     re-runs this sweep alone.
-// Cost: each sweep is linear in the cells it walks; a point light's sweep costs about 8 directional
-// ones and an indirect one 6 (SweepCost), which is what the selective update weighs.
+// Cost: each sweep is linear in the cells it walks; a point light's sweep costs about 2 directional
+// ones and an indirect one 4 (SweepCost), which is what the selective update weighs.
 #pragma once
 #include <functional>
 #include <string>
@@ -59,7 +59,7 @@ struct LightUpdate {
 struct SweepCost {
     static constexpr double kPass = 0.7;        // a pass's own walk over the extinction and the volume
     static constexpr double kPointSweep = 2.0;  // a point or spot light's sweep (its own step per cell)
-    static constexpr double kIndirect = 3.0;    // times this for an indirect sweep (RGB, blurred)
+    static constexpr double kIndirect = 4.0;    // times this for an indirect sweep (RGB, blurred)
     static constexpr double kXAxis = 1.2;       // times this for an x pass (slice-major copies)
 };
 
