@@ -252,8 +252,6 @@ public:
         r_min2_ = r_min * r_min;
     }
 
-    bool usable() const { return usable_; }
-
     // Row j's values (channels floats per cell) into `out` and its cells' weights into `weight`.
     void row(int j, int prev, float* out, float* weight) const {
         const kernel::VxPropParams& Q = k_.Q;
@@ -491,15 +489,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
                     const glm::vec3 tint = k.Q.tint;
                     const int step = channels == 1 ? 0 : 1;
                     if (!eye && k.Q.per_cell_flow != 0) {   // a point or spot light: each cell's own weight
-                        if (lane->flow->usable()) {
-                            lane->flow->row(j, previous, row, weights.data());
-                        } else {
-                            for (int i = 0; i < nu; ++i) {
-                                const glm::vec3 value = k.vx_prop_cell(i, j);
-                                for (int ch = 0; ch < channels; ++ch) row[size_t(i) * channels + ch] = value[ch];
-                                weights[size_t(i)] = k.vx_prop_weight(i, j);
-                            }
-                        }
+                        lane->flow->row(j, previous, row, weights.data());   // per cell where it cannot batch
 #pragma omp simd
                         for (int i = 0; i < nu; ++i) {
                             const float* slot = row + size_t(i) * channels;
