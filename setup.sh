@@ -11,6 +11,7 @@ packages=(
   libopenexr-dev openexr libtbb-dev libglm-dev nlohmann-json3-dev libcli11-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
   libopencolorio-dev opencolorio-tools libpng-dev
+  libnifti2-dev libdcmtk-dev  # voxlux import: NIfTI and DICOM scans (docs/scans.md)
   libgtest-dev
   libglfw3-dev libimgui-dev   # voxlux view: the window and its panels
   xvfb xdotool python3        # the viewer's tests: a virtual X display and real X events

@@ -40,6 +40,7 @@ const std::vector<Layer> kLayers = {
     {"kernel", {"src/kernel/", "shaders/", "src/lighting/[^/]+/kernel/"}},
     {"gl", {"src/gl/"}},
     {"io", {"src/io/"}},
+    {"scan", {"src/scan/"}},
     {"lighting", {"src/lighting/"}},
     {"backend", {"src/backend/"}},
     {"reference", {"src/reference/"}},

@@ -18,6 +18,7 @@
 #include "core/progress.h"
 #include "tools/sequence_render.h"
 #include "volume/make_cloud.h"
+#include "scan/scan_import.h"
 #include "render/light_edits.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
@@ -327,6 +328,42 @@ int runInfo(const std::string& vdb, bool json) {
         std::cout << "    bricks (8^3) " << g.bricks << ", " << bytesText(g.brick_bytes) << " in the atlas per channel\n"
                   << "    up axis " << g.up.reason << "\n";
     }
+    return 0;
+}
+
+int runImport(const ImportCommand& cmd) {
+    ImportOptions options;
+    options.grid_name = cmd.name;
+    options.background = cmd.background;
+    if (!cmd.dims.empty()) {
+        RawLayout raw;
+        raw.dims = {cmd.dims[0], cmd.dims[1], cmd.dims[2]};
+        if (!cmd.type) throw InputError(cmd.input + ": a raw volume needs --type (u8, u16, i16 or f32) beside --dims");
+        const auto type = rawTypeNamed(*cmd.type);
+        if (!type) throw InputError(cmd.input + ": --type '" + *cmd.type + "' is not a voxel type voxlux imports (u8, u16, i16 or f32)");
+        raw.type = *type;
+        if (!cmd.spacing.empty()) raw.spacing = {cmd.spacing[0], cmd.spacing[1], cmd.spacing[2]};
+        raw.header_bytes = cmd.header_bytes.value_or(0);
+        raw.big_endian = cmd.endian.value_or("little") == "big";
+        options.raw = raw;
+    } else if (cmd.type || !cmd.spacing.empty() || cmd.header_bytes || cmd.endian) {
+        throw InputError(cmd.input + ": --type, --spacing, --header-bytes and --endian describe a raw file, and need --dims X,Y,Z");
+    }
+    const ImportReport r = importScan(cmd.input, cmd.output, options);
+    const glm::ivec3 d = r.info.dims;
+    const glm::dvec3 edge(glm::length(glm::dvec3(r.info.index_to_world[0])), glm::length(glm::dvec3(r.info.index_to_world[1])),
+                          glm::length(glm::dvec3(r.info.index_to_world[2])));
+    std::cout << cmd.input << ": " << r.info.format << (r.info.modality.empty() ? "" : " " + r.info.modality) << ", " << d.x << " x "
+              << d.y << " x " << d.z << " voxels of " << edge.x << " x " << edge.y << " x " << edge.z << ", values " << r.min_value
+              << " .. " << r.max_value << (r.info.units.empty() ? "" : " " + r.info.units) << "\n";
+    if (r.non_finite > 0) std::cout << "  " << r.non_finite << " NaN or infinite voxels left inactive\n";
+    if (!r.skipped_files.empty()) {
+        std::cout << "  skipped " << r.skipped_files.size() << " files that are not DICOM images:";
+        for (const auto& f : r.skipped_files) std::cout << " " << f;
+        std::cout << "\n";
+    }
+    std::cout << "wrote " << cmd.output << ": grid '" << cmd.name << "', " << r.active_voxels << " of " << r.voxels
+              << " voxels above the background " << r.background << " are active\n";
     return 0;
 }
 

@@ -1,5 +1,6 @@
 // The voxlux subcommands. Each returns the process exit code; InputError escapes to main().
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,6 +63,18 @@ struct ViewCommand {
 // `voxlux view`; in a build without the viewer, an error saying so.
 int runView(const ViewCommand& cmd);
 int runInfo(const std::string& vdb, bool json);
+// voxlux import: a scan to a sparse .vdb (src/scan/scan_import.h). The raw layout's flags are
+// kept as given, so that one given without --dims can be refused by name.
+struct ImportCommand {
+    std::string input, output;
+    std::string name = "density";
+    std::optional<float> background;
+    std::vector<int> dims;
+    std::optional<std::string> type, endian;
+    std::vector<double> spacing;
+    std::optional<std::uint64_t> header_bytes;
+};
+int runImport(const ImportCommand& cmd);
 int runMakeCloud(const std::string& output, int resolution, unsigned seed);
 
 }  // namespace voxlux

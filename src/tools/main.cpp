@@ -1,4 +1,4 @@
-// voxlux command line: render, scene, study, info, make-cloud. Errors are one line on stderr.
+// voxlux command line: render, scene, study, info, import, make-cloud. Errors are one line on stderr.
 #include <unistd.h>
 
 #include <filesystem>
@@ -85,6 +85,18 @@ int main(int argc, char** argv) {
     auto* infoCmd = app.add_subcommand("info", "list the grids of a .vdb file");
     infoCmd->add_option("volume", infoInput, "volume .vdb")->required();
     infoCmd->add_flag("--json", infoJson, "print JSON for pipeline tools");
+
+    voxlux::ImportCommand import;
+    auto* importCmd = app.add_subcommand("import", "convert a scan (DICOM folder, NIfTI, VolPack .den, raw) to a sparse .vdb (docs/scans.md)");
+    importCmd->add_option("input", import.input, "DICOM series folder, .nii/.nii.gz, .den, or a raw file with --dims and --type")->required();
+    importCmd->add_option("-o,--output", import.output, "output .vdb")->required();
+    importCmd->add_option("--name", import.name, "the grid's name")->capture_default_str();
+    importCmd->add_option("--background", import.background, "voxels at or below this value are inactive (default: the scan's minimum)");
+    importCmd->add_option("--dims", import.dims, "raw: voxels along x,y,z (x fastest)")->delimiter(',')->expected(3);
+    importCmd->add_option("--type", import.type, "raw: u8|u16|i16|f32");
+    importCmd->add_option("--spacing", import.spacing, "raw: voxel edges along x,y,z (default 1,1,1)")->delimiter(',')->expected(3);
+    importCmd->add_option("--header-bytes", import.header_bytes, "raw: bytes before the first voxel (default 0)");
+    importCmd->add_option("--endian", import.endian, "raw: little|big (default little)")->check(CLI::IsMember({"little", "big"}));
 
     voxlux::StudyCommand study;
     auto* studyCmd = app.add_subcommand(
@@ -187,6 +199,7 @@ int main(int argc, char** argv) {
         if (*statusCmd) return voxlux::farmStatus(farmJobDir, std::cout);
         if (*collectCmd) return voxlux::farmCollect(farmJobDir, collect, std::cout);
         if (*infoCmd) return voxlux::runInfo(infoInput, infoJson);
+        if (*importCmd) return voxlux::runImport(import);
         if (*viewCmd) return voxlux::runView(view);
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
     } catch (const voxlux::Interrupted&) {

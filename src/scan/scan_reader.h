@@ -1,0 +1,34 @@
+// A scanned volume (CT, MRI) as a stack of slices: its size, where each voxel sits in the world,
+// and its values slice by slice, so that an import holds one slice at a time beside the grid it
+// builds. Values are what the file means them to be (its rescale applied: Hounsfield units for CT).
+// Each format is one reader: raw_reader.h (raw and VolPack .den), nifti_reader.h, dicom_reader.h.
+#pragma once
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+namespace voxlux {
+
+struct ScanInfo {
+    std::string source;                // the file or folder, for messages
+    glm::ivec3 dims{0};                // voxels along i (fastest), j, k (slices)
+    glm::dmat4 index_to_world{1.0};    // voxel (i, j, k)'s centre -> world; RAS millimetres for NIfTI and DICOM
+    std::string format;                // "raw", "VolPack .den", "NIfTI-1", "NIfTI-2", "DICOM"
+    std::string modality;              // "CT", "MR", ...; "" when the file does not say
+    std::string units;                 // "HU" for CT; "" when the file does not say
+};
+
+class ScanReader {
+public:
+    virtual ~ScanReader() = default;
+    const ScanInfo& info() const { return info_; }
+    // Slice k (0 <= k < dims.z): dims.x * dims.y values, i fastest. Throws InputError naming the
+    // file when it cannot be read. May be called more than once for a slice.
+    virtual void readSlice(int k, float* out) = 0;
+
+protected:
+    ScanInfo info_;
+};
+
+}  // namespace voxlux
