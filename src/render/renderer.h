@@ -105,10 +105,11 @@ private:
     ColorSpaceStage color_space_;
     ColorTransformsStage color_transforms_{color_space_};
     LoadStage load_;
-    BrickStage brick_{load_};
-    ClassifyStage classify_{load_, brick_};
+    Transfer2dStage transfer_2d_{load_};
+    BrickStage brick_{transfer_2d_};
+    ClassifyStage classify_{transfer_2d_, brick_};
     EmptyFrameStage empty_check_{classify_};
-    CameraStage camera_{load_};
+    CameraStage camera_{transfer_2d_};
     LightGridStage light_grid_{brick_, classify_, {{"the SAT", lightCacheRuns}, {"the illumination volume", illuminationVolumeRuns}}};
     SatStage sat_{brick_, classify_, light_grid_};
     LightCacheStage light_cache_{brick_, classify_, sat_};
@@ -118,7 +119,7 @@ private:
     MarchStage march_{color_space_, brick_, classify_, camera_, {light_cache_, propagation_, eye_pass_}};
     GradeStage grade_{march_, color_transforms_};
     WriteStage write_{grade_, camera_, color_transforms_};
-    RenderGraph graph_{{&color_space_, &color_transforms_, &load_, &brick_, &classify_, &empty_check_, &camera_,
+    RenderGraph graph_{{&color_space_, &color_transforms_, &load_, &transfer_2d_, &brick_, &classify_, &empty_check_, &camera_,
                          &light_grid_, &sat_, &light_cache_, &illumination_grid_, &propagation_, &eye_pass_, &march_,
                          &grade_, &write_}};
 };

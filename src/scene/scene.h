@@ -39,6 +39,22 @@ struct TransferPoint {
     glm::vec3 albedo{1.0f};
 };
 
+// One region of a two-dimensional transfer function (Kniss, Kindlmann and Hansen 2002): a rectangle
+// or a triangle in the plane of a voxel's value and its gradient magnitude (value per world unit).
+// Its weight is 1 inside; `fade` (0..1) ramps it from 0 at the edges to 1 at that share of the way
+// to the centre, so that a boundary between materials is soft rather than one voxel sharp (a
+// gradient range from 0 fades at its upper end only).
+constexpr float kAnyGradient = 3.0e38f;    // a rectangle's gradient range without an upper end
+struct TransferRegion {
+    std::string name;                      // optional: what the region selects ("skin", "bone")
+    bool triangle = false;
+    glm::vec2 value{0.0f}, gradient{0.0f, kAnyGradient};   // rectangle: [lo, hi] along each axis
+    std::array<glm::vec2, 3> corners{};    // triangle: (value, gradient) corners
+    float fade = 0.0f;
+    float extinction = 0.0f;               // multiplies material.density_scale
+    glm::vec3 albedo{1.0f};                // multiplies material.albedo
+};
+
 // What density_scale's extinction is per: a world unit, or the length of a voxel (the smallest
 // edge), so that a look carries over between caches of different scales.
 enum class DensityUnits { World, Voxel };
@@ -49,6 +65,9 @@ struct Material {
     glm::vec3 albedo{0.9f};
     float anisotropy = 0.0f;               // Henyey-Greenstein g
     std::vector<TransferPoint> transfer;   // empty: extinction = density * density_scale
+    // Non-empty: each voxel is classified by its value and gradient magnitude before it is
+    // interpolated (src/optics/transfer_function_2d.h); excludes `transfer`.
+    std::vector<TransferRegion> transfer_2d;
 };
 
 // Ambient is uniform light from every direction (radiance color * intensity), occluded only when

@@ -10,6 +10,7 @@
 #include <glm/gtx/component_wise.hpp>
 
 #include "optics/emission.h"
+#include "optics/transfer_presets.h"
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "kernel/kernel_types.h"
@@ -68,8 +69,51 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
     return v;
 }
 
+// A region of material.transfer_function_2d: a rectangle ("value" and "gradient" ranges) or a
+// triangle ("triangle": three [value, gradient] corners).
+TransferRegion readTransferRegion(const JsonObject& o) {
+    o.rejectUnknown({"name", "value", "gradient", "triangle", "fade", "extinction", "albedo"});
+    TransferRegion r;
+    r.name = o.string("name", "");
+    r.triangle = o.has("triangle");
+    if (r.triangle) {
+        if (o.has("value") || o.has("gradient")) o.fail("triangle", "a region is a triangle or a rectangle (value and gradient), not both");
+        const nlohmann::json& t = o.raw("triangle");
+        const auto corner = [](const nlohmann::json& c) {
+            return c.is_array() && c.size() == 2 && c[0].is_number() && c[1].is_number() && std::isfinite(c[0].get<double>()) &&
+                   std::isfinite(c[1].get<double>());
+        };
+        if (!t.is_array() || t.size() != 3 || !corner(t[0]) || !corner(t[1]) || !corner(t[2]))
+            o.fail("triangle", "expected three [value, gradient] corners");
+        for (int i = 0; i < 3; ++i) r.corners[size_t(i)] = glm::vec2(t[size_t(i)][0].get<float>(), t[size_t(i)][1].get<float>());
+        const glm::vec2 u = r.corners[1] - r.corners[0], v = r.corners[2] - r.corners[0];
+        if (!(std::abs(u.x * v.y - u.y * v.x) > 0.0f)) o.fail("triangle", "its corners lie on one line");
+        for (const glm::vec2& c : r.corners)
+            if (c.y < 0.0f) o.fail("triangle", "a gradient magnitude is 0 or more");
+    } else {
+        const auto range = [&](const std::string& key) {
+            const std::vector<float> v = o.numbers(key, 2);
+            if (!(v[0] < v[1]) || !std::isfinite(v[0]) || !std::isfinite(v[1])) o.fail(key, "expected [lo, hi], finite, with lo < hi");
+            return glm::vec2(v[0], v[1]);
+        };
+        if (!o.has("value")) o.fail("a region needs \"value\" and \"gradient\" ranges (a rectangle) or \"triangle\" corners");
+        r.value = range("value");
+        if (o.has("gradient")) r.gradient = range("gradient");
+        if (r.gradient.x < 0.0f) o.fail("gradient", "a gradient magnitude is 0 or more");
+    }
+    r.fade = o.number("fade", 0.0f);
+    if (!(r.fade >= 0.0f && r.fade <= 1.0f)) o.fail("fade", "must lie in [0, 1]");
+    if (!r.triangle && r.fade > 0.0f && !o.has("gradient")) o.fail("fade", "needs a finite gradient range to fade over");
+    r.extinction = o.number("extinction");
+    if (!(r.extinction >= 0.0f) || !std::isfinite(r.extinction)) o.fail("extinction", "must be a finite 0 or more");
+    r.albedo = o.vec3("albedo", glm::vec3(1.0f));
+    if (glm::any(glm::lessThan(r.albedo, glm::vec3(0))) || glm::any(glm::greaterThan(r.albedo, glm::vec3(1))))
+        o.fail("albedo", "each component must lie in [0, 1]");
+    return r;
+}
+
 Material readMaterial(const JsonObject& o) {
-    o.rejectUnknown({"density_scale", "density_units", "albedo", "anisotropy", "transfer_function"});
+    o.rejectUnknown({"density_scale", "density_units", "albedo", "anisotropy", "transfer_function", "transfer_function_2d"});
     Material m;
     m.density_scale = o.number("density_scale", m.density_scale);
     if (m.density_scale < 0) o.fail("density_scale", "must be 0 or more");
@@ -89,6 +133,22 @@ Material readMaterial(const JsonObject& o) {
             m.transfer.push_back(t);
         }
         if (m.transfer.size() < 2) o.fail("transfer_function", "needs at least 2 control points");
+    }
+    if (o.has("transfer_function_2d")) {
+        if (o.has("transfer_function")) o.fail("transfer_function_2d", "a material has one transfer function: remove transfer_function");
+        if (o.raw("transfer_function_2d").is_string()) {   // a preset's name
+            const std::string name = o.string("transfer_function_2d");
+            const TransferPreset* preset = findTransferPreset(name);
+            if (!preset) {
+                std::string names;
+                for (const TransferPreset& p : transferPresets()) names += (names.empty() ? "" : ", ") + p.name;
+                o.fail("transfer_function_2d", "'" + name + "' is not a preset (" + names + ") or a list of regions");
+            }
+            m.transfer_2d = preset->regions;
+        } else {
+            for (const auto& r : o.objects("transfer_function_2d")) m.transfer_2d.push_back(readTransferRegion(r));
+        }
+        if (m.transfer_2d.empty()) o.fail("transfer_function_2d", "needs at least one region");
     }
     return m;
 }
@@ -586,6 +646,8 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     if (root.has("lights"))
         for (const auto& l : root.objects("lights")) s.lights.push_back(readLight(l));
     if (root.has("camera")) s.camera = readCamera(root.object("camera"));
+    if (!s.material.transfer_2d.empty() && s.volume.color)
+        root.fail("volume", "color: the 2D transfer function (material.transfer_function_2d) gives the albedo; remove volume.color");
     if (root.has("render")) s.render = readRender(root.object("render"));
     if (root.has("effects")) s.effects = readEffects(root.object("effects"));
     if (s.render.method == RenderMethod::Reference && (s.effects.surface || s.effects.perturbation))

@@ -141,6 +141,18 @@ nlohmann::json sceneToJson(const Scene& s) {
     m["anisotropy"] = decimal(s.material.anisotropy);
     for (const auto& p : s.material.transfer)
         m["transfer_function"].push_back({{"value", decimal(p.value)}, {"extinction", decimal(p.extinction)}, {"albedo", vec(p.albedo)}});
+    for (const auto& r : s.material.transfer_2d) {
+        nlohmann::json region = {{"fade", decimal(r.fade)}, {"extinction", decimal(r.extinction)}, {"albedo", vec(r.albedo)}};
+        if (!r.name.empty()) region["name"] = r.name;
+        const auto pair = [](glm::vec2 p) { return nlohmann::json::array({decimal(p.x), decimal(p.y)}); };
+        if (r.triangle) {
+            region["triangle"] = {pair(r.corners[0]), pair(r.corners[1]), pair(r.corners[2])};
+        } else {
+            region["value"] = pair(r.value);
+            if (r.gradient != glm::vec2(0.0f, kAnyGradient)) region["gradient"] = pair(r.gradient);
+        }
+        m["transfer_function_2d"].push_back(region);
+    }
 
     j["lights"] = nlohmann::json::array();
     for (const auto& l : s.lights) j["lights"].push_back(lightToJson(l));

@@ -1,14 +1,17 @@
 #include "volume/volume_stages.h"
 
 #include "scene/camera.h"
+#include "volume/transfer_2d.h"
 #include "volume/velocity.h"
 #include "core/error.h"
 
 namespace voxlux {
 namespace {
 
-std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas) {
+std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas, const Scene& scene) {
     std::string grid = "grid '" + v.density->getName() + "'";
+    if (!scene.material.transfer_2d.empty() && atlas.active_voxels == 0)
+        return v.file + ": the 2D transfer function selects none of " + grid + "'s voxels (material.transfer_function_2d)";
     if (atlas.active_voxels == 0) return v.file + ": " + grid + " has no active voxels";
     std::string why = v.file + ": " + grid + " has nothing visible: its " + std::to_string(atlas.active_voxels) +
                       " active voxels are all zero";
@@ -54,8 +57,19 @@ size_t LoadStage::outputBytes() const {
     return bytes;
 }
 
+StageActivity Transfer2dStage::activity(const Scene& s) const {
+    if (s.material.transfer_2d.empty()) return {false, "skipped: no 2D transfer function (material.transfer_function_2d)"};
+    return {true, "classifies each voxel by value and gradient magnitude into extinction and albedo (" +
+                      std::to_string(s.material.transfer_2d.size()) + " regions, Kniss 2002)"};
+}
+
+void Transfer2dStage::run(StageRun& run) {
+    volume_ = std::make_shared<const LoadedVolume>(applyTransfer2d(load_.volume(), run.scene.material.transfer_2d, run.warnings));
+}
+
 StageReads BrickStage::reads() const {
-    return {{"/render/motion_blur?", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps"}, {"load"}};
+    return {{"/render/motion_blur?", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps"},
+            {"load", "transfer_2d"}};
 }
 
 StageActivity BrickStage::activity(const Scene& s) const {
@@ -69,11 +83,12 @@ void BrickStage::run(StageRun& run) {
     run.warnings = sanitizeReport(*atlas_, load_.volume());
 }
 
-StageReads ClassifyStage::reads() const { return {{"/material", "/emission", "/render/filter"}, {"load", "brick"}}; }
+StageReads ClassifyStage::reads() const { return {{"/material", "/emission", "/render/filter"}, {"load", "transfer_2d", "brick"}}; }
 
 StageActivity ClassifyStage::activity(const Scene& s) const {
-    std::string what = s.material.transfer.empty() ? "drops bricks with zero density and emission"
-                                                   : "drops bricks the transfer function makes transparent";
+    std::string what = !s.material.transfer.empty()    ? "drops bricks the transfer function makes transparent"
+                       : !s.material.transfer_2d.empty() ? "drops bricks the 2D transfer function selects nothing in"
+                                                          : "drops bricks with zero density and emission";
     if (s.render.motion_blur) what += "; keeps the bricks the blurred medium can reach";
     if (s.render.filter == Filter::Tricubic) what += "; keeps the neighbours of visible ones, which the tricubic filter reads";
     return {true, what};
@@ -82,7 +97,7 @@ StageActivity ClassifyStage::activity(const Scene& s) const {
 void ClassifyStage::run(StageRun& run) {
     const BrickAtlas& atlas = brick_.atlas();
     pages_ = classifiedPageTable(atlas, run.scene);
-    empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas) : "";
+    empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas, run.scene) : "";
 }
 
 StageActivity EmptyFrameStage::activity(const Scene&) const {
@@ -96,7 +111,7 @@ void EmptyFrameStage::run(StageRun& run) {
     run.warnings.push_back(why + "; rendered as an empty frame");
 }
 
-StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution", "/volume/up"}, {"load"}}; }
+StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution", "/volume/up"}, {"load", "transfer_2d"}}; }
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera ? "the scene's camera" : "frames the density grid's active voxels (no camera in the scene)"};

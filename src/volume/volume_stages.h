@@ -36,9 +36,29 @@ private:
     std::shared_ptr<const LoadedVolume> volume_;
 };
 
+// Kniss 2002's two-dimensional transfer function (material.transfer_function_2d), when the scene
+// has one: the loaded grid's voxels classified by value and gradient magnitude into an extinction
+// and an albedo grid (volume/transfer_2d.h). Otherwise it does not run, and volume() is load's.
+// A stage of its own so that editing the regions re-reads no file.
+class Transfer2dStage final : public Stage {
+public:
+    explicit Transfer2dStage(const LoadStage& load) : load_(load) {}
+    std::string name() const override { return "transfer_2d"; }
+    StageReads reads() const override { return {{"/material/transfer_function_2d"}, {"load"}}; }
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    void release() override { volume_.reset(); }
+    void stale() override { volume_.reset(); }
+    const LoadedVolume& volume() const { return volume_ ? *volume_ : load_.volume(); }
+
+private:
+    const LoadStage& load_;
+    std::shared_ptr<const LoadedVolume> volume_;
+};
+
 class BrickStage final : public Stage {
 public:
-    explicit BrickStage(const LoadStage& load) : load_(load) {}
+    explicit BrickStage(const Transfer2dStage& load) : load_(load) {}
     std::string name() const override { return "brick"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -50,13 +70,13 @@ public:
     const BrickAtlas& atlas() const { return *atlas_; }
 
 private:
-    const LoadStage& load_;
+    const Transfer2dStage& load_;
     std::shared_ptr<const BrickAtlas> atlas_;
 };
 
 class ClassifyStage final : public Stage {
 public:
-    ClassifyStage(const LoadStage& load, const BrickStage& brick) : load_(load), brick_(brick) {}
+    ClassifyStage(const Transfer2dStage& load, const BrickStage& brick) : load_(load), brick_(brick) {}
     std::string name() const override { return "classify"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -65,7 +85,7 @@ public:
     const std::string& emptyReason() const { return empty_reason_; }   // why nothing is visible, or ""
 
 private:
-    const LoadStage& load_;
+    const Transfer2dStage& load_;
     const BrickStage& brick_;
     PageTable pages_;
     std::string empty_reason_;
@@ -88,7 +108,7 @@ private:
 
 class CameraStage final : public Stage {
 public:
-    explicit CameraStage(const LoadStage& load) : load_(load) {}
+    explicit CameraStage(const Transfer2dStage& load) : load_(load) {}
     std::string name() const override { return "camera"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -96,7 +116,7 @@ public:
     const Camera& camera() const { return camera_; }
 
 private:
-    const LoadStage& load_;
+    const Transfer2dStage& load_;
     Camera camera_;
 };
 

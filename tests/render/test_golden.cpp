@@ -1,5 +1,5 @@
-// Golden image: the bundled default scene, small, on the CPU backend, against a committed EXR.
-// Any change to the march, the bricking or the default cloud shows up here. After an intended
+// Golden images: bundled scenes, small, on the CPU backend, against committed EXRs. Any change
+// to the march, the bricking, the lighting or the bundled data shows up here. After an intended
 // change, regenerate with VOXLUX_UPDATE_GOLDEN=1 and say why in the commit.
 #include <cmath>
 #include <cstdlib>
@@ -13,24 +13,25 @@
 namespace voxlux::test {
 namespace {
 
-const std::string kGolden = std::string(VOXLUX_SOURCE_DIR) + "/tests/golden/default_cloud_80x50.exr";
-
-TEST(Golden, DefaultCloudMatchesTheCommittedImage) {
-    Scene scene = loadSceneFile(std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json");
-    scene.render.width = 80;
-    scene.render.height = 50;
+// Renders the bundled scene `scene_file` small on the CPU and compares it with the committed
+// tests/golden/`golden` (or rewrites that under VOXLUX_UPDATE_GOLDEN=1).
+void expectMatchesGolden(const std::string& scene_file, const std::string& golden, int width, int height) {
+    const std::string path = std::string(VOXLUX_SOURCE_DIR) + "/tests/golden/" + golden;
+    Scene scene = loadSceneFile(std::string(VOXLUX_SOURCE_DIR) + "/grids/" + scene_file);
+    scene.render.width = width;
+    scene.render.height = height;
     scene.render.backend = Backend::Cpu;
     scene.output.pixel_type = PixelType::Float;
     scene.output.aovs = {AovSpec{"transmittance", std::nullopt}};
     const bool update = std::getenv("VOXLUX_UPDATE_GOLDEN") != nullptr;
-    scene.output.path = update ? kGolden : tempDir("golden") + "/default.exr";
+    scene.output.path = update ? path : tempDir("golden") + "/" + golden;
     Renderer(scene).renderToFile(std::nullopt, false);
-    if (update) GTEST_SKIP() << "golden image rewritten: " << kGolden;
+    if (update) GTEST_SKIP() << "golden image rewritten: " << path;
 
     // Tolerance: float rounding differences between compilers and CPUs (FMA contraction, SIMD
     // width) move pixels by ~1e-6 of their value; a real change to the image moves them by 1e-3+.
     const Exr got_image = readExr(scene.output.path);
-    const Exr want_image = readExr(kGolden);
+    const Exr want_image = readExr(path);
     ASSERT_EQ(got_image.channels, want_image.channels);
     for (const char* channel : {"R", "G", "B", "A", "transmittance.Y"}) {
         const auto& got = got_image.planes.at(channel);
@@ -48,6 +49,12 @@ TEST(Golden, DefaultCloudMatchesTheCommittedImage) {
         EXPECT_LT(worst, 1e-3 * peak) << channel;
     }
 }
+
+TEST(Golden, DefaultCloudMatchesTheCommittedImage) { expectMatchesGolden("default.json", "default_cloud_80x50.exr", 80, 50); }
+
+// The MRI head: the import's grid, the 2D transfer function, propagation with Kniss's indirect
+// light and surface shading, the tricubic filter.
+TEST(Golden, MriHeadMatchesTheCommittedImage) { expectMatchesGolden("mri_head.json", "mri_head_64x64.exr", 64, 64); }
 
 }  // namespace
 }  // namespace voxlux::test
