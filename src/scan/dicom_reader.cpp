@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <dcmtk/config/osconfig.h>
@@ -55,19 +56,22 @@ struct Slice {
     int rows = 0, columns = 0;
     glm::dvec3 position{0.0}, row_dir{0.0}, column_dir{0.0};
     glm::dvec2 spacing{0.0};            // between rows, between columns (PixelSpacing's order)
-    int bits_allocated = 0, bits_stored = 0, signed_pixels = 0, samples = 1, frames = 1;
+    int bits_allocated = 0, bits_stored = 0, high_bit = 0, signed_pixels = 0, samples = 1, frames = 1;
     double slope = 1.0, intercept = 0.0;
     double thickness = 1.0;             // SliceThickness: a single slice's third edge
     bool encapsulated = false;
     std::string transfer_syntax;
 };
 
-Slice readHeader(const fs::path& path) {
+// The slice a file holds, or nothing for a DICOM file that is not a slice of a volume (a
+// DICOMDIR, a structured report, a dose report's screenshot: no pixels or no position).
+std::optional<Slice> readHeader(const fs::path& path) {
     DcmFileFormat ff;
     const std::string file = path.string();
     // Elements longer than 4 KB (the pixels) stay on disk.
     if (ff.loadFile(file.c_str(), EXS_Unknown, EGL_noChange, 4096).bad()) throw InputError(file + ": damaged or truncated DICOM file");
     DcmDataset& ds = *ff.getDataset();
+    if (!ds.tagExists(DCM_PixelData) || !ds.tagExists(DCM_ImagePositionPatient)) return std::nullopt;
     Slice s;
     s.file = file;
     s.series = text(ds, DCM_SeriesInstanceUID);
@@ -78,6 +82,7 @@ Slice readHeader(const fs::path& path) {
     s.columns = ds.findAndGetUint16(DCM_Columns, u).good() ? u : 0;
     s.bits_allocated = ds.findAndGetUint16(DCM_BitsAllocated, u).good() ? u : 0;
     s.bits_stored = ds.findAndGetUint16(DCM_BitsStored, u).good() ? u : s.bits_allocated;
+    s.high_bit = ds.findAndGetUint16(DCM_HighBit, u).good() ? u : s.bits_stored - 1;
     s.signed_pixels = ds.findAndGetUint16(DCM_PixelRepresentation, u).good() ? u : 0;
     s.samples = ds.findAndGetUint16(DCM_SamplesPerPixel, u).good() ? u : 1;
     Sint32 frames = 1;
@@ -105,7 +110,9 @@ void checkPixels(const Slice& s) {
         throw InputError(s.file + ": holds " + std::to_string(s.frames) + " frames (an enhanced multi-frame image); voxlux imports one slice a file");
     if (s.bits_allocated != 8 && s.bits_allocated != 16)
         throw InputError(s.file + ": " + std::to_string(s.bits_allocated) + " bits a pixel; voxlux imports 8 or 16");
-    if (s.bits_stored < 1 || s.bits_stored > s.bits_allocated) throw InputError(s.file + ": damaged: BitsStored " + std::to_string(s.bits_stored));
+    if (s.bits_stored < 1 || s.high_bit < s.bits_stored - 1 || s.high_bit >= s.bits_allocated)
+        throw InputError(s.file + ": damaged: BitsStored " + std::to_string(s.bits_stored) + " and HighBit " + std::to_string(s.high_bit) +
+                         " do not fit in BitsAllocated " + std::to_string(s.bits_allocated));
     if (s.encapsulated)
         throw InputError(s.file + ": its pixels are compressed (" + s.transfer_syntax +
                          "); decompress the series first, e.g. with dcmdjpeg");
@@ -139,9 +146,10 @@ public:
         if (ff.loadFile(s.file.c_str()).bad()) throw InputError(s.file + ": damaged or truncated DICOM file");
         DcmDataset& ds = *ff.getDataset();
         const size_t n = size_t(s.rows) * size_t(s.columns);
-        const int shift = 32 - s.bits_stored;   // the stored bits to the top of an int, then back: sign extension
+        // The stored bits end at HighBit: moved to the top of an int and back, they are sign-extended.
+        const int up = 31 - s.high_bit, down = 32 - s.bits_stored;
         const auto value = [&](unsigned raw) {
-            const int v = s.signed_pixels ? int(raw << shift) >> shift : int(raw & ((1u << s.bits_stored) - 1u));
+            const int v = s.signed_pixels ? int(raw << up) >> down : int((raw << up) >> down);
             return float(double(v) * s.slope + s.intercept);
         };
         unsigned long count = 0;
@@ -178,14 +186,9 @@ std::unique_ptr<ScanReader> openDicomSeries(const std::string& folder, DicomSkip
             skipped.files.push_back(f.filename().string());
             continue;
         }
-        DcmFileFormat probe;
-        if (probe.loadFileUntilTag(f.string().c_str(), EXS_Unknown, EGL_noChange, 4096, ERM_autoDetect, DCM_PixelData).good() &&
-            !probe.getDataset()->tagExists(DCM_ImagePositionPatient) && !probe.getDataset()->tagExists(DCM_Rows)) {
-            skipped.files.push_back(f.filename().string());   // a DICOMDIR, a report: no image
-            continue;
-        }
-        Slice s = readHeader(f);
-        series[s.series].push_back(std::move(s));
+        std::optional<Slice> s = readHeader(f);
+        if (s) series[s->series].push_back(std::move(*s));
+        else skipped.files.push_back(f.filename().string());
     }
     if (series.empty()) throw InputError(folder + ": holds no DICOM images");
     if (series.size() > 1) {

@@ -14,8 +14,8 @@
 
 namespace voxlux {
 
-// Files of the folder that were passed over (not DICOM, or DICOM without an image such as a
-// DICOMDIR), for the import's report.
+// Files of the folder that were passed over (not DICOM, or DICOM that is not a slice: a DICOMDIR,
+// a report, an image without ImagePositionPatient), for the import's report.
 struct DicomSkipped {
     std::vector<std::string> files;
 };

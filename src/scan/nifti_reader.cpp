@@ -28,9 +28,9 @@ void convertSlice(const void* data, size_t first, size_t n, double slope, double
 
 class NiftiReader : public ScanReader {
 public:
-    NiftiReader(std::string file, NiftiPtr nim, int version) : file_(std::move(file)), nim_(std::move(nim)) {
+    NiftiReader(const std::string& file, NiftiPtr nim, int version) : nim_(std::move(nim)) {
         const nifti_image& n = *nim_;
-        info_.source = file_;
+        info_.source = file;
         info_.dims = glm::ivec3(int(n.nx), int(n.ny), int(n.nz));
         info_.format = version == 2 ? "NIfTI-2" : n.nifti_type == NIFTI_FTYPE_ANALYZE ? "ANALYZE 7.5" : "NIfTI-1";
         const nifti_dmat44* m = n.sform_code > 0 ? &n.sto_xyz : n.qform_code > 0 ? &n.qto_xyz : nullptr;
@@ -62,7 +62,6 @@ public:
     }
 
 private:
-    std::string file_;
     NiftiPtr nim_;
     double slope_ = 1.0, inter_ = 0.0;
 };
@@ -93,6 +92,9 @@ std::unique_ptr<ScanReader> openNifti(const std::string& file) {
     if (n.nx < 1 || n.ny < 1 || n.nz < 1 || n.nx > INT32_MAX / 2 || n.ny > INT32_MAX / 2 || n.nz > INT32_MAX / 2)
         throw InputError(file + ": damaged: dimensions " + std::to_string(n.nx) + "x" + std::to_string(n.ny) + "x" +
                          std::to_string(n.nz));
+    if (double(n.nx) * double(n.ny) * double(n.nz) > kMaxScanVoxels)
+        throw InputError(file + ": damaged or too large: dimensions " + std::to_string(n.nx) + "x" + std::to_string(n.ny) + "x" +
+                         std::to_string(n.nz) + " are more than the 2^34 voxels voxlux imports");
     const int64_t volumes = n.nvox / (n.nx * n.ny * n.nz);
     if (volumes > 1)
         throw InputError(file + ": holds " + std::to_string(volumes) +

@@ -108,6 +108,9 @@ std::unique_ptr<ScanReader> openRaw(const std::string& file, const RawLayout& la
     if (glm::any(glm::lessThanEqual(layout.spacing, glm::dvec3(0.0))) ||
         !std::isfinite(layout.spacing.x + layout.spacing.y + layout.spacing.z))
         throw InputError(file + ": --spacing must be positive");
+    if (double(layout.dims.x) * double(layout.dims.y) * double(layout.dims.z) > kMaxScanVoxels)
+        throw InputError(file + ": --dims " + std::to_string(layout.dims.x) + "," + std::to_string(layout.dims.y) + "," +
+                         std::to_string(layout.dims.z) + " is more than the 2^34 voxels voxlux imports");
     const std::uint64_t voxels = std::uint64_t(layout.dims.x) * std::uint64_t(layout.dims.y) * std::uint64_t(layout.dims.z);
     const std::uint64_t expected = layout.header_bytes + voxels * bytesOf(layout.type);
     const std::uint64_t size = std::filesystem::file_size(file);

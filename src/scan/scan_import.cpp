@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "io/exr_writer.h"
 #include "scan/dicom_reader.h"
 #include "scan/nifti_reader.h"
@@ -21,6 +22,7 @@ std::unique_ptr<ScanReader> openScan(const std::string& input, const ImportOptio
         return reader;
     }
     if (!std::filesystem::exists(input)) throw InputError(input + ": no such file or folder");
+    if (!std::filesystem::is_regular_file(input)) throw InputError(input + ": not a file or a folder (a device or a pipe)");
     if (options.raw) return openRaw(input, *options.raw, "raw");
     if (isNiftiName(input)) return openNifti(input);
     if (auto den = denLayout(input)) return openRaw(input, *den, "VolPack .den");
@@ -38,6 +40,7 @@ openvdb::FloatGrid::Ptr buildScanGrid(ScanReader& reader, const ImportOptions& o
     // Pass 1: the value range, which gives the default background and the metadata.
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     for (int k = 0; k < d.z; ++k) {
+        throwIfInterrupted();
         reader.readSlice(k, slice.data());
         for (float v : slice)
             if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
@@ -61,6 +64,7 @@ openvdb::FloatGrid::Ptr buildScanGrid(ScanReader& reader, const ImportOptions& o
     grid->setTransform(openvdb::math::Transform::createLinearTransform(m));
     auto acc = grid->getAccessor();
     for (int k = 0; k < d.z; ++k) {
+        throwIfInterrupted();
         reader.readSlice(k, slice.data());
         for (int j = 0; j < d.y; ++j)
             for (int i = 0; i < d.x; ++i) {

@@ -1,6 +1,6 @@
 // A scanned volume (CT, MRI) as a stack of slices: its size, where each voxel sits in the world,
-// and its values slice by slice, so that an import holds one slice at a time beside the grid it
-// builds. Values are what the file means them to be (its rescale applied: Hounsfield units for CT).
+// and its values slice by slice, so that an import holds one slice of floats at a time beside the
+// grid it builds (a reader may hold the file's own voxels: NIfTI's library loads them whole). Values are what the file means them to be (its rescale applied: Hounsfield units for CT).
 // Each format is one reader: raw_reader.h (raw and VolPack .den), nifti_reader.h, dicom_reader.h.
 #pragma once
 #include <memory>
@@ -9,6 +9,10 @@
 #include <glm/glm.hpp>
 
 namespace voxlux {
+
+// The most voxels a scan may have (2^34, 17 G: 64 GB of floats in one slice stack); a header that
+// claims more is damaged, or a mistaken raw layout.
+constexpr double kMaxScanVoxels = 17179869184.0;
 
 struct ScanInfo {
     std::string source;                // the file or folder, for messages

@@ -103,7 +103,6 @@ TransferRegion readTransferRegion(const JsonObject& o) {
     }
     r.fade = o.number("fade", 0.0f);
     if (!(r.fade >= 0.0f && r.fade <= 1.0f)) o.fail("fade", "must lie in [0, 1]");
-    if (!r.triangle && r.fade > 0.0f && !o.has("gradient")) o.fail("fade", "needs a finite gradient range to fade over");
     r.extinction = o.number("extinction");
     if (!(r.extinction >= 0.0f) || !std::isfinite(r.extinction)) o.fail("extinction", "must be a finite 0 or more");
     r.albedo = o.vec3("albedo", glm::vec3(1.0f));

@@ -358,7 +358,8 @@ int runImport(const ImportCommand& cmd) {
               << " .. " << r.max_value << (r.info.units.empty() ? "" : " " + r.info.units) << "\n";
     if (r.non_finite > 0) std::cout << "  " << r.non_finite << " NaN or infinite voxels left inactive\n";
     if (!r.skipped_files.empty()) {
-        std::cout << "  skipped " << r.skipped_files.size() << " files that are not DICOM images:";
+        std::cout << "  skipped " << r.skipped_files.size()
+                  << (r.skipped_files.size() == 1 ? " file that is not a DICOM slice:" : " files that are not DICOM slices:");
         for (const auto& f : r.skipped_files) std::cout << " " << f;
         std::cout << "\n";
     }

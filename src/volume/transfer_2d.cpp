@@ -77,10 +77,10 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
             if (std::isfinite(v) && std::isfinite(gradient)) k = classify2d(regions, v, gradient);
             else ++bad;
             it.setValue(k.extinction);
-            if (colour_leaf) colour_leaf->setValueOnly(c, openvdb::Vec3s(k.albedo.x, k.albedo.y, k.albedo.z));
+            colour_leaf->setValueOnly(c, openvdb::Vec3s(k.albedo.x, k.albedo.y, k.albedo.z));
             if (k.extinction <= 0.0f) {
                 it.setValueOff();
-                if (colour_leaf) colour_leaf->setValueOff(c);
+                colour_leaf->setValueOff(c);
             }
         }
         unusable += bad;

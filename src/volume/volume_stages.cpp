@@ -49,13 +49,22 @@ void LoadStage::run(StageRun& run) {
     run.warnings = volume_->warnings;
 }
 
-size_t LoadStage::outputBytes() const {
-    if (!volume_) return 0;
-    size_t bytes = volume_->density->memUsage() + (volume_->color ? volume_->color->memUsage() : 0) +
-                   (volume_->velocity ? volume_->velocity->memUsage() : 0);
-    for (const auto& grid : volume_->emission) bytes += grid->memUsage();
+namespace {
+
+size_t gridBytes(const std::shared_ptr<const LoadedVolume>& volume) {
+    if (!volume) return 0;
+    size_t bytes = volume->density->memUsage() + (volume->color ? volume->color->memUsage() : 0) +
+                   (volume->velocity ? volume->velocity->memUsage() : 0);
+    for (const auto& grid : volume->emission) bytes += grid->memUsage();
     return bytes;
 }
+
+}  // namespace
+
+size_t LoadStage::outputBytes() const { return gridBytes(volume_); }
+
+// Only the classified grids: the others are load's.
+size_t Transfer2dStage::outputBytes() const { return volume_ ? volume_->density->memUsage() + volume_->color->memUsage() : 0; }
 
 StageActivity Transfer2dStage::activity(const Scene& s) const {
     if (s.material.transfer_2d.empty()) return {false, "skipped: no 2D transfer function (material.transfer_function_2d)"};

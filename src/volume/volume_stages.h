@@ -39,7 +39,8 @@ private:
 // Kniss 2002's two-dimensional transfer function (material.transfer_function_2d), when the scene
 // has one: the loaded grid's voxels classified by value and gradient magnitude into an extinction
 // and an albedo grid (volume/transfer_2d.h). Otherwise it does not run, and volume() is load's.
-// A stage of its own so that editing the regions re-reads no file.
+// A stage of its own so that editing the regions re-reads no file; its grids are shared with the
+// output cache, as load's, so that a viewer scrubbing a sequence does not classify a frame twice.
 class Transfer2dStage final : public Stage {
 public:
     explicit Transfer2dStage(const LoadStage& load) : load_(load) {}
@@ -49,6 +50,9 @@ public:
     void run(StageRun& run) override;
     void release() override { volume_.reset(); }
     void stale() override { volume_.reset(); }
+    std::shared_ptr<const void> sharedOutput() const override { return volume_; }
+    size_t outputBytes() const override;
+    void adoptOutput(std::shared_ptr<const void> kept) override { volume_ = std::static_pointer_cast<const LoadedVolume>(kept); }
     const LoadedVolume& volume() const { return volume_ ? *volume_ : load_.volume(); }
 
 private:

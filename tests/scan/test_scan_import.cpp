@@ -294,13 +294,16 @@ TEST(ScanImportShared, NibabelAnatomicalHasItsSizeAndSpacing) {
 
 // ---- DICOM
 
+const int kRows = 5, kColumns = 4;
+
 struct DicomSlice {
     std::string series = "1.2.826.0.1.3680043.2.1125.1";
     std::string description = "Head";
     glm::dvec3 position{0.0};
+    int rows = kRows, columns = kColumns;
+    int high_bit = 11;            // 12 bits stored, ending here; the bits around them are set (overlays)
+    bool has_position = true;     // a dose report's screenshot has none
 };
-
-const int kRows = 5, kColumns = 4;
 const glm::dvec3 kRowDir(std::sqrt(0.75), 0.5, 0.0);   // oblique: 30 degrees about z
 const glm::dvec3 kColumnDir(0.0, 0.0, -1.0);
 const glm::dvec2 kPixelSpacing(0.75, 0.5);          // between rows, between columns
@@ -327,23 +330,25 @@ void writeDicomSlice(const std::string& path, const DicomSlice& s, int k) {
     ds->putAndInsertString(DCM_SeriesInstanceUID, s.series.c_str());
     ds->putAndInsertString(DCM_SeriesDescription, s.description.c_str());
     ds->putAndInsertString(DCM_Modality, "CT");
-    ds->putAndInsertUint16(DCM_Rows, kRows);
-    ds->putAndInsertUint16(DCM_Columns, kColumns);
+    ds->putAndInsertUint16(DCM_Rows, Uint16(s.rows));
+    ds->putAndInsertUint16(DCM_Columns, Uint16(s.columns));
     ds->putAndInsertUint16(DCM_SamplesPerPixel, 1);
     ds->putAndInsertString(DCM_PhotometricInterpretation, "MONOCHROME2");
     ds->putAndInsertUint16(DCM_BitsAllocated, 16);
     ds->putAndInsertUint16(DCM_BitsStored, 12);
-    ds->putAndInsertUint16(DCM_HighBit, 11);
+    ds->putAndInsertUint16(DCM_HighBit, Uint16(s.high_bit));
     ds->putAndInsertUint16(DCM_PixelRepresentation, 1);
     ds->putAndInsertString(DCM_PixelSpacing, numbersText({kPixelSpacing.x, kPixelSpacing.y}).c_str());
     ds->putAndInsertString(DCM_ImageOrientationPatient,
                            numbersText({kRowDir.x, kRowDir.y, kRowDir.z, kColumnDir.x, kColumnDir.y, kColumnDir.z}).c_str());
-    ds->putAndInsertString(DCM_ImagePositionPatient, numbersText({s.position.x, s.position.y, s.position.z}).c_str());
+    if (s.has_position) ds->putAndInsertString(DCM_ImagePositionPatient, numbersText({s.position.x, s.position.y, s.position.z}).c_str());
     ds->putAndInsertString(DCM_RescaleSlope, "2");
     ds->putAndInsertString(DCM_RescaleIntercept, "-1024");
-    std::vector<Uint16> pixels(kRows * kColumns);
-    for (int j = 0; j < kRows; ++j)
-        for (int i = 0; i < kColumns; ++i) pixels[size_t(j * kColumns + i)] = Uint16(storedPixel(i, j, k) & 0xfff);
+    std::vector<Uint16> pixels(size_t(s.rows * s.columns));
+    const unsigned low = unsigned(s.high_bit - 11), others = 0xffffu & ~(0xfffu << low);
+    for (int j = 0; j < s.rows; ++j)
+        for (int i = 0; i < s.columns; ++i)
+            pixels[size_t(j * s.columns + i)] = Uint16(((unsigned(storedPixel(i, j, k)) & 0xfffu) << low) | others);
     ds->putAndInsertUint16Array(DCM_PixelData, pixels.data(), pixels.size());
     ASSERT_TRUE(ff.saveFile(path.c_str(), EXS_LittleEndianExplicit).good()) << path;
 }
@@ -408,6 +413,39 @@ TEST(ScanImport, DicomWithIrregularSliceSpacingIsRefused) {
                     "spaced slices (resample the series, or import its parts)");
 }
 
+// The 12 stored bits in bits 2..13, the others set (as overlays leave them): only HighBit says where.
+TEST(ScanImport, DicomStoredBitsAreReadWhereHighBitPutsThem) {
+    const std::string dir = tempDir("scan_dicom_high_bit");
+    for (int k = 0; k < 2; ++k) writeDicomSlice(dir + "/s" + std::to_string(k) + ".dcm", {.position = kFirst + double(k) * kNormal, .high_bit = 13}, k);
+    ImportOptions options;
+    options.background = -1e9f;
+    const auto grid = gridOf(dir, options);
+    auto acc = grid->getConstAccessor();
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < kRows; ++j)
+            for (int i = 0; i < kColumns; ++i) ASSERT_EQ(acc.getValue({i, j, k}), float(storedPixel(i, j, k) * 2 - 1024));
+}
+
+TEST(ScanImport, DicomFilesThatAreNotSlicesAreSkipped) {
+    const std::string dir = writeSeries("scan_dicom_dose_report");
+    writeDicomSlice(dir + "/dose.dcm", {.has_position = false}, 0);
+    std::vector<std::string> skipped;
+    auto reader = openScan(dir, {}, skipped);
+    EXPECT_EQ(skipped, (std::vector<std::string>{"README.txt", "dose.dcm"}));
+    EXPECT_EQ(reader->info().dims.z, 6);
+}
+
+// A real slice's pixels are more than the 4 KB the headers are read with: cut short, they are
+// found missing when the slice is read.
+TEST(ScanImport, DicomSliceCutShortIsNamed) {
+    const std::string dir = tempDir("scan_dicom_cut_large");
+    for (int k = 0; k < 3; ++k)
+        writeDicomSlice(dir + "/s" + std::to_string(k) + ".dcm", {.position = kFirst + double(k) * kNormal, .rows = 64, .columns = 64}, k);
+    const std::string bytes = readBytes(dir + "/s1.dcm");
+    writeBytes(dir + "/s1.dcm", bytes.substr(0, bytes.size() - 1000));
+    EXPECT_EQ(inputErrorOf([&] { gridOf(dir); }), dir + "/s1.dcm: damaged or truncated DICOM file");
+}
+
 // ---- the command, and bad input
 
 TEST(ScanImport, CommandWritesTheGridWithItsMetadata) {
@@ -416,7 +454,7 @@ TEST(ScanImport, CommandWritesTheGridWithItsMetadata) {
     const CliResult r = runCli("import " + dir + " -o " + out + " --background -1000");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("DICOM CT, 4 x 5 x 6 voxels of 0.5 x 0.75 x 1.25, values -1712 .. 1976 HU"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("skipped 1 files that are not DICOM images: README.txt"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("skipped 1 file that is not a DICOM slice: README.txt"), std::string::npos) << r.out;
     initOpenVdb();
     openvdb::io::File file(out);
     file.open();

@@ -224,6 +224,32 @@ TEST(Transfer2d, PresetsAreNamedInTheScene) {
               "regions");
 }
 
+// What `voxlux scene` and the viewer's "Save scene" write reads back as the same regions, for
+// every preset (open gradient ranges, fades, triangles) and the bundled head's own.
+TEST(Transfer2d, RegionsSurviveWritingAndReadingTheScene) {
+    std::vector<std::vector<TransferRegion>> lists;
+    for (const TransferPreset& p : transferPresets()) lists.push_back(p.regions);
+    lists.push_back(loadSceneFile(std::string(VOXLUX_SOURCE_DIR) + "/grids/mri_head.json").material.transfer_2d);
+    for (const auto& regions : lists) {
+        Scene s;
+        s.volume.path = "a.vdb";
+        s.material.transfer_2d = regions;
+        const Scene back = sceneFromJson(sceneToJson(s), "shot.json", "");
+        ASSERT_EQ(back.material.transfer_2d.size(), regions.size());
+        for (size_t i = 0; i < regions.size(); ++i) {
+            const TransferRegion &a = regions[i], &b = back.material.transfer_2d[i];
+            EXPECT_EQ(a.name, b.name);
+            EXPECT_EQ(a.triangle, b.triangle);
+            EXPECT_EQ(a.value, b.value) << a.name;
+            EXPECT_EQ(a.gradient, b.gradient) << a.name;
+            EXPECT_EQ(a.corners, b.corners) << a.name;
+            EXPECT_EQ(a.fade, b.fade) << a.name;
+            EXPECT_EQ(a.extinction, b.extinction) << a.name;
+            EXPECT_EQ(a.albedo, b.albedo) << a.name;
+        }
+    }
+}
+
 TEST(Transfer2d, SceneErrorsNameTheRegion) {
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": [
                   {"value": [0, 1], "gradient": [0, 1], "extinction": 1}, {"triangle": [[0, 0], [1, 1], [2, 2]], "extinction": 1}]}})"),
