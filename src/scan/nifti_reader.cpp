@@ -81,7 +81,6 @@ bool isNiftiName(const std::string& file) {
 }
 
 std::unique_ptr<ScanReader> openNifti(const std::string& file) {
-    if (!std::filesystem::exists(file)) throw InputError(file + ": no such file");
     nifti_set_debug_level(0);   // the library prints its complaints; ours are one line
     // The version is the header's: libnifti's image keeps the type its names suggest.
     int version = 0;

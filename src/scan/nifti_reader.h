@@ -13,7 +13,7 @@ namespace voxlux {
 // Whether `file` has a NIfTI or ANALYZE name (.nii, .nii.gz, .hdr, .img).
 bool isNiftiName(const std::string& file);
 
-// Throws InputError naming the file: not NIfTI, truncated, 4-D, or a voxel type voxlux cannot use.
+// `file` exists (openScan checks). Throws InputError naming the file: not NIfTI, truncated, 4-D, or a voxel type voxlux cannot use.
 std::unique_ptr<ScanReader> openNifti(const std::string& file);
 
 }  // namespace voxlux

@@ -102,7 +102,6 @@ std::optional<RawLayout> denLayout(const std::string& file) {
 }
 
 std::unique_ptr<ScanReader> openRaw(const std::string& file, const RawLayout& layout, const std::string& format) {
-    if (!std::filesystem::is_regular_file(file)) throw InputError(file + ": no such file");
     if (glm::any(glm::lessThanEqual(layout.dims, glm::ivec3(0))))
         throw InputError(file + ": a raw volume needs --dims X,Y,Z, each at least 1");
     if (glm::any(glm::lessThanEqual(layout.spacing, glm::dvec3(0.0))) ||

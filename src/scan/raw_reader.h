@@ -27,7 +27,7 @@ std::optional<RawType> rawTypeNamed(const std::string& name);
 // The layout in a VolPack .den header, or nothing when `file` does not start with one.
 std::optional<RawLayout> denLayout(const std::string& file);
 
-// Checks that the file holds exactly header + X*Y*Z values; throws InputError naming the file,
+// `file` is a regular file (openScan checks). Checks that it holds exactly header + X*Y*Z values; throws InputError naming the file,
 // the bytes expected and the bytes it has.
 std::unique_ptr<ScanReader> openRaw(const std::string& file, const RawLayout& layout, const std::string& format);
 

@@ -1,7 +1,7 @@
 // `voxlux import`: a scan (DICOM series, NIfTI, raw or VolPack .den) to a sparse float VDB grid.
 // Two streaming passes over the slices: the first finds the value range, the second activates
 // the voxels above the background, so memory follows the tissue, not the scanner's box (one
-// slice of floats beside the grid). The grid's transform puts every voxel where the file does,
+// slice of floats beside the grid, and what the reader holds: NIfTI's library loads a file whole). The grid's transform puts every voxel where the file does,
 // oblique orientations included; the source (format, modality, units, value range, background)
 // goes into the grid's metadata. The .vdb is written to a temporary file and renamed.
 #pragma once

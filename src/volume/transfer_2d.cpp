@@ -17,8 +17,8 @@ namespace {
 // (each new voxel the mean of its selected neighbours'): the filters interpolate the albedo with
 // the same weights as the extinction, over up to 4 voxels (tricubic), and an unselected voxel's
 // albedo would otherwise tint a material's edge with the grid's background.
-openvdb::Vec3SGrid::Ptr extendAlbedo(const openvdb::Vec3SGrid& selected) {
-    auto out = selected.deepCopy();
+openvdb::Vec3SGrid::Ptr extendAlbedo(openvdb::Vec3SGrid::Ptr selected) {
+    auto out = selected;
     for (int round = 0; round < 2; ++round) {
         auto grown = out->deepCopy();
         openvdb::tools::dilateActiveValues(grown->tree(), 1, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::EXPAND_TILES);
@@ -87,7 +87,7 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
     });
     openvdb::tools::pruneInactive(extinction->tree());
     openvdb::tools::pruneInactive(albedo->tree());
-    albedo = extendAlbedo(*albedo);
+    albedo = extendAlbedo(albedo);
     if (unusable > 0)
         warnings.push_back(raw.file + ": " + std::to_string(unusable.load()) +
                            " voxels whose value or gradient is NaN or infinite are transparent under the 2D transfer function");
