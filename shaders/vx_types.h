@@ -170,7 +170,8 @@ struct VxPropParams {
     float weight;           // what this sweep adds (negative: subtracts)
     float cells_per_voxel;  // grid cells per index voxel (the perturbation's displacement is in voxels)
     vec3 atten;             // optical-depth multiplier per channel (1 direct, -ln(transport) indirect)
-    float pad1;
+    int transport_planes;   // 1: the indirect sweep's -ln(transport) is per cell, in planes 1-3 of
+                            // vx_prop_sigma (extinction times it), and atten is unused
     vec3 tint;              // RGB added per unit propagated (direct: the light's colour over its
                             // luminance; indirect and eye: 1)
     float pad2;

@@ -194,6 +194,8 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
     assignInHugePages(g.values, g.cells() * g.planes, 0.0f);
     const bool emits = contents.emission && k.P.emission_sources > 0;
     if (emits) g.emission.assign(g.cells() * 3, 0.0f);
+    const float* transport = contents.transport && !in.atlas->transport.empty() ? in.atlas->transport.data() : nullptr;
+    if (transport) assignInHugePages(g.transport_depth, g.cells() * 3, 0.0f);
     const AxisCells ax{g.dims.x, voxels.x, g.cell}, ay{g.dims.y, voxels.y, g.cell}, az{g.dims.z, voxels.z, g.cell};
     const double inv_volume = 1.0 / (double(g.cell) * g.cell * g.cell);
     const size_t plane = g.cells();
@@ -212,6 +214,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
         const auto end = std::lower_bound(begin, bricks.end(), (z1 - 1) / VX_BRICK + 1, byZ);
         std::vector<double> sums(size_t(g.dims.x) * g.dims.y * g.planes, 0.0);
         std::vector<double> emitted(emits ? size_t(g.dims.x) * g.dims.y * 3 : 0, 0.0);
+        std::vector<double> depth(transport ? size_t(g.dims.x) * g.dims.y * 3 : 0, 0.0);
         for (auto b = begin; b != end; ++b) {
             const glm::ivec3 first = b->local * VX_BRICK;
             for (int oz = std::max(z0 - first.z, 0); oz < std::min(z1 - first.z, VX_BRICK); ++oz) {
@@ -227,12 +230,18 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
                             emits ? meanEmission(k, (b->local + bmin) * VX_BRICK + glm::ivec3(ox, oy, oz)) : glm::vec3(0.0f);
                         if (sigma <= 0.0f && le == glm::vec3(0.0f)) continue;
                         const glm::vec3 albedo = g.planes < 4 ? glm::vec3(0.0f) : k.vx_albedo(k.vx_single_tap(c));
+                        glm::dvec3 sigma_k(0.0);   // extinction times -ln(transport colour)
+                        if (transport && sigma > 0.0f)
+                            for (int ch = 0; ch < 3; ++ch)
+                                sigma_k[ch] = -double(sigma) * std::log(std::max(double(transport[size_t(c.base) * 3 + ch]), 1e-6));
                         ay.eachCellOf(first.y + oy, [&](int cy, double y_length) {
                             ax.eachCellOf(first.x + ox, [&](int cx, double x_length) {
                                 const double overlap = x_length * y_length * z_length;
                                 const size_t cell = size_t(cy) * g.dims.x + cx;
                                 if (emits)
                                     for (int ch = 0; ch < 3; ++ch) emitted[cell * 3 + ch] += overlap * le[ch];
+                                if (transport)
+                                    for (int ch = 0; ch < 3; ++ch) depth[cell * 3 + ch] += overlap * sigma_k[ch];
                                 if (sigma <= 0.0f || g.planes == 0) return;
                                 const double w = overlap * sigma;
                                 double* sum = sums.data() + cell * g.planes;
@@ -255,6 +264,9 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
             if (emits)
                 for (int ch = 0; ch < 3; ++ch)
                     g.emission[i * 3 + ch] = float(std::min(emitted[cell * 3 + ch] * inv_volume, double(VX_FLOAT_MAX)));
+            if (transport)
+                for (int ch = 0; ch < 3; ++ch)
+                    g.transport_depth[ch * plane + i] = float(std::min(depth[cell * 3 + ch] * inv_volume, double(VX_FLOAT_MAX)));
         }
     });
     g.clamped_cells = clamped;
@@ -268,7 +280,8 @@ LightGrid withUniformBleeding(const LightGrid& extinction, glm::vec3 albedo, flo
     assert(extinction.planes == 1);
     // Every field but the values as they are; the values in one allocation for all four planes.
     LightGrid g{.dims = extinction.dims, .origin = extinction.origin, .cell = extinction.cell, .planes = 4, .values = {},
-                .needed = extinction.needed, .emission = extinction.emission, .clamped_cells = extinction.clamped_cells};
+                .needed = extinction.needed, .emission = extinction.emission, .transport_depth = extinction.transport_depth,
+                .clamped_cells = extinction.clamped_cells};
     const size_t plane = g.cells();
     resizeInHugePages(g.values, 4 * plane);
     std::copy(extinction.values.begin(), extinction.values.end(), g.values.begin());

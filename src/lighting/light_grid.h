@@ -29,6 +29,8 @@ struct LightGrid {
     std::vector<uint8_t> needed;   // 1 where the march may read the light cache (near extinction)
     std::vector<float> emission;   // when asked for: RGB per cell, x fastest: mean emitted radiance
                                    // per world unit over the cell
+    std::vector<float> transport_depth;   // when asked for: 3 planes (R, G, B), x fastest: mean
+                                          // extinction times -ln(transport colour) over the cell
     uint64_t clamped_cells = 0;    // cells above kMaxCellOpticalDepth, clamped
     size_t cells() const { return size_t(dims.x) * dims.y * dims.z; }
     glm::mat4 lightToIndex() const;
@@ -82,6 +84,7 @@ struct LightGridContents {
     bool extinction = true;   // the extinction plane and its `needed` mask
     float bleeding = 0.0f;    // > 0, with extinction: the three colour-bleeding planes
     bool emission = false;    // the emitted radiance, when the scene's sources emit
+    bool transport = false;   // the transport depth, when the atlas has a transport colour
 };
 
 // Box-filters the visible bricks into a light grid of `resolution` over the occupied bricks' box.

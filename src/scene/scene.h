@@ -53,6 +53,9 @@ struct TransferRegion {
     float fade = 0.0f;
     float extinction = 0.0f;               // multiplies material.density_scale
     glm::vec3 albedo{1.0f};                // multiplies material.albedo
+    // Kniss 2003 Eq. 8 per material: the share of indirect light kept per unit optical depth, in
+    // place of effects.indirect's attenuation. Every region of a function has one, or none does.
+    std::optional<glm::vec3> transport;
 };
 
 // What density_scale's extinction is per: a world unit, or the length of a voxel (the smallest

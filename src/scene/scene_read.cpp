@@ -72,7 +72,7 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
 // A region of material.transfer_function_2d: a rectangle ("value" and "gradient" ranges) or a
 // triangle ("triangle": three [value, gradient] corners).
 TransferRegion readTransferRegion(const JsonObject& o) {
-    o.rejectUnknown({"name", "value", "gradient", "triangle", "fade", "extinction", "albedo"});
+    o.rejectUnknown({"name", "value", "gradient", "triangle", "fade", "extinction", "albedo", "transport"});
     TransferRegion r;
     r.name = o.string("name", "");
     r.triangle = o.has("triangle");
@@ -108,6 +108,11 @@ TransferRegion readTransferRegion(const JsonObject& o) {
     r.albedo = o.vec3("albedo", glm::vec3(1.0f));
     if (glm::any(glm::lessThan(r.albedo, glm::vec3(0))) || glm::any(glm::greaterThan(r.albedo, glm::vec3(1))))
         o.fail("albedo", "each component must lie in [0, 1]");
+    if (o.has("transport")) {
+        r.transport = o.vec3("transport");
+        if (!(glm::all(glm::greaterThan(*r.transport, glm::vec3(0))) && glm::all(glm::lessThanEqual(*r.transport, glm::vec3(1)))))
+            o.fail("transport", "each component must lie in (0, 1]");
+    }
     return r;
 }
 
@@ -148,6 +153,14 @@ Material readMaterial(const JsonObject& o) {
             for (const auto& r : o.objects("transfer_function_2d")) m.transfer_2d.push_back(readTransferRegion(r));
         }
         if (m.transfer_2d.empty()) o.fail("transfer_function_2d", "needs at least one region");
+        for (size_t i = 0; i < m.transfer_2d.size(); ++i)
+            if (m.transfer_2d[i].transport.has_value() != m.transfer_2d[0].transport.has_value()) {
+                const TransferRegion& without = m.transfer_2d[i].transport ? m.transfer_2d[0] : m.transfer_2d[i];
+                const size_t at = m.transfer_2d[i].transport ? 0 : i;
+                o.fail("transfer_function_2d", "give every region a transport colour or none: " +
+                                                   (without.name.empty() ? "region " + std::to_string(at + 1) : "'" + without.name + "'") +
+                                                   " has none");
+            }
     }
     return m;
 }

@@ -123,7 +123,8 @@ void addCounts(SanitizeCounts& into, const SanitizeCounts& c) {
 }  // namespace
 
 size_t BrickAtlas::bytes() const {
-    return coords.size() * sizeof(glm::ivec3) + (density.size() + emission.size() + color.size() + velocity.size()) * sizeof(float) +
+    return coords.size() * sizeof(glm::ivec3) +
+           (density.size() + emission.size() + color.size() + transport.size() + velocity.size()) * sizeof(float) +
            density_range.size() * sizeof(glm::vec2) + emission_max.size() * sizeof(float);
 }
 
@@ -142,12 +143,12 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
 
     const size_t n = candidates.size(), sources = v.emission.size();
     std::vector<float> density(n * kVoxels), emission(sources * n * kVoxels), color(v.color ? n * kVoxels * 3 : 0),
-        velocity(v.velocity ? n * kVoxels * 3 : 0);
+        transport(v.transport ? n * kVoxels * 3 : 0), velocity(v.velocity ? n * kVoxels * 3 : 0);
     struct Fixes {
-        SanitizeCounts density, color, velocity;
+        SanitizeCounts density, color, transport, velocity;   // (the transport colour is classified: never fixed)
         std::vector<SanitizeCounts> emission;
     };
-    tbb::combinable<Fixes> fixes([&] { return Fixes{{}, {}, {}, std::vector<SanitizeCounts>(sources)}; });
+    tbb::combinable<Fixes> fixes([&] { return Fixes{{}, {}, {}, {}, std::vector<SanitizeCounts>(sources)}; });
     using FloatAcc = openvdb::FloatGrid::ConstAccessor;
     tbb::enumerable_thread_specific<FloatAcc> densityAcc([&] { return v.density->getConstAccessor(); });
     tbb::enumerable_thread_specific<std::vector<FloatAcc>> emissionAcc([&] {
@@ -155,7 +156,7 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
         for (const auto& e : v.emission) accs.push_back(e->getConstAccessor());
         return accs;
     });
-    tbb::enumerable_thread_specific<std::unique_ptr<openvdb::Vec3SGrid::ConstAccessor>> colorAcc, velocityAcc;
+    tbb::enumerable_thread_specific<std::unique_ptr<openvdb::Vec3SGrid::ConstAccessor>> colorAcc, transportAcc, velocityAcc;
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16), [&](const tbb::blocked_range<size_t>& r) {
         Fixes& f = fixes.local();
@@ -169,6 +170,11 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
                 auto& acc = colorAcc.local();
                 if (!acc) acc = std::make_unique<openvdb::Vec3SGrid::ConstAccessor>(v.color->getConstAccessor());
                 fillVector(*acc, candidates[i], &color[i * kVoxels * 3], f.color, VectorKind::Colour);
+            }
+            if (v.transport) {
+                auto& acc = transportAcc.local();
+                if (!acc) acc = std::make_unique<openvdb::Vec3SGrid::ConstAccessor>(v.transport->getConstAccessor());
+                fillVector(*acc, candidates[i], &transport[i * kVoxels * 3], f.transport, VectorKind::Colour);
             }
             if (v.velocity) {
                 auto& acc = velocityAcc.local();
@@ -216,6 +222,7 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
         atlas.density_range.push_back(range[i]);
         std::copy_n(&density[i * kVoxels], kVoxels, &density[j * kVoxels]);
         if (v.color) std::copy_n(&color[i * kVoxels * 3], kVoxels * 3, &color[j * kVoxels * 3]);
+        if (v.transport) std::copy_n(&transport[i * kVoxels * 3], kVoxels * 3, &transport[j * kVoxels * 3]);
         if (v.velocity) std::copy_n(&velocity[i * kVoxels * 3], kVoxels * 3, &velocity[j * kVoxels * 3]);
     }
     for (size_t e = 0; e < sources; ++e)
@@ -226,10 +233,12 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
     density.resize(slots * kVoxels);
     emission.resize(sources * slots * kVoxels);
     color.resize(v.color ? slots * kVoxels * 3 : 0);
+    transport.resize(v.transport ? slots * kVoxels * 3 : 0);
     velocity.resize(v.velocity ? slots * kVoxels * 3 : 0);
     atlas.density = std::move(density);
     atlas.emission = std::move(emission);
     atlas.color = std::move(color);
+    atlas.transport = std::move(transport);
     atlas.velocity = std::move(velocity);
     return atlas;
 }

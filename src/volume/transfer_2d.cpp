@@ -59,6 +59,13 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
     albedo->setTransform(values.transform().copy());
     albedo->setName("albedo");
     albedo->tree().topologyUnion(extinction->tree());
+    openvdb::Vec3SGrid::Ptr transport;
+    if (regions.front().transport) {   // every region has one, or none does (scene_read.cpp)
+        transport = openvdb::Vec3SGrid::create(openvdb::Vec3s(1.0f));
+        transport->setTransform(values.transform().copy());
+        transport->setName("transport");
+        transport->tree().topologyUnion(extinction->tree());
+    }
 
     // An index-space gradient to world units: the inverse transpose of the voxel edges' matrix.
     const glm::mat3 to_world_gradient = glm::transpose(glm::inverse(glm::mat3(raw.index_to_world)));
@@ -67,6 +74,7 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
     leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, size_t) {
         auto acc = values.getConstUnsafeAccessor();   // one per leaf and thread: no registration with the tree
         auto* colour_leaf = albedo->tree().probeLeaf(leaf.origin());   // the same topology: this thread's alone
+        auto* transport_leaf = transport ? transport->tree().probeLeaf(leaf.origin()) : nullptr;
         std::uint64_t bad = 0;
         for (auto it = leaf.beginValueOn(); it; ++it) {
             const openvdb::Coord c = it.getCoord();
@@ -78,15 +86,18 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
             else ++bad;
             it.setValue(k.extinction);
             colour_leaf->setValueOnly(c, openvdb::Vec3s(k.albedo.x, k.albedo.y, k.albedo.z));
+            if (transport_leaf) transport_leaf->setValueOnly(c, openvdb::Vec3s(k.transport.x, k.transport.y, k.transport.z));
             if (k.extinction <= 0.0f) {
                 it.setValueOff();
                 colour_leaf->setValueOff(c);
+                if (transport_leaf) transport_leaf->setValueOff(c);
             }
         }
         unusable += bad;
     });
     openvdb::tools::pruneInactive(extinction->tree());
     openvdb::tools::pruneInactive(albedo->tree());
+    if (transport) openvdb::tools::pruneInactive(transport->tree());
     albedo = extendAlbedo(albedo);
     if (unusable > 0)
         warnings.push_back(raw.file + ": " + std::to_string(unusable.load()) +
@@ -95,6 +106,7 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
     LoadedVolume out = raw;
     out.density = extinction;
     out.color = albedo;
+    out.transport = transport;
     return out;
 }
 

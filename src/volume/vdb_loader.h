@@ -17,6 +17,8 @@ struct LoadedVolume {
     openvdb::FloatGrid::ConstPtr density;
     std::vector<openvdb::FloatGrid::ConstPtr> emission;  // one per emission source, in its order
     openvdb::Vec3SGrid::ConstPtr color;      // null unless the spec names one
+    openvdb::Vec3SGrid::ConstPtr transport;  // per-voxel transport colour (a 2D transfer function's
+                                             // regions, Kniss Eq. 8); null: effects.indirect's
     openvdb::Vec3SGrid::ConstPtr velocity;   // render.motion_blur's, on the voxel centres; else null
     float max_speed = 0.0f;                  // the velocity's largest length (world units per second)
     glm::mat4 index_to_world{1.0f};          // affine, from the density grid

@@ -135,8 +135,9 @@ TEST(BatchPaths, LightPassRowsMatchThePerCellQueries) {
 }
 
 // One sweep of a directional light along each axis both ways, direct (one channel, no blur),
-// indirect (RGB, blurred, attenuated by a transport colour) and a source sweep (indirect, adding
-// each cell's own source), and of a point light inside the grid, direct and indirect (the cells
+// indirect (RGB, blurred, attenuated by a transport colour, or by one per cell: a 2D transfer
+// function's materials) and a source sweep (indirect, adding each cell's own source), and of a
+// point light inside the grid, direct and indirect (the cells
 // near its plane step several cells sideways, or read beyond the slice, and are redone per cell):
 // the batched volume equals the per-cell sweep to float rounding.
 TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
@@ -146,6 +147,11 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
     const std::vector<float> sigmas[3] = {randomValues(cells, 0.6f, 3), randomValues(cells, 0.6f, 11),
                                           randomValues(cells, 0.6f, 17)};
     const std::vector<float> sources = randomValues(3 * cells, 2.0f, 5);
+    // Per-material transport: the first grid's extinction, then it times a random -ln(transport).
+    std::vector<float> planes = sigmas[0];
+    const std::vector<float> k = randomValues(3 * cells, 2.0f, 23);
+    for (int c = 0; c < 3; ++c)
+        for (size_t i = 0; i < cells; ++i) planes.push_back(sigmas[0][i] * k[c * cells + i]);
     const glm::mat4 grid_to_world = glm::mat4(glm::mat3(0.7f));
     const kernel::VxParams march{};   // no perturbation
     Indirect blur;
@@ -155,12 +161,13 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
     CpuSweepScratch scratch;
     for (int axis = 0; axis < 3; ++axis)
         for (int sign : {-1, 1})
-            for (const std::string kind : {"direct", "indirect", "source", "point", "point indirect"}) {
+            for (const std::string kind : {"direct", "indirect", "transport", "source", "point", "point indirect", "point transport"}) {
                 const bool point = kind.rfind("point", 0) == 0;
-                const bool indirect = kind == "indirect" || kind == "source" || kind == "point indirect";
+                const bool transport = kind.find("transport") != std::string::npos;
+                const bool indirect = kind == "indirect" || kind == "source" || kind == "point indirect" || transport;
                 const bool source = kind == "source";
                 const int which = (2 * axis + (sign > 0) + (indirect ? 1 : 0) + (source ? 1 : 0) + (point ? 1 : 0)) % 3;
-                const std::vector<float>& sigma = sigmas[which];
+                const std::vector<float>& sigma = transport ? planes : sigmas[which];
                 // A flow mostly along the sweep's axis, oblique enough that reads fall between cells.
                 glm::vec3 travel(0.35f, -0.2f, 0.25f);
                 travel[axis] = float(sign);
@@ -183,6 +190,7 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 Q.cells_per_voxel = 1.0f;
                 Q.tint = glm::vec3(1.0f, 0.8f, 0.6f);
                 Q.source_sweep = source ? 1 : 0;
+                Q.transport_planes = transport ? 1 : 0;
                 if (point) {   // as the propagation stage sets a point light's sweep
                     glm::vec3 at(0.4f * float(dims.x) + 0.13f, 0.55f * float(dims.y) + 0.27f, 0.45f * float(dims.z) + 0.31f);
                     at[axis] = float(dims[axis]) * (sign > 0 ? 0.3f : 0.7f);
@@ -200,7 +208,7 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 pass.sweeps = {Q};
                 pass.march = &march;
                 pass.sigma = &sigma;
-                pass.sigma_generation = uint64_t(which) + 1;
+                pass.sigma_generation = transport ? 4 : uint64_t(which) + 1;
                 if (source) pass.input = &sources;
                 propagateCpu(pass, batched, scratch);
 

@@ -246,6 +246,7 @@ TEST(Transfer2d, RegionsSurviveWritingAndReadingTheScene) {
             EXPECT_EQ(a.fade, b.fade) << a.name;
             EXPECT_EQ(a.extinction, b.extinction) << a.name;
             EXPECT_EQ(a.albedo, b.albedo) << a.name;
+            EXPECT_EQ(a.transport, b.transport) << a.name;
         }
     }
 }
@@ -259,6 +260,48 @@ TEST(Transfer2d, SceneErrorsNameTheRegion) {
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function": [{"value": 0, "extinction": 0},
                   {"value": 1, "extinction": 1}], "transfer_function_2d": [{"value": [0, 1], "extinction": 1}]}})"),
               "shot.json: /material/transfer_function_2d: a material has one transfer function: remove transfer_function");
+}
+
+TEST(Transfer2d, TransportColoursComeOnEveryRegionOrNone) {
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": [
+                  {"value": [0, 1], "extinction": 1, "transport": [1, 0.5, 0.5]}, {"name": "bone", "value": [1, 2], "extinction": 1}]}})"),
+              "shot.json: /material/transfer_function_2d: give every region a transport colour or none: 'bone' has none");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": [
+                  {"value": [0, 1], "extinction": 1}, {"value": [1, 2], "extinction": 1, "transport": [1, 0.5, 0.5]}]}})"),
+              "shot.json: /material/transfer_function_2d: give every region a transport colour or none: region 1 has none");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": [
+                  {"value": [0, 1], "extinction": 1, "transport": [1, 0, 0.5]}]}})"),
+              "shot.json: /material/transfer_function_2d/0/transport: each component must lie in (0, 1]");
+}
+
+// Kniss's Eq. 8 per material: where regions overlap, their -ln(transport) mix as the albedo does,
+// weighted by extinction, so that each channel's optical depth is the regions' summed.
+TEST(Transfer2d, TransportIsTheExtinctionWeightedMeanOfMinusLogTransport) {
+    TransferRegion half, quarter;
+    half.value = quarter.value = {0.0f, 10.0f};
+    half.extinction = 1.0f;
+    half.transport = glm::vec3(0.5f, 1.0f, 0.25f);
+    quarter.extinction = 3.0f;
+    quarter.transport = glm::vec3(0.25f, 1.0f, 0.5f);
+    const Classified k = classify2d({half, quarter}, 5.0f, 0.0f);
+    EXPECT_FLOAT_EQ(k.extinction, 4.0f);
+    // In powers of 2: -log2 T is (1, 0, 2) and (2, 0, 1), weighted 1 and 3: (7, 0, 5) / 4.
+    EXPECT_NEAR(k.transport.x, std::exp2(-1.75f), 1e-6f);
+    EXPECT_EQ(k.transport.y, 1.0f);
+    EXPECT_NEAR(k.transport.z, std::exp2(-1.25f), 1e-6f);
+    half.transport = quarter.transport = std::nullopt;
+    EXPECT_EQ(classify2d({half, quarter}, 5.0f, 0.0f).transport, glm::vec3(1.0f));
+
+    // The grid: a transport colour on exactly the selected voxels, and none without the key.
+    auto grid = boxGrid({0, 0, 0}, {7, 7, 7}, 5.0f);
+    half.transport = quarter.transport = glm::vec3(0.5f);
+    std::vector<std::string> warnings;
+    const LoadedVolume with = applyTransfer2d(volumeFromGrid(grid), {half, quarter}, warnings);
+    ASSERT_TRUE(with.transport);
+    EXPECT_EQ(with.transport->activeVoxelCount(), with.density->activeVoxelCount());
+    EXPECT_NEAR(with.transport->tree().getValue(openvdb::Coord(3, 4, 5)).x(), 0.5f, 1e-6f);
+    half.transport = quarter.transport = std::nullopt;
+    EXPECT_FALSE(applyTransfer2d(volumeFromGrid(grid), {half, quarter}, warnings).transport);
 }
 
 }  // namespace

@@ -44,8 +44,8 @@ struct SliceMajor {
     }
 };
 
-// The slice-major copy of the pass's extinction: the one kept for its grid, or made into the slot
-// used least recently.
+// The slice-major copy of the pass's extinction (each of its planes): the one kept for its grid,
+// or made into the slot used least recently.
 const std::vector<float>& slicedSigma(const PropagationPass& pass, const SliceMajor& layout, CpuSweepScratch& scratch) {
     CpuSweepScratch::SlicedSigma* slot = nullptr;
     for (auto& s : scratch.sigma)
@@ -53,7 +53,13 @@ const std::vector<float>& slicedSigma(const PropagationPass& pass, const SliceMa
     if (!slot) {
         slot = scratch.sigma[0].last_use <= scratch.sigma[1].last_use ? &scratch.sigma[0] : &scratch.sigma[1];
         slot->generation = 0;   // stays 0 if the copy throws
-        layout.toSlices(pass.sigma->data(), 1, slot->values);
+        const size_t cells = size_t(layout.dims.x) * layout.dims.y * layout.dims.z;
+        resizeInHugePages(slot->values, pass.sigma->size());
+        for (size_t plane = 0; plane < pass.sigma->size() / cells; ++plane) {
+            const float* in = pass.sigma->data() + plane * cells;
+            float* sliced = slot->values.data() + plane * cells;
+            layout.forEachCell([&](size_t n, size_t s) { sliced[s] = in[n]; });
+        }
         slot->generation = pass.sigma_generation;
     }
     slot->last_use = ++scratch.uses;
@@ -101,6 +107,7 @@ public:
         for (const Read& r : taps_) narrow(r);
         for (const SigmaRead& r : sigma_) narrow(r.at);
         for (int c = 0; c < 3; ++c) atten_[c] = Q.atten[c];
+        planes_ = Q.transport_planes != 0 ? 4 : 1;
     }
 
     // Cells [first, last) of row j, evaluated into `out` (channels per cell, by i); false when
@@ -114,23 +121,30 @@ public:
             if (!rowInside(j, r.at)) return false;
         const int channels = Q.channels, axis = Q.axis;
         const size_t sv = size_t(Q.strides[k_.vx_axis_v(axis)]), sa = size_t(Q.strides[axis]);
-        float tau[kMaxRow];
+        const size_t plane_cells = size_t(Q.dims.x) * Q.dims.y * Q.dims.z;
+        // tau[0]: the step's optical depth; tau[1..3] with per-material transport: each channel's
+        // (vx_prop_cell's k * tau).
+        float tau[4][kMaxRow];
         for (int base = lo_; base < hi_; base += kMaxRow) {
             const int n = std::min(kMaxRow, hi_ - base);
-            std::fill(tau, tau + n, 0.0f);
-            for (const SigmaRead& r : sigma_) {
-                // Row starts; the offset di (negative at a row's start) goes into the index, so
-                // that no pointer is formed outside the arrays.
-                const float* a0 = k_.prop_sigma.data + size_t(prev) * sa + size_t(j + r.at.dj) * sv;
-                const float* b0 = k_.prop_sigma.data + size_t(Q.slice) * sa + size_t(j + r.at.dj) * sv;
-                const float ta = r.at.ta, tb = r.at.tb, f = r.slice, w = r.at.w;
-                const int di = r.at.di;
+            for (int plane = 0; plane < planes_; ++plane) {
+                float* depth = tau[plane];
+                std::fill(depth, depth + n, 0.0f);
+                for (const SigmaRead& r : sigma_) {
+                    // Row starts; the offset di (negative at a row's start) goes into the index, so
+                    // that no pointer is formed outside the arrays.
+                    const float* sigma = k_.prop_sigma.data + size_t(plane) * plane_cells;
+                    const float* a0 = sigma + size_t(prev) * sa + size_t(j + r.at.dj) * sv;
+                    const float* b0 = sigma + size_t(Q.slice) * sa + size_t(j + r.at.dj) * sv;
+                    const float ta = r.at.ta, tb = r.at.tb, f = r.slice, w = r.at.w;
+                    const int di = r.at.di;
 #pragma omp simd
-                for (int q = 0; q < n; ++q) {
-                    const int i = base + q + di;
-                    const float in_prev = VX_BILERP(a0[i], a0[i + 1], a0[i + sv], a0[i + sv + 1], ta, tb);
-                    const float in_here = VX_BILERP(b0[i], b0[i + 1], b0[i + sv], b0[i + sv + 1], ta, tb);
-                    tau[q] += w * glm::mix(in_prev, in_here, f);
+                    for (int q = 0; q < n; ++q) {
+                        const int i = base + q + di;
+                        const float in_prev = VX_BILERP(a0[i], a0[i + 1], a0[i + sv], a0[i + sv + 1], ta, tb);
+                        const float in_here = VX_BILERP(b0[i], b0[i + 1], b0[i + sv], b0[i + sv + 1], ta, tb);
+                        depth[q] += w * glm::mix(in_prev, in_here, f);
+                    }
                 }
             }
             // The blur taps, as their stencil. A cell reads every channel at the same offsets with
@@ -145,21 +159,27 @@ public:
                 for (int m = 0; m < floats; ++m) acc[m] = kernel::vx_radiance_add(acc[m], w * p[m]);
             }
             for (int c = 0; c < channels; ++c) {
+                // The channel's optical depth per cell: its own plane, or tau times the medium's k.
+                float kt[kMaxRow];
                 const float kc = atten_[c];
+                if (planes_ > 1) {
+                    std::copy_n(tau[c + 1], n, kt);
+                } else {
+#pragma omp simd
+                    for (int q = 0; q < n; ++q) kt[q] = kc * tau[0][q];
+                }
                 if (Q.source_sweep == 0) {
 #pragma omp simd
-                    for (int q = 0; q < n; ++q) out[size_t(base + q) * channels + c] = acc[q * channels + c] * k_.vx_exp(-kc * tau[q]);
+                    for (int q = 0; q < n; ++q) out[size_t(base + q) * channels + c] = acc[q * channels + c] * k_.vx_exp(-kt[q]);
                     continue;
                 }
                 // A source sweep adds the cell's own source over the step, as vx_prop_cell does.
                 const float* src = k_.prop_in.data + (size_t(Q.slice) * sa + size_t(j) * sv) * 3 + c;
                 const float step = step_world_;
 #pragma omp simd
-                for (int q = 0; q < n; ++q) {
-                    const float kt = kc * tau[q];
-                    out[size_t(base + q) * channels + c] =
-                        kernel::vx_radiance_add(acc[q * channels + c] * k_.vx_exp(-kt), src[size_t(base + q) * 3] * (step * k_.vx_exp_integral(kt)));
-                }
+                for (int q = 0; q < n; ++q)
+                    out[size_t(base + q) * channels + c] = kernel::vx_radiance_add(
+                        acc[q * channels + c] * k_.vx_exp(-kt[q]), src[size_t(base + q) * 3] * (step * k_.vx_exp_integral(kt[q])));
             }
         }
         first = lo_;
@@ -210,6 +230,7 @@ private:
     std::vector<StencilCell> stencil_;
     int lo_ = 0, hi_ = 0;
     float atten_[3] = {1.0f, 1.0f, 1.0f};
+    int planes_ = 1;   // of the extinction the row reads: 4 with per-material transport
     float step_world_ = 0.0f;
 };
 
@@ -246,8 +267,10 @@ public:
         v_ = k.vx_axis_v(axis_);
         // (A slice of at least 2 x 2 cells: a lane reading beyond it gathers at index 0, whose
         // bilinear corners must still lie in the slice.)
+        // (Per-material transport runs per cell: a point light's indirect sweep through a 2D
+        // transfer function's regions.)
         usable_ = Q.per_cell_flow != 0 && Q.eye_sweep == 0 && Q.source_sweep == 0 && Q.blend_axes == 0 &&
-                  !k.vx_perturbed() && Q.strides[u_] == 1 && nu >= 2 && nv >= 2;
+                  Q.transport_planes == 0 && !k.vx_perturbed() && Q.strides[u_] == 1 && nu >= 2 && nv >= 2;
         const float r_min = k.vx_prop_r_min();
         r_min2_ = r_min * r_min;
     }
@@ -441,7 +464,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
     if (x_major) {
         sigma = &slicedSigma(pass, layout, scratch);
         if (pass.input) layout.toSlices(pass.input->data(), 3, scratch.input);
-        resizeInHugePages(scratch.result, sigma->size() * 3);   // every cell is written: no need to clear it
+        resizeInHugePages(scratch.result, size_t(dims.x) * dims.y * dims.z * 3);   // every cell is written: no need to clear it
     }
     const glm::ivec3 stride = x_major ? glm::ivec3(dims.z * dims.y, 1, dims.y) : glm::ivec3(1, dims.x, dims.x * dims.y);
     assert(stride[u] == 1);   // rows are contiguous: the row batch and the row writes below rely on it

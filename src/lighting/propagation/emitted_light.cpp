@@ -23,7 +23,8 @@ void sweepSources(const std::vector<float>& input, kernel::VxPropParams Q, const
     Q.source_is_position = 0;
     Q.per_cell_flow = 0;
     Q.eye_sweep = 0;
-    Q.atten = glm::vec3(1.0f);
+    Q.atten = glm::vec3(1.0f);   // the extinction's own depth, whatever the transport colours
+    Q.transport_planes = 0;
     Q.tint = glm::vec3(1.0f);
     Q.weight = kFourPi / 6.0f;
     Q.light = kernel::VxLight{};

@@ -25,7 +25,7 @@ glm::ivec3 coarserDims(glm::ivec3 d, int factor) { return (d + factor - 1) / fac
 
 // A grid of `channels` floats per cell over `dims` cells averaged over blocks of 2^3 cells; cells
 // past an odd edge count as empty space, which is what they are.
-std::vector<float> halveGrid(const std::vector<float>& values, glm::ivec3 dims, int channels) {
+std::vector<float> halveGrid(const float* values, glm::ivec3 dims, int channels) {
     const glm::ivec3 h = coarserDims(dims, 2);
     std::vector<float> out(size_t(h.x) * h.y * h.z * channels, 0.0f);
     tbb::parallel_for(0, h.z, [&](int z) {
@@ -325,6 +325,7 @@ void IlluminationGridStage::release() {
     emission_.clear();
     chroma_sigma_.clear();
     chroma_emission_.clear();
+    transport_sigma_.clear();
     fine_ = coarse_ = SweepGrid{};
 }
 
@@ -367,9 +368,9 @@ void IlluminationGridStage::run(StageRun& run) {
     fine_.emission = emission_.empty() ? nullptr : &emission_;
     coarse_ = fine_;
     if (chroma > 1) {
-        chroma_sigma_ = halveGrid(grid.values, grid.dims, 1);
+        chroma_sigma_ = halveGrid(grid.values.data(), grid.dims, 1);
         if (fine_.emission) {   // only the coarse grid's is swept
-            chroma_emission_ = halveGrid(emission_, grid.dims, 3);
+            chroma_emission_ = halveGrid(emission_.data(), grid.dims, 3);
             coarse_.emission = &chroma_emission_;
             fine_.emission = nullptr;
             emission_ = std::vector<float>();
@@ -380,6 +381,28 @@ void IlluminationGridStage::run(StageRun& run) {
         coarse_.cells_per_voxel = fine_.cells_per_voxel / float(chroma);
         coarse_.sigma = &chroma_sigma_;
         coarse_.sigma_generation = nextGridGeneration();
+    }
+    // A 2D transfer function's per-material transport colour: the indirect sweeps read each
+    // channel's extinction times -ln(transport) after the extinction, on their own grid.
+    if (indirect && !brick_.atlas().transport.empty()) {
+        const std::vector<float> depth = buildLightGrid(inputs, resolution, {false, 0.0f, false, true}).transport_depth;
+        const size_t fine_cells = size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
+        const size_t cells = size_t(coarse_.dims.x) * coarse_.dims.y * coarse_.dims.z;
+        resizeInHugePages(transport_sigma_, 4 * cells);
+        std::copy_n(coarse_.sigma->data(), cells, transport_sigma_.begin());
+        for (size_t c = 0; c < 3; ++c) {
+            const float* plane = depth.data() + c * fine_cells;
+            float* to = transport_sigma_.data() + (c + 1) * cells;
+            if (chroma > 1) {
+                const std::vector<float> halved = halveGrid(plane, grid.dims, 1);
+                std::copy(halved.begin(), halved.end(), to);
+            } else {
+                std::copy_n(plane, cells, to);
+            }
+        }
+        coarse_.sigma = &transport_sigma_;
+        coarse_.sigma_generation = nextGridGeneration();
+        coarse_.transport_planes = true;
     }
 }
 
@@ -446,6 +469,7 @@ void PropagationStage::run(StageRun& run) {
     if (indirect) {
         profile = indirectFluence(*fx.indirect, run.scene.material);
         blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)), profile.attenuation);
+        blurred.transport_planes = coarse.transport_planes ? 1 : 0;
     }
     // The sweeps of `lights`, weighted by `sign`, on both blocks.
     auto sweepsOf = [&](const std::vector<kernel::VxLight>& lights, float sign, PassSweeps& fine_passes, PassSweeps& coarse_passes) {

@@ -77,6 +77,8 @@ struct SweepGrid {
     float cells_per_voxel = 1.0f;          // grid cells per index voxel (for displacement)
     const std::vector<float>* sigma = nullptr;
     uint64_t sigma_generation = 0;         // changes whenever sigma does (PropagationPass)
+    bool transport_planes = false;         // sigma is 4 planes: the extinction, then it times
+                                           // -ln(transport colour) per channel (VxPropParams)
     const std::vector<float>* emission = nullptr;   // RGB emitted radiance per cell, when it lights the medium
 };
 
@@ -107,6 +109,8 @@ private:
     std::vector<float> emission_;   // RGB emitted radiance per cell, when it lights the medium
     std::vector<float> chroma_sigma_;   // the light grid averaged over 2^3 cells (chroma subsampling)
     std::vector<float> chroma_emission_;   // and its emission
+    std::vector<float> transport_sigma_;   // the coarse grid's extinction and transport depth, with
+                                           // a per-voxel transport colour (SweepGrid::transport_planes)
     SweepGrid fine_, coarse_;
     uint64_t generation_ = 0;
 };

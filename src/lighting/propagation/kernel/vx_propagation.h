@@ -3,7 +3,8 @@
 // slice where the ray from the light (or, for the eye sweep, towards the camera) crosses it:
 //  - direct sweep (1 channel): luminance, one bilinear read, no blur, so shadow edges stay hard;
 //  - indirect sweep (3 channels): RGB blurred over Q.tap_count taps in a cone (Kniss Eq. 9) and
-//    attenuated by the transport colour (Kniss Eq. 8);
+//    attenuated by the transport colour (Kniss Eq. 8): one for the whole medium (Q.atten), or
+//    per material (Q.transport_planes: a 2D transfer function's regions);
 //  - eye sweep (3 channels): the indirect light blended with the blurred light behind the cell;
 //  - source sweep (3 channels, Q.source_sweep): nothing enters from outside; every cell adds its
 //    own source along the step (emitted light, or light scattered once, that then travels on).
@@ -11,7 +12,8 @@
 // length, so it is corrected for the slice distance and the propagation angle alike.
 // Several lights share the volume (Sunden 2015): each sweep adds vx_prop_weight times its value,
 // tinted by Q.tint, so a negative weight takes a light out again.
-// Accessors: vx_prop_sigma (the sweep grid's extinction per world unit, one float per cell),
+// Accessors: vx_prop_sigma (the sweep grid's extinction per world unit, one float per cell; with
+// per-material transport three more planes follow, extinction times -ln(transport colour)),
 // vx_prop_prev (the previous slice, Q.channels floats per cell), vx_prop_in (the eye sweep's input
 // or a source sweep's source, 3 floats per cell of the whole grid), vx_noise (perturbation table).
 #pragma once
@@ -66,26 +68,28 @@ VX_INLINE vec3 vx_prop_point(float s, float a, float b) {
 // an x sweep's grid out slice by slice).
 VX_INLINE int vx_prop_index(ivec3 c) { return c.x * Q.strides.x + c.y * Q.strides.y + c.z * Q.strides.z; }
 
-// Extinction per world unit of grid cell c (unperturbed), 0 outside the grid.
-VX_INLINE float vx_prop_sigma_cell(ivec3 c) {
+// Plane `plane` of the extinction (0: extinction per world unit; 1-3: times -ln(transport colour)
+// per channel) at grid cell c, unperturbed; 0 outside the grid.
+VX_INLINE float vx_prop_sigma_cell(ivec3 c, int plane) {
     if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= Q.dims.x || c.y >= Q.dims.y || c.z >= Q.dims.z) return 0.0f;
-    return vx_prop_sigma(vx_prop_index(c));
+    return vx_prop_sigma(plane * Q.dims.x * Q.dims.y * Q.dims.z + vx_prop_index(c));
 }
 
-// Extinction at grid point q, trilinear between cell centres (0 beyond the grid).
-VX_INLINE float vx_prop_sigma_at(vec3 q) {
+// A plane of the extinction at grid point q, trilinear between cell centres (0 beyond the grid).
+VX_INLINE float vx_prop_sigma_at(vec3 q, int plane) {
     vec3 g = q - vec3(0.5f);
     vec3 f = floor(g);
     vec3 t = g - f;
     ivec3 c = ivec3(f);
-    return VX_TRILERP(vx_prop_sigma_cell(c), vx_prop_sigma_cell(c + ivec3(1, 0, 0)), vx_prop_sigma_cell(c + ivec3(0, 1, 0)),
-                      vx_prop_sigma_cell(c + ivec3(1, 1, 0)), vx_prop_sigma_cell(c + ivec3(0, 0, 1)),
-                      vx_prop_sigma_cell(c + ivec3(1, 0, 1)), vx_prop_sigma_cell(c + ivec3(0, 1, 1)),
-                      vx_prop_sigma_cell(c + ivec3(1, 1, 1)), t.x, t.y, t.z);
+    return VX_TRILERP(vx_prop_sigma_cell(c, plane), vx_prop_sigma_cell(c + ivec3(1, 0, 0), plane),
+                      vx_prop_sigma_cell(c + ivec3(0, 1, 0), plane), vx_prop_sigma_cell(c + ivec3(1, 1, 0), plane),
+                      vx_prop_sigma_cell(c + ivec3(0, 0, 1), plane), vx_prop_sigma_cell(c + ivec3(1, 0, 1), plane),
+                      vx_prop_sigma_cell(c + ivec3(0, 1, 1), plane), vx_prop_sigma_cell(c + ivec3(1, 1, 1), plane), t.x, t.y, t.z);
 }
 
-// Extinction at in-slice coordinates (a, b) of slice `slice`, bilinear between cell centres.
-VX_INLINE float vx_prop_sigma_slice(float a, float b, int slice) {
+// A plane of the extinction at in-slice coordinates (a, b) of slice `slice`, bilinear between
+// cell centres.
+VX_INLINE float vx_prop_sigma_slice(float a, float b, int slice, int plane) {
     int u = vx_axis_u(Q.axis);
     int v = vx_axis_v(Q.axis);
     float ga = a - 0.5f;
@@ -101,17 +105,17 @@ VX_INLINE float vx_prop_sigma_slice(float a, float b, int slice) {
     du[u] = 1;
     dv[v] = 1;
     float ta = ga - fa;
-    return VX_BILERP(vx_prop_sigma_cell(c), vx_prop_sigma_cell(c + du), vx_prop_sigma_cell(c + dv),
-                     vx_prop_sigma_cell(c + du + dv), ta, gb - fb);
+    return VX_BILERP(vx_prop_sigma_cell(c, plane), vx_prop_sigma_cell(c + du, plane), vx_prop_sigma_cell(c + dv, plane),
+                     vx_prop_sigma_cell(c + du + dv, plane), ta, gb - fb);
 }
 
-// Extinction the sweep sees at grid point q: perturbed as the march perturbs it (the same world
-// noise), so shadows follow the added detail. `n` is the noise at q.
-VX_INLINE float vx_prop_extinction(vec3 q, vec4 n) {
-    if (!vx_perturbed()) return vx_prop_sigma_at(q);
+// A plane of the extinction the sweep sees at grid point q: perturbed as the march perturbs it
+// (the same world noise), so shadows follow the added detail. `n` is the noise at q.
+VX_INLINE float vx_prop_extinction(vec3 q, vec4 n, int plane) {
+    if (!vx_perturbed()) return vx_prop_sigma_at(q, plane);
     // Displacement is in index voxels; Q.cells_per_voxel converts to grid cells.
     vec3 shifted = vx_displaced() ? q + vec3(n) * (P.displacement * Q.cells_per_voxel) : q;
-    return vx_perturb_extinction(vx_prop_sigma_at(shifted), n);
+    return vx_perturb_extinction(vx_prop_sigma_at(shifted, plane), n);
 }
 
 VX_INLINE vec4 vx_prop_noise(vec3 q) {
@@ -214,6 +218,33 @@ VX_INLINE float vx_prop_step_world(vec3 back) { return length(mat3(Q.grid_to_wor
 // Radius of the blur disc at the end of a step `back`: its length times tan(half-angle).
 VX_INLINE float vx_prop_blur_radius(vec3 back) { return length(back) * Q.blur_tan; }
 
+// The step's integral of one plane of the extinction from p to cell (i, j) of slice Q.slice at
+// grid point x: a composite trapezoid over `pieces`, times the step's world length. `exact_ends`:
+// x is the cell's centre and p lies on the previous slice's centre plane (no perturbation, not a
+// light's first slice), so the ends read the cell and a bilinear blend of the slice.
+float vx_prop_step_depth(int i, int j, vec3 x, vec3 p, vec3 back, vec4 nx, bool exact_ends, int plane) {
+    int axis = Q.axis;
+    int u = vx_axis_u(axis);
+    int v = vx_axis_v(axis);
+    int pieces = vx_prop_pieces(back);
+    float ends;
+    if (!exact_ends) {
+        ends = vx_prop_extinction(x, nx, plane) + vx_prop_extinction(p, vx_prop_noise(p), plane);
+    } else {
+        ivec3 cx;
+        cx[axis] = Q.slice;
+        cx[u] = i;
+        cx[v] = j;
+        ends = vx_prop_sigma_cell(cx, plane) + vx_prop_sigma_slice(p[u], p[v], Q.slice - Q.direction, plane);
+    }
+    float sum = 0.5f * ends;
+    for (int k = 1; k < pieces; ++k) {
+        vec3 q = p + back * (float(k) / float(pieces));
+        sum += vx_prop_extinction(q, vx_prop_noise(q), plane);
+    }
+    return sum * vx_prop_step_world(back) / float(pieces);
+}
+
 // The value of cell (i, j) of slice Q.slice.
 VX_INLINE vec3 vx_prop_cell(int i, int j) {
     int axis = Q.axis;
@@ -242,32 +273,23 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     }
     float step_world = vx_prop_step_world(back);
 
-    // The optical depth of the step: a composite trapezoid over the extinction along it.
+    // The optical depth of the step.
     vec4 nx = vx_prop_noise(x);
-    int pieces = vx_prop_pieces(back);
-    float ends;
-    if (vx_perturbed() || first) {
-        ends = vx_prop_extinction(x, nx) + vx_prop_extinction(p, vx_prop_noise(p));
-    } else {
-        // Unperturbed, x is a cell centre and p lies on the previous slice's centre plane.
-        ivec3 cx;
-        cx[axis] = s;
-        cx[u] = i;
-        cx[v] = j;
-        ends = vx_prop_sigma_cell(cx) + vx_prop_sigma_slice(p[u], p[v], prev);
-    }
-    float sum = 0.5f * ends;
-    for (int k = 1; k < pieces; ++k) {
-        vec3 q = p + back * (float(k) / float(pieces));
-        sum += vx_prop_extinction(q, vx_prop_noise(q));
-    }
-    float tau = sum * step_world / float(pieces);
+    bool exact_ends = !vx_perturbed() && !first;
+    float tau = vx_prop_step_depth(i, j, x, p, back, nx, exact_ends, 0);
 
     // Transmittance of the step per channel (for indirect light the transport colour's e^-atten,
-    // which the noise tints: Kniss Eq. 8 and Sec. III.D).
+    // which the noise tints: Kniss Eq. 8 and Sec. III.D). Per material, the step's colour is the
+    // extinction-weighted mean of -ln(transport) along it, which is exact where one material
+    // fills the step and keeps the optical depth of each channel exact where several do.
     vec3 k = Q.atten;
+    if (Q.transport_planes != 0) {
+        vec3 depth = vec3(vx_prop_step_depth(i, j, x, p, back, nx, exact_ends, 1), vx_prop_step_depth(i, j, x, p, back, nx, exact_ends, 2),
+                          vx_prop_step_depth(i, j, x, p, back, nx, exact_ends, 3));
+        k = tau > 0.0f ? depth / tau : vec3(0.0f);
+    }
     if (Q.channels == 3 && vx_perturbed() && P.noise_transport != 0.0f)
-        k = -log(vx_perturb_transport(exp(-Q.atten), nx));
+        k = -log(vx_perturb_transport(exp(-k), nx));
     vec3 transmitted = vec3(vx_exp(-k.x * tau), vx_exp(-k.y * tau), vx_exp(-k.z * tau));
     if (first) return vx_prop_outside(x) * transmitted;
     // Blur: taps on a disc around p in the previous slice, radius = step length * tan(half-angle).
