@@ -9,8 +9,8 @@ layout(std140, binding = VX_BIND_PROP_PARAMS) uniform PropParams { VxPropParams 
 
 layout(std430, binding = VX_BIND_ATLAS_DENSITY) readonly buffer AtlasDensity { float vx_density_data[]; };
 layout(std430, binding = VX_BIND_ATLAS_EMISSION) readonly buffer AtlasEmission { float vx_emission_data[]; };
-// The colour grid's 3 floats a voxel, then from P.velocity_offset the velocity's (one block: a
-// compute program may have 16).
+// The colour grid's 3 floats a voxel, then from P.velocity_offset the velocity's, then from
+// P.surface_offset the surface weight's 1 (one block: a compute program may have 16).
 layout(std430, binding = VX_BIND_ATLAS_VECTORS) readonly buffer AtlasVectors { float vx_vector_data[]; };
 layout(std430, binding = VX_BIND_PAGE_TABLE) readonly buffer PageTable { ivec4 vx_page_data[]; };
 layout(std430, binding = VX_BIND_LIGHTS) readonly buffer Lights { VxLight vx_light_data[]; };
@@ -31,6 +31,7 @@ vec3 vx_atlas_velocity(int i) {
     int v = P.velocity_offset + 3 * i;
     return vec3(vx_vector_data[v], vx_vector_data[v + 1], vx_vector_data[v + 2]);
 }
+float vx_atlas_surface(int i) { return vx_vector_data[P.surface_offset + i]; }
 ivec4 vx_page_entry(int i) { return vx_page_data[i]; }
 VxLight vx_light(int i) { return vx_light_data[i]; }
 vec4 vx_tf_lut(int i) { return vx_tf_data[i]; }

@@ -326,6 +326,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     int per_sample_lights = per_ray_directional ? VX_LIGHTS_LOCAL : VX_LIGHTS_ALL;
     bool emits = P.emission_sources > 0;
     bool plain_albedo = P.use_transfer == 0 && P.use_color_grid == 0;
+    bool surface_grid = shaded_surface && P.use_surface_grid != 0;
     // When the light a sample scatters is the same all along the ray (unshadowed directional
     // lights and unoccluded ambient only, one albedo, no emission), a chunk's scattered light
     // telescopes exactly to albedo * L * (T before - T after): no per-sample work beyond the
@@ -382,7 +383,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                 vec3 shift = moving ? chunk.shift[j] : vec3(0.0f);
                 bool here = occupied;    // whether the sample's medium lies in a stored brick
                 VxTaps taps;
-                if (occupied && (emits || !plain_albedo)) taps = vx_moved_taps(slot, s.brick, p, shift, here);
+                if (occupied && (emits || !plain_albedo || surface_grid)) taps = vx_moved_taps(slot, s.brick, p, shift, here);
                 vec3 le = vec3(0.0f);
                 if (emits && here) le = vx_emission(taps);
                 if (sigma <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
@@ -398,6 +399,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                     vec3 albedo = plain_albedo || !here ? P.albedo : vx_albedo(taps);
                     VxGridCell cell = cached ? vx_cache_cell(x) : no_cell;
                     VxSurface surface = shaded_surface ? vx_surface(moving ? p - vx_to_index_dir(shift) : p) : vx_no_surface();
+                    if (surface_grid && here) surface.weight *= vx_surface_weight_at(taps);
                     vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, cell, surface));
                     px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
                     if (P.indirect_weight > 0.0f)

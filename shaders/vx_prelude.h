@@ -9,6 +9,7 @@
 //  - structs are filled field by field (no constructors), constants are #defines;
 //  - data comes only from accessor functions that each backend defines:
 //      float  vx_atlas_density(int index);   vec3 vx_atlas_color(int index);
+//      float  vx_atlas_surface(int index);
 //      float  vx_atlas_emission(int index);  ivec4 vx_page_entry(int index);
 //      vec3   vx_atlas_velocity(int index);  (render.motion_blur's velocity grid)
 //      VxLight vx_light(int index);          vec4  vx_tf_lut(int index);

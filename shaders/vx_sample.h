@@ -182,6 +182,7 @@ VX_INLINE VxTaps vx_taps_offset(VxTaps r, int offset) {
 VX_DEFINE_RECONSTRUCT(float, vx_density_at, vx_atlas_density)
 VX_DEFINE_RECONSTRUCT(float, vx_emission_value_at, vx_atlas_emission)
 VX_DEFINE_RECONSTRUCT(vec3, vx_color_at, vx_atlas_color)
+VX_DEFINE_RECONSTRUCT(float, vx_surface_weight_at, vx_atlas_surface)
 
 // World points and directions in the grid's index space.
 vec3 vx_to_index_point(vec3 x) { return vec3(P.world_to_index * vec4(x, 1.0f)); }

@@ -103,6 +103,12 @@ struct VxParams {
     int velocity_offset;    // GL: first float of the velocity in its storage block (vx_gl_bindings.glsl)
     int region_capacity;    // entries of the regions' table, after the bricks' in the page entries
     int region_max_probe;   // longest probe sequence in it
+
+    int use_surface_grid;   // 1: a per-voxel surface weight (vx_atlas_surface, Kniss Eq. 11)
+                            // scales the gradient ramp's
+    int surface_offset;     // GL: its first float in the vectors' block (vx_gl_bindings.glsl)
+    int pad3;
+    int pad4;
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
 };

@@ -57,6 +57,12 @@ openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigm
     return g;
 }
 
+openvdb::FloatGrid::Ptr twoHalvesGrid(float left, float right) {
+    auto grid = boxGrid({0, 0, 0}, {31, 31, 31}, right);
+    grid->denseFill(openvdb::CoordBBox({0, 0, 0}, {15, 31, 31}), left, true);
+    return grid;
+}
+
 double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 double cubicBSpline(double x) {

@@ -51,6 +51,10 @@ LoadedVolume volumeFromGrid(openvdb::FloatGrid::Ptr density,
 // A constant-density box of `sigma` over index voxels [lo, hi] (inclusive), voxel size `voxel`.
 openvdb::FloatGrid::Ptr boxGrid(openvdb::Coord lo, openvdb::Coord hi, float sigma, double voxel = 1.0);
 
+// A 32^3 cube of voxels 0..31 whose half x < 16 holds `left` and the rest `right`: two materials a
+// 2D transfer function tells apart by value alone.
+openvdb::FloatGrid::Ptr twoHalvesGrid(float left, float right);
+
 // A noisy ball of radius 20 voxels (voxel 0.1) written to `dir`/ball.vdb; returns the path. A
 // file, since the renderer keys its caches on it.
 std::string writeBall(const std::string& dir);

@@ -24,21 +24,24 @@ GlBuffer::GlBuffer() { glCreateBuffers(1, &id_); }
 GlBuffer::~GlBuffer() { glDeleteBuffers(1, &id_); }
 
 void GlBuffer::upload(const void* data, size_t bytes, GLenum usage, const std::string& what) {
-    upload(data, bytes, nullptr, 0, usage, what);
+    upload({{data, bytes}}, usage, what);
 }
 
-void GlBuffer::upload(const void* first, size_t first_bytes, const void* second, size_t second_bytes, GLenum usage,
-                      const std::string& what) {
+void GlBuffer::upload(std::initializer_list<Part> parts, GLenum usage, const std::string& what) {
     static const float kZeros[4] = {};
-    if (first_bytes + second_bytes == 0) {
-        first = kZeros;
-        first_bytes = sizeof kZeros;
-    }
-    const size_t bytes = first_bytes + second_bytes;
-    glNamedBufferData(id_, GLsizeiptr(bytes), second_bytes ? nullptr : first, usage);
-    if (second_bytes) {
-        if (first_bytes) glNamedBufferSubData(id_, 0, GLsizeiptr(first_bytes), first);
-        glNamedBufferSubData(id_, GLsizeiptr(first_bytes), GLsizeiptr(second_bytes), second);
+    size_t bytes = 0;
+    for (const Part& p : parts) bytes += p.bytes;
+    if (bytes == 0) {
+        glNamedBufferData(id_, GLsizeiptr(sizeof kZeros), kZeros, usage);
+    } else if (parts.size() == 1) {
+        glNamedBufferData(id_, GLsizeiptr(bytes), parts.begin()->data, usage);
+    } else {
+        glNamedBufferData(id_, GLsizeiptr(bytes), nullptr, usage);
+        size_t at = 0;
+        for (const Part& p : parts) {
+            if (p.bytes) glNamedBufferSubData(id_, GLsizeiptr(at), GLsizeiptr(p.bytes), p.data);
+            at += p.bytes;
+        }
     }
     if (GLenum error = glGetError(); error != GL_NO_ERROR)
         throw std::runtime_error("GL backend: cannot allocate the " + what + " buffer of " + describeBytes(bytes) +

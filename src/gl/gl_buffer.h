@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 
 #include <cstddef>
+#include <initializer_list>
 #include <string>
 
 namespace voxlux {
@@ -21,9 +22,12 @@ public:
     // the kernel never reads an array whose feature is off. Throws naming `what` when GL cannot
     // allocate it.
     void upload(const void* data, size_t bytes, GLenum usage, const std::string& what);
-    // The same with two arrays one after the other (two kernel arrays in one storage block).
-    void upload(const void* first, size_t first_bytes, const void* second, size_t second_bytes, GLenum usage,
-                const std::string& what);
+    // The same with several arrays one after the other (kernel arrays sharing one storage block).
+    struct Part {
+        const void* data;
+        size_t bytes;
+    };
+    void upload(std::initializer_list<Part> parts, GLenum usage, const std::string& what);
 
     // Binds to the binding point the program declares for block `name`, if the program uses it.
     void bind(GLuint program, GLenum interface, const char* name) const;

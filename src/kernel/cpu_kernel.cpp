@@ -16,6 +16,7 @@ kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
     k.density = in.atlas->density;
     k.emission = in.atlas->emission;
     k.color = in.atlas->color;
+    k.surface = in.atlas->surface;
     k.velocity = in.atlas->velocity;
     k.page = in.pages->entries;
     k.lights = in.lights;

@@ -35,6 +35,7 @@ struct CpuKernel {
     KernelArray<float> density;
     KernelArray<float> emission;           // source-major channels (P.emission_source_floats each)
     KernelArray<float> color;              // 3 floats per voxel
+    KernelArray<float> surface;            // 1 float per voxel
     KernelArray<float> velocity;           // 3 floats per voxel
     KernelArray<ivec4> page;
     KernelArray<VxLight> lights;
@@ -55,6 +56,7 @@ struct CpuKernel {
     vec3 vx_atlas_color(int i) const {
         return vec3(color.at(3 * i, "atlas colour"), color.at(3 * i + 1, "atlas colour"), color.at(3 * i + 2, "atlas colour"));
     }
+    float vx_atlas_surface(int i) const { return surface.at(i, "atlas surface weight"); }
     vec3 vx_atlas_velocity(int i) const {
         return vec3(velocity.at(3 * i, "atlas velocity"), velocity.at(3 * i + 1, "atlas velocity"), velocity.at(3 * i + 2, "atlas velocity"));
     }

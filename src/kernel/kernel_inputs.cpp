@@ -64,6 +64,8 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     P.transfer_inv_range = 1.0f / (hi - lo);
     P.use_transfer = m.transfer.empty() ? 0 : 1;
     P.use_color_grid = atlas.color.empty() ? 0 : 1;
+    P.use_surface_grid = atlas.surface.empty() ? 0 : 1;
+    P.surface_offset = int(atlas.color.size() + atlas.velocity.size());   // GL: after both in their block
     in.tf_lut = bakeTransfer(m.transfer);
 }
 

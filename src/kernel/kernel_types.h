@@ -30,6 +30,7 @@ VX_LINE_ALIGNED(VxParams, illum_dims);
 VX_LINE_ALIGNED(VxParams, chroma_dims);
 VX_LINE_ALIGNED(VxParams, noise_offset);
 VX_LINE_ALIGNED(VxParams, use_velocity);
+VX_LINE_ALIGNED(VxParams, use_surface_grid);
 VX_LINE_ALIGNED(VxParams, camera_open);
 VX_LINE_ALIGNED(VxParams, camera_close);
 static_assert(VX_MAX_EMISSION == 4, "VxParams::emission_domain holds one source per vec4 component");

@@ -214,7 +214,9 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
         const auto end = std::lower_bound(begin, bricks.end(), (z1 - 1) / VX_BRICK + 1, byZ);
         std::vector<double> sums(size_t(g.dims.x) * g.dims.y * g.planes, 0.0);
         std::vector<double> emitted(emits ? size_t(g.dims.x) * g.dims.y * 3 : 0, 0.0);
-        std::vector<double> depth(transport ? size_t(g.dims.x) * g.dims.y * 3 : 0, 0.0);
+        // Per cell: extinction times -ln(transport) per channel, and the extinction, which clamps
+        // the cell as the extinction plane is clamped.
+        std::vector<double> depth(transport ? size_t(g.dims.x) * g.dims.y * 4 : 0, 0.0);
         for (auto b = begin; b != end; ++b) {
             const glm::ivec3 first = b->local * VX_BRICK;
             for (int oz = std::max(z0 - first.z, 0); oz < std::min(z1 - first.z, VX_BRICK); ++oz) {
@@ -240,8 +242,10 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
                                 const size_t cell = size_t(cy) * g.dims.x + cx;
                                 if (emits)
                                     for (int ch = 0; ch < 3; ++ch) emitted[cell * 3 + ch] += overlap * le[ch];
-                                if (transport)
-                                    for (int ch = 0; ch < 3; ++ch) depth[cell * 3 + ch] += overlap * sigma_k[ch];
+                                if (transport) {
+                                    for (int ch = 0; ch < 3; ++ch) depth[cell * 4 + ch] += overlap * sigma_k[ch];
+                                    depth[cell * 4 + 3] += overlap * sigma;
+                                }
                                 if (sigma <= 0.0f || g.planes == 0) return;
                                 const double w = overlap * sigma;
                                 double* sum = sums.data() + cell * g.planes;
@@ -264,9 +268,12 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
             if (emits)
                 for (int ch = 0; ch < 3; ++ch)
                     g.emission[i * 3 + ch] = float(std::min(emitted[cell * 3 + ch] * inv_volume, double(VX_FLOAT_MAX)));
-            if (transport)
+            if (transport) {
+                const double mean_sigma = depth[cell * 4 + 3] * inv_volume;
+                const double clamp = mean_sigma > max_sigma ? max_sigma / mean_sigma : 1.0;
                 for (int ch = 0; ch < 3; ++ch)
-                    g.transport_depth[ch * plane + i] = float(std::min(depth[cell * 3 + ch] * inv_volume, double(VX_FLOAT_MAX)));
+                    g.transport_depth[ch * plane + i] = float(std::min(depth[cell * 4 + ch] * inv_volume * clamp, double(VX_FLOAT_MAX)));
+            }
         }
     });
     g.clamped_cells = clamped;

@@ -37,15 +37,18 @@ float regionWeight(const TransferRegion& region, glm::vec2 point) {
 Classified classify2d(const std::vector<TransferRegion>& regions, float value, float gradient) {
     Classified out;
     glm::vec3 albedo_sum(0.0f), depth_sum(0.0f);
+    float surface_sum = 0.0f;
     for (const TransferRegion& r : regions) {
         const float sigma = regionWeight(r, {value, gradient}) * r.extinction;
         out.extinction += sigma;
         albedo_sum += sigma * r.albedo;
         if (r.transport) depth_sum -= sigma * glm::log(*r.transport);
+        surface_sum += sigma * r.surface.value_or(1.0f);
     }
     if (out.extinction > 0.0f) {
         out.albedo = albedo_sum / out.extinction;
         out.transport = glm::exp(-depth_sum / out.extinction);
+        out.surface = surface_sum / out.extinction;
     }
     return out;
 }

@@ -17,13 +17,15 @@ struct Classified {
     glm::vec3 albedo{1.0f};    // multiplies material.albedo
     glm::vec3 transport{1.0f}; // e^-(extinction-weighted mean of -ln transport): the colour whose
                                // optical depth per channel is the regions' together (1: none)
+    float surface = 1.0f;      // the extinction-weighted mean of the regions' surface weights (1: none)
 };
 
 // A region's weight at (value, gradient magnitude): 0 outside, 1 inside, ramped over `fade`.
 float regionWeight(const TransferRegion& region, glm::vec2 point);
 
 // The regions together: extinctions add (weighted), and the albedo is the extinction-weighted mean
-// of the regions' albedos (1 where nothing is selected); so is -ln of their transport colours.
+// of the regions' albedos (1 where nothing is selected); so are -ln of their transport colours and
+// their surface weights.
 Classified classify2d(const std::vector<TransferRegion>& regions, float value, float gradient);
 
 }  // namespace voxlux

@@ -56,6 +56,9 @@ struct TransferRegion {
     // Kniss 2003 Eq. 8 per material: the share of indirect light kept per unit optical depth, in
     // place of effects.indirect's attenuation. Every region of a function has one, or none does.
     std::optional<glm::vec3> transport;
+    // Kniss 2003 Eq. 11 per material: how much of effects.surface's shading the material takes,
+    // 0..1 (times the gradient's ramp). Every region of a function has one, or none does.
+    std::optional<float> surface;
 };
 
 // What density_scale's extinction is per: a world unit, or the length of a voxel (the smallest

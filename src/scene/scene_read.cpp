@@ -72,7 +72,7 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
 // A region of material.transfer_function_2d: a rectangle ("value" and "gradient" ranges) or a
 // triangle ("triangle": three [value, gradient] corners).
 TransferRegion readTransferRegion(const JsonObject& o) {
-    o.rejectUnknown({"name", "value", "gradient", "triangle", "fade", "extinction", "albedo", "transport"});
+    o.rejectUnknown({"name", "value", "gradient", "triangle", "fade", "extinction", "albedo", "transport", "surface"});
     TransferRegion r;
     r.name = o.string("name", "");
     r.triangle = o.has("triangle");
@@ -112,6 +112,10 @@ TransferRegion readTransferRegion(const JsonObject& o) {
         r.transport = o.vec3("transport");
         if (!(glm::all(glm::greaterThan(*r.transport, glm::vec3(0))) && glm::all(glm::lessThanEqual(*r.transport, glm::vec3(1)))))
             o.fail("transport", "each component must lie in (0, 1]");
+    }
+    if (o.has("surface")) {
+        r.surface = o.number("surface");
+        if (!(*r.surface >= 0.0f && *r.surface <= 1.0f)) o.fail("surface", "must lie in [0, 1]");
     }
     return r;
 }
@@ -153,14 +157,18 @@ Material readMaterial(const JsonObject& o) {
             for (const auto& r : o.objects("transfer_function_2d")) m.transfer_2d.push_back(readTransferRegion(r));
         }
         if (m.transfer_2d.empty()) o.fail("transfer_function_2d", "needs at least one region");
-        for (size_t i = 0; i < m.transfer_2d.size(); ++i)
-            if (m.transfer_2d[i].transport.has_value() != m.transfer_2d[0].transport.has_value()) {
-                const TransferRegion& without = m.transfer_2d[i].transport ? m.transfer_2d[0] : m.transfer_2d[i];
-                const size_t at = m.transfer_2d[i].transport ? 0 : i;
-                o.fail("transfer_function_2d", "give every region a transport colour or none: " +
-                                                   (without.name.empty() ? "region " + std::to_string(at + 1) : "'" + without.name + "'") +
-                                                   " has none");
-            }
+        // A per-region property the regions share: on every region, or on none.
+        auto everyOrNone = [&](const char* what, auto has) {
+            for (size_t i = 0; i < m.transfer_2d.size(); ++i)
+                if (has(m.transfer_2d[i]) != has(m.transfer_2d[0])) {
+                    const size_t at = has(m.transfer_2d[i]) ? 0 : i;   // the first region without it
+                    const std::string& name = m.transfer_2d[at].name;
+                    o.fail("transfer_function_2d", std::string("give every region ") + what + " or none: " +
+                                                       (name.empty() ? "the region at index " + std::to_string(at) : "'" + name + "'") + " has none");
+                }
+        };
+        everyOrNone("a transport colour", [](const TransferRegion& r) { return r.transport.has_value(); });
+        everyOrNone("a surface weight", [](const TransferRegion& r) { return r.surface.has_value(); });
     }
     return m;
 }

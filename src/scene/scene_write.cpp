@@ -145,6 +145,7 @@ nlohmann::json sceneToJson(const Scene& s) {
         nlohmann::json region = {{"fade", decimal(r.fade)}, {"extinction", decimal(r.extinction)}, {"albedo", vec(r.albedo)}};
         if (!r.name.empty()) region["name"] = r.name;
         if (r.transport) region["transport"] = vec(*r.transport);
+        if (r.surface) region["surface"] = decimal(*r.surface);
         const auto pair = [](glm::vec2 p) { return nlohmann::json::array({decimal(p.x), decimal(p.y)}); };
         if (r.triangle) {
             region["triangle"] = {pair(r.corners[0]), pair(r.corners[1]), pair(r.corners[2])};

@@ -84,7 +84,12 @@ void markParetoFronts(std::vector<StudyRow>& rows) {
     markFront(rows, &StudyRow::delta_e, &StudyRow::front_delta_e);
 }
 
-double ReferenceCurve::secondsFor(double rmse) const { return t0 + k * (sigma / rmse) * (sigma / rmse); }
+// The reference renders one sample at least, and no fewer seconds than a sample's slope k: a fit's
+// offset t0 can be negative, which one sample's time must not inherit.
+double ReferenceCurve::secondsFor(double rmse) const {
+    const double spp = std::max((sigma / rmse) * (sigma / rmse), 1.0);
+    return std::max(t0 + k * spp, k);
+}
 
 double ReferenceCurve::rmseAt(double seconds) const {
     const double spp = (seconds - t0) / k;

@@ -35,7 +35,7 @@ void markParetoFronts(std::vector<StudyRow>& rows);
 // least squares to the reference rows (sigma from rows of 4 spp or more when there are two).
 struct ReferenceCurve {
     double t0 = 0, k = 0, sigma = 0;
-    double secondsFor(double rmse) const;   // to reach `rmse`
+    double secondsFor(double rmse) const;   // to reach `rmse` (one sample's at least)
     double rmseAt(double seconds) const;    // reached in `seconds` (infinity below one sample)
 };
 std::optional<ReferenceCurve> fitReferenceCurve(const std::vector<StudyRow>& rows);

@@ -124,7 +124,7 @@ void addCounts(SanitizeCounts& into, const SanitizeCounts& c) {
 
 size_t BrickAtlas::bytes() const {
     return coords.size() * sizeof(glm::ivec3) +
-           (density.size() + emission.size() + color.size() + transport.size() + velocity.size()) * sizeof(float) +
+           (density.size() + emission.size() + color.size() + transport.size() + surface.size() + velocity.size()) * sizeof(float) +
            density_range.size() * sizeof(glm::vec2) + emission_max.size() * sizeof(float);
 }
 
@@ -143,9 +143,10 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
 
     const size_t n = candidates.size(), sources = v.emission.size();
     std::vector<float> density(n * kVoxels), emission(sources * n * kVoxels), color(v.color ? n * kVoxels * 3 : 0),
-        transport(v.transport ? n * kVoxels * 3 : 0), velocity(v.velocity ? n * kVoxels * 3 : 0);
+        transport(v.transport ? n * kVoxels * 3 : 0), surface(v.surface ? n * kVoxels : 0), velocity(v.velocity ? n * kVoxels * 3 : 0);
     struct Fixes {
-        SanitizeCounts density, color, transport, velocity;   // (the transport colour is classified: never fixed)
+        SanitizeCounts density, color, velocity;
+        SanitizeCounts classified;   // transport colour and surface weight: classified in range, never fixed
         std::vector<SanitizeCounts> emission;
     };
     tbb::combinable<Fixes> fixes([&] { return Fixes{{}, {}, {}, {}, std::vector<SanitizeCounts>(sources)}; });
@@ -157,6 +158,7 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
         return accs;
     });
     tbb::enumerable_thread_specific<std::unique_ptr<openvdb::Vec3SGrid::ConstAccessor>> colorAcc, transportAcc, velocityAcc;
+    tbb::enumerable_thread_specific<std::unique_ptr<FloatAcc>> surfaceAcc;
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16), [&](const tbb::blocked_range<size_t>& r) {
         Fixes& f = fixes.local();
@@ -174,7 +176,12 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
             if (v.transport) {
                 auto& acc = transportAcc.local();
                 if (!acc) acc = std::make_unique<openvdb::Vec3SGrid::ConstAccessor>(v.transport->getConstAccessor());
-                fillVector(*acc, candidates[i], &transport[i * kVoxels * 3], f.transport, VectorKind::Colour);
+                fillVector(*acc, candidates[i], &transport[i * kVoxels * 3], f.classified, VectorKind::Colour);
+            }
+            if (v.surface) {
+                auto& acc = surfaceAcc.local();
+                if (!acc) acc = std::make_unique<FloatAcc>(v.surface->getConstAccessor());
+                fillScalar(*acc, candidates[i], &surface[i * kVoxels], f.classified);
             }
             if (v.velocity) {
                 auto& acc = velocityAcc.local();
@@ -223,6 +230,7 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
         std::copy_n(&density[i * kVoxels], kVoxels, &density[j * kVoxels]);
         if (v.color) std::copy_n(&color[i * kVoxels * 3], kVoxels * 3, &color[j * kVoxels * 3]);
         if (v.transport) std::copy_n(&transport[i * kVoxels * 3], kVoxels * 3, &transport[j * kVoxels * 3]);
+        if (v.surface) std::copy_n(&surface[i * kVoxels], kVoxels, &surface[j * kVoxels]);
         if (v.velocity) std::copy_n(&velocity[i * kVoxels * 3], kVoxels * 3, &velocity[j * kVoxels * 3]);
     }
     for (size_t e = 0; e < sources; ++e)
@@ -234,11 +242,13 @@ BrickAtlas buildBrickAtlas(const LoadedVolume& v, int motion_reach) {
     emission.resize(sources * slots * kVoxels);
     color.resize(v.color ? slots * kVoxels * 3 : 0);
     transport.resize(v.transport ? slots * kVoxels * 3 : 0);
+    surface.resize(v.surface ? slots * kVoxels : 0);
     velocity.resize(v.velocity ? slots * kVoxels * 3 : 0);
     atlas.density = std::move(density);
     atlas.emission = std::move(emission);
     atlas.color = std::move(color);
     atlas.transport = std::move(transport);
+    atlas.surface = std::move(surface);
     atlas.velocity = std::move(velocity);
     return atlas;
 }

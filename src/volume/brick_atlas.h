@@ -29,6 +29,7 @@ struct BrickAtlas {
     std::vector<float> color;                // empty, or 3 floats per voxel
     std::vector<float> transport;            // empty, or 3 floats per voxel: the transport colour
                                              // (LoadedVolume::transport), which light grids filter
+    std::vector<float> surface;              // empty, or 1 float per voxel: the surface weight
     std::vector<float> velocity;             // empty, or 3 floats per voxel (world units per second)
     std::vector<glm::vec2> density_range;    // min and max over each slot's 9^3 block
     std::vector<float> emission_max;         // max over each 9^3 block: source * slots + slot

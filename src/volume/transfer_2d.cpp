@@ -13,27 +13,29 @@
 namespace voxlux {
 namespace {
 
-// The albedo of the selected voxels, carried two voxels out into the unselected ones around them
-// (each new voxel the mean of its selected neighbours'): the filters interpolate the albedo with
-// the same weights as the extinction, over up to 4 voxels (tricubic), and an unselected voxel's
-// albedo would otherwise tint a material's edge with the grid's background.
-openvdb::Vec3SGrid::Ptr extendAlbedo(openvdb::Vec3SGrid::Ptr selected) {
+// A property of the selected voxels (albedo, surface weight) carried two voxels out into the
+// unselected ones around them (each new voxel the mean of its selected neighbours'): the filters
+// interpolate it with the same weights as the extinction, over up to 4 voxels (tricubic), and an
+// unselected voxel's value would otherwise blend the grid's background into a material's edge.
+template <typename GridT>
+typename GridT::Ptr extendSelected(typename GridT::Ptr selected) {
+    using Value = typename GridT::ValueType;
     auto out = selected;
     for (int round = 0; round < 2; ++round) {
         auto grown = out->deepCopy();
         openvdb::tools::dilateActiveValues(grown->tree(), 1, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::EXPAND_TILES);
-        openvdb::tree::LeafManager<openvdb::Vec3STree> leaves(grown->tree());
-        leaves.foreach([&](openvdb::Vec3STree::LeafNodeType& leaf, size_t) {
+        openvdb::tree::LeafManager<typename GridT::TreeType> leaves(grown->tree());
+        leaves.foreach([&](typename GridT::TreeType::LeafNodeType& leaf, size_t) {
             auto before = out->getConstUnsafeAccessor();
             for (auto it = leaf.beginValueOn(); it; ++it) {
                 const openvdb::Coord c = it.getCoord();
                 if (before.isValueOn(c)) continue;
-                openvdb::Vec3s sum(0.0f);
+                Value sum = openvdb::zeroVal<Value>();
                 int n = 0;
                 for (int dz = -1; dz <= 1; ++dz)
                     for (int dy = -1; dy <= 1; ++dy)
                         for (int dx = -1; dx <= 1; ++dx) {
-                            openvdb::Vec3s v;
+                            Value v;
                             if (before.probeValue(c.offsetBy(dx, dy, dz), v)) sum += v, ++n;
                         }
                 it.setValue(sum / float(n));   // n >= 1: the voxel was dilated from a neighbour
@@ -66,6 +68,13 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
         transport->setName("transport");
         transport->tree().topologyUnion(extinction->tree());
     }
+    openvdb::FloatGrid::Ptr surface;
+    if (regions.front().surface) {   // every region has one, or none does
+        surface = openvdb::FloatGrid::create(1.0f);
+        surface->setTransform(values.transform().copy());
+        surface->setName("surface");
+        surface->tree().topologyUnion(extinction->tree());
+    }
 
     // An index-space gradient to world units: the inverse transpose of the voxel edges' matrix.
     const glm::mat3 to_world_gradient = glm::transpose(glm::inverse(glm::mat3(raw.index_to_world)));
@@ -75,6 +84,7 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
         auto acc = values.getConstUnsafeAccessor();   // one per leaf and thread: no registration with the tree
         auto* colour_leaf = albedo->tree().probeLeaf(leaf.origin());   // the same topology: this thread's alone
         auto* transport_leaf = transport ? transport->tree().probeLeaf(leaf.origin()) : nullptr;
+        auto* surface_leaf = surface ? surface->tree().probeLeaf(leaf.origin()) : nullptr;
         std::uint64_t bad = 0;
         for (auto it = leaf.beginValueOn(); it; ++it) {
             const openvdb::Coord c = it.getCoord();
@@ -87,10 +97,12 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
             it.setValue(k.extinction);
             colour_leaf->setValueOnly(c, openvdb::Vec3s(k.albedo.x, k.albedo.y, k.albedo.z));
             if (transport_leaf) transport_leaf->setValueOnly(c, openvdb::Vec3s(k.transport.x, k.transport.y, k.transport.z));
+            if (surface_leaf) surface_leaf->setValueOnly(c, k.surface);
             if (k.extinction <= 0.0f) {
                 it.setValueOff();
                 colour_leaf->setValueOff(c);
                 if (transport_leaf) transport_leaf->setValueOff(c);
+                if (surface_leaf) surface_leaf->setValueOff(c);
             }
         }
         unusable += bad;
@@ -98,7 +110,11 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
     openvdb::tools::pruneInactive(extinction->tree());
     openvdb::tools::pruneInactive(albedo->tree());
     if (transport) openvdb::tools::pruneInactive(transport->tree());
-    albedo = extendAlbedo(albedo);
+    albedo = extendSelected<openvdb::Vec3SGrid>(albedo);
+    if (surface) {
+        openvdb::tools::pruneInactive(surface->tree());
+        surface = extendSelected<openvdb::FloatGrid>(surface);
+    }
     if (unusable > 0)
         warnings.push_back(raw.file + ": " + std::to_string(unusable.load()) +
                            " voxels whose value or gradient is NaN or infinite are transparent under the 2D transfer function");
@@ -107,6 +123,7 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
     out.density = extinction;
     out.color = albedo;
     out.transport = transport;
+    out.surface = surface;
     return out;
 }
 

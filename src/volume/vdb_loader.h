@@ -18,7 +18,9 @@ struct LoadedVolume {
     std::vector<openvdb::FloatGrid::ConstPtr> emission;  // one per emission source, in its order
     openvdb::Vec3SGrid::ConstPtr color;      // null unless the spec names one
     openvdb::Vec3SGrid::ConstPtr transport;  // per-voxel transport colour (a 2D transfer function's
-                                             // regions, Kniss Eq. 8); null: effects.indirect's
+                                             // regions, Kniss Eq. 8); null: effects.indirect's colour
+    openvdb::FloatGrid::ConstPtr surface;    // per-voxel surface weight (the regions', Kniss Eq. 11);
+                                             // null: 1, the gradient's ramp alone
     openvdb::Vec3SGrid::ConstPtr velocity;   // render.motion_blur's, on the voxel centres; else null
     float max_speed = 0.0f;                  // the velocity's largest length (world units per second)
     glm::mat4 index_to_world{1.0f};          // affine, from the density grid

@@ -64,11 +64,17 @@ size_t gridBytes(const std::shared_ptr<const LoadedVolume>& volume) {
 size_t LoadStage::outputBytes() const { return gridBytes(volume_); }
 
 // Only the classified grids: the others are load's.
-size_t Transfer2dStage::outputBytes() const { return volume_ ? volume_->density->memUsage() + volume_->color->memUsage() : 0; }
+size_t Transfer2dStage::outputBytes() const {
+    if (!volume_) return 0;
+    return volume_->density->memUsage() + volume_->color->memUsage() + (volume_->transport ? volume_->transport->memUsage() : 0) +
+           (volume_->surface ? volume_->surface->memUsage() : 0);
+}
 
 StageActivity Transfer2dStage::activity(const Scene& s) const {
     if (s.material.transfer_2d.empty()) return {false, "skipped: no 2D transfer function (material.transfer_function_2d)"};
-    return {true, "classifies each voxel by value and gradient magnitude into extinction and albedo (" +
+    const TransferRegion& first = s.material.transfer_2d.front();   // every region has a key or none does
+    return {true, std::string("classifies each voxel by value and gradient magnitude into extinction, albedo") +
+                      (first.transport ? ", transport colour" : "") + (first.surface ? ", surface weight" : "") + " (" +
                       std::to_string(s.material.transfer_2d.size()) + " regions, Kniss 2002)"};
 }
 

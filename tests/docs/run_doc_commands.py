@@ -35,8 +35,8 @@ GL commands (`--backend gl`, `--backends ...gl`) are skipped with --skip-gl or V
 A command is split into words as the shell does, the tables are applied to its words, and it is
 joined again, quoted; a failure prints it as it ran.
 
-Cost: about 2 minutes on 2 busy cores with the shared data, half of it the three `voxlux study`
-runs of docs/accuracy.md; about 30 s without the shared data. Temporary folders are removed.
+Cost: about 2 minutes on 2 busy cores with the shared data, half of it the four `voxlux study`
+runs of docs/accuracy.md and docs/scans.md; about 40 s without the shared data. Temporary folders are removed.
 
   tests/docs/run_doc_commands.py --binary build/voxlux --source .          # run, PASS/FAIL/SKIP each
   tests/docs/run_doc_commands.py --binary build/voxlux --source . --list   # only list the commands

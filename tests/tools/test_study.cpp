@@ -119,6 +119,11 @@ TEST(StudyResults, ReferenceCurveAndCrossoverByHand) {
     EXPECT_NEAR(curve->k, 0.05, 1e-9);
     EXPECT_NEAR(curve->sigma, 0.8, 1e-9);
     EXPECT_NEAR(curve->secondsFor(0.2), 1.0, 1e-9);
+    EXPECT_NEAR(curve->secondsFor(1.6), 0.25, 1e-9);   // a quarter sample's error: one sample's time, never less
+    // A fit with a negative offset (the MRI head's): one sample costs its slope, not t0 + k.
+    const ReferenceCurve negative{-0.536, 0.7988, 0.1239};
+    EXPECT_NEAR(negative.secondsFor(0.2249), 0.7988, 1e-9);
+    EXPECT_NEAR(negative.secondsFor(0.1239 / 4.0), -0.536 + 0.7988 * 16.0, 1e-9);
     EXPECT_NEAR(curve->rmseAt(1.0), 0.2, 1e-9);
     EXPECT_TRUE(std::isinf(curve->rmseAt(0.21)));   // not even one sample
 

@@ -247,6 +247,7 @@ TEST(Transfer2d, RegionsSurviveWritingAndReadingTheScene) {
             EXPECT_EQ(a.extinction, b.extinction) << a.name;
             EXPECT_EQ(a.albedo, b.albedo) << a.name;
             EXPECT_EQ(a.transport, b.transport) << a.name;
+            EXPECT_EQ(a.surface, b.surface) << a.name;
         }
     }
 }
@@ -268,10 +269,27 @@ TEST(Transfer2d, TransportColoursComeOnEveryRegionOrNone) {
               "shot.json: /material/transfer_function_2d: give every region a transport colour or none: 'bone' has none");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": [
                   {"value": [0, 1], "extinction": 1}, {"value": [1, 2], "extinction": 1, "transport": [1, 0.5, 0.5]}]}})"),
-              "shot.json: /material/transfer_function_2d: give every region a transport colour or none: region 1 has none");
+              "shot.json: /material/transfer_function_2d: give every region a transport colour or none: the region at index 0 has none");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": [
                   {"value": [0, 1], "extinction": 1, "transport": [1, 0, 0.5]}]}})"),
               "shot.json: /material/transfer_function_2d/0/transport: each component must lie in (0, 1]");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": [
+                  {"name": "skin", "value": [0, 1], "extinction": 1}, {"value": [1, 2], "extinction": 1, "surface": 1}]}})"),
+              "shot.json: /material/transfer_function_2d: give every region a surface weight or none: 'skin' has none");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": [
+                  {"value": [0, 1], "extinction": 1, "surface": 1.5}]}})"),
+              "shot.json: /material/transfer_function_2d/0/surface: must lie in [0, 1]");
+}
+
+TEST(Transfer2d, SurfaceWeightIsTheExtinctionWeightedMean) {
+    TransferRegion skin, brain;
+    skin.value = brain.value = {0.0f, 10.0f};
+    skin.extinction = 1.0f;
+    skin.surface = 1.0f;
+    brain.extinction = 3.0f;
+    brain.surface = 0.2f;
+    EXPECT_NEAR(classify2d({skin, brain}, 5.0f, 0.0f).surface, (1.0f + 3.0f * 0.2f) / 4.0f, 1e-6f);
+    EXPECT_EQ(classify2d({skin, brain}, 50.0f, 0.0f).surface, 1.0f);   // nothing selected
 }
 
 // Kniss's Eq. 8 per material: where regions overlap, their -ln(transport) mix as the albedo does,

@@ -76,10 +76,13 @@ public:
             a.buffer.upload(a.data, a.bytes, GL_STATIC_DRAW, a.block);
             a.buffer.bind(program, GL_SHADER_STORAGE_BLOCK, a.block);
         }
-        // Colour and velocity share a block: llvmpipe allows a compute program 16 storage blocks.
-        const size_t color_bytes = atlas.color.size() * sizeof(float), velocity_bytes = atlas.velocity.size() * sizeof(float);
-        checkStorageSize("AtlasVectors", color_bytes + velocity_bytes);
-        vectors_.upload(atlas.color.data(), color_bytes, atlas.velocity.data(), velocity_bytes, GL_STATIC_DRAW, "AtlasVectors");
+        // Colour, velocity and surface weight share a block: llvmpipe allows a compute program 16
+        // storage blocks.
+        const size_t color_bytes = atlas.color.size() * sizeof(float), velocity_bytes = atlas.velocity.size() * sizeof(float),
+                     surface_bytes = atlas.surface.size() * sizeof(float);
+        checkStorageSize("AtlasVectors", color_bytes + velocity_bytes + surface_bytes);
+        vectors_.upload({{atlas.color.data(), color_bytes}, {atlas.velocity.data(), velocity_bytes}, {atlas.surface.data(), surface_bytes}},
+                        GL_STATIC_DRAW, "AtlasVectors");
         vectors_.bind(program, GL_SHADER_STORAGE_BLOCK, "AtlasVectors");
 
         const size_t row_bytes = size_t(img.width) * sizeof(kernel::VxPixel);

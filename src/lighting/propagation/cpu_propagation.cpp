@@ -122,12 +122,12 @@ public:
         const int channels = Q.channels, axis = Q.axis;
         const size_t sv = size_t(Q.strides[k_.vx_axis_v(axis)]), sa = size_t(Q.strides[axis]);
         const size_t plane_cells = size_t(Q.dims.x) * Q.dims.y * Q.dims.z;
-        // tau[0]: the step's optical depth; tau[1..3] with per-material transport: each channel's
-        // (vx_prop_cell's k * tau).
+        // tau[0]: the step's optical depth; with per-material transport instead tau[1..3], each
+        // channel's (vx_prop_cell's k * tau).
         float tau[4][kMaxRow];
         for (int base = lo_; base < hi_; base += kMaxRow) {
             const int n = std::min(kMaxRow, hi_ - base);
-            for (int plane = 0; plane < planes_; ++plane) {
+            for (int plane = planes_ > 1 ? 1 : 0; plane < planes_; ++plane) {
                 float* depth = tau[plane];
                 std::fill(depth, depth + n, 0.0f);
                 for (const SigmaRead& r : sigma_) {

@@ -14,8 +14,8 @@ namespace voxlux {
 // What the CPU keeps from one pass to the next. An x pass runs on slice-major copies of the
 // extinction and of its result (cpu_propagation.cpp); kept here, their memory is allocated and its
 // pages touched once rather than every pass, and a grid's extinction copy is made once for every x
-// pass over it (by PropagationPass::sigma_generation: two slots, for the fine and the
-// chroma-subsampled grid).
+// pass over it (by PropagationPass::sigma_generation: two slots, for the fine grid and the
+// indirect light's own: chroma subsampled, or with per-material transport planes).
 struct CpuSweepScratch {
     struct SlicedSigma {
         uint64_t generation = 0;   // PropagationPass::sigma_generation of the copy (0: none kept)

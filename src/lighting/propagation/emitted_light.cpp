@@ -77,7 +77,7 @@ void addEmittedLight(const SweepGrid& grid, const Material& material, const kern
     sweepSources(*grid.emission, indirect, grid, inputs, device, first, report);
     // The light order 1 scatters: order 2's source.
     std::vector<float> scattered(first.values.size());
-    for (size_t cell = 0; cell < sigma.size(); ++cell)
+    for (size_t cell = 0; cell < first.values.size() / 3; ++cell)   // (sigma's first plane: the extinction)
         for (int ch = 0; ch < 3; ++ch)
             scattered[3 * cell + ch] = capped(double(material.albedo[ch]) * sigma[cell] * first.values[3 * cell + ch] / kFourPi);
     sweepSources(scattered, indirect, grid, inputs, device, second, report);

@@ -20,7 +20,7 @@ namespace voxlux {
 struct PropagationPass {
     std::vector<kernel::VxPropParams> sweeps;       // same dims, axis and direction
     const kernel::VxParams* march = nullptr;        // noise and transport parameters
-    const std::vector<float>* sigma = nullptr;      // the sweeps' dims cells
+    const std::vector<float>* sigma = nullptr;      // the sweeps' dims cells (3 planes more: transport_planes)
     uint64_t sigma_generation = 0;                  // changes whenever *sigma does (0: unknown, a device keeps no copy)
     const std::vector<glm::vec4>* noise = nullptr;  // perturbation table (VX_NOISE_SIZE^3)
     size_t offset = 0;

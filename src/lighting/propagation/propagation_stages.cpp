@@ -285,7 +285,7 @@ uint64_t nextGridGeneration() {
 
 bool illuminationVolumeRuns(const Scene& scene) { return propagationActivity(scene, "").runs; }
 
-size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission) {
+size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission, bool transport) {
     const size_t cells = size_t(d.x) * d.y * d.z;
     // The light grid, its mask, the direct RGB, and an x pass's slice-major copies of the
     // extinction and of its RGB result (CPU).
@@ -303,6 +303,9 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission)
         // The emission grid (and its coarsening), the two orders, the second's source and an x
         // pass's slice-major copy of a source.
         if (emission) bytes += (cells + (chroma > 1 ? cc : 0) + 4 * cc) * 3 * sizeof(float);
+        // Per-material transport: its three planes over the light grid while they are built, and
+        // the coarse grid's four planes with an x pass's slice-major copy of them.
+        if (transport) bytes += (3 * cells + 8 * cc) * sizeof(float);
     }
     return bytes;
 }
@@ -315,9 +318,11 @@ StageReads IlluminationGridStage::reads() const {
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
     const bool chroma = s.effects.indirect && s.effects.propagation.chroma_subsampling;
+    const bool transport = s.effects.indirect && !s.material.transfer_2d.empty() && s.material.transfer_2d.front().transport;
     return propagationActivity(s, std::string("the light grid as the sweeps' grid") +
                                       (emissionLightsTheMedium(s) ? ", with the emission box-filtered into its cells" : "") +
-                                      (chroma ? ", and its 2x coarsening" : ""));
+                                      (chroma ? ", and its 2x coarsening" : "") +
+                                      (transport ? ", with each region's transport depth for the indirect light" : ""));
 }
 
 void IlluminationGridStage::release() {
@@ -338,7 +343,8 @@ void IlluminationGridStage::run(StageRun& run) {
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
     const glm::vec3 extent = occupiedExtent(pages);
     const bool emission = emissionLightsTheMedium(run.scene);
-    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission); },
+    const bool transport = indirect && !brick_.atlas().transport.empty();
+    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport); },
                         // The kernels index the volume (3 + 3 floats per cell at most) with ints.
                         [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 < uint64_t(INT32_MAX); },
                         "illumination volume"};
@@ -384,7 +390,7 @@ void IlluminationGridStage::run(StageRun& run) {
     }
     // A 2D transfer function's per-material transport colour: the indirect sweeps read each
     // channel's extinction times -ln(transport) after the extinction, on their own grid.
-    if (indirect && !brick_.atlas().transport.empty()) {
+    if (transport) {
         const std::vector<float> depth = buildLightGrid(inputs, resolution, {false, 0.0f, false, true}).transport_depth;
         const size_t fine_cells = size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
         const size_t cells = size_t(coarse_.dims.x) * coarse_.dims.y * coarse_.dims.z;
@@ -400,6 +406,7 @@ void IlluminationGridStage::run(StageRun& run) {
                 std::copy_n(plane, cells, to);
             }
         }
+        chroma_sigma_ = std::vector<float>();   // copied: the planes replace it
         coarse_.sigma = &transport_sigma_;
         coarse_.sigma_generation = nextGridGeneration();
         coarse_.transport_planes = true;
@@ -425,7 +432,9 @@ StageActivity PropagationStage::activity(const Scene& s) const {
         char blur[160];
         std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, ", double(in->angle), in->samples);
         out += blur;
-        if (in->model == IndirectModel::Diffusion) {
+        if (!s.material.transfer_2d.empty() && s.material.transfer_2d.front().transport) {
+            out += "each region's transport colour";
+        } else if (in->model == IndirectModel::Diffusion) {
             out += "diffusion profile";
         } else {
             std::snprintf(blur, sizeof blur, "transport colour (%g, %g, %g)", double(in->transport_color.x),

@@ -1,8 +1,9 @@
 // Illumination propagation (Ropinski 2010 with the Kniss 2003 optical model; Sunden 2015 for many
 // lights) as three stages of the render graph:
 //  illumination_grid  the shared light grid (src/lighting/light_grid_stage.h) as the sweeps' grid,
-//                     with the emitted radiance when it lights the medium, and its 2^3 average for
-//                     chroma-subsampled indirect light;
+//                     with the emitted radiance when it lights the medium, its 2^3 average for
+//                     chroma-subsampled indirect light, and a 2D transfer function's per-material
+//                     transport (extinction times -ln(transport colour), three planes) for it;
 //  propagation        every light swept slice by slice through the grid, grouped into at most six
 //                     passes, adding its direct and (blurred, transport-attenuated) indirect RGB
 //                     into one illumination volume. When only lights change it takes the changed
@@ -32,7 +33,7 @@ namespace voxlux {
 // extinction grid when chroma subsampled, and the eye pass's second volume and input copy of the
 // indirect cells), and with `emission` the emission grids and their sweeps' blocks.
 // The lights' 2D slice buffers are left out: two slices per light.
-size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emission);
+size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emission, bool transport);
 
 // Whether `scene` lights the march from an illumination volume: propagation shadows, a light or
 // lit emission to propagate, and not the Monte Carlo reference.
@@ -75,7 +76,7 @@ struct SweepGrid {
     glm::mat4 world_to_grid{1.0f};
     glm::ivec3 dims{0};
     float cells_per_voxel = 1.0f;          // grid cells per index voxel (for displacement)
-    const std::vector<float>* sigma = nullptr;
+    const std::vector<float>* sigma = nullptr;   // the extinction; with transport_planes, 3 planes after it
     uint64_t sigma_generation = 0;         // changes whenever sigma does (PropagationPass)
     bool transport_planes = false;         // sigma is 4 planes: the extinction, then it times
                                            // -ln(transport colour) per channel (VxPropParams)

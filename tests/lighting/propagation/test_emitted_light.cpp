@@ -134,5 +134,43 @@ TEST(EmittedLight, ALightEditKeepsItAndMatchesAnEntireUpdate) {
     EXPECT_GT(indirect_peak, 0.0f);
 }
 
+// Emitted light is swept through the extinction alone, also when a 2D transfer function's
+// regions give the indirect light transport planes (the emission's sweeps read the first plane
+// of the four): one colour on both regions lights the volume as the same global colour does.
+TEST(EmittedLight, RegionTransportPlanesLeaveTheEmittedLightAlone) {
+    Scene s = glowingCoreScene(writeGlowingCore(tempDir("emitted_light_transport"), 1.0f, 4.0f));
+    Light key;
+    key.direction = glm::normalize(glm::vec3(-0.4f, 0.3f, -1.0f));
+    s.lights = {key};
+    TransferRegion shell, core;
+    shell.value = {0.5f, 1.5f};
+    shell.extinction = 1.0f;
+    core.value = {3.5f, 4.5f};
+    core.extinction = 4.0f;
+    s.material.transfer_2d = {shell, core};
+    const glm::vec3 colour(0.9f, 0.6f, 0.4f);
+    Indirect in;
+    in.model = IndirectModel::Kniss;
+    in.transport_color = colour;
+    s.effects.indirect = in;
+    Renderer global(s);
+    global.prepare(std::nullopt, false);
+    for (TransferRegion& r : s.material.transfer_2d) r.transport = colour;
+    s.effects.indirect->transport_color = glm::vec3(0.3f);
+    Renderer regions(s);
+    regions.prepare(std::nullopt, false);
+    const std::vector<float>& a = global.illumination()->values;
+    const std::vector<float>& b = regions.illumination()->values;
+    ASSERT_EQ(a.size(), b.size());
+    double peak = 0.0, error = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(b[i])) << i;
+        peak = std::max(peak, double(std::abs(a[i])));
+        error = std::max(error, double(std::abs(a[i] - b[i])));
+    }
+    EXPECT_GT(peak, 0.0);
+    EXPECT_LE(error, 1e-5 * peak);
+}
+
 }  // namespace
 }  // namespace voxlux::test

@@ -113,17 +113,6 @@ TEST(MaterialTransport, TwoLayersFollowTheTrapezoidOfEachChannelOnGl) {
     expectTwoLayers(Device::Gl, "gl");
 }
 
-// A 32^3 cube whose left half (x < 16) holds value 50 and right half value 100, so a 2D function
-// tells the halves apart by value alone.
-openvdb::FloatGrid::Ptr twoHalves() {
-    auto grid = boxGrid({0, 0, 0}, {31, 31, 31}, 100.0f);
-    auto acc = grid->getAccessor();
-    for (int z = 0; z < 32; ++z)
-        for (int y = 0; y < 32; ++y)
-            for (int x = 0; x < 16; ++x) acc.setValue(openvdb::Coord(x, y, z), 50.0f);
-    return grid;
-}
-
 TransferRegion valueBand(float lo, float hi, float extinction, std::optional<glm::vec3> transport) {
     TransferRegion r;
     r.value = {lo, hi};
@@ -158,7 +147,7 @@ std::unique_ptr<Lit> illuminateHalves(const Scene& scene, KernelBackend& backend
     Camera camera;
     camera.position = glm::vec3(16, 60, 90);
     camera.look_at = glm::vec3(16, 16, 16);
-    return illuminate(twoHalves(), scene, backend, camera);
+    return illuminate(twoHalvesGrid(50.0f, 100.0f), scene, backend, camera);
 }
 
 // The same transport colour on every region is the global colour: the light grid's box filter,

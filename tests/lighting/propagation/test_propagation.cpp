@@ -803,11 +803,11 @@ TEST(Propagation, MemoryBudgetLowersTheResolutionAndSaysSo) {
     scene.effects.light_memory_mb = 8;
     auto lit = illuminate(slab(0.1f), scene, *cpu);
     const glm::ivec3 dims = lit->volume().dims;
-    EXPECT_LE(illuminationBytes(dims, true, 1, false), size_t(8) << 20);
-    EXPECT_GT(illuminationBytes(dims + 1, true, 1, false), size_t(8) << 20);
+    EXPECT_LE(illuminationBytes(dims, true, 1, false, false), size_t(8) << 20);
+    EXPECT_GT(illuminationBytes(dims + 1, true, 1, false, false), size_t(8) << 20);
     ASSERT_EQ(lit->result.warnings.size(), 1u);
     EXPECT_EQ(lit->result.warnings[0], "illumination volume of 160 cells needs " +
-                                    std::to_string(illuminationBytes(glm::ivec3(160), true, 1, false) >> 20) +
+                                    std::to_string(illuminationBytes(glm::ivec3(160), true, 1, false, false) >> 20) +
                                     " MiB, over effects.light_memory_mb = 8; using " + std::to_string(dims.x) +
                                     " cells instead");
 }
