@@ -20,6 +20,11 @@ struct Classified {
     float surface = 1.0f;      // the extinction-weighted mean of the regions' surface weights (1: none)
 };
 
+// Whether the regions carry a transport colour, a surface weight: every region does, or none does
+// (the scene reader checks it), so the first one says.
+inline bool regionsCarryTransport(const std::vector<TransferRegion>& regions) { return !regions.empty() && regions.front().transport; }
+inline bool regionsCarrySurface(const std::vector<TransferRegion>& regions) { return !regions.empty() && regions.front().surface; }
+
 // A region's weight at (value, gradient magnitude): 0 outside, 1 inside, ramped over `fade`.
 float regionWeight(const TransferRegion& region, glm::vec2 point);
 

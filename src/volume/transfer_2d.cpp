@@ -62,14 +62,14 @@ LoadedVolume applyTransfer2d(const LoadedVolume& raw, const std::vector<Transfer
     albedo->setName("albedo");
     albedo->tree().topologyUnion(extinction->tree());
     openvdb::Vec3SGrid::Ptr transport;
-    if (regions.front().transport) {   // every region has one, or none does (scene_read.cpp)
+    if (regionsCarryTransport(regions)) {
         transport = openvdb::Vec3SGrid::create(openvdb::Vec3s(1.0f));
         transport->setTransform(values.transform().copy());
         transport->setName("transport");
         transport->tree().topologyUnion(extinction->tree());
     }
     openvdb::FloatGrid::Ptr surface;
-    if (regions.front().surface) {   // every region has one, or none does
+    if (regionsCarrySurface(regions)) {
         surface = openvdb::FloatGrid::create(1.0f);
         surface->setTransform(values.transform().copy());
         surface->setName("surface");

@@ -1,5 +1,6 @@
 #include "volume/volume_stages.h"
 
+#include "optics/transfer_function_2d.h"
 #include "scene/camera.h"
 #include "volume/transfer_2d.h"
 #include "volume/velocity.h"
@@ -72,9 +73,9 @@ size_t Transfer2dStage::outputBytes() const {
 
 StageActivity Transfer2dStage::activity(const Scene& s) const {
     if (s.material.transfer_2d.empty()) return {false, "skipped: no 2D transfer function (material.transfer_function_2d)"};
-    const TransferRegion& first = s.material.transfer_2d.front();   // every region has a key or none does
     return {true, std::string("classifies each voxel by value and gradient magnitude into extinction, albedo") +
-                      (first.transport ? ", transport colour" : "") + (first.surface ? ", surface weight" : "") + " (" +
+                      (regionsCarryTransport(s.material.transfer_2d) ? ", transport colour" : "") +
+                      (regionsCarrySurface(s.material.transfer_2d) ? ", surface weight" : "") + " (" +
                       std::to_string(s.material.transfer_2d.size()) + " regions, Kniss 2002)"};
 }
 

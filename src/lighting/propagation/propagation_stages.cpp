@@ -17,6 +17,7 @@
 #include "lighting/propagation/emitted_light.h"
 #include "lighting/propagation/light_sweeps.h"
 #include "optics/diffusion_profile.h"
+#include "optics/transfer_function_2d.h"
 
 namespace voxlux {
 namespace {
@@ -318,7 +319,7 @@ StageReads IlluminationGridStage::reads() const {
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
     const bool chroma = s.effects.indirect && s.effects.propagation.chroma_subsampling;
-    const bool transport = s.effects.indirect && !s.material.transfer_2d.empty() && s.material.transfer_2d.front().transport;
+    const bool transport = s.effects.indirect && regionsCarryTransport(s.material.transfer_2d);
     return propagationActivity(s, std::string("the light grid as the sweeps' grid") +
                                       (emissionLightsTheMedium(s) ? ", with the emission box-filtered into its cells" : "") +
                                       (chroma ? ", and its 2x coarsening" : "") +
@@ -432,7 +433,7 @@ StageActivity PropagationStage::activity(const Scene& s) const {
         char blur[160];
         std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, ", double(in->angle), in->samples);
         out += blur;
-        if (!s.material.transfer_2d.empty() && s.material.transfer_2d.front().transport) {
+        if (regionsCarryTransport(s.material.transfer_2d)) {
             out += "each region's transport colour";
         } else if (in->model == IndirectModel::Diffusion) {
             out += "diffusion profile";

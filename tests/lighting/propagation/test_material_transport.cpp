@@ -87,7 +87,6 @@ void expectTwoLayers(Device device, const char* name) {
     for (int axis : {0, 2})
         for (int sign : {-1, 1}) {
             const IlluminationVolume v = sweepTwoLayers(device, axis, sign);
-            int checked = 0;
             for (int z = 0; z < v.dims.z; ++z)
                 for (int y = 0; y < v.dims.y; ++y)
                     for (int x = 0; x < v.dims.x; ++x) {
@@ -97,9 +96,7 @@ void expectTwoLayers(Device device, const char* name) {
                         for (int c = 0; c < 3; ++c)
                             ASSERT_NEAR(got[c], want[c], 2e-6f * want[c] + 1e-7f)
                                 << name << ", axis " << axis << ", sign " << sign << ", cell " << x << " " << y << " " << z << ", channel " << c;
-                        ++checked;
                     }
-            EXPECT_EQ(checked, v.dims.x * v.dims.y * v.dims.z);
         }
 }
 
