@@ -136,6 +136,30 @@ std::string tempDir(const std::string& name) {
     return p.string();
 }
 
+std::string linesStartingWith(const std::string& text, const std::string& prefix) {
+    std::istringstream in(text);
+    std::string out;
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind(prefix, 0) == 0) out += line + "\n";
+    return out;
+}
+
+ReadOnlyFolder::ReadOnlyFolder(const std::string& name) : path(tempDir(name)) {
+    if (::geteuid() == 0) {
+        mounted_ = std::system(("mount -t tmpfs -o ro,size=64k tmpfs '" + path + "' 2>/dev/null").c_str()) == 0;
+        cause = "Read-only file system";
+        if (!mounted_) problem = "cannot mount a read-only tmpfs on " + path + " (no mount rights)";
+        return;
+    }
+    fs::permissions(path, fs::perms::owner_read | fs::perms::owner_exec);
+    cause = "Permission denied";
+}
+
+ReadOnlyFolder::~ReadOnlyFolder() {
+    if (mounted_) std::system(("umount '" + path + "'").c_str());
+    else fs::permissions(path, fs::perms::owner_all);
+}
+
 std::unique_ptr<Lit> illuminate(openvdb::FloatGrid::Ptr grid, const Scene& scene, KernelBackend& backend,
                                 const Camera& camera) {
     auto lit = std::make_unique<Lit>();

@@ -111,7 +111,28 @@ struct Exr {
 };
 Exr readExr(const std::string& path);
 
+// The lines of `text` that start with `prefix` ("voxlux: error: "), each with its newline: what a
+// test checks of standard error among the notes and progress lines beside it.
+std::string linesStartingWith(const std::string& text, const std::string& prefix);
+
 // A folder under this test run's temp dir (created if needed).
 std::string tempDir(const std::string& name);
+
+// A folder nothing can be written in, as a read-only file system is: as root (whom permissions do
+// not stop) a read-only tmpfs mounted on it, else its write bits cleared. Undone when it goes.
+// `problem` is set when neither works (a root without mount rights), and a test then skips.
+class ReadOnlyFolder {
+public:
+    explicit ReadOnlyFolder(const std::string& name);
+    ~ReadOnlyFolder();
+    ReadOnlyFolder(const ReadOnlyFolder&) = delete;
+    ReadOnlyFolder& operator=(const ReadOnlyFolder&) = delete;
+    const std::string path;
+    std::string problem;   // "" when the folder refuses writes
+    std::string cause;     // what writing in it says: "Read-only file system" or "Permission denied"
+
+private:
+    bool mounted_ = false;
+};
 
 }  // namespace voxlux::test

@@ -62,6 +62,36 @@ void FrameSet::add(int frame) {
     else append({frame, frame, 1});
 }
 
+FrameSet FrameSet::among(const FrameSet& present) const {
+    FrameSet out;
+    for (int64_t k = 0; k < present.count(); ++k) {
+        const int f = present.at(k);
+        const bool in = std::any_of(ranges_.begin(), ranges_.end(),
+                                    [f](const FrameRange& r) { return f >= r.first && f <= r.last && (int64_t(f) - r.first) % r.step == 0; });
+        if (in) out.add(f);
+    }
+    return out;
+}
+
+FrameSet FrameSet::notAmong(const FrameSet& present) const {
+    FrameSet out;
+    const auto emit = [&out](int64_t first, int64_t last, int step) {
+        if (first <= last) out.append({int(first), int(last), first == last ? 1 : step});
+    };
+    int64_t k = 0;
+    for (const FrameRange& r : ranges_) {
+        int64_t next = r.first;   // the first frame of r not yet emitted or skipped
+        for (; k < present.count() && present.at(k) <= r.last; ++k) {
+            const int64_t f = present.at(k);
+            if (f < next || (f - r.first) % r.step != 0) continue;
+            emit(next, f - r.step, r.step);
+            next = f + r.step;
+        }
+        emit(next, r.last, r.step);
+    }
+    return out;
+}
+
 int64_t FrameSet::count() const {
     int64_t n = 0;
     for (const auto& r : ranges_) n += rangeCount(r);

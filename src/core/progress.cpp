@@ -1,18 +1,20 @@
 #include "core/progress.h"
 
 #include <csignal>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <thread>
 #include <ostream>
 
 namespace voxlux {
 namespace {
 
-volatile std::sig_atomic_t stop_asked = 0;
+volatile std::sig_atomic_t stop_asked = 0;   // the signal's number
 
 extern "C" void onInterrupt(int signal) {
-    stop_asked = 1;
+    stop_asked = signal;
     std::signal(signal, SIG_DFL);   // a second one ends the process
 }
 
@@ -27,9 +29,10 @@ struct ProgressState {
     std::chrono::steady_clock::time_point last_shown{};
     bool bar_drawn = false;
 
+    // Never destroyed: the line ticker (a detached thread) may still read it while the process exits.
     static ProgressState& get() {
-        static ProgressState state;
-        return state;
+        static ProgressState* state = new ProgressState;
+        return *state;
     }
 
     // Called with the mutex held.
@@ -42,6 +45,10 @@ struct ProgressState {
         last_shown = now;
         std::string line;
         for (const ProgressTask* t = innermost; t; t = t->outer_) line = t->text(now) + (line.empty() ? "" : "  >  " + line);
+        print(line);
+    }
+
+    void print(const std::string& line) {
         if (display == ProgressDisplay::Bar) {
             *out << "\r\033[K" << line.substr(0, 150) << std::flush;
             bar_drawn = true;
@@ -68,6 +75,19 @@ void setProgressDisplay(ProgressDisplay display, std::ostream& out, double line_
     s.display = display;
     s.out = &out;
     s.line_seconds = line_seconds;
+    // Lines come at a steady rate while a long stage runs, not only when work is counted, so a
+    // line names the stage that is running (a frame's march), not the one that starts after it.
+    static bool ticking = false;
+    if (display == ProgressDisplay::Lines && !ticking) {
+        ticking = true;
+        std::thread([&s] {
+            for (;;) {
+                std::this_thread::sleep_for(std::chrono::duration<double>(std::max(0.05, s.line_seconds) / 4.0));
+                std::lock_guard<std::mutex> lock(s.mutex);
+                s.show(false);
+            }
+        }).detach();
+    }
 }
 
 void installInterruptHandler() {
@@ -78,6 +98,8 @@ void installInterruptHandler() {
 void throwIfInterrupted() {
     if (stop_asked) throw Interrupted();
 }
+
+int interruptSignal() { return int(stop_asked); }
 
 std::string clockText(double seconds) {
     const long s = std::lround(seconds);
@@ -99,6 +121,12 @@ ProgressTask::ProgressTask(std::string label, int64_t total, std::string unit)
 ProgressTask::~ProgressTask() {
     ProgressState& s = ProgressState::get();
     std::lock_guard<std::mutex> lock(s.mutex);
+    // The last line of a job's lines says how it ended: the counts done and the time it took.
+    if (!outer_ && s.display == ProgressDisplay::Lines) {
+        what_ = done_.load() >= total_ ? "done" : "stopped";
+        left_ = -1.0;
+        s.print(text(std::chrono::steady_clock::now()));
+    }
     s.innermost = outer_;
     if (s.innermost) s.show(true);
     else s.clear();
@@ -124,13 +152,15 @@ void ProgressTask::estimateLeft(double seconds) {
     ProgressState& s = ProgressState::get();
     std::lock_guard<std::mutex> lock(s.mutex);
     left_ = seconds;
+    left_since_ = std::chrono::steady_clock::now();
 }
 
 // "[=====>      ] frames 12/60  elapsed 1m02s  left ~3m10s  what"
 std::string ProgressTask::text(std::chrono::steady_clock::time_point now) const {
     const int64_t done = std::min<int64_t>(done_.load(), total_);
     const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double left = left_ >= 0 ? left_ : done > 0 ? elapsed * double(total_ - done) / double(done) : -1.0;
+    const double left = left_ >= 0 ? std::max(0.0, left_ - std::chrono::duration<double>(now - left_since_).count())
+                        : done > 0 && done < total_ ? elapsed * double(total_ - done) / double(done) : -1.0;
     const int width = 20, filled = total_ > 0 ? int(width * done / total_) : width;
     std::string out = "[" + std::string(size_t(filled), '=') + (filled < width ? ">" : "") +
                       std::string(size_t(std::max(0, width - filled - 1)), ' ') + "] " + label_ + " " +

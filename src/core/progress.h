@@ -3,7 +3,8 @@
 // with the time left on a terminal, a line at a steady rate with --progress, or nothing (the
 // default for a library user). Tasks nest: the bar shows the outer one (a study's 12/40) and the
 // inner one (that render's samples). Costs an atomic add per advance(); the display is redrawn at
-// most every 0.1 s (bar) or every line interval, by whichever thread advances then.
+// most every 0.1 s (bar) by whichever thread advances then; lines come every interval from a ticker
+// thread, whatever the job is doing, and the outermost task's last line says it is done.
 #pragma once
 #include <atomic>
 #include <chrono>
@@ -31,6 +32,9 @@ struct Interrupted : std::runtime_error {
 };
 // Throws Interrupted once a stop was asked for.
 void throwIfInterrupted();
+// The signal that asked to stop (SIGINT or SIGTERM), 0 while none did: a loop that never calls
+// advance() (the viewer's) polls it, and the process exits with 128 + it, as a shell reports.
+int interruptSignal();
 
 class ProgressTask {
 public:
@@ -44,7 +48,8 @@ public:
     void advance(int64_t units = 1);
     // What is being done now, shown after the counts ("ground truth, half 1 of 2").
     void describe(std::string what);
-    // A better estimate of the time left than elapsed x left / done, when the job has one; < 0: none.
+    // A better estimate of the time left than elapsed x left / done, when the job has one; < 0:
+    // none. It counts down as time passes until the next estimate.
     void estimateLeft(double seconds);
 
 private:
@@ -54,7 +59,8 @@ private:
     std::string label_, unit_, what_;
     int64_t total_;
     std::atomic<int64_t> done_{0};
-    double left_ = -1.0;
+    double left_ = -1.0;                                   // estimateLeft's, counting down from left_since_
+    std::chrono::steady_clock::time_point left_since_{};
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     ProgressTask* outer_ = nullptr;
 };

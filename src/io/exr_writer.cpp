@@ -70,7 +70,39 @@ void removeStaleTemporaries(const std::string& path) {
     }
 }
 
+// A folder's failure as the user reads it: "cannot write in folder /ro: Read-only file system".
+std::string folderText(const fs::path& folder) { return folder.empty() ? std::string(".") : folder.string(); }
+
+// Creates the empty temporary `tmp` for `path`, or throws naming `path`'s folder and the cause.
+void createTemporary(const std::string& path, const std::string& tmp) {
+    if (std::ofstream(tmp, std::ios::binary)) return;
+    const int cause = errno;
+    throw InputError(path + ": cannot write in folder " + folderText(fs::path(path).parent_path()) + ": " + std::strerror(cause));
+}
+
 }  // namespace
+
+std::optional<std::string> outputProblem(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) return path + ": is a folder, not a file";
+    const fs::path parent = fs::path(path).parent_path();
+    fs::path existing = parent.empty() ? fs::path(".") : parent;
+    while (!fs::exists(existing, ec) && existing.has_relative_path()) existing = existing.parent_path().empty() ? "." : existing.parent_path();
+    const bool missing = existing != (parent.empty() ? fs::path(".") : parent);
+    if (!fs::is_directory(existing, ec)) return path + ": cannot create folder " + folderText(parent) + ": " + std::strerror(ENOTDIR);
+    const std::string verb = missing ? ": cannot create folder " : ": cannot write in folder ";
+    if (::access(existing.c_str(), W_OK | X_OK) != 0) return path + verb + folderText(parent) + ": " + std::strerror(errno);
+    return std::nullopt;
+}
+
+void makeOutputFolder(const std::string& path) {
+    const fs::path parent = fs::path(path).parent_path();
+    std::error_code ec;
+    if (parent.empty() || fs::is_directory(parent, ec)) return;
+    if (const auto problem = outputProblem(path)) throw InputError(*problem);
+    fs::create_directories(parent, ec);
+    if (ec) throw InputError(path + ": cannot create folder " + parent.string() + ": " + ec.message());
+}
 
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
     std::error_code ec;
@@ -86,11 +118,15 @@ void writeAtomically(const std::string& path, const std::function<void(const std
     }
     removeStaleTemporaries(path);
     const std::string tmp = temporaryPathFor(path);
+    createTemporary(path, tmp);   // a folder that takes no file is named as such, before a writer names the temporary
     try {
         write(tmp);
     } catch (const std::exception& e) {
         fs::remove(tmp, ec);
-        throw InputError(path + ": cannot write (" + e.what() + ")");
+        std::string problem = e.what();
+        for (size_t at = problem.find(tmp); at != std::string::npos; at = problem.find(tmp, at + path.size()))
+            problem.replace(at, tmp.size(), path);
+        throw InputError(path + ": cannot write (" + problem + ")");
     }
     fs::rename(tmp, path, ec);
     if (ec) {
@@ -102,17 +138,20 @@ void writeAtomically(const std::string& path, const std::function<void(const std
 
 void checkWritable(const std::string& path) {
     refuseFolder(path);
+    makeOutputFolder(path);
     std::error_code ec;
+    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec)) return;   // a device, written in place
     const std::string probe = temporaryPathFor(path);
-    if (!std::ofstream(probe, std::ios::binary)) throw InputError(path + ": cannot write (" + std::strerror(errno) + ")");
+    createTemporary(path, probe);
     fs::remove(probe, ec);
 }
 
 void writeFileAtomically(const std::string& path, const std::string& bytes) {
     writeAtomically(path, [&](const std::string& tmp) {
         std::ofstream out(tmp, std::ios::binary);
+        errno = 0;
         out << bytes;
-        if (!out.flush()) throw std::runtime_error("write failed");
+        if (!out.flush()) throw std::runtime_error(errno ? std::strerror(errno) : "write failed");
     });
 }
 

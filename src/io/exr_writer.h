@@ -39,15 +39,26 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& image, const
                         const ExrMetadata& meta);
 
 // Calls `write` with a temporary path in the same folder, then renames it to `path`. On any
-// failure the temporary file is removed and InputError "<path>: cannot write (...)" is thrown.
+// failure the temporary file is removed and InputError "<path>: cannot write in folder F: <cause>"
+// (no file can be made there) or "<path>: cannot write (...)" is thrown, naming `path`, never the
+// temporary.
 // A `path` that exists and is not a regular file is never replaced: a device or pipe
 // (/dev/null) is written in place, a folder is refused. Temporaries of `path` that a killed
 // voxlux left (their process no longer runs on this machine) are removed first.
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
 void writeFileAtomically(const std::string& path, const std::string& bytes);
 
-// Throws the InputError writeAtomically would give for `path`'s folder, leaving nothing behind:
-// for an output written at the end of a long run (--stats), checked before the run.
+// Why `path` could not be written, without touching anything: "<path>: cannot create folder F:
+// <cause>" for a folder that is missing and cannot be made (its nearest existing ancestor is not
+// a folder, or is not writable: a read-only file system), "<path>: cannot write in folder F:
+// <cause>", "<path>: is a folder, not a file"; nullopt when it can. For --explain.
+std::optional<std::string> outputProblem(const std::string& path);
+
+// Makes the folders `path` needs; throws outputProblem's "cannot create folder" line.
+void makeOutputFolder(const std::string& path);
+
+// makeOutputFolder, then throws the InputError writeAtomically would give for `path`'s folder,
+// leaving no file behind: for the outputs of a run, checked before its first frame.
 void checkWritable(const std::string& path);
 
 }  // namespace voxlux

@@ -1,6 +1,7 @@
 #include "render/framing.h"
 
 #include <cmath>
+#include <optional>
 
 #include "core/error.h"
 #include "core/frame_pattern.h"
@@ -28,9 +29,10 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
 }
 
 SequenceFraming frameSequence(const Scene& scene) {
-    const FrameSet& frames = scene.volume.frames.value();
+    const FrameSet frames = framesOnDisk(scene.volume.path);
+    if (frames.count() == 0) throw InputError(scene.volume.path + ": no file of this sequence exists");
     glm::vec3 lo(INFINITY), hi(-INFINITY);
-    int up = -1;
+    std::optional<glm::mat3> view;
     SequenceFraming out;
     openvdb::Index64 most = 0;
     for (int64_t k = 0; k < frames.count(); ++k) {
@@ -43,12 +45,13 @@ SequenceFraming frameSequence(const Scene& scene) {
         voxelBoxWorldBounds(volume.index_to_world, box, frame_lo, frame_hi);
         lo = glm::min(lo, frame_lo);
         hi = glm::max(hi, frame_hi);
-        if (up < 0) up = upAxisOf(scene, volume);
+        if (!view) view = viewFrameOf(scene, volume);
     }
-    if (up < 0)
+    if (!view)
         throw InputError(scene.volume.path + ": frames " + frames.text() +
                          " have no active voxels in grid '" + scene.volume.density.name + "' to frame");
-    out.camera = frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), up);
+    out.frames = frames;
+    out.camera = frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), *view);
     return out;
 }
 

@@ -1,10 +1,13 @@
 // The default camera when a scene has none: one volume framed by its active voxels, and a
-// sequence framed once, on the union of its frames' active voxels, so the camera holds still
-// while the volume grows. Framing a sequence reads each frame's density grid once (its voxels
-// and tree, not the other grids): about 5 ms a frame for a Blender fire at resolution 64.
+// sequence framed once, on the union of the active voxels of every frame of it on disk, so the
+// camera holds still while the volume grows, and is the same whichever frames a render asks for
+// (two artists' halves of a shot, a farm's chunks, cut together). Framing a sequence reads each
+// frame's density grid once (its voxels and tree, not the other grids): about 5 ms a frame for a
+// Blender fire at resolution 64.
 #pragma once
 #include <string>
 
+#include "core/frame_set.h"
 #include "scene/scene.h"
 
 namespace voxlux {
@@ -14,12 +17,13 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene);
 
 struct SequenceFraming {
     Camera camera;
-    int fullest_frame = 0;   // the frame with the most active voxels
+    FrameSet frames;         // the frames on disk, framed together
+    int fullest_frame = 0;   // the one with the most active voxels
 };
 
-// Frames the scene's volume.frames of its #### volume path together, read in order (a missing
-// frame stops it, naming the file); empty frames count for nothing. Throws InputError when every
-// frame is empty.
+// Frames every frame on disk of the scene's #### volume path together (framesOnDisk), whatever
+// volume.frames says; empty frames count for nothing. Throws InputError when no file exists or
+// every frame is empty.
 SequenceFraming frameSequence(const Scene& scene);
 
 }  // namespace voxlux

@@ -106,7 +106,17 @@ FrameResult Renderer::renderToFile(std::optional<int> frame, bool allow_empty) {
     r.preview = grade_.preview();
     r.path = write_.path();
     r.preview_path = write_.previewPath();
+    r.deep_path = write_.deepPath();
     return r;
+}
+
+std::string writtenFilesText(const FrameResult& r) {
+    std::vector<std::string> files{r.path};
+    for (const std::string* p : {&r.deep_path, &r.preview_path})
+        if (!p->empty()) files.push_back(*p);
+    std::string text = files[0];
+    for (size_t k = 1; k < files.size(); ++k) text += (k + 1 == files.size() ? " and " : ", ") + files[k];
+    return text;
 }
 
 const IlluminationVolume* Renderer::illumination() const {

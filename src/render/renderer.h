@@ -43,7 +43,11 @@ struct FrameResult {
     std::optional<LightUpdate> light_update;                // what the propagation stage did (Kept when reused), if active
     std::vector<glm::vec4> preview;                         // display-referred RGBA, when output.preview is set
     std::string preview_path;                               // the PNG written (renderToFile)
+    std::string deep_path;                                  // the deep EXR written (renderToFile, output.deep)
 };
+
+// The files renderToFile wrote, for a "wrote" line: "a.exr, a.deep.exr and a.png".
+std::string writtenFilesText(const FrameResult& r);
 
 // What keeps `scene` from being written: a missing output path (its message), or nothing.
 std::optional<std::string> outputPathProblem(const Scene& scene);

@@ -18,13 +18,15 @@ std::string framePath(const std::string& pattern, const nlohmann::json& frame) {
     return frame.is_number() ? expandFramePattern(pattern, frame.get<int>()) : pattern;
 }
 
-void makeParentFolder(const std::string& path) {
-    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-    std::error_code ec;
-    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-}
-
 }  // namespace
+
+std::vector<std::string> frameOutputPaths(const Scene& scene, std::optional<int> frame) {
+    const auto expand = [&](const std::string& pattern) { return frame ? expandFramePattern(pattern, *frame) : pattern; };
+    std::vector<std::string> paths{expand(scene.output.path)};
+    if (!scene.output.preview.empty()) paths.push_back(expand(scene.output.preview));
+    if (scene.output.deep) paths.push_back(voxlux::deepPath(paths[0]));
+    return paths;
+}
 
 StageActivity WriteStage::activity(const Scene& s) const {
     return {true, "EXR, " + std::string(s.output.pixel_type == PixelType::Half ? "half" : "float") + ", " + s.output.compression +
@@ -38,7 +40,7 @@ void WriteStage::run(StageRun& run) {
     const RenderImage& image = grade_.result();
     path_ = framePath(scene.output.path, frame);
     preview_path_.clear();
-    makeParentFolder(path_);
+    makeOutputFolder(path_);
 
     ExrMetadata meta;
     const float aspect = float(scene.render.width) / float(scene.render.height);
@@ -61,22 +63,22 @@ void WriteStage::run(StageRun& run) {
     // (--resume).
     if (!scene.output.preview.empty()) {
         preview_path_ = framePath(scene.output.preview, frame);
-        makeParentFolder(preview_path_);
+        makeOutputFolder(preview_path_);
         const PngWriteReport png = writePng(preview_path_, image.width, image.height, grade_.preview(), false);
         if (png.non_finite)
             run.warnings.push_back(preview_path_ + ": " + std::to_string(png.non_finite) + " non-finite samples written as 0");
     }
     ExrWriteReport written;
-    const std::string deep_path = scene.output.deep ? deepPath(path_) : "";
+    deep_path_ = scene.output.deep ? voxlux::deepPath(path_) : "";
     try {
-        if (!deep_path.empty()) written = writeDeepExr(deep_path, image, scene.output, meta);
+        if (!deep_path_.empty()) written = writeDeepExr(deep_path_, image, scene.output, meta);
         const ExrWriteReport flat = writeExr(path_, image, scene.output, meta);
         written.non_finite += flat.non_finite;
         written.half_overflow += flat.half_overflow;
     } catch (const InputError&) {
         std::error_code ec;
         if (!preview_path_.empty()) std::filesystem::remove(preview_path_, ec);
-        if (!deep_path.empty()) std::filesystem::remove(deep_path, ec);
+        if (!deep_path_.empty()) std::filesystem::remove(deep_path_, ec);
         throw;
     }
     if (written.non_finite)

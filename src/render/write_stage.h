@@ -3,7 +3,9 @@
 // one, both written to a temporary file and renamed. It reads the whole render document, since
 // the EXR carries the scene's hash. Cost: compression, tens of milliseconds at 512^2.
 #pragma once
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "grade/color_stages.h"
 #include "render/grade_stage.h"
@@ -23,13 +25,17 @@ public:
     void run(StageRun& run) override;
     const std::string& path() const { return path_; }                 // the EXR written
     const std::string& previewPath() const { return preview_path_; }  // the PNG written, or ""
+    const std::string& deepPath() const { return deep_path_; }        // the deep EXR written, or ""
 
 private:
     const GradeStage& grade_;
     const CameraStage& camera_;
     const ColorTransformsStage& color_;
-    std::string path_, preview_path_;
+    std::string path_, preview_path_, deep_path_;
 };
+
+// The files a frame writes: the EXR, then the preview and the deep EXR when the scene asks for them.
+std::vector<std::string> frameOutputPaths(const Scene& scene, std::optional<int> frame);
 
 // FNV-1a of what decides a frame's pixels, hex: the scene as rendered (canonical JSON, with its
 // input paths absolute), less volume.frames and the output paths, so that a frame rendered alone,

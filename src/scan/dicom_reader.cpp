@@ -244,6 +244,8 @@ std::unique_ptr<ScanReader> openDicomSeries(const std::string& folder, DicomSkip
     info.format = "DICOM";
     info.modality = first.modality;
     info.units = first.modality == "CT" ? "HU" : "";
+    info.up = "z";   // RAS, as below: superior +z, anterior +y
+    info.front = "y";
     // Voxel (i, j, k): column i, row j of slice k. LPS -> RAS negates x and y.
     const glm::dmat4 lps(glm::dvec4(first.row_dir * first.spacing.y, 0.0), glm::dvec4(first.column_dir * first.spacing.x, 0.0),
                          glm::dvec4(step, 0.0), glm::dvec4(first.position, 1.0));

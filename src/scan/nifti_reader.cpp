@@ -34,7 +34,9 @@ public:
         info_.dims = glm::ivec3(int(n.nx), int(n.ny), int(n.nz));
         info_.format = version == 2 ? "NIfTI-2" : n.nifti_type == NIFTI_FTYPE_ANALYZE ? "ANALYZE 7.5" : "NIfTI-1";
         const nifti_dmat44* m = n.sform_code > 0 ? &n.sto_xyz : n.qform_code > 0 ? &n.qto_xyz : nullptr;
-        if (m) {
+        if (m) {   // RAS: superior +z, anterior +y
+            info_.up = "z";
+            info_.front = "y";
             for (int row = 0; row < 4; ++row)
                 for (int col = 0; col < 4; ++col) info_.index_to_world[col][row] = m->m[row][col];
         } else {

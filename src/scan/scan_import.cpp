@@ -9,6 +9,7 @@
 #include "io/exr_writer.h"
 #include "scan/dicom_reader.h"
 #include "scan/nifti_reader.h"
+#include "volume/up_axis.h"
 #include "volume/vdb_loader.h"
 
 namespace voxlux {
@@ -82,11 +83,24 @@ openvdb::FloatGrid::Ptr buildScanGrid(ScanReader& reader, const ImportOptions& o
     grid->insertMeta("scan_value_min", openvdb::FloatMetadata(lo));
     grid->insertMeta("scan_value_max", openvdb::FloatMetadata(hi));
     grid->insertMeta("scan_background", openvdb::FloatMetadata(report.background));
+    // Which way is up and which side is the face, for the quick form's camera (up_axis.h).
+    const std::string up = options.up.value_or(info.up), front = options.front.value_or(info.front);
+    if (!up.empty()) {
+        grid->insertMeta("up_axis", openvdb::StringMetadata(up));
+        grid->insertMeta("front_axis", openvdb::StringMetadata(front));
+    }
     return grid;
 }
 
 ImportReport importScan(const std::string& input, const std::string& output, const ImportOptions& options) {
     initOpenVdb();
+    if (options.up.has_value() != options.front.has_value())
+        throw InputError(input + ": --up and --front go together: the axis toward the head and the one toward the face");
+    if (options.up) {
+        const auto up = parseSignedAxis(*options.up), front = parseSignedAxis(*options.front);
+        if (!up || !front) throw InputError(input + ": --up and --front are axes: x, y, z, -x, -y or -z");
+        if (glm::dot(*up, *front) != 0.0f) throw InputError(input + ": --up " + *options.up + " and --front " + *options.front + " must be different axes");
+    }
     checkWritable(output);
     ImportReport report;
     auto reader = openScan(input, options, report.skipped_files);

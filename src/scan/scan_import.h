@@ -21,6 +21,9 @@ struct ImportOptions {
     std::string grid_name = "density";
     std::optional<float> background;   // voxels at or below it are inactive; default: the scan's minimum
     std::optional<RawLayout> raw;      // the layout of a raw file (--dims, --type, ...)
+    // --up and --front: the world axes toward the head and the face ("x", "-y", ...), for a file
+    // that does not say (raw, .den) or says wrong; both or neither.
+    std::optional<std::string> up, front;
 };
 
 struct ImportReport {

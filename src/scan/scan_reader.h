@@ -21,6 +21,9 @@ struct ScanInfo {
     std::string format;                // "raw", "VolPack .den", "NIfTI-1", "NIfTI-2", "DICOM"
     std::string modality;              // "CT", "MR", ...; "" when the file does not say
     std::string units;                 // "HU" for CT; "" when the file does not say
+    // The world axes toward the head and the face ("z" and "y" in RAS), as up_axis.h's metadata
+    // spells them; "" when the file does not say (raw, .den, NIfTI without an orientation).
+    std::string up, front;
 };
 
 class ScanReader {

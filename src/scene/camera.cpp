@@ -27,15 +27,7 @@ void worldBounds(const glm::mat4& m, glm::vec3 lo, glm::vec3 hi, glm::vec3& out_
     }
 }
 
-glm::mat3 upFrame(int up_axis) {
-    switch (up_axis) {
-        case 0: return {glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::vec3(0, 0, -1)};
-        case 2: return {glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(0, -1, 0)};
-        default: return glm::mat3(1.0f);
-    }
-}
-
-Camera frameBox(glm::vec3 lo, glm::vec3 hi, float fov, float aspect, int up_axis) {
+Camera frameBox(glm::vec3 lo, glm::vec3 hi, float fov, float aspect, const glm::mat3& frame) {
     Camera c;
     c.fov = fov;
     c.look_at = 0.5f * (lo + hi);
@@ -44,16 +36,15 @@ Camera frameBox(glm::vec3 lo, glm::vec3 hi, float fov, float aspect, int up_axis
     float half = glm::radians(fov) * 0.5f;
     float half_narrow = std::atan(std::tan(half) * std::min(1.0f, aspect));
     float distance = radius / std::sin(half_narrow) * 1.05f;
-    const glm::mat3 frame = upFrame(up_axis);
     c.up = frame[1];
     c.position = c.look_at + frame * glm::normalize(glm::vec3(0.55f, 0.3f, 1.0f)) * distance;
     return c;
 }
 
-Light defaultKeyLight(int up_axis) {
+Light defaultKeyLight(const glm::mat3& frame) {
     Light l;
     l.type = LightType::Directional;
-    l.direction = upFrame(up_axis) * glm::normalize(glm::vec3(1.0f, -0.6f, -0.4f));
+    l.direction = frame * glm::normalize(glm::vec3(1.0f, -0.6f, -0.4f));
     l.color = glm::vec3(1.0f);
     l.intensity = 10.0f;  // with the 1/(4 pi) phase, about 0.7 of radiance off an unshadowed albedo-0.9 medium
     return l;

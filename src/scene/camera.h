@@ -15,14 +15,10 @@ glm::mat4 cameraProjection(const Camera& camera, float aspect);
 // World-space axis-aligned box of the index-space box [lo, hi] under `index_to_world`.
 void worldBounds(const glm::mat4& index_to_world, glm::vec3 lo, glm::vec3 hi, glm::vec3& out_lo, glm::vec3& out_hi);
 
-// The world axis `up_axis` (0 x, 1 y, 2 z) as the camera frame's up, and the axes of a right-handed
-// frame around it: right, up and back (towards a front-facing camera). Y-up is (x, y, z); Z-up, as
-// Blender's, is (x, z, -y).
-glm::mat3 upFrame(int up_axis);
-
-// A three-quarter view from above that fits the box in the frame, with `up_axis` up; and a key
-// light from the upper left of that view.
-Camera frameBox(glm::vec3 lo, glm::vec3 hi, float fov, float aspect, int up_axis = 1);
-Light defaultKeyLight(int up_axis = 1);
+// A three-quarter view from above that fits the box in the frame, in the view frame `frame`
+// (columns right, up and back: upFrame, viewFrame in volume/up_axis.h); and a key light from the
+// upper left of that view.
+Camera frameBox(glm::vec3 lo, glm::vec3 hi, float fov, float aspect, const glm::mat3& frame = glm::mat3(1.0f));
+Light defaultKeyLight(const glm::mat3& frame = glm::mat3(1.0f));
 
 }  // namespace voxlux

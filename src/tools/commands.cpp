@@ -21,6 +21,7 @@
 #include "scan/scan_import.h"
 #include "render/light_edits.h"
 #include "render/renderer.h"
+#include "render/write_stage.h"
 #include "scene/scene_json.h"
 #include "volume/vdb_file.h"
 #include "volume/vdb_loader.h"
@@ -111,57 +112,70 @@ int runLightEdits(const Scene& scene, const std::string& edits_file, std::option
     return 0;
 }
 
-// The scene a command renders: the scene file, or the quick form's, with the flags applied. A
-// sequence without a camera gets one for all its frames (or --frame-on's), and the quick form
-// reads its choices from the fullest frame; `notes` says what it chose.
+// The scene a command renders: the scene file, or the quick form's, with the flags applied. What
+// a sequence takes from its data is read from the whole sequence on disk, never from the frames
+// asked for, so that any two sub-ranges of a shot cut together: a sequence without a camera gets
+// one for all its frames on disk (or --frame-on's frame alone), and the quick form reads its
+// choices from the fullest frame on disk (or --frame-on's); `notes` says what it chose.
 Scene sceneFor(const std::string& input, const SceneOverrides& overrides, std::vector<std::string>& notes) {
     const bool quick = !isSceneFile(input);
     Scene scene = applyOverrides(quick ? quickScene(input) : loadSceneFile(input), overrides);
-    const std::optional<FrameSet> frames = sequenceFrames(scene);
     std::optional<int> reference = overrides.frame_on;
-    if (!scene.camera && frames) {
-        if (overrides.frame_on) {
-            scene.camera = frameVolumeCamera(expandFramePattern(scene.volume.path, *overrides.frame_on), scene);
-        } else {
-            const SequenceFraming framing = frameSequence(scene);
+    if (sequenceFrames(scene) && !reference && (quick || !scene.camera)) {
+        const SequenceFraming framing = frameSequence(scene);
+        reference = framing.fullest_frame;
+        if (!scene.camera) {
             scene.camera = framing.camera;
-            reference = framing.fullest_frame;
-            notes.push_back("camera framed on frames " + frames->text() + " together (--frame-on N for one frame)");
+            notes.push_back("camera framed on the frames on disk, " + framing.frames.text() + ", together (--frame-on N for one frame)");
         }
     }
+    if (sequenceFrames(scene) && !scene.camera)   // --frame-on
+        scene.camera = frameVolumeCamera(expandFramePattern(scene.volume.path, *reference), scene);
     if (quick) scene = completeQuickScene(scene, overrides, reference, notes);
     return scene;
 }
 
-// Notes go out once the command has succeeded: a failing command prints its one error line only.
-void printNotes(const std::vector<std::string>& notes, std::ostream& out) {
-    for (const auto& n : notes) out << "voxlux: " << n << "\n";
+// Notes go to standard error (standard output holds results: a scene, a graph, the frames
+// written), once the command has succeeded: a failing command prints its one error line only.
+void printNotes(const std::vector<std::string>& notes) {
+    for (const auto& n : notes) std::cerr << "voxlux: " << n << "\n";
 }
 
 // What `--explain` can check without rendering: the output path, the frame pattern, and that each
 // file the first and last frames read exists and has the grids the scene names.
-std::vector<std::string> missingInputs(const Scene& scene) {
+std::vector<std::string> missingInputs(const Scene& scene, const SequenceOptions& sequence) {
     std::vector<std::string> problems;
-    if (const auto problem = outputPathProblem(scene)) problems.push_back(*problem);
-    std::vector<std::string> files{scene.volume.path};
+    std::vector<std::string> files{scene.volume.path}, outputs;
     try {
-        if (const auto frames = sequenceFrames(scene))
+        if (const auto frames = sequenceFrames(scene)) {
             files = {expandFramePattern(scene.volume.path, frames->first()), expandFramePattern(scene.volume.path, frames->last())};
+            outputs = frameOutputPaths(scene, frames->first());
+        } else {
+            outputs = frameOutputPaths(scene, std::nullopt);
+        }
     } catch (const InputError& e) {
         problems.push_back(e.what());
         return problems;
     }
-    std::vector<std::string> grids{scene.volume.density.name};
+    if (const auto problem = outputPathProblem(scene)) {
+        problems.push_back(*problem);
+        outputs.clear();   // no path to check
+    }
+    if (sequence.stats) outputs.push_back(*sequence.stats);
+    if (sequence.log_json) outputs.push_back(*sequence.log_json);
+    for (const std::string& path : outputs)
+        if (const auto problem = outputProblem(path)) problems.push_back(*problem);
+    std::vector<std::string> grids{scene.volume.density.name};   // the first is the density, whose flag is --grid
     if (scene.volume.color) grids.push_back(scene.volume.color->name);
     for (const auto& e : scene.emission) grids.push_back(e.grid.name);
     for (size_t k = 0; k < files.size() && (k == 0 || files[k] != files[0]); ++k) {
         try {
             if (!std::filesystem::exists(files[k])) throw InputError(files[k] + ": no such file");
             const VdbFile file(files[k]);
-            for (const auto& name : grids) {
+            for (size_t g = 0; g < grids.size(); ++g) {
                 const bool found = std::any_of(file.grids().begin(), file.grids().end(),
-                                               [&](const VdbFile::Grid& g) { return g.name == name; });
-                if (!found) problems.push_back(files[k] + ": no grid named '" + name + "' (grids: " + file.gridList() + ")");
+                                               [&](const VdbFile::Grid& in) { return in.name == grids[g]; });
+                if (!found) problems.push_back(file.noGridNamed(grids[g], g == 0 ? "--grid" : ""));
             }
         } catch (const InputError& e) {
             problems.push_back(e.what());
@@ -181,11 +195,11 @@ int explainRender(const RenderCommand& cmd) {
         problems.push_back(e.what());
         scene = applyOverrides(quickScene(cmd.input), cmd.overrides);
     }
-    for (const auto& p : missingInputs(scene))
+    for (const auto& p : missingInputs(scene, cmd.sequence))
         if (std::find(problems.begin(), problems.end(), p) == problems.end()) problems.push_back(p);
     std::cout << Renderer(scene).graph().explain(scene);
     if (problems.empty()) {
-        printNotes(notes, std::cout);
+        printNotes(notes);
         return 0;
     }
     std::cout << "\ncannot render:\n";
@@ -208,7 +222,7 @@ int runRender(const RenderCommand& cmd) {
         return runLightEdits(scene, *cmd.light_edits, frames ? std::optional<int>(frames->first()) : std::nullopt, cmd.sequence.stats);
     }
     const int status = renderSequence(scene, cmd.sequence, std::cout, std::cerr);
-    printNotes(notes, std::cout);
+    printNotes(notes);
     return status;
 }
 
@@ -216,7 +230,7 @@ int runFarmSubmit(const FarmSubmitCommand& cmd) {
     std::vector<std::string> notes;
     const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
     const int status = farmSubmit(scene, cmd.input, cmd.options, std::cout);
-    printNotes(notes, std::cout);
+    printNotes(notes);
     return status;
 }
 
@@ -224,7 +238,7 @@ int runStudyCommand(const StudyCommand& cmd) {
     std::vector<std::string> notes;
     const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
     runStudy(scene, cmd.options, std::cout);
-    printNotes(notes, std::cout);
+    printNotes(notes);
     return 0;
 }
 
@@ -242,7 +256,7 @@ int runCalibrateCommand(const CalibrateCommand& cmd) {
                   cal.width, cal.height, cal.rmse_before, cal.rmse_after, reference.c_str(),
                   secondsText(cal.fit_seconds).c_str(), cal.marches, cmd.options.output.c_str());
     std::cout << line;
-    printNotes(notes, std::cout);
+    printNotes(notes);
     return 0;
 }
 
@@ -252,18 +266,21 @@ int runScene(const SceneCommand& cmd) {
     if (!scene.camera) scene.camera = frameVolumeCamera(scene.volume.path, scene);
     // The image is named after the cache (#### kept), in the folder the render runs in.
     if (scene.output.path.empty()) scene.output.path = std::filesystem::path(cmd.input).stem().string() + ".exr";
-    // The volume path as the scene file's reader resolves it: relative to the file's folder, or
-    // absolute when the scene goes to standard output and may be saved anywhere.
+    // The volume path as the scene file's reader resolves it: relative to the file's folder when
+    // it was given relative, or absolute when it was given so or the scene goes to standard output
+    // and may be saved anywhere.
     const std::filesystem::path volume = std::filesystem::absolute(scene.volume.path).lexically_normal();
+    const bool given_absolute = std::filesystem::path(scene.volume.path).is_absolute();
     if (cmd.output) {
         scene = scenePathsRelativeTo(scene, std::filesystem::absolute(*cmd.output).parent_path().string());
+        if (given_absolute) scene.volume.path = volume.string();
         writeFileAtomically(*cmd.output, jsonText(sceneToJson(scene), 2) + "\n");
         std::cout << "wrote " << *cmd.output << "\n";
     } else {
         scene.volume.path = volume.string();
         std::cout << jsonText(sceneToJson(scene), 2) << "\n";
     }
-    printNotes(notes, std::cerr);   // standard output may be the scene
+    printNotes(notes);
     return 0;
 }
 
@@ -271,7 +288,7 @@ int runView(const ViewCommand& cmd) {
 #if VOXLUX_HAS_VIEWER
     std::vector<std::string> notes;
     const Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
-    printNotes(notes, std::cout);
+    printNotes(notes);
     ViewerOptions options;
     options.source = cmd.input;
     options.script = cmd.script;
@@ -286,14 +303,14 @@ int runView(const ViewCommand& cmd) {
 int runInfo(const std::string& vdb, bool json) {
     const auto grids = summarizeFile(vdb);
     const auto triple = [](auto v) { return nlohmann::json::array({v[0], v[1], v[2]}); };
-    const char* axis_names[] = {"x", "y", "z"};
     if (json) {
         nlohmann::json out = {{"file", vdb}, {"grids", nlohmann::json::array()}};
         for (const auto& g : grids) {
             nlohmann::json gj = {{"name", g.name}, {"index", g.index}, {"type", g.value_type}, {"class", g.grid_class},
                                  {"active_voxels", g.active_voxels}, {"active_tiles", g.active_tiles},
                                  {"voxel_size", triple(g.voxel_size)}, {"bricks", g.bricks},
-                                 {"brick_bytes", g.brick_bytes}, {"up", axis_names[g.up.axis]}, {"up_reason", g.up.reason}};
+                                 {"brick_bytes", g.brick_bytes}, {"up", signedAxisName(g.up.frame[1])},
+                                 {"front", signedAxisName(g.up.frame[2])}, {"up_reason", g.up.reason}};
             if (g.active_voxels > 0) {
                 gj["bbox_min"] = triple(g.bbox.min());
                 gj["bbox_max"] = triple(g.bbox.max());
@@ -335,6 +352,8 @@ int runImport(const ImportCommand& cmd) {
     ImportOptions options;
     options.grid_name = cmd.name;
     options.background = cmd.background;
+    options.up = cmd.up;
+    options.front = cmd.front;
     if (!cmd.dims.empty()) {
         RawLayout raw;
         raw.dims = {cmd.dims[0], cmd.dims[1], cmd.dims[2]};

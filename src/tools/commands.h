@@ -73,6 +73,7 @@ struct ImportCommand {
     std::optional<std::string> type, endian;
     std::vector<double> spacing;
     std::optional<std::uint64_t> header_bytes;
+    std::optional<std::string> up, front;   // the axes toward the head and the face
 };
 int runImport(const ImportCommand& cmd);
 int runMakeCloud(const std::string& output, int resolution, unsigned seed);

@@ -1,6 +1,7 @@
 // voxlux command line: render, scene, study, info, import, make-cloud. Errors are one line on stderr.
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -10,6 +11,7 @@
 #include "tools/farm/process.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "core/thread_limit.h"
 
 namespace {
 
@@ -23,8 +25,8 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--level-set", o.level_set, "reject|fog: convert a level set to fog (volume.level_set)");
     cmd.add_option("--up", o.up, "x|y|z|auto: the cache's up axis (volume.up; auto: as the file says)");
     cmd.add_option("--frame-on", o.frame_on,
-                   "frame the camera on this frame of a sequence, and read the quick form's defaults from it "
-                   "(default: every frame framed together, defaults from the middle one)");
+                   "frame the camera on this frame of a sequence alone, and read the quick form's choices from it "
+                   "(default: every frame on disk framed together, choices from the fullest)");
     cmd.add_option("--res", o.resolution, "WIDTHxHEIGHT (render.resolution)");
     cmd.add_option("--step", o.step, "march step in voxels (render.step)");
     cmd.add_option("--filter", o.filter, "trilinear|tricubic: reconstruction between voxels (render.filter)");
@@ -97,6 +99,8 @@ int main(int argc, char** argv) {
     importCmd->add_option("--spacing", import.spacing, "raw: voxel edges along x,y,z (default 1,1,1)")->delimiter(',')->expected(3);
     importCmd->add_option("--header-bytes", import.header_bytes, "raw: bytes before the first voxel (default 0)");
     importCmd->add_option("--endian", import.endian, "raw: little|big (default little)")->check(CLI::IsMember({"little", "big"}));
+    importCmd->add_option("--up", import.up, "the axis toward the head: x|y|z|-x|-y|-z (NIfTI and DICOM say z; raw and .den do not say)");
+    importCmd->add_option("--front", import.front, "the axis toward the face, which the quick form's camera looks at (NIfTI and DICOM: y)");
 
     voxlux::StudyCommand study;
     auto* studyCmd = app.add_subcommand(
@@ -168,10 +172,19 @@ int main(int argc, char** argv) {
     cloudCmd->add_option("--res", cloudResolution, "voxels across")->check(CLI::Range(8, 1024));
     cloudCmd->add_option("--seed", cloudSeed, "noise seed");
 
-    bool progressLines = false;
+    std::optional<int> threads;   // --threads; ThreadLimit reads $VOXLUX_THREADS without it
+    for (auto* cmd : {renderCmd, studyCmd, calibrateCmd, viewCmd, submitCmd})
+        cmd->add_option("--threads", threads,
+                        "cores to use (default: $VOXLUX_THREADS, else every core the process may run on; farm submit: "
+                        "each task's, as --cpus)");
+
+    double progressSeconds = 10.0;
+    std::vector<CLI::Option*> progressFlags;
     for (auto* cmd : {renderCmd, studyCmd})
-        cmd->add_flag("--progress", progressLines,
-                      "print a progress line every 10 s to stderr when it is not a terminal (a terminal gets a bar)");
+        progressFlags.push_back(cmd->add_flag("--progress{10}", progressSeconds,
+                                              "print a progress line every 10 s (--progress=SECONDS) to stderr when it is not a "
+                                              "terminal (a terminal gets a bar)")
+                                    ->check(CLI::Range(0.01, 86400.0)));
 
     try {
         app.parse(argc, argv);
@@ -179,14 +192,28 @@ int main(int argc, char** argv) {
         // --help and --version exit 0 with their text; every malformed command line is bad input:
         // one line, exit 2, as any other.
         if (e.get_exit_code() == 0) return app.exit(e);
+        // A word that is no command: name it and the commands, rather than CLI11's "A subcommand is required".
+        std::string commands;
+        bool known = false;
+        for (const CLI::App* cmd : app.get_subcommands({})) {
+            commands += (commands.empty() ? "" : ", ") + cmd->get_name();
+            known = known || (argc > 1 && cmd->get_name() == argv[1]);
+        }
+        if (argc > 1 && argv[1][0] != '-' && !known) {
+            std::cerr << "voxlux: error: command line: '" << argv[1] << "' is not a command (" << commands << ")\n";
+            return voxlux::kInputError;
+        }
         std::cerr << "voxlux: error: command line: " << e.what() << "\n";
         return voxlux::kInputError;
     }
 
     voxlux::installInterruptHandler();
     if (isatty(STDERR_FILENO)) voxlux::setProgressDisplay(voxlux::ProgressDisplay::Bar, std::cerr);
-    else if (progressLines) voxlux::setProgressDisplay(voxlux::ProgressDisplay::Lines, std::cerr);
+    else if (std::any_of(progressFlags.begin(), progressFlags.end(), [](const CLI::Option* o) { return o->count() > 0; }))
+        voxlux::setProgressDisplay(voxlux::ProgressDisplay::Lines, std::cerr, progressSeconds);
     try {
+        if (*submitCmd && farmSubmit.options.cpus == 0 && threads) farmSubmit.options.cpus = *threads;
+        const voxlux::ThreadLimit limit(*submitCmd ? std::nullopt : threads);
         if (*renderCmd) return voxlux::runRender(render);
         if (*sceneCmd) return voxlux::runScene(scene);
         if (*studyCmd) {
@@ -205,7 +232,7 @@ int main(int argc, char** argv) {
     } catch (const voxlux::Interrupted&) {
         voxlux::clearProgressLine();
         std::cerr << "voxlux: interrupted: stopped before the next output; every file written is whole\n";
-        return 130;   // as a shell reports a process ended by SIGINT
+        return 128 + voxlux::interruptSignal();   // as a shell reports a process ended by it: 130 SIGINT, 143 SIGTERM
     } catch (const voxlux::InputError& e) {
         voxlux::clearProgressLine();
         std::cerr << "voxlux: error: " << e.what() << "\n";

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +21,7 @@
 #include "core/progress.h"
 #include "io/exr_writer.h"
 #include "render/renderer.h"
+#include "render/write_stage.h"
 #include "tools/frame_check.h"
 
 namespace voxlux {
@@ -44,10 +48,13 @@ class FrameLog {
 public:
     explicit FrameLog(const std::optional<std::string>& path) {
         if (!path) return;
-        std::error_code ec;   // the folder is made as the outputs' are
-        if (const auto parent = std::filesystem::path(*path).parent_path(); !parent.empty()) std::filesystem::create_directories(parent, ec);
+        makeOutputFolder(*path);
         file_.open(*path, std::ios::app);
-        if (!file_) throw InputError(*path + ": cannot open the log for appending");
+        if (!file_) {
+            const int cause = errno;
+            if (const auto problem = outputProblem(*path)) throw InputError(*problem);   // the folder's, as any output's
+            throw InputError(*path + ": cannot open the log for appending (" + std::strerror(cause) + ")");
+        }
         path_ = *path;
     }
     void write(const nlohmann::json& line) {
@@ -63,6 +70,20 @@ private:
 
 }  // namespace
 
+double sequenceSecondsLeft(const std::vector<double>& frame_seconds, int64_t frames_left) {
+    const size_t n = frame_seconds.size();
+    if (n == 0 || frames_left <= 0) return 0.0;
+    if (n < 3) return frame_seconds.back() * double(frames_left);
+    double mean_k = 0.0, mean_t = 0.0;
+    for (size_t k = 0; k < n; ++k) mean_k += double(k) / double(n), mean_t += frame_seconds[k] / double(n);
+    double cov = 0.0, var = 0.0;
+    for (size_t k = 0; k < n; ++k) cov += (double(k) - mean_k) * (frame_seconds[k] - mean_t), var += (double(k) - mean_k) * (double(k) - mean_k);
+    const double slope = cov / var;
+    // The frames left are n .. n + left - 1 on the line: their sum is left x the line at their middle.
+    const double middle = double(n) + 0.5 * double(frames_left - 1);
+    return std::max(0.0, double(frames_left) * (mean_t + slope * (middle - mean_k)));
+}
+
 std::optional<FrameSet> sequenceFrames(const Scene& s) {
     if (!hasFramePattern(s.volume.path)) return std::nullopt;
     if (!s.volume.frames)
@@ -76,19 +97,47 @@ std::optional<FrameSet> sequenceFrames(const Scene& s) {
 }
 
 int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostream& out, std::ostream& err) {
-    const std::optional<FrameSet> frames = sequenceFrames(scene);
-    if (options.stats) checkWritable(*options.stats);   // before any frame: every output or none
+    const std::optional<FrameSet> requested = sequenceFrames(scene);
     if (const auto problem = outputPathProblem(scene)) throw InputError(*problem);
+    // Frames whose file is not on disk fail without being tried, named in one line (a range typed
+    // too long, a cache not written yet), and the others render: from one listing of the folder,
+    // so "1-2000000000" costs nothing per frame.
+    std::optional<FrameSet> frames = requested;
+    FrameSet missing;
+    if (requested) {
+        const FrameSet disk = framesOnDisk(scene.volume.path);
+        frames = requested->among(disk);
+        missing = requested->notAmong(disk);
+        if (frames->count() == 0)
+            throw InputError(scene.volume.path + ": no file of frames " + requested->text() + " exists" +
+                             (disk.count() ? " (on disk: frames " + disk.text() + ")" : ""));
+    }
+    // Before any frame, every output's folder is made and takes a file: a folder that cannot is
+    // one line now, not an error after the last frame rendered.
+    for (const std::string& path : frameOutputPaths(scene, frames ? std::optional<int>(frames->first()) : std::nullopt))
+        checkWritable(path);
+    if (options.stats) checkWritable(*options.stats);
     FrameLog log(options.log_json);
     const std::string hash = sceneHash(scene), host = hostName();
+    if (missing.count()) {
+        const std::string message = "frames " + missing.text() + " of " + requested->text() + " are not on disk (" +
+                                    expandFramePattern(scene.volume.path, missing.first()) + ": no such file)";
+        err << "voxlux: error: " << message << (options.fail_fast ? "" : "; the others render") << "\n";
+        log.write({{"frames", missing.text()}, {"status", "missing"}, {"error", message}, {"host", host}, {"pid", getpid()}, {"time", utcNow()}});
+        if (options.fail_fast) {
+            err << "voxlux: error: " << missing.count() << " of " << requested->count() << " frames failed: " << missing.text()
+                << " (stopped there, --fail-fast; " << frames->count() << " not rendered)\n";
+            return kFramesFailed;
+        }
+    }
 
     Renderer renderer(scene);
     const int64_t count = frames ? frames->count() : 1;
     const auto progress = frames ? std::make_unique<ProgressTask>("sequence", count, "frames") : nullptr;
     nlohmann::json stats = {{"backend", renderer.backendName()}, {"frames", nlohmann::json::array()}};
     int64_t rendered = 0, skipped = 0, failed = 0, empty_frames = 0;
-    double render_seconds = 0.0;
-    FrameSet failed_frames;
+    std::vector<double> frame_seconds;   // of the frames rendered, in order: the time left comes from them
+    FrameSet failed_frames, done_frames;   // of those tried
     std::string current;   // "frame 12", for the progress bar's stage
     if (progress) renderer.setStageStart([&](const std::string& stage) { progress->describe(current + ": " + stage); });
     for (int64_t k = 0; k < count; ++k) {
@@ -99,6 +148,7 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
             const FrameCheck check = checkFrame(scene, frame, hash);
             if (check.state == FrameCheck::State::Done) {
                 ++skipped;
+                done_frames.add(*frame);
                 out << "skipped " << name << ": " << check.path << " is done\n";
                 line.update({{"status", "skipped"}, {"path", check.path}, {"time", utcNow()}});
                 log.write(line);
@@ -114,11 +164,11 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             clearProgressLine();
             ++rendered;
-            render_seconds += seconds;
+            if (frame) done_frames.add(*frame);
+            frame_seconds.push_back(seconds);
             for (const auto& w : r.warnings) err << "voxlux: warning: " << w << "\n";
             empty_frames += r.empty;
-            out << "wrote " << r.path << (r.preview_path.empty() ? "" : " and " + r.preview_path) << " ("
-                << renderer.backendName() << ", " << r.bricks << " bricks)";
+            out << "wrote " << writtenFilesText(r) << " (" << renderer.backendName() << ", " << r.bricks << " bricks)";
             nlohmann::json stages = nlohmann::json::object();
             double total = 0;
             char text[64];
@@ -156,16 +206,18 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
         }
         if (progress) {
             progress->advance();
-            if (rendered) progress->estimateLeft(render_seconds / double(rendered) * double(count - k - 1));
+            if (rendered) progress->estimateLeft(sequenceSecondsLeft(frame_seconds, count - k - 1));
         }
     }
     if (empty_frames) err << "voxlux: warning: " << empty_frames << " empty frame(s) rendered transparent\n";
     if (skipped) out << "resumed: " << skipped << " of " << count << " frames were done and skipped\n";
     stats["peak_rss_bytes"] = peakRssBytes();
     if (options.stats) writeFileAtomically(*options.stats, jsonText(stats, 2) + "\n");
-    if (!failed) return 0;
+    if (!failed && !missing.count()) return 0;
     const int64_t unrendered = count - rendered - skipped - failed;
-    err << "voxlux: error: " << failed << " of " << count << " frames failed: " << failed_frames.text()
+    // Stopped by --fail-fast, the frames failed are those tried; else every frame asked for but done.
+    const FrameSet failures = unrendered ? failed_frames : requested->notAmong(done_frames);
+    err << "voxlux: error: " << failures.count() << " of " << requested->count() << " frames failed: " << failures.text()
         << (unrendered ? " (stopped there, --fail-fast; " + std::to_string(unrendered) + " not rendered)" : "") << "\n";
     return kFramesFailed;
 }

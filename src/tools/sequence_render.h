@@ -7,6 +7,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/frame_set.h"
 #include "scene/scene.h"
@@ -26,6 +27,12 @@ struct SequenceOptions {
 // The frames `scene` renders: volume.frames for a #### volume path, none for one file. Throws
 // InputError when a pattern has no frames, or several frames would share one output path.
 std::optional<FrameSet> sequenceFrames(const Scene& scene);
+
+// The time the `frames_left` frames after these will take, from the rendered frames' own times in
+// order: a straight line through them (least squares), extended over the frames left, so that a
+// simulation that grows frame by frame is not under-estimated by the mean of its small first
+// frames; the last frame's time for each frame left until three have rendered.
+double sequenceSecondsLeft(const std::vector<double>& frame_seconds, int64_t frames_left);
 
 // Renders and writes every frame; what it does goes to `out` (one line a frame) and warnings and
 // frame errors to `err`. Returns 0, or kFramesFailed after naming the failed frames. A scene of one

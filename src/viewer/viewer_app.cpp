@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/frame_pattern.h"
 #include "core/json_reader.h"
+#include "core/progress.h"
 #include "core/quantile.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
@@ -68,12 +69,14 @@ void writeWindowPng(const std::string& path, int width, int height) {
     writePng(path, width, height, rgba, false);
 }
 
-// Renders the scene to its output path on a thread of its own, as `voxlux render` does.
+// Renders the scene to its output path on a thread of its own, as `voxlux render` does; Ctrl-C
+// or SIGTERM stops it at the next stage, so the window closes at once.
 std::future<std::string> renderInBackground(const Scene& scene, std::optional<int> frame) {
     return std::async(std::launch::async, [scene, frame] {
         Renderer renderer(scene);
+        renderer.setCancellation([] { return interruptSignal() != 0; });
         const FrameResult r = renderer.renderToFile(frame, frame.has_value());
-        return "wrote " + r.path + (r.preview_path.empty() ? "" : " and " + r.preview_path);
+        return "wrote " + writtenFilesText(r);
     });
 }
 
@@ -344,6 +347,12 @@ int ViewerApp::run(GLFWwindow* window) {
     auto last = Clock::now(), last_step = last;
     bool running = true;
     while (running && !glfwWindowShouldClose(window)) {
+        // SIGINT or SIGTERM closes the window as its close button does; the idle wait below
+        // returns within 0.1 s, so a signal is seen that soon.
+        if (const int signal = interruptSignal()) {
+            exit_code_ = 128 + signal;
+            break;
+        }
         // Busy, the loop draws at most kFrameRate frames a second and leaves the rest of the CPU to
         // the render; idle, it sleeps until an event (or 0.1 s, to see a new image).
         const bool busy = !script_.empty() || !state_.render->settled() || state_.playing || rendering_.valid() ||

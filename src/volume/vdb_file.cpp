@@ -208,6 +208,14 @@ std::string VdbFile::gridList() const {
     return out.empty() ? "none" : out;
 }
 
+std::string VdbFile::noGridNamed(const std::string& name, const std::string& option) const {
+    std::vector<const Grid*> scalar;
+    for (const auto& g : grids_)
+        if (g.volume && (g.value_type == "float" || g.value_type == "double")) scalar.push_back(&g);
+    const std::string hint = option.empty() || scalar.size() != 1 ? "" : "; " + option + " " + printableName(scalar[0]->name) + " to render it";
+    return file_ + ": no grid named '" + name + "' (grids: " + gridList() + hint + ")";
+}
+
 openvdb::GridBase::Ptr VdbFile::read(size_t k) {
     if (!grids_[k].volume)
         throw InputError(file_ + ": grid '" + printableName(grids_[k].name) + "' (" + grids_[k].value_type +

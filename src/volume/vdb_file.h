@@ -37,6 +37,9 @@ public:
     const openvdb::MetaMap& fileMetadata() const { return file_metadata_; }
     // "'density' (float), 'vel' (vec3s)" for messages, or "none".
     std::string gridList() const;
+    // "<file>: no grid named 'density' (grids: 'smoke' (float); --grid smoke to render it)": the
+    // hint names `option` and the file's one scalar grid, when it has one and `option` is given.
+    std::string noGridNamed(const std::string& name, const std::string& option = "") const;
     // Grid `k` with its metadata, transform and voxels. Throws InputError, also for a grid that is
     // not a volume.
     openvdb::GridBase::Ptr read(size_t k);

@@ -31,14 +31,14 @@ VdbFile openFile(const std::string& file) {
     return VdbFile(file);
 }
 
+// `option` names the flag that picks the grid ("--grid"), for the hint of a missing one.
 openvdb::GridBase::Ptr readGrid(VdbFile& f, const std::string& file, const GridRef& ref,
-                                std::vector<std::string>& warnings) {
+                                std::vector<std::string>& warnings, const std::string& option = "") {
     std::vector<size_t> named;
     for (size_t k = 0; k < f.grids().size(); ++k)
         if (f.grids()[k].name == ref.name) named.push_back(k);
     const int count = int(named.size());
-    if (count == 0)
-        throw InputError(file + ": no grid named '" + ref.name + "' (grids: " + f.gridList() + ")");
+    if (count == 0) throw InputError(f.noGridNamed(ref.name, option));
     if (ref.index >= count)
         throw InputError(file + ": grid index " + std::to_string(ref.index) + " for '" + ref.name +
                          "' is out of range (the file has " + std::to_string(count) + ")");
@@ -201,7 +201,7 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const s
     VdbFile f = openFile(file);
     LoadedVolume v;
     v.file = file;
-    auto density = asFogFloat(readGrid(f, file, spec.density, v.warnings), file, spec, "density");
+    auto density = asFogFloat(readGrid(f, file, spec.density, v.warnings, "--grid"), file, spec, "density");
     v.index_to_world = indexToWorld(*density, file);
     v.up = detectUpAxis(f.fileMetadata(), *density);
     for (const auto& source : emission)

@@ -137,15 +137,15 @@ void CameraStage::run(StageRun& run) {
     camera_ = run.scene.camera ? *run.scene.camera : frameActiveVoxels(load_.volume(), run.scene);
 }
 
-int upAxisOf(const Scene& scene, const LoadedVolume& volume) {
-    return scene.volume.up == UpAxis::Auto ? volume.up.axis : int(scene.volume.up) - int(UpAxis::X);
+glm::mat3 viewFrameOf(const Scene& scene, const LoadedVolume& volume) {
+    return scene.volume.up == UpAxis::Auto ? volume.up.frame : upFrame(int(scene.volume.up) - int(UpAxis::X));
 }
 
 Camera frameActiveVoxels(const LoadedVolume& volume, const Scene& scene) {
     openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
     glm::vec3 lo(0.0f), hi(1.0f);
     if (!box.empty()) voxelBoxWorldBounds(volume.index_to_world, box, lo, hi);
-    return frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), upAxisOf(scene, volume));
+    return frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), viewFrameOf(scene, volume));
 }
 
 }  // namespace voxlux

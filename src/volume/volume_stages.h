@@ -124,8 +124,9 @@ private:
     Camera camera_;
 };
 
-// The up axis (0 x, 1 y, 2 z): the scene's volume.up, else what the file says.
-int upAxisOf(const Scene& scene, const LoadedVolume& volume);
+// The default view's frame (right, up, back; volume/up_axis.h): the scene's volume.up, else what
+// the file says.
+glm::mat3 viewFrameOf(const Scene& scene, const LoadedVolume& volume);
 
 // Camera framing the active voxels of the density grid: what a scene without a camera renders
 // and what `voxlux scene` writes out.

@@ -36,6 +36,24 @@ TEST(FrameSet, AHugeRangeIsNeverExpanded) {
     EXPECT_THROW(s.at(s.count()), std::out_of_range);
 }
 
+// Which frames of a range are on disk, and which are not, cut from the small set of files without
+// walking the range.
+TEST(FrameSet, AmongAndNotAmongSplitARangeByTheFramesPresent) {
+    const FrameSet disk = FrameSet::parse("1-2,4,7-8,11");
+    EXPECT_EQ(FrameSet::parse("1-10").among(disk).text(), "1-2,4,7-8");
+    EXPECT_EQ(FrameSet::parse("1-10").notAmong(disk).text(), "3,5-6,9-10");
+    // A step keeps its lattice: of 1-11x2 (1, 3, 5, 7, 9, 11), 1, 7 and 11 are there.
+    EXPECT_EQ(FrameSet::parse("1-11x2").among(disk).text(), "1,7,11");
+    EXPECT_EQ(FrameSet::parse("1-11x2").notAmong(disk).text(), "3-5x2,9");
+    EXPECT_EQ(FrameSet::parse("3,5-6").among(disk).count(), 0);
+    EXPECT_EQ(FrameSet::parse("3,5-6").notAmong(disk).text(), "3,5-6");
+    EXPECT_EQ(FrameSet::parse("1-2").notAmong(disk).count(), 0);
+    const FrameSet huge = FrameSet::parse("1-2000000000");
+    EXPECT_EQ(huge.among(FrameSet::parse("1")).text(), "1");
+    EXPECT_EQ(huge.notAmong(FrameSet::parse("1")).text(), "2-2000000000");
+    EXPECT_EQ(huge.notAmong(FrameSet()).text(), "1-2000000000");
+}
+
 TEST(FrameSet, TextReadsBackAsTheSameSet) {
     for (const char* spec : {"7", "1-240", "1-239x2", "1,5,10-14x2,20", "-3--1"}) {
         EXPECT_EQ(FrameSet::parse(spec).text(), spec);

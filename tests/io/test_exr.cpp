@@ -376,9 +376,39 @@ TEST(Png, WriteIntoAMissingFolderThrowsAndLeavesNothing) {
         writePng(path, 1, 1, {glm::vec4(0.5f)}, false);
         FAIL() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), path + ": cannot write (No such file or directory)");
+        EXPECT_EQ(std::string(e.what()), path + ": cannot write in folder " + dir + "/missing: No such file or directory");
     }
     EXPECT_TRUE(fs::is_empty(dir));  // no file, no temporary, no folder
+}
+
+// A write that fails says what failed on the user's path, never the temporary's: the folder that
+// cannot be made, the folder that takes no file, and why. outputProblem says the same without
+// touching anything (--explain), and checkWritable before a run.
+TEST(Exr, WriteErrorsNameTheFolderAndTheCause) {
+    ReadOnlyFolder ro("write_errors_ro");
+    if (!ro.problem.empty()) GTEST_SKIP() << ro.problem;
+    const std::string in_ro = ro.path + "/out.exr", under_ro = ro.path + "/sub/out.exr";
+    const std::string cannot_write = in_ro + ": cannot write in folder " + ro.path + ": " + ro.cause;
+    const std::string cannot_create = under_ro + ": cannot create folder " + ro.path + "/sub: " + ro.cause;
+    EXPECT_EQ(inputErrorOf([&] { writeExr(in_ro, patternImage(), spec(PixelType::Half, "zip", {}), ExrMetadata{}); }), cannot_write);
+    EXPECT_EQ(inputErrorOf([&] { writeFileAtomically(in_ro, "{}\n"); }), cannot_write);
+    EXPECT_EQ(inputErrorOf([&] { makeOutputFolder(under_ro); }), cannot_create);
+    EXPECT_EQ(inputErrorOf([&] { checkWritable(under_ro); }), cannot_create);
+    EXPECT_EQ(inputErrorOf([&] { checkWritable(in_ro); }), cannot_write);
+    EXPECT_EQ(outputProblem(in_ro), cannot_write);
+    EXPECT_EQ(outputProblem(under_ro), cannot_create);
+    EXPECT_EQ(outputProblem(ro.path + "/a/b/c/out.exr"), ro.path + "/a/b/c/out.exr: cannot create folder " + ro.path + "/a/b/c: " + ro.cause);
+
+    // A file where a folder must be; a writable folder has no problem, and checkWritable leaves it as it was.
+    const std::string dir = tempDir("write_errors");
+    std::ofstream(dir + "/a_file") << "x";
+    EXPECT_EQ(outputProblem(dir + "/a_file/sub/out.exr"), dir + "/a_file/sub/out.exr: cannot create folder " + dir + "/a_file/sub: Not a directory");
+    EXPECT_EQ(inputErrorOf([&] { checkWritable(dir + "/a_file/out.exr"); }),
+              dir + "/a_file/out.exr: cannot create folder " + dir + "/a_file: Not a directory");
+    EXPECT_EQ(outputProblem(dir + "/new/out.exr"), std::nullopt);
+    EXPECT_FALSE(fs::exists(dir + "/new"));
+    checkWritable(dir + "/new/out.exr");
+    EXPECT_TRUE(fs::is_empty(dir + "/new"));
 }
 
 // The atomic write's rename once replaced /dev/null (as root) with a regular file. A device is
@@ -388,7 +418,7 @@ TEST(Exr, DevicesAreWrittenInPlaceAndFoldersRefused) {
     writeFileAtomically("/dev/null", "{}\n");
     EXPECT_TRUE(fs::is_character_file("/dev/null"));
     if (fs::exists("/dev/full")) {
-        EXPECT_EQ(inputErrorOf([] { writeFileAtomically("/dev/full", "{}\n"); }), "/dev/full: cannot write (write failed)");
+        EXPECT_EQ(inputErrorOf([] { writeFileAtomically("/dev/full", "{}\n"); }), "/dev/full: cannot write (No space left on device)");
         EXPECT_TRUE(fs::is_character_file("/dev/full"));
     }
     const std::string dir = tempDir("write_folder");

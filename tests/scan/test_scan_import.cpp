@@ -15,6 +15,7 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dctk.h>
 #include <nifti2_io.h>
+#include <nlohmann/json.hpp>
 
 #include "scan/scan_import.h"
 #include "test_support.h"
@@ -277,7 +278,48 @@ TEST(ScanImport, NiftiVoxelsLandWhereTheFilePutsThemInEveryOrientationAndByteOrd
                 // The minimum (0 * 2 - 5) is the background: inactive.
                 EXPECT_EQ(grid->background(), -5.0f);
                 EXPECT_EQ(grid->activeVoxelCount(), 7u * 6u * 5u - 13u);   // i % 17 == 0 at 0, 17, ..., 204
+                // With an orientation the world is RAS, and the grid says so: head up +z, face +y.
+                const std::string up = o == Orientation::Pixdim ? "" : "z", front = o == Orientation::Pixdim ? "" : "y";
+                const auto meta = [&](const char* key) { return (*grid)[key] ? grid->metaValue<std::string>(key) : std::string(); };
+                EXPECT_EQ(meta("up_axis"), up) << "(pixdim alone says nothing)";
+                EXPECT_EQ(meta("front_axis"), front);
             }
+}
+
+// The importer writes the orientation it knows (or the user's --up and --front), and the quick
+// form reads it: up is up in the frame, and the camera looks at the face, slightly from above.
+TEST(ScanImport, TheOrientationFramesTheHeadUprightFromTheFront) {
+    const std::string dir = tempDir("scan_orientation");
+    std::vector<unsigned char> voxels(8 * 8 * 8, 0);
+    for (size_t i = 0; i < voxels.size(); ++i) voxels[i] = (i % 3) ? 50 : 0;
+    writeBytes(dir + "/head.den", denFile({8, 8, 8}, voxels));
+    ImportOptions options;
+    options.up = "-y";
+    options.front = "-x";
+    importScan(dir + "/head.den", dir + "/head.vdb", options);
+    const CliResult r = runCli("scene " + dir + "/head.vdb");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("voxlux: quick form: up axis -y (the grid's up_axis metadata; its front_axis -x faces the camera)"),
+              std::string::npos) << r.err;
+    const nlohmann::json camera = nlohmann::json::parse(r.out)["camera"];
+    EXPECT_EQ(camera["up"], nlohmann::json::parse("[0.0, -1.0, 0.0]"));
+    const glm::vec3 from(camera["position"][0].get<float>() - camera["look_at"][0].get<float>(),
+                         camera["position"][1].get<float>() - camera["look_at"][1].get<float>(),
+                         camera["position"][2].get<float>() - camera["look_at"][2].get<float>());
+    const glm::vec3 toward = glm::normalize(from);
+    EXPECT_LT(toward.x, -0.7f);   // in front of the face (-x)
+    EXPECT_LT(toward.y, -0.1f);   // above it (-y is up)
+    // The flags must name two different axes, and go together.
+    const auto refused = [&](std::optional<std::string> up, std::optional<std::string> front) {
+        ImportOptions o;
+        o.up = up;
+        o.front = front;
+        return inputErrorOf([&] { importScan(dir + "/head.den", dir + "/bad.vdb", o); });
+    };
+    EXPECT_EQ(refused("z", std::nullopt), dir + "/head.den: --up and --front go together: the axis toward the head and the one toward the face");
+    EXPECT_EQ(refused("z", "-z"), dir + "/head.den: --up z and --front -z must be different axes");
+    EXPECT_EQ(refused("up", "y"), dir + "/head.den: --up and --front are axes: x, y, z, -x, -y or -z");
+    EXPECT_FALSE(fs::exists(dir + "/bad.vdb"));
 }
 
 TEST(ScanImportShared, NibabelAnatomicalHasItsSizeAndSpacing) {

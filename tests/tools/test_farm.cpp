@@ -47,6 +47,13 @@ TEST(Farm, DryRunWritesTheJobFolderAndTheBatchScript) {
     EXPECT_EQ(scene["volume"]["path"], "../cloud.####.vdb");
     EXPECT_FALSE(fs::exists(dir + "/job/job.json"));
 
+    // --threads asks the scheduler for that many cores a task, and each task uses that many.
+    r = runCli(submit + " --threads 3 --dry-run");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(" --cpus-per-task=3 "), std::string::npos) << r.out;
+    EXPECT_NE(fileText(dir + "/job/slurm.sh").find("  0) exec " + task + "1-2 --resume --log-json " + dir + "/job/logs/chunk_0.jsonl --threads 3 ;;\n"),
+              std::string::npos);
+
     // Without sbatch on PATH, submit says so and leaves no job either.
     r = runShell("PATH=/nonexistent " + std::string(VOXLUX_BINARY) + " " + submit);
     EXPECT_EQ(r.exit_code, 2);

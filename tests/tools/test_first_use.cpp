@@ -3,6 +3,7 @@
 // progress and Ctrl-C.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -140,9 +141,11 @@ TEST(FirstUse, SceneWritesARenderableScene) {
     CliResult r = runCli("scene " + dir + "/caches/cloud.#.vdb --frames 1-2 --res 16x16 -o " + dir + "/shots/a/shot.json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, "wrote " + dir + "/shots/a/shot.json\n");
-    EXPECT_NE(r.err.find("voxlux: camera framed on frames 1-2 together"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("voxlux: camera framed on the frames on disk, 1-2, together (--frame-on N for one frame)"), std::string::npos)
+        << r.err;
+    // The cache was given by an absolute path, and the scene keeps it so.
     const auto j = nlohmann::json::parse(slurp(dir + "/shots/a/shot.json"));
-    EXPECT_EQ(j["volume"]["path"], "../../caches/cloud.#.vdb");
+    EXPECT_EQ(j["volume"]["path"], dir + "/caches/cloud.#.vdb");
     EXPECT_EQ(j["output"]["path"], "cloud.#.exr");
     EXPECT_TRUE(j.contains("camera"));
     // Rendered from another folder: the volume is found beside the scene, the image lands here.
@@ -150,6 +153,9 @@ TEST(FirstUse, SceneWritesARenderableScene) {
     ASSERT_EQ(std::system(render.c_str()), 0);
     EXPECT_TRUE(fs::exists(dir + "/cloud.1.exr"));
     EXPECT_TRUE(fs::exists(dir + "/cloud.2.exr"));
+    // Given relative to the folder the command runs in, it is written relative to the scene's folder.
+    ASSERT_EQ(std::system(("cd " + dir + " && " + VOXLUX_BINARY + " scene caches/cloud.#.vdb --frames 1-2 -o shots/a/rel.json 2>/dev/null >/dev/null").c_str()), 0);
+    EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/shots/a/rel.json"))["volume"]["path"], "../../caches/cloud.#.vdb");
     // To standard output the volume path is absolute, and the image is named after the cache.
     r = runCli("scene " + cloud);
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -168,8 +174,8 @@ TEST(FirstUse, ExplainSaysWhatIsMissing) {
     EXPECT_EQ(r.err, "voxlux: error: no output path: pass -o FILE.exr or set output.path in the scene\n");
     r = runCli("render " + cloud + " --explain --grid smoke --color-grid Cd -o x.exr");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.out.find("cannot render:\n  " + cloud + ": no grid named 'smoke' (grids: 'density' (float))\n  " + cloud +
-                         ": no grid named 'Cd' (grids: 'density' (float))\n"),
+    EXPECT_NE(r.out.find("cannot render:\n  " + cloud + ": no grid named 'smoke' (grids: 'density' (float); --grid density to render it)\n  " +
+                         cloud + ": no grid named 'Cd' (grids: 'density' (float))\n"),
               std::string::npos) << r.out;
     r = runCli("render /nonexistent/cache.vdb --explain -o x.exr");
     EXPECT_EQ(r.exit_code, 2);
@@ -232,12 +238,44 @@ TEST(FirstUse, ProgressLinesAndCtrlCLeaveNothingBehind) {
     EXPECT_TRUE(fs::is_empty(dir));
 }
 
+// A quick-form sequence with a frame missing renders the others and exits 3, as a scene file does:
+// its camera and choices come from the frames on disk, not from the range asked for.
+TEST(FirstUse, AMissingFrameOfAQuickFormSequenceStopsOnlyThatFrame) {
+    const std::string dir = tempDir("quick_missing");
+    for (int f : {1, 2, 4, 5})
+        fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud.000" + std::to_string(f) + ".vdb",
+                      fs::copy_options::overwrite_existing);
+    const CliResult r = runCli("render " + dir + "/cloud.####.vdb --frames 1-5 --res 16x16 --backend cpu --shadows none -o " + dir +
+                               "/out.####.exr");
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    for (int f : {1, 2, 4, 5}) EXPECT_TRUE(fs::exists(dir + "/out.000" + std::to_string(f) + ".exr")) << f;
+    EXPECT_NE(r.err.find("voxlux: error: 1 of 5 frames failed: 3\n"), std::string::npos) << r.err;
+}
+
+// What the quick form derives from a sequence is the same for any range of it: two artists'
+// halves, a single frame and the whole shot get one camera, one density scale and one blackbody
+// brightness, so their frames cut together.
+TEST(FirstUse, BlenderFireLookIsTheSameForEveryFrameRange) {
+    VOXLUX_REQUIRE_SHARED(fire, "blender/fire");
+    std::vector<nlohmann::json> scenes;
+    for (const char* frames : {"30", "1-60", "1-8", "31-60"}) {
+        const CliResult r = runCli("scene " + fire + "/fluid_data_####.vdb --frames " + frames + " --blackbody-grid temperature");
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        nlohmann::json s = nlohmann::json::parse(r.out);
+        s["volume"].erase("frames");   // the one key that differs
+        scenes.push_back(s);
+        EXPECT_NE(r.err.find("camera framed on the frames on disk, 1-60, together"), std::string::npos) << r.err;
+    }
+    for (size_t k = 1; k < scenes.size(); ++k) EXPECT_EQ(scenes[k], scenes[0]) << k;
+    EXPECT_GT(scenes[0]["material"]["density_scale"].get<double>(), 0.0);
+}
+
 // Renders frames first..last of the shared Blender fire with the quick form into `dir`.
 void renderFire(const std::string& fire, const std::string& dir, const std::string& frames, const std::string& flags) {
     CliResult r = runCli("render " + fire + "/fluid_data_####.vdb --frames " + frames + " --backend cpu --blackbody-grid temperature " +
                          flags + " -o " + dir + "/fire.####.exr");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("voxlux: quick form: up axis z (a Blender Mantaflow cache"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("voxlux: quick form: up axis z (a Blender Mantaflow cache"), std::string::npos) << r.err;
 }
 
 Exr fireFrame(const std::string& dir, int frame) {
@@ -290,6 +328,27 @@ TEST(FirstUse, BlenderFireDoesNotClip) {
         EXPECT_LE(clipped, e.planes.at("R").size() / 100) << "frame " << frame;
         EXPECT_GT(lit, e.planes.at("R").size() / 50) << "frame " << frame << " is not dark";
     }
+}
+
+// The flame reads as fire: its brightness is measured on what reaches the camera through the smoke,
+// so the core of the quick form's frame 30 sits near 1 in the beauty (it peaked at 0.24 when it was
+// measured before the smoke absorbed it), and the flame is more than a faint base.
+TEST(FirstUse, BlenderFireCoreSitsNearOne) {
+    VOXLUX_REQUIRE_SHARED(fire, "blender/fire");
+    const std::string dir = tempDir("fire_core");
+    const CliResult r = runCli("render " + fire + "/fluid_data_0030.vdb --blackbody-grid temperature --backend cpu --res 120x160 "
+                               "--pixel-type float -o " + dir + "/f.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Exr e = readExr(dir + "/f.exr");
+    std::vector<float> peaks;
+    for (size_t i = 0; i < e.planes.at("R").size(); ++i)
+        peaks.push_back(std::max({e.planes.at("R")[i], e.planes.at("G")[i], e.planes.at("B")[i]}));
+    std::sort(peaks.begin(), peaks.end());
+    const float core = peaks[peaks.size() - peaks.size() / 200];   // the 99.5th percentile: the flame's core
+    EXPECT_GT(core, 0.6f);
+    EXPECT_LT(core, 1.6f);
+    const size_t bright = size_t(std::count_if(peaks.begin(), peaks.end(), [](float p) { return p > 0.3f; }));
+    EXPECT_GT(bright, peaks.size() / 100) << "the flame is a faint base";
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
+#include "tools/sequence_render.h"
 
 namespace voxlux::test {
 namespace {
@@ -94,24 +95,63 @@ TEST(Sequence, FailedFramesAreNamedAndTheOthersRender) {
     { std::ofstream(dir + "/cloud.0003.vdb", std::ios::trunc) << "not a vdb"; }
     CliResult r = runCli(renderArgs(dir, "1-4") + " --log-json " + dir + "/log.jsonl");
     EXPECT_EQ(r.exit_code, 3);
-    EXPECT_NE(r.err.find("voxlux: error: frame 2: " + dir + "/cloud.0002.vdb: no such file\n"), std::string::npos) << r.err;
+    // A frame not on disk is named before any frame renders; a damaged one when its turn comes.
+    EXPECT_EQ(r.err.rfind("voxlux: error: frames 2 of 1-4 are not on disk (" + dir + "/cloud.0002.vdb: no such file); the others render\n", 0), 0u)
+        << r.err;
     EXPECT_NE(r.err.find("voxlux: error: frame 3: " + dir + "/cloud.0003.vdb: "), std::string::npos) << r.err;
-    EXPECT_EQ(r.err.substr(r.err.rfind("voxlux: error: ")), "voxlux: error: 2 of 4 frames failed: 2-3\n");
+    const std::string errors = linesStartingWith(r.err, "voxlux: error: ");
+    EXPECT_EQ(errors.substr(errors.rfind("voxlux: error: ")), "voxlux: error: 2 of 4 frames failed: 2-3\n");
     EXPECT_TRUE(fs::exists(dir + "/out.0001.exr"));
     EXPECT_TRUE(fs::exists(dir + "/out.0004.exr"));
     EXPECT_FALSE(fs::exists(dir + "/out.0002.exr"));
     const std::vector<nlohmann::json> log = logLines(dir + "/log.jsonl");
     ASSERT_EQ(log.size(), 4u);
-    EXPECT_EQ(log[1]["status"], "failed");
-    EXPECT_EQ(log[1]["error"], dir + "/cloud.0002.vdb: no such file");
+    EXPECT_EQ(log[0]["status"], "missing");
+    EXPECT_EQ(log[0]["frames"], "2");
+    EXPECT_EQ(log[0]["error"], "frames 2 of 1-4 are not on disk (" + dir + "/cloud.0002.vdb: no such file)");
+    EXPECT_EQ(log[1]["status"], "rendered");
+    EXPECT_EQ(log[2]["status"], "failed");
+    EXPECT_EQ(log[2]["frame"], 3);
     EXPECT_EQ(log[3]["status"], "rendered");
 
+    // --fail-fast stops before the first frame when one is not on disk, and at a damaged one.
     fs::remove(dir + "/out.0004.exr");
     r = runCli(renderArgs(dir, "1-4") + " --fail-fast");
     EXPECT_EQ(r.exit_code, 3);
-    EXPECT_EQ(r.err, "voxlux: error: frame 2: " + dir + "/cloud.0002.vdb: no such file\n"
-                     "voxlux: error: 1 of 4 frames failed: 2 (stopped there, --fail-fast; 2 not rendered)\n");
+    EXPECT_EQ(linesStartingWith(r.err, "voxlux: error: "), "voxlux: error: frames 2 of 1-4 are not on disk (" + dir + "/cloud.0002.vdb: no such file)\n"
+                     "voxlux: error: 1 of 4 frames failed: 2 (stopped there, --fail-fast; 3 not rendered)\n");
     EXPECT_FALSE(fs::exists(dir + "/out.0004.exr"));
+    r = runCli(renderArgs(dir, "3-4") + " --fail-fast");
+    EXPECT_EQ(r.exit_code, 3);
+    const std::string stopped = linesStartingWith(r.err, "voxlux: error: ");
+    EXPECT_EQ(stopped.substr(stopped.rfind("voxlux: error: ")), "voxlux: error: 1 of 2 frames failed: 3 (stopped there, --fail-fast; 1 not rendered)\n");
+    EXPECT_FALSE(fs::exists(dir + "/out.0004.exr"));
+}
+
+// The time left comes from the frames' own times: a simulation whose frames grow by a second each
+// is extended along its line, not by the mean of its first frames.
+TEST(Sequence, TimeLeftFollowsTheFramesTimes) {
+    EXPECT_DOUBLE_EQ(sequenceSecondsLeft({}, 5), 0.0);
+    EXPECT_DOUBLE_EQ(sequenceSecondsLeft({2.0}, 5), 10.0);
+    EXPECT_DOUBLE_EQ(sequenceSecondsLeft({1.0, 3.0}, 2), 6.0);          // the last frame's time, until three
+    EXPECT_DOUBLE_EQ(sequenceSecondsLeft({1.0, 2.0, 3.0, 4.0}, 3), 5.0 + 6.0 + 7.0);
+    EXPECT_DOUBLE_EQ(sequenceSecondsLeft({2.0, 2.0, 2.0}, 4), 8.0);
+    EXPECT_DOUBLE_EQ(sequenceSecondsLeft({4.0, 3.0, 2.0, 1.0}, 3), 0.0);   // a line below zero counts nothing
+    EXPECT_DOUBLE_EQ(sequenceSecondsLeft({1.0, 2.0, 3.0}, 0), 0.0);
+}
+
+// Without a terminal, --progress lines name the stage running (a long march), count the time left
+// down between frames, and end with a line that says the sequence is done.
+TEST(Sequence, ProgressLinesNameTheRunningStageAndEnd) {
+    const std::string dir = cloudFrames("progress_lines");
+    const CliResult r = runCli("render " + dir + "/cloud.####.vdb --frames 1-2 --res 320x320 --backend cpu --method reference --spp 16 -o " +
+                               dir + "/out.####.exr --progress=0.2");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("  frame 1: march"), std::string::npos) << r.err;
+    const std::string lines = linesStartingWith(r.err, "voxlux: progress: ");
+    const std::string last = lines.substr(lines.rfind("voxlux: progress: "));
+    EXPECT_EQ(last.rfind("voxlux: progress: [====================] sequence 2/2 frames  elapsed ", 0), 0u) << last;
+    EXPECT_EQ(last.substr(last.size() - 6), "  done\n") << last;
 }
 
 // Every second frame, and a list: only those frames render.

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "core/json_reader.h"
 #include "test_support.h"
@@ -24,6 +25,16 @@ std::string writeScript(const std::string& dir, const std::string& name, const n
 }
 
 CliResult view(const std::string& args) { return runShell(kXvfb + VOXLUX_BINARY + " view " + args); }
+
+// Runs the shell script `shell` on the virtual display, with DIR and each key of `words` in it
+// replaced: the viewer in the background and xdotool's events beside it.
+CliResult runEvents(const std::string& dir, std::string shell, std::map<std::string, std::string> words) {
+    words["DIR"] = dir;
+    for (const auto& [from, to] : words)
+        for (size_t at = shell.find(from); at != std::string::npos; at = shell.find(from, at + to.size())) shell.replace(at, from.size(), to);
+    std::ofstream(dir + "/events.sh") << shell << "\n";
+    return runShell(kXvfb + "bash " + dir + "/events.sh");
+}
 
 nlohmann::json readJson(const std::string& path) {
     std::ifstream in(path);
@@ -157,16 +168,9 @@ TEST(ViewerWindow, RealXEventsOrbitTheCameraAndUncheckALight) {
         for i in $(seq 10); do xdotool mousemove_relative 8 0; sleep 0.05; done
         xdotool mouseup 1 keyup Alt_L; sleep 0.3
         touch DIR/go.flag)sh";
-    std::string shell = "VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done;" + events +
-                        "; wait $pid";
-    const auto replace = [&shell](const std::string& from, const std::string& to) {
-        for (size_t at = shell.find(from); at != std::string::npos; at = shell.find(from, at + to.size())) shell.replace(at, from.size(), to);
-    };
-    replace("DIR", dir);
-    replace("VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud);
-    replace("SCRIPT", script);
-    std::ofstream(dir + "/events.sh") << shell << "\n";
-    const CliResult r = runShell(kXvfb + "bash " + dir + "/events.sh");
+    const CliResult r = runEvents(dir, "VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done;" +
+                                           events + "; wait $pid",
+                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SCRIPT", script}});
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json saved = readJson(dir + "/saved.json");
     EXPECT_EQ(saved["lights"][0]["enabled"], false);
@@ -191,25 +195,37 @@ TEST(ViewerWindow, AClickOnTheTimelineRendersThatFrame) {
     const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}},
                                                            {{"wait_file", dir + "/go.flag"}, {"timeout", 120}},
                                                            {{"wait", "converged"}}, {{"stats", dir + "/stats.json"}}, {{"quit", true}}});
-    std::string shell = R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+    const CliResult r = runEvents(dir, R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
         at=$(python3 -c "import json; r = json.load(open('DIR/layout.json'))['widgets']['timeline/frame']; print(int(r[2]) - 3, int((r[1]+r[3])/2))")
         set -- $at
         wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
         xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool click 1; sleep 0.3
-        touch DIR/go.flag; wait $pid)sh";
-    const auto replace = [&shell](const std::string& from, const std::string& to) {
-        for (size_t at = shell.find(from); at != std::string::npos; at = shell.find(from, at + to.size())) shell.replace(at, from.size(), to);
-    };
-    replace("DIR", dir);
-    replace("VIEWER", std::string(VOXLUX_BINARY) + " view " + dir + "/boxes.json");
-    replace("SCRIPT", script);
-    std::ofstream(dir + "/events.sh") << shell << "\n";
-    const CliResult r = runShell(kXvfb + "bash " + dir + "/events.sh");
+        touch DIR/go.flag; wait $pid)sh",
+                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + dir + "/boxes.json"}, {"SCRIPT", script}});
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json stats = readJson(dir + "/stats.json");
     EXPECT_EQ(stats["shown_frame"], 3);
     EXPECT_EQ(stats["submitted"], 2);
     EXPECT_EQ(stats["message"], "");
+}
+
+// One SIGINT or SIGTERM closes the window at once, as the close button does, and the exit code
+// says which signal (a script that stops the viewer with one `kill` must not hang).
+TEST(ViewerWindow, OneSignalClosesTheWindowWithinTwoSeconds) {
+    const std::string dir = tempDir("viewer-signal");
+    for (const auto& [signal, code] : {std::pair<std::string, int>{"INT", 130}, {"TERM", 143}}) {
+        std::filesystem::remove(dir + "/rc.txt");
+        const CliResult r = runEvents(dir, R"sh(VIEWER & pid=$!
+            timeout 120 xdotool search --sync --onlyvisible --name "voxlux view" >/dev/null; sleep 1
+            kill -SIGNAL $pid; start=$(date +%s%N); wait $pid; rc=$?
+            echo $rc $(( ($(date +%s%N) - start) / 1000000 )) > DIR/rc.txt)sh",
+                                      {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SIGNAL", signal}});
+        ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+        int rc = -1, ms = -1;
+        std::ifstream(dir + "/rc.txt") >> rc >> ms;
+        EXPECT_EQ(rc, code) << "SIG" << signal;
+        EXPECT_LT(ms, 2000) << "SIG" << signal;
+    }
 }
 
 }  // namespace

@@ -16,8 +16,10 @@ namespace voxlux {
 namespace fs = std::filesystem;
 
 std::vector<std::string> FarmJob::taskCommand(int64_t index) const {
-    return {voxlux, "render", sceneFile(), "--frames", chunkFrames(index).text(), "--resume",
-            "--log-json", logDir() + "/chunk_" + std::to_string(index) + ".jsonl"};
+    std::vector<std::string> command{voxlux, "render", sceneFile(), "--frames", chunkFrames(index).text(), "--resume",
+                                     "--log-json", logDir() + "/chunk_" + std::to_string(index) + ".jsonl"};
+    if (cpus > 0) command.insert(command.end(), {"--threads", std::to_string(cpus)});   // the cores the scheduler gave, no more
+    return command;
 }
 
 std::string chunkList(const std::vector<int64_t>& chunks) {
