@@ -59,7 +59,8 @@ std::vector<ViewLevel> progressiveLevels(const Scene& scene) {
     return levels;
 }
 
-ProgressiveRender::ProgressiveRender(Scene scene, std::optional<int> frame, size_t cache_bytes) : cache_bytes_(cache_bytes) {
+ProgressiveRender::ProgressiveRender(Scene scene, std::optional<int> frame, size_t cache_bytes, std::function<void()> on_change)
+    : cache_bytes_(cache_bytes), on_change_(std::move(on_change)) {
     submit(std::move(scene), frame);
     worker_ = std::thread([this] { work(); });
 }
@@ -160,6 +161,7 @@ void ProgressiveRender::work() {
             settled_edit_ = edit;
             settled_.notify_all();
         }
+        if (on_change_) on_change_();   // an edit settled, failed or was cancelled: the UI shows it
     }
 }
 
@@ -261,6 +263,7 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
             settled_edit_ = edit;
             settled_.notify_all();
         }
+        if (on_change_) on_change_();
     }
 }
 

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -91,7 +92,9 @@ public:
     // `frame` as in Renderer::render. The first scene is rendered at once. The grids and bricks of
     // frames rendered before are kept within `cache_bytes` (Renderer::setCacheBudget), so that
     // scrubbing back to a frame runs neither load nor brick.
-    ProgressiveRender(Scene scene, std::optional<int> frame, size_t cache_bytes = 0);
+    // `on_change`, when given, is called from the worker after each image lands and each edit
+    // settles or fails: the UI sleeps until then (glfwPostEmptyEvent wakes it).
+    ProgressiveRender(Scene scene, std::optional<int> frame, size_t cache_bytes = 0, std::function<void()> on_change = {});
     ~ProgressiveRender();
     ProgressiveRender(const ProgressiveRender&) = delete;
     ProgressiveRender& operator=(const ProgressiveRender&) = delete;
@@ -136,6 +139,7 @@ private:
     std::chrono::steady_clock::time_point submit_time_;
     bool stop_ = false;
     const size_t cache_bytes_;
+    const std::function<void()> on_change_;
     tbb::task_group_context* march_context_ = nullptr;   // the march in flight, to cancel
     std::atomic<bool> cancelled_{false};
     std::shared_ptr<const ViewFrame> latest_;

@@ -17,6 +17,12 @@ bool SceneEditor::edit(const std::string& what, const std::function<void(nlohman
         change(changed);
         // Paths in the JSON are already resolved: read it back with no folder to resolve against.
         Scene read = sceneFromJson(changed, what, "");
+        const std::string kind = what.substr(0, what.find('='));
+        if (kind != "camera") {
+            if (!(merging_ && held_ && !undo_.empty() && undo_.back().kind == kind)) undo_.push_back({json_, kind});
+            merging_ = held_;
+            redo_.clear();
+        }
         scene_ = std::move(read);
         json_ = sceneToJson(scene_);
         error_.clear();
@@ -27,6 +33,31 @@ bool SceneEditor::edit(const std::string& what, const std::function<void(nlohman
         return false;
     }
 }
+
+void SceneEditor::holdStep(bool held) {
+    held_ = held;
+    if (!held) merging_ = false;
+}
+
+bool SceneEditor::restore(std::vector<Step>& from, std::vector<Step>& to) {
+    if (from.empty()) return false;
+    nlohmann::json target = from.back().before;
+    // The camera stays where navigation put it.
+    if (json_.contains("camera")) target["camera"] = json_["camera"];
+    else target.erase("camera");
+    to.push_back({json_, from.back().kind});
+    from.pop_back();
+    scene_ = sceneFromJson(target, "undo", "");
+    json_ = sceneToJson(scene_);
+    error_.clear();
+    solo_.reset();
+    merging_ = false;
+    ++version_;
+    return true;
+}
+
+bool SceneEditor::undo() { return restore(undo_, redo_); }
+bool SceneEditor::redo() { return restore(redo_, undo_); }
 
 bool SceneEditor::set(const std::string& assignment) {
     return edit("set " + assignment, [&](nlohmann::json& j) { applySceneSet(j, assignment); });

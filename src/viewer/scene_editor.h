@@ -1,7 +1,8 @@
 // The scene as the viewer edits it: its JSON (the form `voxlux scene` writes and the render graph
 // hashes) and the Scene read back from it. Every edit, from a panel, a gizmo, a script or the
 // camera, is a change of the JSON that must read back: a bad one leaves the scene as it was and
-// keeps its one-line error, which the viewer shows.
+// keeps its one-line error, which the viewer shows. Every edit that took but the camera's is an
+// undo step (the JSON before it: a few kB, kept for the session).
 #pragma once
 #include <functional>
 #include <optional>
@@ -47,6 +48,16 @@ public:
 
     bool setCamera(const Camera& camera);
 
+    // Undo and redo (Ctrl+Z, Ctrl+Shift+Z). The camera is not an undo step and stays where it is,
+    // as navigation is in Houdini's and Blender's viewports. While a step is held (a mouse button
+    // is down: a light dragged, a slider slid), edits of the same kind (the same key, the same
+    // light) merge into one step. False when there is nothing to undo or redo.
+    bool undo();
+    bool redo();
+    void holdStep(bool held);
+    size_t undoSteps() const { return undo_.size(); }
+    size_t redoSteps() const { return redo_.size(); }
+
     // Writes the scene to `path` (via a temporary file), its paths relative to the file's folder.
     void save(const std::string& path) const;
 
@@ -57,6 +68,15 @@ private:
     std::string error_;
     std::optional<int> solo_;
     std::vector<bool> before_solo_;
+
+    struct Step {
+        nlohmann::json before;   // the scene's JSON before the step
+        std::string kind;        // the edit's name up to its value ("set material.anisotropy", "light 0")
+    };
+    std::vector<Step> undo_, redo_;
+    bool held_ = false;     // holdStep's
+    bool merging_ = false;  // the newest step was opened while held: same-kind edits merge into it
+    bool restore(std::vector<Step>& from, std::vector<Step>& to);
 };
 
 }  // namespace voxlux

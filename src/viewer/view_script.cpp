@@ -20,7 +20,7 @@ const std::map<std::string, std::pair<Shape, std::vector<std::string>>>& kinds()
         {"aov", {Shape::Text, {}}},          {"wait", {Shape::Wait, {}}},             {"wait_file", {Shape::Text, {"timeout"}}},
         {"screenshot", {Shape::Text, {}}},   {"window_screenshot", {Shape::Text, {}}}, {"layout", {Shape::Text, {}}},
         {"save", {Shape::Text, {}}},         {"render", {Shape::Bool, {}}},           {"stats", {Shape::Text, {}}},
-        {"quit", {Shape::Bool, {}}},
+        {"quit", {Shape::Bool, {}}},         {"undo", {Shape::Bool, {}}},             {"redo", {Shape::Bool, {}}},
     };
     return k;
 }

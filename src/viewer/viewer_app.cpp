@@ -1,5 +1,6 @@
 #include "viewer/viewer_app.h"
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -7,6 +8,7 @@
 #include <fstream>
 #include <future>
 #include <iostream>
+#include <thread>
 
 #include <epoxy/gl.h>
 #define GLFW_INCLUDE_NONE
@@ -23,6 +25,7 @@
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
 #include "render/renderer.h"
+#include "viewer/key_trickle.h"
 #include "viewer/orbit_camera.h"
 #include "viewer/view_script.h"
 #include "viewer/viewer_panels.h"
@@ -36,6 +39,7 @@ using Clock = std::chrono::steady_clock;
 constexpr float kScenePanelWidth = 380.0f, kImagePanelWidth = 300.0f, kTimelineHeight = 40.0f, kMessageHeight = 22.0f;
 constexpr double kConvergeTimeout = 300.0;   // seconds a script waits for one image
 constexpr double kFrameRate = 60.0;          // the UI's most frames a second while rendering
+constexpr int kSettleFrames = 3;             // frames drawn after an event before the UI sleeps
 
 std::string glfwProblem;
 extern "C" void onGlfwError(int, const char* text) { glfwProblem = text; }
@@ -80,6 +84,14 @@ std::future<std::string> renderInBackground(const Scene& scene, std::optional<in
     });
 }
 
+// "fire-view.json" for "fire_####.vdb": the source's name without its frame pattern.
+std::string defaultSaveName(const std::string& source) {
+    std::string stem = std::filesystem::path(source).stem().string();
+    stem.erase(std::remove(stem.begin(), stem.end(), '#'), stem.end());
+    while (!stem.empty() && (stem.back() == '_' || stem.back() == '.' || stem.back() == '-')) stem.pop_back();
+    return (stem.empty() ? "scene" : stem) + "-view.json";
+}
+
 // The edits `--bench` times: each case applied `kBenchRepeats` times, waiting for convergence.
 constexpr int kBenchRepeats = 5;
 std::vector<ViewAction> benchActions(const Scene& scene) {
@@ -114,8 +126,8 @@ struct BenchCase {
 
 class ViewerApp {
 public:
-    ViewerApp(const Scene& scene, const ViewerOptions& options, std::vector<ViewAction> script)
-        : options_(options), state_(scene), script_(std::move(script)) {}
+    ViewerApp(const Scene& scene, const ViewerOptions& options, std::vector<ViewAction> script, GLFWwindow* window)
+        : options_(options), state_(scene), script_(std::move(script)), keys_(window) {}
 
     int run(GLFWwindow* window);
 
@@ -124,12 +136,14 @@ private:
     bool runScript();                 // false once the script quits
     bool runAction(const ViewAction& a);   // false while it waits
     bool converged() const;
+    void shortcuts();
     void drawFrame(GLFWwindow* window);
 
     ViewerOptions options_;
     ViewerState state_;
     Viewport viewport_;
     std::vector<ViewAction> script_;
+    KeyTrickle keys_;
     size_t next_ = 0;
     Clock::time_point wait_until_{}, wait_start_{};
     bool waiting_ = false;
@@ -139,6 +153,7 @@ private:
     std::vector<std::string> bench_order_;
     std::string shown_error_;
     int exit_code_ = 0;
+    int settle_frames_ = 0;   // frames still to draw before the loop sleeps
 };
 
 void ViewerApp::syncRender() {
@@ -149,14 +164,20 @@ void ViewerApp::syncRender() {
             state_.editor.adopt(f->last_good);
             state_.frame = f->last_good_frame;
             state_.submitted_version = state_.editor.version();
+            state_.submitted_frame = state_.frame;
         }
     }
     if (!state_.editor.error().empty() && state_.editor.error() != shown_error_) state_.showError(state_.editor.error());
     shown_error_ = state_.editor.error();
-    if (state_.submitted_version != state_.editor.version()) {
+    // The render is asked for the scene and frame shown, unless playback runs through the
+    // flipbook: then the frame is submitted once playback stops or reaches a frame not in it.
+    const bool flipping = state_.playing && state_.frame && state_.flipbook.count(*state_.frame);
+    if ((state_.submitted_version != state_.editor.version() || state_.submitted_frame != state_.frame) && !flipping) {
         state_.render->submit(state_.editor.scene(), state_.frame);
         state_.submitted_version = state_.editor.version();
+        state_.submitted_frame = state_.frame;
     }
+    if (state_.frame) state_.remember(state_.render->latest(), state_.render->statistics().submitted);
     if (rendering_.valid() && rendering_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         try {
             state_.showNote(rendering_.get());
@@ -166,7 +187,10 @@ void ViewerApp::syncRender() {
     }
 }
 
-bool ViewerApp::converged() const { return state_.submitted_version == state_.editor.version() && state_.render->settled(); }
+// Converged, for a script: the newest edit rendered in full, and every key typed handled.
+bool ViewerApp::converged() const {
+    return state_.submitted_version == state_.editor.version() && state_.render->settled() && !keys_.pending();
+}
 
 bool ViewerApp::runAction(const ViewAction& a) {
     const nlohmann::json& v = a.value[a.kind];
@@ -196,6 +220,8 @@ bool ViewerApp::runAction(const ViewAction& a) {
         waiting_ = false;
     }
     if (a.kind == "set") check(state_.editor.set(v.get<std::string>()));
+    if (a.kind == "undo" && !state_.editor.undo()) std::cerr << "voxlux: warning: " << a.where << ": nothing to undo\n";
+    if (a.kind == "redo" && !state_.editor.redo()) std::cerr << "voxlux: warning: " << a.where << ": nothing to redo\n";
     if (a.kind == "light") check(state_.editor.changeLight(light(), a.value["set"]));
     if (a.kind == "enable") check(state_.editor.enableLight(light(), a.value["on"].get<bool>()));
     if (a.kind == "solo") check(state_.editor.soloLight(light()));
@@ -292,12 +318,31 @@ bool ViewerApp::runScript() {
     return true;
 }
 
+// Keys that act on the whole viewer, unless a text field has the keyboard: Ctrl+Z undoes,
+// Ctrl+Shift+Z (or Ctrl+Y) redoes, the left and right arrows step a sequence's frames. A mouse button held down holds the undo step, so a drag is one.
+void ViewerApp::shortcuts() {
+    const ImGuiIO& io = ImGui::GetIO();
+    state_.editor.holdStep(ImGui::IsAnyMouseDown());
+    if (io.WantTextInput) return;
+    if (state_.frame && !io.KeyCtrl) {   // the arrow keys step through a sequence
+        if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) state_.showFrame(*state_.frame - 1);
+        if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) state_.showFrame(*state_.frame + 1);
+    }
+    if (!io.KeyCtrl) return;
+    const bool redo = ImGui::IsKeyPressed(GLFW_KEY_Y) || (io.KeyShift && ImGui::IsKeyPressed(GLFW_KEY_Z));
+    const bool undo = !io.KeyShift && ImGui::IsKeyPressed(GLFW_KEY_Z);
+    if (undo) state_.editor.undo() ? state_.showNote("undone") : state_.showNote("nothing to undo");
+    if (redo) state_.editor.redo() ? state_.showNote("redone") : state_.showNote("nothing to redo");
+}
+
 void ViewerApp::drawFrame(GLFWwindow* window) {
     int w = 0, h = 0;
     glfwGetWindowSize(window, &w, &h);
+    keys_.deliver();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+    shortcuts();
     const float bottom = float(h) - kMessageHeight - (state_.frame ? kTimelineHeight : 0.0f);
     const PanelRequests requests = drawScenePanel(state_, 0.0f, kScenePanelWidth, float(h));
     viewport_.draw(state_, glm::vec2(kScenePanelWidth, 0.0f), glm::vec2(float(w) - kImagePanelWidth, bottom));
@@ -339,26 +384,44 @@ int ViewerApp::run(GLFWwindow* window) {
         state_.last_frame = scene.volume.frames->last();
         state_.frame = state_.first_frame;
     }
-    state_.save_path = std::filesystem::path(options_.source).stem().string() + "-view.json";
+    state_.save_path = defaultSaveName(options_.source);
     readBounds(state_);
     state_.frame_cache_bytes = state_.frame ? options_.frame_cache_mb << 20 : 0;   // one frame needs no cache
-    state_.render = std::make_unique<ProgressiveRender>(scene, state_.frame, state_.frame_cache_bytes);
+    // The render wakes the UI when an image lands; the UI sleeps otherwise.
+    state_.render = std::make_unique<ProgressiveRender>(scene, state_.frame, state_.frame_cache_bytes, [] { glfwPostEmptyEvent(); });
     state_.submitted_version = state_.editor.version();
+    state_.submitted_frame = state_.frame;
+    // SIGINT and SIGTERM wake the sleeping UI too: a signal handler may not call GLFW, so a thread
+    // looks for one ten times a second (it costs nothing measurable).
+    std::atomic<bool> closing{false};
+    std::thread signal_watch([&closing] {
+        while (!closing) {
+            if (interruptSignal()) glfwPostEmptyEvent();
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        }
+    });
     auto last = Clock::now(), last_step = last;
     bool running = true;
     while (running && !glfwWindowShouldClose(window)) {
-        // SIGINT or SIGTERM closes the window as its close button does; the idle wait below
-        // returns within 0.1 s, so a signal is seen that soon.
+        // SIGINT or SIGTERM closes the window as its close button does; the watcher wakes the
+        // idle wait below within 0.1 s, so a signal is seen that soon.
         if (const int signal = interruptSignal()) {
             exit_code_ = 128 + signal;
             break;
         }
         // Busy, the loop draws at most kFrameRate frames a second and leaves the rest of the CPU to
-        // the render; idle, it sleeps until an event (or 0.1 s, to see a new image).
+        // the render; idle, it sleeps until an event: input, a new image (the render posts one),
+        // a signal. A few frames follow each event, so hover and release states settle.
         const bool busy = !script_.empty() || !state_.render->settled() || state_.playing || rendering_.valid() ||
-                          ImGui::IsAnyMouseDown();
+                          ImGui::IsAnyMouseDown() || keys_.pending();
         const auto next_frame = last + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kFrameRate));
-        if (!busy) glfwWaitEventsTimeout(0.1);
+        if (!busy && settle_frames_ == 0) {
+            glfwWaitEvents();
+            settle_frames_ = kSettleFrames;
+        } else if (!busy) {
+            glfwPollEvents();
+            --settle_frames_;
+        }
         for (auto now = Clock::now(); busy && now < next_frame; now = Clock::now())
             glfwWaitEventsTimeout(std::chrono::duration<double>(next_frame - now).count());
         if (busy) glfwPollEvents();
@@ -367,9 +430,15 @@ int ViewerApp::run(GLFWwindow* window) {
         last = now;
         state_.ui_fps = state_.ui_fps == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * state_.ui_fps + 0.1 / std::max(dt, 1e-6);
         state_.slowest_ui_frame = std::max(state_.slowest_ui_frame, dt);
-        if (state_.playing && state_.render->settled() && std::chrono::duration<double>(now - last_step).count() > 1.0 / 24.0) {
-            state_.showFrame(*state_.frame >= state_.last_frame ? state_.first_frame : *state_.frame + 1);
-            last_step = now;
+        // Playback: at the sequence's fps through frames in the flipbook; a frame not in it is
+        // rendered first (the step waits for it to converge).
+        if (state_.playing) {
+            const int next = *state_.frame >= state_.last_frame ? state_.first_frame : *state_.frame + 1;
+            const bool ready = state_.flipbook.count(next) || state_.render->settled();
+            if (ready && std::chrono::duration<double>(now - last_step).count() >= 1.0 / state_.fps()) {
+                state_.showFrame(next);
+                last_step = now;
+            }
         }
         syncRender();
         if (next_ < script_.size()) {
@@ -383,6 +452,8 @@ int ViewerApp::run(GLFWwindow* window) {
         }
         drawFrame(window);
     }
+    closing = true;
+    signal_watch.join();
     for (auto* f : {&rendering_, &script_render_})
         if (f->valid()) f->wait();
     return exit_code_;
@@ -422,7 +493,7 @@ int runViewer(const Scene& scene, const ViewerOptions& options) {
     ImGui_ImplOpenGL3_Init("#version 330");
     int code = 0;
     {
-        ViewerApp app(scene, options, std::move(script));
+        ViewerApp app(scene, options, std::move(script), window);
         code = app.run(window);
     }
     ImGui_ImplOpenGL3_Shutdown();

@@ -19,6 +19,8 @@ namespace {
 
 using Pointer = nlohmann::json::json_pointer;
 
+constexpr float kStopsPerPixel = 0.01f;   // exposure drags: 60 pixels are 0.6 stops
+
 void remember(ViewerState& state, const std::string& name) {
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
     state.widgets[name] = glm::vec4(lo.x, lo.y, hi.x, hi.y);
@@ -122,12 +124,14 @@ void lightEditor(ViewerState& state) {
     const std::string type = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : l.type == LightType::Ambient ? "ambient" : "directional";
     if (auto t = combo("type", type, {"directional", "point", "spot", "ambient"})) state.editor.changeLight(i, {{"type", *t}});
     bool changed = ImGui::ColorEdit3("colour", &l.color.x, ImGuiColorEditFlags_Float);
-    // Intensity as exposure: a stop doubles it, as a lighter expects.
+    // Intensity as exposure: a stop doubles it, as a lighter expects. Dragged a hundredth of a stop
+    // a pixel (Shift: a tenth, Alt: a thousandth), so a small move is a small change.
     float stops = std::log2(std::max(l.intensity, 1e-6f));
-    if (ImGui::SliderFloat("exposure (stops)", &stops, -10.0f, 10.0f, "%.2f")) {
+    if (ImGui::DragFloat("exposure (stops)", &stops, kStopsPerPixel, -20.0f, 20.0f, "%.2f")) {
         l.intensity = std::exp2(stops);
         changed = true;
     }
+    remember(state, "light/exposure");
     if (l.type == LightType::Point || l.type == LightType::Spot) changed |= ImGui::DragFloat3("position", &l.position.x, 0.01f);
     if (l.type == LightType::Directional || l.type == LightType::Spot) {
         if (ImGui::DragFloat3("direction", &l.direction.x, 0.01f) && glm::length(l.direction) > 1e-6f) changed = true;
@@ -181,7 +185,7 @@ void colourControls(ViewerState& state) {
     const std::string display = c.display.empty() && !displays.empty() ? displays.front() : c.display;
     if (auto v = combo("view", c.view, views[display])) setKey(state, "/color/view", *v);
     float exposure = state.editor.scene().render.exposure;
-    if (ImGui::SliderFloat("exposure", &exposure, -6.0f, 6.0f, "%.2f stops")) setKey(state, "/render/exposure", exposure);
+    if (ImGui::DragFloat("exposure", &exposure, kStopsPerPixel, -20.0f, 20.0f, "%.2f stops")) setKey(state, "/render/exposure", exposure);
 }
 
 }  // namespace
@@ -197,7 +201,15 @@ PanelRequests drawScenePanel(ViewerState& state, float x, float width, float hei
     remember(state, "save");
     out.render = ImGui::Button("Render");
     ImGui::SameLine();
-    ImGui::TextDisabled("to %s", state.editor.scene().output.path.empty() ? "(set output.path)" : state.editor.scene().output.path.c_str());
+    // The output path, typed here; it becomes output.path when the field loses the keyboard or
+    // Enter is pressed, and follows the scene (an undo) while it is not being typed in.
+    if (!state.output_typing) state.output_path = state.editor.scene().output.path;
+    ImGui::SetNextItemWidth(-1);
+    ImGui::InputTextWithHint("##output", "output .exr (#### for frames)", &state.output_path);
+    state.output_typing = ImGui::IsItemActive();
+    if (ImGui::IsItemDeactivatedAfterEdit() && state.output_path != state.editor.scene().output.path)
+        setKey(state, "/output/path", state.output_path);
+    remember(state, "output");
 
     if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) {
         lightList(state);
@@ -236,6 +248,7 @@ void drawImagePanel(ViewerState& state, const Viewport& viewport, float x, float
     ImGui::SameLine();
     ImGui::Checkbox("wipe", &state.wipe);
     if (state.wipe) ImGui::SliderFloat("wipe at", &state.wipe_at, 0.0f, 1.0f);
+    ImGui::Checkbox("bounding box and axes", &state.show_guides);
     if (const auto& p = viewport.probe())
         ImGui::Text("pixel %d %d\nRGBA %.4g %.4g %.4g %.4g", viewport.probePixel().x, viewport.probePixel().y, p->x, p->y, p->z, p->w);
     else
@@ -277,10 +290,28 @@ void drawTimeline(ViewerState& state, float x, float y, float width) {
     ImGui::Begin("timeline", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
     ImGui::Checkbox("play", &state.playing);
     ImGui::SameLine();
+    // A frame typed (Enter shows it), the slider, and the range with what the flipbook holds.
+    int typed = *state.frame;
+    ImGui::SetNextItemWidth(70.0f);
+    if (ImGui::InputInt("##typed", &typed, 0, 0, ImGuiInputTextFlags_EnterReturnsTrue)) state.showFrame(typed);
+    remember(state, "timeline/typed");
+    ImGui::SameLine();
+    char range[96];
+    std::snprintf(range, sizeof range, "%d-%d  %zu cached  %g fps", state.first_frame, state.last_frame, state.flipbook.size(),
+                  state.fps());
     int f = *state.frame;
-    ImGui::SetNextItemWidth(-1);
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize(range).x - 2.0f * ImGui::GetStyle().ItemSpacing.x);
     if (ImGui::SliderInt("##frame", &f, state.first_frame, state.last_frame, "frame %d")) state.showFrame(f);
     remember(state, "timeline/frame");
+    // A tick under the slider for each frame in the flipbook.
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    const float span = float(std::max(1, state.last_frame - state.first_frame));
+    for (const auto& [kept, image] : state.flipbook) {
+        const float x = lo.x + 6.0f + (hi.x - lo.x - 12.0f) * float(kept - state.first_frame) / span;
+        ImGui::GetWindowDrawList()->AddLine(ImVec2(x, hi.y - 3.0f), ImVec2(x, hi.y), IM_COL32(110, 200, 120, 255), 2.0f);
+    }
+    ImGui::SameLine();
+    ImGui::TextUnformatted(range);
     ImGui::End();
 }
 

@@ -6,9 +6,38 @@
 
 namespace voxlux {
 
-void ViewerState::showFrame(int f) {
-    frame = std::clamp(f, first_frame, last_frame);
-    submitted_version = ~uint64_t(0);   // the frame is not part of the scene: submit again
+void ViewerState::showFrame(int f) { frame = std::clamp(f, first_frame, last_frame); }
+
+std::shared_ptr<const ViewFrame> ViewerState::image() const {
+    std::shared_ptr<const ViewFrame> latest = render ? render->latest() : nullptr;
+    if (frame && (!latest || latest->frame != frame))
+        if (const auto kept = flipbook.find(*frame); kept != flipbook.end()) return kept->second;
+    return latest;
+}
+
+void ViewerState::remember(const std::shared_ptr<const ViewFrame>& f, uint64_t newest_edit) {
+    if (flipbook_version != editor.version()) {
+        flipbook.clear();
+        flipbook_bytes = 0;
+        flipbook_version = editor.version();
+    }
+    if (!f || !f->converged || !f->frame || f->edit != newest_edit || flipbook.count(*f->frame)) return;
+    if (flipbook_bytes + f->display_texels.size() > frame_cache_bytes) return;
+    auto slim = std::make_shared<ViewFrame>();
+    slim->edit = f->edit;
+    slim->converged = true;
+    slim->frame = f->frame;
+    slim->camera = f->camera;
+    slim->image.width = f->image.width;
+    slim->image.height = f->image.height;
+    slim->display_texels = f->display_texels;
+    flipbook_bytes += slim->display_texels.size();
+    flipbook[*f->frame] = std::move(slim);
+}
+
+double ViewerState::fps() const {
+    const auto& blur = editor.scene().render.motion_blur;
+    return double(blur ? blur->fps : MotionBlur{}.fps);
 }
 
 Camera ViewerState::camera() const {

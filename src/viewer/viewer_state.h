@@ -24,6 +24,7 @@ struct ViewerState {
     SceneEditor editor;
     std::unique_ptr<ProgressiveRender> render;
     uint64_t submitted_version = ~uint64_t(0);   // the editor version last handed to the render
+    std::optional<int> submitted_frame;          // and the frame
     uint64_t failure_seen = 0;                   // the newest failed edit already shown
     std::string message;                         // the line under the viewport: an error, or what was written
     bool message_is_error = false;
@@ -32,9 +33,15 @@ struct ViewerState {
     std::optional<int> frame;                      // the frame of a #### sequence shown
     int first_frame = 0, last_frame = 0;
     bool playing = false;
+    // The converged image of each frame seen since the last edit (display texels only: 4 bytes a
+    // pixel), so playback runs through them at the sequence's fps, as a flipbook; an edit empties it.
+    std::map<int, std::shared_ptr<const ViewFrame>> flipbook;
+    size_t flipbook_bytes = 0;
+    uint64_t flipbook_version = 0;
     size_t frame_cache_bytes = 0;                  // the budget of the frame cache (--frame-cache)
 
     std::string aov = "beauty";
+    bool show_guides = true;           // the bounding box and the axis triad
     int selected_light = 0;
     bool wipe = false;                 // show the held image left of the wipe line
     float wipe_at = 0.5f;              // fraction of the viewport's width
@@ -42,12 +49,23 @@ struct ViewerState {
 
     std::map<std::string, glm::vec4> widgets;   // named widgets' screen rectangles (lo, hi), for `layout`
     std::string save_path;             // where "Save scene" writes
+    std::string output_path;           // the Render panel's output field, as typed
+    bool output_typing = false;        // the field has the keyboard: the scene's path does not overwrite it
 
     double ui_fps = 0.0;               // smoothed frame rate of the UI loop
     double slowest_ui_frame = 0.0;     // seconds, since the last reset (benchmarks)
 
-    // Shows frame `f` of the sequence (clamped to its range): the render is asked for it.
+    // Shows frame `f` of the sequence (clamped to its range): the render is asked for it, unless
+    // playback runs through the flipbook.
     void showFrame(int f);
+    // The image to show: the render's newest, or the flipbook's of `frame` while the render has
+    // none of that frame.
+    std::shared_ptr<const ViewFrame> image() const;
+    // Keeps `f` in the flipbook when it is the converged image of this frame and edit, within the
+    // frame cache's budget; empties the flipbook after an edit.
+    void remember(const std::shared_ptr<const ViewFrame>& f, uint64_t newest_edit);
+    // The sequence's frames a second: render.motion_blur.fps, whose default (24) stands without it.
+    double fps() const;
     // The scene's camera, or the framing the render chose when it has none yet.
     Camera camera() const;
     void showError(const std::string& line) { message = line, message_is_error = true; }

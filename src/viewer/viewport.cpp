@@ -51,8 +51,9 @@ Viewport::Viewport() : current_(std::make_unique<Texture>()), held_(std::make_un
 Viewport::~Viewport() = default;
 
 void Viewport::upload(const ViewerState& state, Texture& t, const ViewFrame& frame) {
-    if (t.frame == &frame && t.aov == state.aov) return;
-    const std::vector<uint8_t>& texels = aov_display_.texels(frame, state.aov, state.editor.scene().color);
+    const std::string& aov = frame.image.pixels.empty() ? "beauty" : state.aov;   // a flipbook image holds the beauty alone
+    if (t.frame == &frame && t.aov == aov) return;
+    const std::vector<uint8_t>& texels = aov_display_.texels(frame, aov, state.editor.scene().color);
     if (!t.id) glGenTextures(1, &t.id);
     glBindTexture(GL_TEXTURE_2D, t.id);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -66,15 +67,16 @@ void Viewport::upload(const ViewerState& state, Texture& t, const ViewFrame& fra
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame.image.width, frame.image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
     t.size = {frame.image.width, frame.image.height};
     t.frame = &frame;
-    t.aov = state.aov;
+    t.aov = aov;
 }
 
 void Viewport::draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     ImDrawList* back = ImGui::GetBackgroundDrawList();
     back->AddRectFilled(im(lo), im(hi), IM_COL32(32, 32, 34, 255));
-    const std::shared_ptr<const ViewFrame> frame = state.render->latest();
+    const std::shared_ptr<const ViewFrame> frame = state.image();
     const Scene& scene = state.editor.scene();
     fit(glm::vec2(scene.render.width, scene.render.height), lo, hi, image_lo_, image_hi_);
+    state.widgets["image"] = glm::vec4(image_lo_, image_hi_);
     if (frame && !frame->display.empty()) {
         current_->keep = frame;
         try {
@@ -96,7 +98,7 @@ void Viewport::draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
         // The probe reads the image under the mouse, at whatever level it is.
         probe_.reset();
         const glm::vec2 m = gl2(ImGui::GetIO().MousePos);
-        if (m.x >= image_lo_.x && m.y >= image_lo_.y && m.x < image_hi_.x && m.y < image_hi_.y) {
+        if (!frame->image.pixels.empty() && m.x >= image_lo_.x && m.y >= image_lo_.y && m.x < image_hi_.x && m.y < image_hi_.y) {
             const glm::vec2 f = (m - image_lo_) / (image_hi_ - image_lo_);
             probe_pixel_ = glm::min(glm::ivec2(f * glm::vec2(frame->image.width, frame->image.height)),
                                     glm::ivec2(frame->image.width - 1, frame->image.height - 1));
@@ -105,8 +107,46 @@ void Viewport::draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
             probe_pixel_ = glm::ivec2(f * glm::vec2(scene.render.width, scene.render.height));
         }
     }
-    gizmos(state);
-    mouse(state);
+    back->PushClipRect(im(lo), im(hi), true);   // nothing drawn over the panels
+    if (state.show_guides) guides(state);
+    gizmos(state, lo, hi);
+    back->PopClipRect();
+    mouse(state, lo, hi);
+}
+
+void Viewport::guides(const ViewerState& state) {
+    ImDrawList* back = ImGui::GetBackgroundDrawList();
+    const Camera camera = state.camera();
+    const glm::vec2 size = image_hi_ - image_lo_;
+    // The bounding box: its 12 edges, each drawn when both ends are in front of the camera.
+    const glm::vec3 c[2] = {state.bounds_lo, state.bounds_hi};
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 4; ++k) {
+            // The edge along axis a: the other two axes take the bits of k.
+            const int u = (a + 1) % 3, v = (a + 2) % 3;
+            glm::vec3 p;
+            p[a] = c[0][a];
+            p[u] = c[k & 1][u];
+            p[v] = c[(k >> 1) & 1][v];
+            glm::vec3 q = p;
+            q[a] = c[1][a];
+            glm::vec2 sp, sq;
+            if (projectToImage(camera, size, p, sp) && projectToImage(camera, size, q, sq))
+                back->AddLine(im(image_lo_ + sp), im(image_lo_ + sq), IM_COL32(150, 150, 160, 160), 1.0f);
+        }
+    // The axis triad in the lower left corner: the world axes as the camera sees them.
+    const glm::mat4 world_to_camera = glm::inverse(cameraToWorld(camera));
+    const glm::vec2 origin(image_lo_.x + 36.0f, image_hi_.y - 36.0f);
+    const char* names[3] = {"x", "y", "z"};
+    const ImU32 colours[3] = {IM_COL32(230, 80, 70, 255), IM_COL32(110, 200, 80, 255), IM_COL32(80, 140, 240, 255)};
+    for (int a = 0; a < 3; ++a) {
+        glm::vec3 axis(0.0f);
+        axis[a] = 1.0f;
+        const glm::vec3 seen = glm::vec3(world_to_camera * glm::vec4(axis, 0.0f));
+        const glm::vec2 tip = origin + glm::vec2(seen.x, -seen.y) * 24.0f;
+        back->AddLine(im(origin), im(tip), colours[a], 2.0f);
+        back->AddText(im(tip + glm::vec2(2.0f, -7.0f)), colours[a], names[a]);
+    }
 }
 
 bool Viewport::dragLight(ViewerState& state, int index, glm::vec2 by, glm::vec2 image_size) {
@@ -128,8 +168,8 @@ bool Viewport::dragLight(ViewerState& state, int index, glm::vec2 by, glm::vec2 
     return state.editor.setLight(index, moved);
 }
 
-void Viewport::gizmos(ViewerState& state) {
-    ImDrawList* fg = ImGui::GetForegroundDrawList();
+void Viewport::gizmos(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
+    ImDrawList* fg = ImGui::GetBackgroundDrawList();
     const Camera camera = state.camera();
     const glm::vec2 size = image_hi_ - image_lo_;
     const auto toScreen = [&](glm::vec3 p, glm::vec2& out) {
@@ -139,7 +179,8 @@ void Viewport::gizmos(ViewerState& state) {
     };
     const std::vector<Light>& lights = state.editor.scene().lights;
     const ImVec2 mouse = ImGui::GetIO().MousePos;
-    const bool free = !ImGui::GetIO().WantCaptureMouse && !ImGui::GetIO().KeyAlt;
+    const bool inside = mouse.x >= lo.x && mouse.y >= lo.y && mouse.x < hi.x && mouse.y < hi.y;
+    const bool free = inside && !ImGui::GetIO().WantCaptureMouse && !ImGui::GetIO().KeyAlt;
     for (size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
         if (l.type == LightType::Ambient) continue;
@@ -176,6 +217,7 @@ void Viewport::gizmos(ViewerState& state) {
         }
         const bool over = glm::length(gl2(mouse) - h) < 9.0f;
         fg->AddCircleFilled(im(h), 7.0f, colour);
+        state.widgets["light/" + std::to_string(i) + "/handle"] = glm::vec4(h - glm::vec2(7.0f), h + glm::vec2(7.0f));
         if (over || dragging_light_ == int(i)) fg->AddCircle(im(h), 10.0f, IM_COL32(255, 255, 255, 255), 0, 2.0f);
         if (over && free && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
             dragging_light_ = int(i);
@@ -192,18 +234,26 @@ void Viewport::gizmos(ViewerState& state) {
     }
 }
 
-void Viewport::mouse(ViewerState& state) {
+void Viewport::mouse(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     ImGuiIO& io = ImGui::GetIO();
+    // A drag moves the camera when it began in the viewport (not on a panel, not on a light).
+    for (int b = 0; b < 3; ++b)
+        if (ImGui::IsMouseClicked(b)) {
+            const glm::vec2 m = gl2(io.MousePos);
+            navigating_[b] = !io.WantCaptureMouse && dragging_light_ < 0 && m.x >= lo.x && m.y >= lo.y && m.x < hi.x && m.y < hi.y;
+        }
+    if (!io.WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_F, false)) state.editor.setCamera(frameAlong(state.camera(), state.bounds_lo, state.bounds_hi));
     if (io.WantCaptureMouse || dragging_light_ >= 0) return;
     const glm::vec2 d = gl2(io.MouseDelta);
     const float height = std::max(image_hi_.y - image_lo_.y, 1.0f);
     std::optional<Camera> moved;
     const Camera camera = state.camera();
-    if (io.KeyAlt && ImGui::IsMouseDown(ImGuiMouseButton_Left) && (d.x != 0 || d.y != 0)) moved = orbit(camera, -d.x * 0.3f, d.y * 0.3f);
-    if (io.KeyAlt && ImGui::IsMouseDown(ImGuiMouseButton_Middle) && (d.x != 0 || d.y != 0)) moved = pan(camera, glm::vec2(-d.x, d.y) / height);
-    if (io.KeyAlt && ImGui::IsMouseDown(ImGuiMouseButton_Right) && d.x != 0) moved = dolly(camera, std::exp(-d.x * 0.005f));
-    if (io.MouseWheel != 0.0f) moved = dolly(camera, std::pow(0.9f, io.MouseWheel));
-    if (!io.WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_F, false)) moved = frameAlong(camera, state.bounds_lo, state.bounds_hi);
+    const auto dragging = [&](ImGuiMouseButton b) { return navigating_[b] && ImGui::IsMouseDown(b) && (d.x != 0 || d.y != 0); };
+    if (dragging(ImGuiMouseButton_Left) && !io.KeyCtrl) moved = orbit(camera, -d.x * 0.3f, d.y * 0.3f);
+    if (dragging(ImGuiMouseButton_Middle)) moved = pan(camera, glm::vec2(-d.x, d.y) / height);
+    if (dragging(ImGuiMouseButton_Right)) moved = dolly(camera, std::exp(-(d.x - d.y) * 0.005f));
+    const glm::vec2 m = gl2(io.MousePos);
+    if (io.MouseWheel != 0.0f && m.x >= lo.x && m.y >= lo.y && m.x < hi.x && m.y < hi.y) moved = dolly(camera, std::pow(0.9f, io.MouseWheel));
     if (moved) state.editor.setCamera(*moved);
 }
 

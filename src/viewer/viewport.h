@@ -1,7 +1,9 @@
 // The viewport: the newest image drawn to fit the window (scaled up while coarse levels show),
-// the before/after wipe, the pixel probe, the light gizmos, and the camera moves of the mouse
-// (Alt + left orbits, Alt + middle pans, Alt + right or the wheel dollies; F frames the volume).
-// Drawn with Dear ImGui's background and foreground draw lists over one texture per image.
+// the before/after wipe, the pixel probe, the volume's bounding box and an axis triad, the light
+// gizmos, and the camera moves of the mouse as Houdini's and Blender's viewports have them (left
+// drag orbits, middle pans, right or the wheel dollies, with or without Alt; F frames the volume).
+// Everything is drawn with Dear ImGui's background draw list, clipped to the viewport, so the
+// panels always cover it; one texture per image.
 #pragma once
 #include <memory>
 #include <optional>
@@ -37,8 +39,9 @@ public:
 private:
     struct Texture;
     void upload(const ViewerState& state, Texture& texture, const ViewFrame& frame);
-    void gizmos(ViewerState& state);
-    void mouse(ViewerState& state);
+    void gizmos(ViewerState& state, glm::vec2 lo, glm::vec2 hi);
+    void guides(const ViewerState& state);
+    void mouse(ViewerState& state, glm::vec2 lo, glm::vec2 hi);
 
     std::unique_ptr<Texture> current_, held_;
     AovDisplay aov_display_;
@@ -46,6 +49,7 @@ private:
     std::optional<glm::vec4> probe_;
     glm::ivec2 probe_pixel_{0};
     int dragging_light_ = -1;
+    bool navigating_[3] = {false, false, false};   // the drag of each button began in the viewport
 };
 
 }  // namespace voxlux

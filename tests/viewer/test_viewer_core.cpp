@@ -64,6 +64,50 @@ TEST(SceneEditor, SoloTwiceGivesEachLightItsStateBack) {
     EXPECT_EQ(inputErrorOf([&] { editor.lightIndex(3); }), "no light 3 (the scene has 3)");
 }
 
+// Every edit but the camera's is an undo step; edits of one kind while a step is held (a drag)
+// merge into one; undo and redo leave the camera where it is; a new edit drops what could be redone.
+TEST(SceneEditor, UndoAndRedoStepThroughEditsAndLeaveTheCamera) {
+    SceneEditor editor(smallCloud());
+    const Scene start = editor.scene();
+    EXPECT_FALSE(editor.undo());
+    Light l = start.lights[0];
+    editor.holdStep(true);   // a drag: three moves of the light, one step
+    for (float x : {0.1f, 0.2f, 0.3f}) {
+        l.direction.x = x;
+        ASSERT_TRUE(editor.setLight(0, l));
+    }
+    editor.holdStep(false);
+    const glm::vec3 dragged = editor.scene().lights[0].direction;   // as the scene keeps it: normalized
+    ASSERT_TRUE(editor.set("material.anisotropy=0.5"));
+    Camera moved;
+    moved.position = glm::vec3(9.0f, 1.0f, 2.0f);
+    ASSERT_TRUE(editor.setCamera(moved));
+    EXPECT_EQ(editor.undoSteps(), 2u);
+    ASSERT_TRUE(editor.undo());
+    EXPECT_EQ(editor.scene().material.anisotropy, start.material.anisotropy);
+    EXPECT_EQ(editor.scene().lights[0].direction, dragged);
+    EXPECT_EQ(editor.scene().camera->position, moved.position);
+    ASSERT_TRUE(editor.undo());
+    EXPECT_EQ(editor.scene().lights[0].direction, start.lights[0].direction);
+    EXPECT_EQ(editor.scene().camera->position, moved.position);
+    EXPECT_FALSE(editor.undo());
+    ASSERT_TRUE(editor.redo());
+    EXPECT_EQ(editor.scene().lights[0].direction, dragged);
+    ASSERT_TRUE(editor.redo());
+    EXPECT_EQ(editor.scene().material.anisotropy, 0.5f);
+    EXPECT_FALSE(editor.redo());
+    ASSERT_TRUE(editor.undo());
+    ASSERT_TRUE(editor.set("material.anisotropy=0.2"));   // a new edit: nothing to redo
+    EXPECT_FALSE(editor.redo());
+    // Held, edits of another kind open a step of their own.
+    editor.holdStep(true);
+    ASSERT_TRUE(editor.set("material.anisotropy=0.3"));
+    ASSERT_TRUE(editor.set("render.exposure=1"));
+    ASSERT_TRUE(editor.set("render.exposure=2"));
+    editor.holdStep(false);
+    EXPECT_EQ(editor.undoSteps(), 4u);
+}
+
 TEST(SceneEditor, ATypeChangeDropsTheKeysTheNewTypeLacks) {
     SceneEditor editor(smallCloud());
     ASSERT_TRUE(editor.changeLight(0, {{"type", "point"}, {"position", {1, 2, 3}}}));

@@ -26,12 +26,14 @@ std::string writeScript(const std::string& dir, const std::string& name, const n
 
 CliResult view(const std::string& args) { return runShell(kXvfb + VOXLUX_BINARY + " view " + args); }
 
-// Runs the shell script `shell` on the virtual display, with DIR and each key of `words` in it
-// replaced: the viewer in the background and xdotool's events beside it.
-CliResult runEvents(const std::string& dir, std::string shell, std::map<std::string, std::string> words) {
-    words["DIR"] = dir;
-    for (const auto& [from, to] : words)
+// Runs the shell script `shell` on the virtual display, with each key of `words` in it replaced,
+// then DIR (which the words may hold): the viewer in the background and xdotool's events beside it.
+CliResult runEvents(const std::string& dir, std::string shell, const std::map<std::string, std::string>& words) {
+    const auto replace = [&shell](const std::string& from, const std::string& to) {
         for (size_t at = shell.find(from); at != std::string::npos; at = shell.find(from, at + to.size())) shell.replace(at, from.size(), to);
+    };
+    for (const auto& [from, to] : words) replace(from, to);
+    replace("DIR", dir);
     std::ofstream(dir + "/events.sh") << shell << "\n";
     return runShell(kXvfb + "bash " + dir + "/events.sh");
 }
@@ -207,6 +209,138 @@ TEST(ViewerWindow, AClickOnTheTimelineRendersThatFrame) {
     EXPECT_EQ(stats["shown_frame"], 3);
     EXPECT_EQ(stats["submitted"], 2);
     EXPECT_EQ(stats["message"], "");
+}
+
+// A python3 line that prints the centre of widget NAME from the layout file: "x y".
+std::string centreOf(const std::string& name) {
+    return "$(python3 -c \"import json; r = json.load(open('DIR/layout.json'))['widgets']['" + name +
+           "']; print(int((r[0]+r[2])/2), int((r[1]+r[3])/2))\")";
+}
+
+glm::vec3 vec3Of(const nlohmann::json& j) { return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()}; }
+
+// Plain drags navigate as in Houdini's and Blender's viewports: a left drag orbits, a middle drag
+// pans, the wheel dollies. A light dragged by its handle is one undo step: Ctrl+Z puts it back
+// and leaves the camera where navigation put it, Ctrl+Shift+Z does it again.
+TEST(ViewerWindow, PlainDragsNavigateAndALightDragIsOneUndoStep) {
+    const std::string dir = tempDir("viewer-navigate");
+    for (const char* f : {"layout.json", "orbited.json", "go1", "go2", "go3", "go4"}) std::filesystem::remove(dir + "/" + f);
+    nlohmann::json actions = {{{"wait", "converged"}}, {{"save", dir + "/s0.json"}}, {{"layout", dir + "/layout.json"}}};
+    for (int k = 1; k <= 4; ++k) {
+        actions.push_back({{"wait_file", dir + "/go" + std::to_string(k)}, {"timeout", 120}});
+        actions.push_back({{"wait", 0.3}});
+        actions.push_back({{"save", dir + "/s" + std::to_string(k) + ".json"}});
+        if (k == 1) actions.push_back({{"layout", dir + "/orbited.json"}});   // where the handle is now
+    }
+    actions.push_back({{"quit", true}});
+    const std::string script = writeScript(dir, "s.json", actions);
+    std::string orbitedHandle = centreOf("light/0/handle");
+    orbitedHandle.replace(orbitedHandle.find("layout.json"), 11, "orbited.json");
+    const CliResult r = runEvents(dir, R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        set -- IMAGE; xdotool mousemove --window $wid $1 $2; sleep 0.3
+        xdotool mousedown 1; sleep 0.2; for i in $(seq 10); do xdotool mousemove_relative 8 0; sleep 0.05; done; xdotool mouseup 1; sleep 0.3
+        touch DIR/go1; for i in $(seq 100); do [ -f DIR/orbited.json ] && break; sleep 0.1; done; sleep 0.3
+        set -- HANDLE; xdotool mousemove --window $wid $1 $2; sleep 0.3
+        xdotool mousedown 1; sleep 0.2; for i in $(seq 8); do xdotool mousemove_relative 5 3; sleep 0.05; done; xdotool mouseup 1; sleep 0.3
+        touch DIR/go2; sleep 1
+        xdotool key ctrl+z; sleep 0.3; touch DIR/go3; sleep 1
+        xdotool key ctrl+shift+z; sleep 0.3; touch DIR/go4; wait $pid)sh",
+                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SCRIPT", script},
+                                   {"IMAGE", centreOf("image")}, {"HANDLE", orbitedHandle}});
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    std::vector<nlohmann::json> s;
+    for (int k = 0; k <= 4; ++k) s.push_back(readJson(dir + "/s" + std::to_string(k) + ".json"));
+    // The plain left drag orbited: the camera moved, at the same distance from what it looks at.
+    const glm::vec3 look = vec3Of(s[1]["camera"]["look_at"]);
+    EXPECT_GT(glm::length(vec3Of(s[1]["camera"]["position"]) - vec3Of(s[0]["camera"]["position"])), 0.3f);
+    EXPECT_NEAR(glm::length(vec3Of(s[1]["camera"]["position"]) - look), glm::length(vec3Of(s[0]["camera"]["position"]) - look), 1e-3f);
+    EXPECT_EQ(s[1]["lights"], s[0]["lights"]);
+    // The handle drag turned the sun; one Ctrl+Z turned it back whole, the camera stayed; redo again.
+    EXPECT_NE(s[2]["lights"][0]["direction"], s[1]["lights"][0]["direction"]);
+    EXPECT_EQ(s[3]["lights"], s[1]["lights"]);
+    EXPECT_EQ(s[3]["camera"], s[2]["camera"]);
+    EXPECT_EQ(s[4]["lights"], s[2]["lights"]);
+}
+
+// Quick key taps are never lost, however slowly the UI draws: a path typed into the Render panel's
+// output field with a BackSpace in it comes out as typed. A 60-pixel drag of a light's exposure
+// moves it 0.6 stops (it moved 5), and the layout of a script names the widgets.
+TEST(ViewerWindow, TypedPathsKeepEveryKeyAndTheExposureDragIsFine) {
+    const std::string dir = tempDir("viewer-typing");
+    for (const char* f : {"layout.json", "typed.json", "go1", "go2"}) std::filesystem::remove(dir + "/" + f);
+    // "converged" waits for the keys typed to be handled too.
+    const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"save", dir + "/before.json"}},
+                                                           {{"layout", dir + "/layout.json"}},
+                                                           {{"wait_file", dir + "/go1"}, {"timeout", 120}}, {{"wait", "converged"}},
+                                                           {{"save", dir + "/typed.json"}},
+                                                           {{"wait_file", dir + "/go2"}, {"timeout", 120}},
+                                                           {{"wait", 0.3}}, {{"save", dir + "/after.json"}}, {{"quit", true}}});
+    const CliResult r = runEvents(dir, R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        set -- OUTPUT; xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool click 1; sleep 0.3
+        xdotool key ctrl+a BackSpace; xdotool type --delay 2 "DIR/abc"; xdotool key --delay 2 BackSpace; xdotool type --delay 2 "d.exr"
+        xdotool key Return; sleep 0.3; touch DIR/go1
+        for i in $(seq 600); do [ -f DIR/typed.json ] && break; sleep 0.1; done
+        set -- EXPOSURE; xdotool mousemove --window $wid $1 $2; sleep 0.3
+        xdotool mousedown 1; sleep 0.2; for i in $(seq 12); do xdotool mousemove_relative 5 0; sleep 0.05; done; xdotool mouseup 1; sleep 0.3
+        touch DIR/go2; wait $pid)sh",
+                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SCRIPT", script},
+                                   {"OUTPUT", centreOf("output")}, {"EXPOSURE", centreOf("light/exposure")}});
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const nlohmann::json before = readJson(dir + "/before.json"), after = readJson(dir + "/after.json");
+    EXPECT_EQ(readJson(dir + "/typed.json")["output"]["path"], dir + "/abd.exr");
+    const double stops = std::log2(after["lights"][0]["intensity"].get<double>() / before["lights"][0]["intensity"].get<double>());
+    EXPECT_GT(stops, 0.3);
+    EXPECT_LT(stops, 0.9);
+}
+
+// The timeline takes a typed frame (Enter shows it) and the arrow keys step it.
+TEST(ViewerWindow, TheTimelineTakesATypedFrameAndTheArrowKeys) {
+    const std::string dir = tempDir("viewer-timeline-keys");
+    for (const char* f : {"layout.json", "go1", "go2"}) std::filesystem::remove(dir + "/" + f);
+    for (int f = 1; f <= 4; ++f)
+        openvdb::io::File(dir + "/box_000" + std::to_string(f) + ".vdb").write({boxGrid({0, 0, 0}, {6 * f, 15, 15}, 2.0f, 0.1)});
+    std::ofstream(dir + "/boxes.json") << R"({"volume": {"path": "box_####.vdb", "frames": [1, 4]},
+        "lights": [{"type": "directional", "direction": [-1, -1, 0], "intensity": 2}],
+        "render": {"resolution": [160, 100], "backend": "cpu"}})";
+    const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}},
+                                                           {{"wait_file", dir + "/go1"}, {"timeout", 120}}, {{"wait", "converged"}},
+                                                           {{"stats", dir + "/typed.json"}},
+                                                           {{"wait_file", dir + "/go2"}, {"timeout", 120}}, {{"wait", "converged"}},
+                                                           {{"stats", dir + "/stepped.json"}}, {{"quit", true}}});
+    const CliResult r = runEvents(dir, R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        set -- TYPED; xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool click 1; sleep 0.3
+        xdotool key ctrl+a BackSpace; xdotool type --delay 2 "3"; xdotool key Return; sleep 0.5
+        touch DIR/go1; sleep 1
+        set -- IMAGE; xdotool mousemove --window $wid $1 $2; sleep 0.2
+        xdotool key Right; sleep 0.3; xdotool key Left; sleep 0.3; xdotool key Left; sleep 0.5
+        touch DIR/go2; wait $pid)sh",
+                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + dir + "/boxes.json"}, {"SCRIPT", script},
+                                   {"TYPED", centreOf("timeline/typed")}, {"IMAGE", centreOf("image")}});
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    EXPECT_EQ(readJson(dir + "/typed.json")["shown_frame"], 3);
+    EXPECT_EQ(readJson(dir + "/stepped.json")["shown_frame"], 2);
+}
+
+// Idle, with the image converged and nothing changing, the viewer sleeps: at most 1% of a core.
+TEST(ViewerWindow, IdleTakesUnderOnePercentOfACore) {
+    const std::string dir = tempDir("viewer-idle");
+    std::filesystem::remove(dir + "/cpu.txt");
+    // CPU seconds of the viewer (utime + stime, in clock ticks) once its usage has settled, then 5 s later.
+    const CliResult r = runEvents(dir, R"sh(VIEWER & pid=$!
+        timeout 120 xdotool search --sync --onlyvisible --name "voxlux view" >/dev/null
+        ticks() { awk '{print $14 + $15}' /proc/$pid/stat; }
+        last=$(ticks); for i in $(seq 120); do sleep 1; now=$(ticks); [ $((now - last)) -le 2 ] && break; last=$now; done
+        start=$(ticks); sleep 5; end=$(ticks)
+        echo $((end - start)) $(getconf CLK_TCK) > DIR/cpu.txt; kill -TERM $pid; wait $pid)sh",
+                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}});
+    EXPECT_EQ(r.exit_code, 143) << r.err << r.out;
+    double ticks = -1, per_second = 100;
+    std::ifstream(dir + "/cpu.txt") >> ticks >> per_second;
+    ASSERT_GE(ticks, 0.0);
+    EXPECT_LE(ticks / per_second, 0.05) << ticks << " ticks in 5 s";
 }
 
 // One SIGINT or SIGTERM closes the window at once, as the close button does, and the exit code
