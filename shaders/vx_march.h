@@ -286,12 +286,9 @@ VX_INLINE vec3 vx_pixel_radiance(VxPixel px) {
     return vx_radiance_add(vx_radiance_add(px.direct, px.ambient), vx_radiance_add(px.emission, px.indirect));
 }
 
-// March one camera ray (world origin, unit world direction, camera forward for depth) at `time`
-// (frames from the frame's own, vx_motion.h). With P.deep_samples > 0 the ray's deep samples go
-// to `deep` (vx_deep.h). Under motion blur every lookup of a sample (medium, lights, the light
-// stages' volumes) is made where the medium was at `time`: the light stages are the frame's own,
-// carried along with the medium.
-VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
+// A pixel no ray has met anything in: transparent and empty. The march starts from it, and a
+// render region (render.region) leaves the pixels outside it so.
+VX_INLINE VxPixel vx_empty_pixel() {
     VxPixel px;
     px.rgba = vec4(0.0f);
     px.direct = vec3(0.0f);
@@ -302,6 +299,16 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     px.depth = 0.0f;
     px.samples = 0.0f;
     px.variance = 0.0f;
+    return px;
+}
+
+// March one camera ray (world origin, unit world direction, camera forward for depth) at `time`
+// (frames from the frame's own, vx_motion.h). With P.deep_samples > 0 the ray's deep samples go
+// to `deep` (vx_deep.h). Under motion blur every lookup of a sample (medium, lights, the light
+// stages' volumes) is made where the medium was at `time`: the light stages are the frame's own,
+// carried along with the medium.
+VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
+    VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
     bool deep_on = P.deep_samples > 0;
 

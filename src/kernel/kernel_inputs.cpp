@@ -193,6 +193,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
         P.aspect = float(scene.render.width) / float(scene.render.height);
         P.width = scene.render.width;
         P.height = scene.render.height;
+        in.region = regionPixels(scene.render, P.width, P.height);
     }
     P.bricks_min = pages.bricks_min;
     P.bricks_max = pages.bricks_max;

@@ -24,6 +24,7 @@ struct KernelInputs {
     const LightCache* light_cache = nullptr;             // the light_cache stage's output, or none
     const IlluminationVolume* illumination = nullptr;    // the propagation or eye_pass stage's, or none
     std::vector<glm::vec4> noise;           // perturbation table, empty without perturbation
+    glm::ivec4 region{0};                   // the pixels [x0, y0) to [x1, y1) to march (render.region)
 };
 
 // The stage outputs the march reads besides the medium (each optional).

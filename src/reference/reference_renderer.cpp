@@ -362,14 +362,15 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
     RenderImage img;
     img.width = k.P.width;
     img.height = k.P.height;
-    img.pixels.resize(size_t(img.width) * img.height);
+    img.pixels.assign(size_t(img.width) * img.height, k.vx_empty_pixel());   // outside the region, empty
+    const glm::ivec4 region = in.region;
     const bool resume = sums && sums->width == img.width && sums->height == img.height && sums->samples < rs.spp;
     if (sums && !resume) *sums = ReferenceSums{0, img.width, img.height, std::vector<ReferenceSums::Pixel>(img.pixels.size())};
     const int first = resume ? sums->samples : 0;
     const double n = rs.spp;
-    ProgressTask progress("reference", int64_t(img.width) * img.height * (rs.spp - first), "samples");
+    ProgressTask progress("reference", int64_t(region.z - region.x) * (region.w - region.y) * (rs.spp - first), "samples");
     // Small tiles: a reference render is often a few pixels at many samples.
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 4, 0, img.width, 4), [&](const tbb::blocked_range2d<int>& r) {
+    tbb::parallel_for(tbb::blocked_range2d<int>(region.y, region.w, 4, region.x, region.z, 4), [&](const tbb::blocked_range2d<int>& r) {
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
                 const uint32_t pixel = uint32_t(y) * uint32_t(img.width) + uint32_t(x);

@@ -1,7 +1,8 @@
 // What the scene model answers about itself (scene.h).
-#include <algorithm>
-
 #include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace voxlux {
 
@@ -13,6 +14,16 @@ int enabledLightCount(const Scene& scene, bool ambient) {
 const std::vector<std::string>& knownAovs() {
     static const std::vector<std::string> aovs{"direct", "ambient", "indirect", "emission", "transmittance", "depth", "variance"};
     return aovs;
+}
+
+bool isRegion(const std::array<float, 4>& b) { return b[0] >= 0 && b[1] >= 0 && b[0] < b[2] && b[1] < b[3] && b[2] <= 1 && b[3] <= 1; }
+
+glm::ivec4 regionPixels(const RenderSettings& render, int width, int height) {
+    if (!render.region) return {0, 0, width, height};
+    const std::array<float, 4>& b = *render.region;
+    const int x0 = std::clamp(int(std::floor(b[0] * float(width))), 0, width - 1);
+    const int y0 = std::clamp(int(std::floor(b[1] * float(height))), 0, height - 1);
+    return {x0, y0, std::clamp(int(std::ceil(b[2] * float(width))), x0 + 1, width), std::clamp(int(std::ceil(b[3] * float(height))), y0 + 1, height)};
 }
 
 std::string deepPath(const std::string& output_path) {

@@ -143,7 +143,18 @@ struct RenderSettings {
     RenderMethod method = RenderMethod::March;
     ReferenceSettings reference;           // read only with method reference
     std::optional<MotionBlur> motion_blur;
+    // A render region (Cycles' border, Arnold's region): [x_min, y_min, x_max, y_max] as fractions
+    // of the image, y down from the top row; pixels outside it are not marched and stay empty.
+    std::optional<std::array<float, 4>> region;
 };
+
+// Whether `b` is a render region (fractions with 0 <= min < max <= 1), and what one is.
+bool isRegion(const std::array<float, 4>& b);
+inline constexpr const char* kRegionExpected = "expected [x_min, y_min, x_max, y_max], fractions of the image with 0 <= min < max <= 1";
+
+// The pixels [x0, y0) to [x1, y1) a render of `width` x `height` marches: the region's, rounded
+// outward to whole pixels, or the whole image.
+glm::ivec4 regionPixels(const RenderSettings& render, int width, int height);
 
 // Raymarch: a shadow ray per sample and light (the reference). SatCone: Schlegel 2011 cones of
 // SAT cuboids, precomputed into the light cache. Propagation: Ropinski 2010 illumination volume,

@@ -285,7 +285,7 @@ MotionBlur readMotionBlur(const JsonObject& o) {
 
 RenderSettings readRender(const JsonObject& o) {
     o.rejectUnknown({"resolution", "step", "shadow_step", "transmittance_cutoff", "exposure", "filter", "backend", "method", "reference",
-                     "motion_blur"});
+                     "motion_blur", "region"});
     RenderSettings r;
     if (o.has("resolution")) {
         auto res = o.numbers("resolution", 2);
@@ -313,6 +313,11 @@ RenderSettings readRender(const JsonObject& o) {
         o.fail("method", "reference runs on the cpu backend only (render.backend is \"gl\")");
     if (o.has("reference")) r.reference = readReference(o.object("reference"));
     if (o.has("motion_blur")) r.motion_blur = readOptional(o, "motion_blur", readMotionBlur);
+    if (o.has("region") && o.raw("region") != false) {   // false: the whole image
+        const auto b = o.numbers("region", 4);
+        r.region = std::array<float, 4>{b[0], b[1], b[2], b[3]};
+        if (!isRegion(*r.region)) o.fail("region", kRegionExpected);
+    }
     return r;
 }
 

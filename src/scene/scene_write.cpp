@@ -195,6 +195,8 @@ nlohmann::json sceneToJson(const Scene& s) {
     } else {
         r["motion_blur"] = false;
     }
+    // Written only when set: a scene without one hashes as it did before the key existed.
+    if (const auto& b = s.render.region) r["region"] = {decimal((*b)[0]), decimal((*b)[1]), decimal((*b)[2]), decimal((*b)[3])};
 
     auto& e = j["effects"];
     e["shadows"] = s.effects.shadows == ShadowMethod::None          ? "none"

@@ -1,5 +1,6 @@
 #include "viewer/view_script.h"
 
+#include <algorithm>
 #include <map>
 
 #include "core/error.h"
@@ -8,7 +9,7 @@
 namespace voxlux {
 namespace {
 
-enum class Shape { Text, Number, Bool, Light, Object, Pair, Wait };
+enum class Shape { Text, Number, Bool, Light, Object, Pair, Wait, Region };
 
 // Each kind, the shape of its value, and the other keys it takes.
 const std::map<std::string, std::pair<Shape, std::vector<std::string>>>& kinds() {
@@ -21,11 +22,15 @@ const std::map<std::string, std::pair<Shape, std::vector<std::string>>>& kinds()
         {"screenshot", {Shape::Text, {}}},   {"window_screenshot", {Shape::Text, {}}}, {"layout", {Shape::Text, {}}},
         {"save", {Shape::Text, {}}},         {"render", {Shape::Bool, {}}},           {"stats", {Shape::Text, {}}},
         {"quit", {Shape::Bool, {}}},         {"undo", {Shape::Bool, {}}},             {"redo", {Shape::Bool, {}}},
+        {"region", {Shape::Region, {}}},
     };
     return k;
 }
 
 bool isPair(const nlohmann::json& v) { return v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number(); }
+bool isRegion(const nlohmann::json& v) {
+    return v == false || (v.is_array() && v.size() == 4 && std::all_of(v.begin(), v.end(), [](const nlohmann::json& x) { return x.is_number(); }));
+}
 
 }  // namespace
 
@@ -58,6 +63,7 @@ std::vector<ViewAction> parseViewScript(const std::string& text, const std::stri
                         : shape == Shape::Light  ? v.is_string() || v.is_number_integer()
                         : shape == Shape::Object ? v.is_object()
                         : shape == Shape::Pair   ? isPair(v)
+                        : shape == Shape::Region ? isRegion(v)
                                                  : v == "converged" || (v.is_number() && v.get<double>() >= 0);
         if (!ok) {
             const char* expected = shape == Shape::Text     ? "a string"
@@ -66,6 +72,7 @@ std::vector<ViewAction> parseViewScript(const std::string& text, const std::stri
                                    : shape == Shape::Light  ? "a light's name or index"
                                    : shape == Shape::Object ? "an object"
                                    : shape == Shape::Pair   ? "two numbers"
+                                   : shape == Shape::Region ? "four numbers, or false"
                                                             : "\"converged\" or seconds";
             throw InputError(where + "/" + kind + ": must be " + expected);
         }

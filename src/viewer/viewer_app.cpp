@@ -154,6 +154,7 @@ private:
     std::string shown_error_;
     int exit_code_ = 0;
     int settle_frames_ = 0;   // frames still to draw before the loop sleeps
+    bool drawn_ = false;      // a frame has been drawn
 };
 
 void ViewerApp::syncRender() {
@@ -172,10 +173,12 @@ void ViewerApp::syncRender() {
     // The render is asked for the scene and frame shown, unless playback runs through the
     // flipbook: then the frame is submitted once playback stops or reaches a frame not in it.
     const bool flipping = state_.playing && state_.frame && state_.flipbook.count(*state_.frame);
-    if ((state_.submitted_version != state_.editor.version() || state_.submitted_frame != state_.frame) && !flipping) {
-        state_.render->submit(state_.editor.scene(), state_.frame);
+    if ((state_.submitted_version != state_.editor.version() || state_.submitted_frame != state_.frame ||
+         state_.submitted_region != state_.region) && !flipping) {
+        state_.render->submit(state_.renderedScene(), state_.frame);
         state_.submitted_version = state_.editor.version();
         state_.submitted_frame = state_.frame;
+        state_.submitted_region = state_.region;
     }
     if (state_.frame) state_.remember(state_.render->latest(), state_.render->statistics().submitted);
     if (rendering_.valid() && rendering_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
@@ -239,6 +242,16 @@ bool ViewerApp::runAction(const ViewAction& a) {
         if (!state_.frame) throw InputError(a.where + ": the scene is not a sequence");
         state_.showFrame(v.get<int>());
     }
+    if (a.kind == "region") {
+        if (v.is_boolean()) {
+            state_.region.reset();
+        } else {
+            const std::array<float, 4> b{v[0].get<float>(), v[1].get<float>(), v[2].get<float>(), v[3].get<float>()};
+            if (!isRegion(b)) throw InputError(a.where + "/region: " + kRegionExpected);
+            state_.backdrop = state_.image();
+            state_.region = b;
+        }
+    }
     if (a.kind == "aov") {
         if (std::find(kViewAovs.begin(), kViewAovs.end(), v.get<std::string>()) == kViewAovs.end())
             throw InputError(a.where + ": no AOV \"" + v.get<std::string>() + "\" (beauty, direct, indirect, ambient, emission, transmittance, depth)");
@@ -267,6 +280,7 @@ bool ViewerApp::runAction(const ViewAction& a) {
                    {"selective_updates", st.selective_updates}, {"entire_updates", st.entire_updates}, {"kept_updates", st.kept_updates},
                    {"first_image_seconds", st.first_image_seconds}, {"converged_seconds", st.converged_seconds},
                    {"ui_fps", state_.ui_fps}, {"message", state_.message}};
+            if (state_.region) out["region"] = *state_.region;
             if (const auto f = state_.render->latest()) {
                 for (const StageReport& s : f->edit_stages) out[s.cached ? "cached_stages" : "edit_stages"].push_back(s.name);
                 out["frame_cache"] = {{"outputs", f->cache_outputs}, {"bytes", f->cache_bytes}, {"budget", state_.frame_cache_bytes}};
@@ -441,7 +455,7 @@ int ViewerApp::run(GLFWwindow* window) {
             }
         }
         syncRender();
-        if (next_ < script_.size()) {
+        if (next_ < script_.size() && drawn_) {   // after a frame: a layout or a screenshot needs one drawn
             try {
                 running = runScript();
             } catch (const std::exception& e) {   // a file it cannot write, a render that fails
@@ -451,6 +465,7 @@ int ViewerApp::run(GLFWwindow* window) {
             }
         }
         drawFrame(window);
+        drawn_ = true;
     }
     closing = true;
     signal_watch.join();

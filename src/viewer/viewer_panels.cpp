@@ -249,6 +249,12 @@ void drawImagePanel(ViewerState& state, const Viewport& viewport, float x, float
     ImGui::Checkbox("wipe", &state.wipe);
     if (state.wipe) ImGui::SliderFloat("wipe at", &state.wipe_at, 0.0f, 1.0f);
     ImGui::Checkbox("bounding box and axes", &state.show_guides);
+    if (state.region) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton("clear region")) state.region.reset();
+    } else {
+        ImGui::TextDisabled("Ctrl + drag: render region");
+    }
     if (const auto& p = viewport.probe())
         ImGui::Text("pixel %d %d\nRGBA %.4g %.4g %.4g %.4g", viewport.probePixel().x, viewport.probePixel().y, p->x, p->y, p->z, p->w);
     else

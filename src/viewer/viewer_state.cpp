@@ -21,7 +21,7 @@ void ViewerState::remember(const std::shared_ptr<const ViewFrame>& f, uint64_t n
         flipbook_bytes = 0;
         flipbook_version = editor.version();
     }
-    if (!f || !f->converged || !f->frame || f->edit != newest_edit || flipbook.count(*f->frame)) return;
+    if (!f || !f->converged || !f->frame || f->edit != newest_edit || flipbook.count(*f->frame) || region) return;
     if (flipbook_bytes + f->display_texels.size() > frame_cache_bytes) return;
     auto slim = std::make_shared<ViewFrame>();
     slim->edit = f->edit;
@@ -33,6 +33,12 @@ void ViewerState::remember(const std::shared_ptr<const ViewFrame>& f, uint64_t n
     slim->display_texels = f->display_texels;
     flipbook_bytes += slim->display_texels.size();
     flipbook[*f->frame] = std::move(slim);
+}
+
+Scene ViewerState::renderedScene() const {
+    Scene s = editor.scene();
+    if (region) s.render.region = region;
+    return s;
 }
 
 double ViewerState::fps() const {

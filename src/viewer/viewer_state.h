@@ -2,6 +2,7 @@
 // and the display choices that are the viewer's own (not the scene's): the AOV shown, the wipe,
 // the selected light, the frame of a sequence.
 #pragma once
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -39,6 +40,15 @@ struct ViewerState {
     size_t flipbook_bytes = 0;
     uint64_t flipbook_version = 0;
     size_t frame_cache_bytes = 0;                  // the budget of the frame cache (--frame-cache)
+
+    // The render region (Ctrl+drag in the viewport): the render marches only these fractions of the
+    // image, at full quality, over `backdrop`, the image shown when it was drawn. The viewer's own,
+    // not the scene's: a saved scene and the Render button render the whole image.
+    std::optional<std::array<float, 4>> region;
+    std::shared_ptr<const ViewFrame> backdrop;
+    std::optional<std::array<float, 4>> submitted_region;
+    // The scene the progressive render is given: the edited scene with the viewer's region.
+    Scene renderedScene() const;
 
     std::string aov = "beauty";
     bool show_guides = true;           // the bounding box and the axis triad

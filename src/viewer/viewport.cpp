@@ -47,7 +47,8 @@ struct Viewport::Texture {
     }
 };
 
-Viewport::Viewport() : current_(std::make_unique<Texture>()), held_(std::make_unique<Texture>()) {}
+Viewport::Viewport()
+    : current_(std::make_unique<Texture>()), held_(std::make_unique<Texture>()), backdrop_(std::make_unique<Texture>()) {}
 Viewport::~Viewport() = default;
 
 void Viewport::upload(const ViewerState& state, Texture& t, const ViewFrame& frame) {
@@ -88,8 +89,20 @@ void Viewport::draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
         }
         const float split = state.wipe && state.held ? image_lo_.x + state.wipe_at * (image_hi_.x - image_lo_.x) : image_lo_.x;
         const float u = (split - image_lo_.x) / (image_hi_.x - image_lo_.x);
-        back->AddImage(ImTextureID(intptr_t(current_->id)), ImVec2(split, image_lo_.y), im(image_hi_), ImVec2(u, 0), ImVec2(1, 1));
-        if (state.wipe && state.held) {
+        if (state.region && state.backdrop) {
+            // The region's pixels over the image shown when it was drawn.
+            backdrop_->keep = state.backdrop;
+            upload(state, *backdrop_, *state.backdrop);
+            back->AddImage(ImTextureID(intptr_t(backdrop_->id)), im(image_lo_), im(image_hi_));
+            const std::array<float, 4>& b = *state.region;
+            const glm::vec2 size = image_hi_ - image_lo_;
+            const glm::vec2 rlo = image_lo_ + glm::vec2(b[0], b[1]) * size, rhi = image_lo_ + glm::vec2(b[2], b[3]) * size;
+            back->AddImage(ImTextureID(intptr_t(current_->id)), im(rlo), im(rhi), ImVec2(b[0], b[1]), ImVec2(b[2], b[3]));
+            back->AddRect(im(rlo), im(rhi), IM_COL32(255, 200, 60, 230), 0.0f, 0, 1.5f);
+        } else {
+            back->AddImage(ImTextureID(intptr_t(current_->id)), ImVec2(split, image_lo_.y), im(image_hi_), ImVec2(u, 0), ImVec2(1, 1));
+        }
+        if (state.wipe && state.held && !state.region) {
             held_->keep = state.held;
             upload(state, *held_, *state.held);
             back->AddImage(ImTextureID(intptr_t(held_->id)), im(image_lo_), ImVec2(split, image_hi_.y), ImVec2(0, 0), ImVec2(u, 1));
@@ -234,6 +247,28 @@ void Viewport::gizmos(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     }
 }
 
+// Ctrl + left drag draws the render region over the image; Ctrl + click clears it.
+void Viewport::region(ViewerState& state) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const glm::vec2 m = gl2(io.MousePos);
+    if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && io.KeyCtrl && navigating_[ImGuiMouseButton_Left]) region_from_ = m;
+    if (!region_from_) return;
+    if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+        ImGui::GetBackgroundDrawList()->AddRect(im(glm::min(*region_from_, m)), im(glm::max(*region_from_, m)), IM_COL32(255, 200, 60, 255));
+        return;
+    }
+    const glm::vec2 size = image_hi_ - image_lo_;
+    const glm::vec2 a = glm::clamp((glm::min(*region_from_, m) - image_lo_) / size, 0.0f, 1.0f);
+    const glm::vec2 b = glm::clamp((glm::max(*region_from_, m) - image_lo_) / size, 0.0f, 1.0f);
+    region_from_.reset();
+    if (glm::any(glm::lessThan((b - a) * size, glm::vec2(4.0f)))) {   // a click, or a box off the image
+        state.region.reset();
+        return;
+    }
+    if (!state.region) state.backdrop = state.image();
+    state.region = std::array<float, 4>{a.x, a.y, b.x, b.y};
+}
+
 void Viewport::mouse(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     ImGuiIO& io = ImGui::GetIO();
     // A drag moves the camera when it began in the viewport (not on a panel, not on a light).
@@ -250,6 +285,7 @@ void Viewport::mouse(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     const Camera camera = state.camera();
     const auto dragging = [&](ImGuiMouseButton b) { return navigating_[b] && ImGui::IsMouseDown(b) && (d.x != 0 || d.y != 0); };
     if (dragging(ImGuiMouseButton_Left) && !io.KeyCtrl) moved = orbit(camera, -d.x * 0.3f, d.y * 0.3f);
+    region(state);
     if (dragging(ImGuiMouseButton_Middle)) moved = pan(camera, glm::vec2(-d.x, d.y) / height);
     if (dragging(ImGuiMouseButton_Right)) moved = dolly(camera, std::exp(-(d.x - d.y) * 0.005f));
     const glm::vec2 m = gl2(io.MousePos);

@@ -1,7 +1,8 @@
 // The viewport: the newest image drawn to fit the window (scaled up while coarse levels show),
 // the before/after wipe, the pixel probe, the volume's bounding box and an axis triad, the light
 // gizmos, and the camera moves of the mouse as Houdini's and Blender's viewports have them (left
-// drag orbits, middle pans, right or the wheel dollies, with or without Alt; F frames the volume).
+// drag orbits, middle pans, right or the wheel dollies, with or without Alt; F frames the volume;
+// Ctrl + left drag draws a render region, rendered alone at full quality over the image).
 // Everything is drawn with Dear ImGui's background draw list, clipped to the viewport, so the
 // panels always cover it; one texture per image.
 #pragma once
@@ -42,14 +43,16 @@ private:
     void gizmos(ViewerState& state, glm::vec2 lo, glm::vec2 hi);
     void guides(const ViewerState& state);
     void mouse(ViewerState& state, glm::vec2 lo, glm::vec2 hi);
+    void region(ViewerState& state);
 
-    std::unique_ptr<Texture> current_, held_;
+    std::unique_ptr<Texture> current_, held_, backdrop_;
     AovDisplay aov_display_;
     glm::vec2 image_lo_{0.0f}, image_hi_{1.0f};
     std::optional<glm::vec4> probe_;
     glm::ivec2 probe_pixel_{0};
     int dragging_light_ = -1;
     bool navigating_[3] = {false, false, false};   // the drag of each button began in the viewport
+    std::optional<glm::vec2> region_from_;          // where a Ctrl + drag of the render region began
 };
 
 }  // namespace voxlux

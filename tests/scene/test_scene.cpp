@@ -23,7 +23,7 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
               "shot.json: /lights/0/direction: required key is missing");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),
               "shot.json: /render/stepp: unknown key (expected one of resolution, step, shadow_step, "
-              "transmittance_cutoff, exposure, filter, backend, method, reference, motion_blur)");
+              "transmittance_cutoff, exposure, filter, backend, method, reference, motion_blur, region)");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"filter": "cubic"}})"),
               "shot.json: /render/filter: 'cubic' is not one of trilinear, tricubic");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"resolution": [512]}})"),

@@ -151,7 +151,7 @@ TEST(Sequence, ProgressLinesNameTheRunningStageAndEnd) {
     const std::string lines = linesStartingWith(r.err, "voxlux: progress: ");
     const std::string last = lines.substr(lines.rfind("voxlux: progress: "));
     EXPECT_EQ(last.rfind("voxlux: progress: [====================] sequence 2/2 frames  elapsed ", 0), 0u) << last;
-    EXPECT_EQ(last.substr(last.size() - 6), "  done\n") << last;
+    EXPECT_EQ(last.substr(last.size() - 7), "  done\n") << last;
 }
 
 // Every second frame, and a list: only those frames render.

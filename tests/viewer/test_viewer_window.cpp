@@ -324,6 +324,39 @@ TEST(ViewerWindow, TheTimelineTakesATypedFrameAndTheArrowKeys) {
     EXPECT_EQ(readJson(dir + "/stepped.json")["shown_frame"], 2);
 }
 
+// Ctrl + drag over the image draws a render region: the render marches only it (its image is
+// empty outside), and Ctrl + click clears it, so the whole image renders again.
+TEST(ViewerWindow, ACtrlDragRendersARegionAndACtrlClickClearsIt) {
+    const std::string dir = tempDir("viewer-region");
+    for (const char* f : {"layout.json", "go1", "go2"}) std::filesystem::remove(dir + "/" + f);
+    const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}},
+                                                           {{"wait_file", dir + "/go1"}, {"timeout", 120}}, {{"wait", "converged"}},
+                                                           {{"stats", dir + "/region.json"}}, {{"screenshot", dir + "/region.png"}},
+                                                           {{"wait_file", dir + "/go2"}, {"timeout", 120}}, {{"wait", "converged"}},
+                                                           {{"stats", dir + "/whole.json"}}, {{"screenshot", dir + "/whole.png"}},
+                                                           {{"quit", true}}});
+    const CliResult r = runEvents(dir, R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        set -- $(python3 -c "import json; r = json.load(open('DIR/layout.json'))['widgets']['image']; print(int(r[0] + 0.3 * (r[2] - r[0])), int(r[1] + 0.3 * (r[3] - r[1])), int(0.4 * (r[2] - r[0]) / 10), int(0.4 * (r[3] - r[1]) / 10))")
+        xdotool mousemove --window $wid $1 $2; sleep 0.3
+        xdotool keydown ctrl mousedown 1; sleep 0.2; for i in $(seq 10); do xdotool mousemove_relative $3 $4; sleep 0.05; done
+        xdotool mouseup 1 keyup ctrl; sleep 0.5; touch DIR/go1
+        for i in $(seq 600); do [ -f DIR/region.png ] && break; sleep 0.1; done; sleep 0.3
+        xdotool keydown ctrl click 1; xdotool keyup ctrl; sleep 0.5; touch DIR/go2; wait $pid)sh",
+                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SCRIPT", script}});
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const nlohmann::json region = readJson(dir + "/region.json")["region"];
+    ASSERT_EQ(region.size(), 4u) << readJson(dir + "/region.json").dump();
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(region[k].get<double>(), k < 2 ? 0.3 : 0.7, 0.03) << k;
+    EXPECT_FALSE(readJson(dir + "/whole.json").contains("region"));
+    // The region's image is empty (black) outside it; the whole image has the cloud there.
+    const Rgb inside = readPng(dir + "/region.png"), whole = readPng(dir + "/whole.png");
+    ASSERT_EQ(inside.width, 160);
+    EXPECT_EQ(columnsMean(inside, 0, 40), 0.0);
+    EXPECT_GT(columnsMean(whole, 0, 40), 1.0);   // the cloud reaches in there
+    EXPECT_GT(columnsMean(inside, 56, 104), 5.0);
+}
+
 // Idle, with the image converged and nothing changing, the viewer sleeps: at most 1% of a core.
 TEST(ViewerWindow, IdleTakesUnderOnePercentOfACore) {
     const std::string dir = tempDir("viewer-idle");

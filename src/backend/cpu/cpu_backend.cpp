@@ -1,6 +1,6 @@
-// CPU backend: the shared kernel with TBB, the march over 16x16 pixel tiles, reading the march
-// inputs through the kernel binding (src/kernel/cpu_kernel.cpp) the reference renderer and the
-// light grid use too.
+// CPU backend: the shared kernel with TBB, the march over 16x16 pixel tiles of the render region
+// (the whole image without one), reading the march inputs through the kernel binding
+// (src/kernel/cpu_kernel.cpp) the reference renderer and the light grid use too.
 #include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -21,12 +21,13 @@ public:
         RenderImage img;
         img.width = in.params.width;
         img.height = in.params.height;
-        img.pixels.resize(size_t(img.width) * img.height);
+        img.pixels.assign(size_t(img.width) * img.height, k.vx_empty_pixel());   // outside the region, empty
+        const glm::ivec4 region = in.region;
         if (in.params.deep_samples > 0) {
-            marchDeep(k, img);
+            marchDeep(k, img, region);
             return img;
         }
-        tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 16, 0, img.width, 16),
+        tbb::parallel_for(tbb::blocked_range2d<int>(region.y, region.w, 16, region.x, region.z, 16),
                           [&](const tbb::blocked_range2d<int>& r) {
                               kernel::CpuKernel::VxDeepRay unused;
                               for (int y = r.rows().begin(); y < r.rows().end(); ++y)
@@ -39,13 +40,13 @@ public:
 private:
     // With deep samples, row by row: each row's samples are kept apart, then joined in order, so
     // memory follows the samples made, not the most a pixel may hold.
-    static void marchDeep(kernel::CpuKernel& k, RenderImage& img) {
+    static void marchDeep(kernel::CpuKernel& k, RenderImage& img, glm::ivec4 region) {
         std::vector<std::vector<kernel::VxDeepSample>> rows(size_t(img.height));
         img.deep.counts.resize(img.pixels.size());
-        tbb::parallel_for(tbb::blocked_range<int>(0, img.height), [&](const tbb::blocked_range<int>& r) {
+        tbb::parallel_for(tbb::blocked_range<int>(region.y, region.w), [&](const tbb::blocked_range<int>& r) {
             kernel::CpuKernel::VxDeepRay ray;
             for (int y = r.begin(); y < r.end(); ++y)
-                for (int x = 0; x < img.width; ++x) {
+                for (int x = region.x; x < region.z; ++x) {
                     const size_t i = size_t(y) * img.width + x;
                     img.pixels[i] = k.vx_render_pixel(x, y, ray);
                     img.deep.counts[i] = uint32_t(ray.count);

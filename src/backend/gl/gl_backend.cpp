@@ -106,9 +106,14 @@ public:
         kernel::CpuKernel mean_of = rays > 1 ? bindCpuKernel(in) : kernel::CpuKernel{};
         std::vector<kernel::VxPixel> ray_band(rays > 1 ? size_t(img.width) * band_rows : 0);
         std::vector<float> alpha_sums(ray_band.size());
+        // Only the render region's rows are dispatched; its columns are kept from them below.
+        const glm::ivec4 region = in.region;
+        const kernel::VxPixel empty = kernel::CpuKernel{}.vx_empty_pixel();
+        const auto outside = [&](size_t p) { const int x = int(p % size_t(img.width)); return x < region.x || x >= region.z; };
+        std::fill(img.pixels.begin(), img.pixels.end(), empty);
         glUseProgram(program);
-        for (int y0 = 0; y0 < img.height; y0 += band_rows) {
-            const int rows = std::min(band_rows, img.height - y0);
+        for (int y0 = region.y; y0 < region.w; y0 += band_rows) {
+            const int rows = std::min(band_rows, region.w - y0);
             kernel::VxPixel* band_pixels = &img.pixels[size_t(y0) * img.width];
             glProgramUniform1i(program, row_offset, y0);
             for (int ray = 0; ray < rays; ++ray) {
@@ -123,11 +128,13 @@ public:
                     else mean_of.vx_pixel_mean_add(band_pixels[p], ray_band[p], ray + 1, alpha_sums[p]);
                 }
             }
+            for (size_t p = 0; p < size_t(img.width) * rows; ++p)
+                if (outside(p)) band_pixels[p] = empty;
             if (deep_samples == 0) continue;
             glGetNamedBufferSubData(deep_band_.id(), 0, GLsizeiptr(deep_row_bytes * rows), deep_rows.data());
             for (size_t p = 0; p < size_t(img.width) * rows; ++p) {
                 const float* pixel = &deep_rows[p * deep_floats];
-                const uint32_t count = std::min(uint32_t(pixel[0]), uint32_t(deep_samples));
+                const uint32_t count = outside(p) ? 0u : std::min(uint32_t(pixel[0]), uint32_t(deep_samples));
                 img.deep.counts[size_t(y0) * img.width + p] = count;
                 for (uint32_t i = 0; i < count; ++i) {
                     const float* s = pixel + 1 + 6 * i;
