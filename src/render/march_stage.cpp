@@ -43,7 +43,7 @@ std::string MarchStage::referenceSetupKey(const StageRun& run) const {
 StageReads MarchStage::reads() const {
     // Every render key but exposure, which only the grade applies.
     return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
-             "/render/method", "/render/reference", "/render/motion_blur", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
+             "/render/method", "/render/reference", "/render/motion_blur", "/render/region", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
              "/emission", "/output/deep", "/output/deep_samples", "/input/frame"},
             {"color_space", "brick", "classify", "empty_check", "camera", "light_cache", "propagation", "eye_pass"}};

@@ -3,6 +3,8 @@
 // outside are empty (transparent, transmittance 1) and never marched.
 #include <filesystem>
 
+#include "render/renderer.h"
+#include "scene/scene_json.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -49,6 +51,29 @@ TEST(RenderRegion, TheReferenceFillsTheRegionAsTheWholeImage) {
 TEST(RenderRegion, TheMarchFillsTheRegionAsTheWholeImageOnGl) {
     VOXLUX_REQUIRE_GL(gl);   // skips without one
     expectRegionMatchesTheWholeImage("gl", "--backend gl --filter trilinear");
+}
+
+// The march reads the region: setting it on a renderer that has rendered re-runs the march (and
+// nothing before it), and the image changes.
+TEST(RenderRegion, SettingARegionRerunsTheMarchAlone) {
+    Scene scene = loadSceneFile(std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json");
+    scene.render.width = 32;
+    scene.render.height = 24;
+    scene.render.backend = Backend::Cpu;
+    Renderer renderer(scene);
+    const RenderImage whole = renderer.render(std::nullopt, false).image;
+    scene.render.region = std::array<float, 4>{0.0f, 0.0f, 0.5f, 0.5f};
+    renderer.setScene(scene);
+    const FrameResult r = renderer.render(std::nullopt, false);
+    std::vector<std::string> ran;
+    for (const auto& [stage, seconds] : r.stage_seconds) ran.push_back(stage);
+    EXPECT_EQ(ran, std::vector<std::string>{"march"});
+    // The centre pixel (the first of the quadrant past the region) was marched before, and is empty now.
+    const size_t centre = size_t(scene.render.height / 2) * scene.render.width + scene.render.width / 2;
+    EXPECT_LT(whole.pixels[centre].transmittance, 0.9f) << "the cloud must cover the centre for the test to tell";
+    EXPECT_EQ(r.image.pixels[centre].transmittance, 1.0f);
+    const size_t inside = size_t(scene.render.height / 4) * scene.render.width + scene.render.width / 4;
+    EXPECT_EQ(r.image.pixels[inside].rgba, whole.pixels[inside].rgba);
 }
 
 TEST(RenderRegion, ARegionOutsideTheImageIsRefused) {
