@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 #include <vector>
 
 namespace voxlux {
@@ -20,16 +21,23 @@ std::string expandFramePattern(const std::string& path, int frame) {
     return path.substr(0, first) + digits + path.substr(last + 1);
 }
 
-FrameSet framesOnDisk(const std::string& pattern) {
+FrameSet framesOnDisk(const std::string& pattern, const FrameSet& candidates) {
     namespace fs = std::filesystem;
     const fs::path path(pattern);
     const std::string name = path.filename().string();
     const size_t first = name.find('#'), last = name.find_last_of('#');
     FrameSet frames;
-    if (first == std::string::npos) return frames;
+    std::error_code ec;
+    if (first == std::string::npos) {   // the frame number is in a folder's name: no one listing holds them
+        if (candidates.count() > kMostFramesLookedUp)
+            throw std::invalid_argument("frames " + candidates.text() + ": more than " + std::to_string(kMostFramesLookedUp) +
+                                        " to look up one by one (#### is in a folder's name)");
+        for (int64_t k = 0; k < candidates.count(); ++k)
+            if (fs::exists(expandFramePattern(pattern, candidates.at(k)), ec)) frames.add(candidates.at(k));
+        return frames;
+    }
     const std::string prefix = name.substr(0, first), suffix = name.substr(last + 1);
     std::vector<int> found;
-    std::error_code ec;
     for (const auto& entry : fs::directory_iterator(path.parent_path().empty() ? fs::path(".") : path.parent_path(), ec)) {
         const std::string file = entry.path().filename().string();
         if (file.size() <= prefix.size() + suffix.size() || file.rfind(prefix, 0) != 0 ||

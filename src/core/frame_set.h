@@ -35,8 +35,8 @@ public:
     // The frames from `begin` (an index) on, `count` of them at most, as a spec: a farm's chunk.
     FrameSet slice(int64_t begin, int64_t count) const;
     // The frames of this set that `present` holds, and those it does not ("which frames of the range
-    // are on disk"): O(ranges + present's frames), never frame by frame, so `present` should be
-    // the small set (the files on disk) and this one may be "1-2000000000".
+    // are on disk"): O(present's frames x its ranges), never this set frame by frame, so `present`
+    // should be the small set (the files on disk) and this one may be "1-2000000000".
     FrameSet among(const FrameSet& present) const;
     FrameSet notAmong(const FrameSet& present) const;
     // The canonical spec parse() reads back: "1-239x2,300".

@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -11,7 +12,10 @@
 namespace voxlux {
 namespace {
 
-volatile std::sig_atomic_t stop_asked = 0;   // the signal's number
+// The signal's number. Lock-free, so the handler may store it; other threads (the viewer's
+// watcher, the render's workers) read it.
+std::atomic<int> stop_asked{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 
 extern "C" void onInterrupt(int signal) {
     stop_asked = signal;
@@ -81,10 +85,14 @@ void setProgressDisplay(ProgressDisplay display, std::ostream& out, double line_
     if (display == ProgressDisplay::Lines && !ticking) {
         ticking = true;
         std::thread([&s] {
+            double interval = 0.0;
             for (;;) {
-                std::this_thread::sleep_for(std::chrono::duration<double>(std::max(0.05, s.line_seconds) / 4.0));
-                std::lock_guard<std::mutex> lock(s.mutex);
-                s.show(false);
+                {
+                    std::lock_guard<std::mutex> lock(s.mutex);
+                    s.show(false);
+                    interval = s.line_seconds;
+                }
+                std::this_thread::sleep_for(std::chrono::duration<double>(std::max(0.05, interval) / 4.0));
             }
         }).detach();
     }
@@ -99,7 +107,7 @@ void throwIfInterrupted() {
     if (stop_asked) throw Interrupted();
 }
 
-int interruptSignal() { return int(stop_asked); }
+int interruptSignal() { return stop_asked.load(); }
 
 std::string clockText(double seconds) {
     const long s = std::lround(seconds);

@@ -6,6 +6,11 @@
 #include "core/error.h"
 
 namespace voxlux {
+namespace {
+
+bool set_rasterizer_threads = false;
+
+}  // namespace
 
 ThreadLimit::ThreadLimit(std::optional<int> flag) {
     if (flag && *flag < 1) throw InputError("--threads " + std::to_string(*flag) + ": must be 1 or more");
@@ -20,7 +25,12 @@ ThreadLimit::ThreadLimit(std::optional<int> flag) {
     }
     threads_ = *flag;
     control_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads_));
-    setenv("LP_NUM_THREADS", std::to_string(threads_).c_str(), 0);
+    if (!std::getenv("LP_NUM_THREADS")) {
+        setenv("LP_NUM_THREADS", std::to_string(threads_).c_str(), 1);
+        set_rasterizer_threads = true;
+    }
 }
+
+bool ThreadLimit::setRasterizerThreads() { return set_rasterizer_threads; }
 
 }  // namespace voxlux

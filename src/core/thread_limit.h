@@ -17,6 +17,9 @@ public:
     explicit ThreadLimit(std::optional<int> flag);
     // The limit in force, or 0 when all cores are used.
     int threads() const { return threads_; }
+    // Whether LP_NUM_THREADS is this limit's (it was not set before): the viewer, which draws with
+    // no rasterizer threads at all, may then replace it.
+    static bool setRasterizerThreads();
 
 private:
     int threads_ = 0;

@@ -87,7 +87,8 @@ std::optional<std::string> outputProblem(const std::string& path) {
     if (fs::is_directory(path, ec)) return path + ": is a folder, not a file";
     const fs::path parent = fs::path(path).parent_path();
     fs::path existing = parent.empty() ? fs::path(".") : parent;
-    while (!fs::exists(existing, ec) && existing.has_relative_path()) existing = existing.parent_path().empty() ? "." : existing.parent_path();
+    while (!fs::exists(existing, ec) && existing != "." && existing.has_relative_path())
+        existing = existing.parent_path().empty() ? "." : existing.parent_path();
     const bool missing = existing != (parent.empty() ? fs::path(".") : parent);
     if (!fs::is_directory(existing, ec)) return path + ": cannot create folder " + folderText(parent) + ": " + std::strerror(ENOTDIR);
     const std::string verb = missing ? ": cannot create folder " : ": cannot write in folder ";

@@ -29,7 +29,12 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
 }
 
 SequenceFraming frameSequence(const Scene& scene) {
-    const FrameSet frames = framesOnDisk(scene.volume.path);
+    FrameSet frames;
+    try {
+        frames = framesOnDisk(scene.volume.path, scene.volume.frames.value());
+    } catch (const std::invalid_argument& e) {
+        throw InputError(scene.volume.path + ": " + e.what());
+    }
     if (frames.count() == 0) throw InputError(scene.volume.path + ": no file of this sequence exists");
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     std::optional<glm::mat3> view;
@@ -37,7 +42,16 @@ SequenceFraming frameSequence(const Scene& scene) {
     openvdb::Index64 most = 0;
     for (int64_t k = 0; k < frames.count(); ++k) {
         const int frame = frames.at(k);
-        const LoadedVolume volume = loadVolume(expandFramePattern(scene.volume.path, frame), densityOnly(scene.volume));
+        // A frame that cannot be read (a file still being written, a damaged one) frames nothing;
+        // the render names it when its turn comes.
+        LoadedVolume volume;
+        try {
+            volume = loadVolume(expandFramePattern(scene.volume.path, frame), densityOnly(scene.volume));
+        } catch (const InputError& e) {
+            if (out.unreadable.count() == 0) out.unreadable_reason = e.what();
+            out.unreadable.add(frame);
+            continue;
+        }
         const openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
         if (box.empty()) continue;
         if (volume.density->activeVoxelCount() > most) most = volume.density->activeVoxelCount(), out.fullest_frame = frame;

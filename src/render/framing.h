@@ -19,6 +19,8 @@ struct SequenceFraming {
     Camera camera;
     FrameSet frames;         // the frames on disk, framed together
     int fullest_frame = 0;   // the one with the most active voxels
+    FrameSet unreadable;     // frames on disk left out, as they cannot be read
+    std::string unreadable_reason;   // the first one's error
 };
 
 // Frames every frame on disk of the scene's #### volume path together (framesOnDisk), whatever

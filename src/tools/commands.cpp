@@ -128,6 +128,9 @@ Scene sceneFor(const std::string& input, const SceneOverrides& overrides, std::v
             scene.camera = framing.camera;
             notes.push_back("camera framed on the frames on disk, " + framing.frames.text() + ", together (--frame-on N for one frame)");
         }
+        if (framing.unreadable.count())
+            notes.push_back("frames " + framing.unreadable.text() + " on disk cannot be read and are left out of what the data decides (" +
+                            framing.unreadable_reason + ")");
     }
     if (sequenceFrames(scene) && !scene.camera)   // --frame-on
         scene.camera = frameVolumeCamera(expandFramePattern(scene.volume.path, *reference), scene);
@@ -143,18 +146,30 @@ void printNotes(const std::vector<std::string>& notes) {
 
 // What `--explain` can check without rendering: the output path, the frame pattern, and that each
 // file the first and last frames read exists and has the grids the scene names.
-std::vector<std::string> missingInputs(const Scene& scene, const SequenceOptions& sequence) {
+// Frames of the range not on disk do not stop a render (they fail, the others render): they are
+// a note, as the render's own line.
+std::vector<std::string> missingInputs(const Scene& scene, const SequenceOptions& sequence, std::vector<std::string>& notes) {
     std::vector<std::string> problems;
     std::vector<std::string> files{scene.volume.path}, outputs;
     try {
         if (const auto frames = sequenceFrames(scene)) {
-            files = {expandFramePattern(scene.volume.path, frames->first()), expandFramePattern(scene.volume.path, frames->last())};
-            outputs = frameOutputPaths(scene, frames->first());
+            const FrameSet disk = framesOnDisk(scene.volume.path, *frames), present = frames->among(disk), missing = frames->notAmong(disk);
+            if (present.count() == 0) {
+                problems.push_back(scene.volume.path + ": no file of frames " + frames->text() + " exists" +
+                                   (disk.count() ? " (on disk: frames " + disk.text() + ")" : ""));
+                return problems;
+            }
+            if (missing.count()) notes.push_back("frames " + missing.text() + " of " + frames->text() + " are not on disk: they will fail, the others render");
+            files = {expandFramePattern(scene.volume.path, present.first()), expandFramePattern(scene.volume.path, present.last())};
+            outputs = frameOutputPaths(scene, present.first());
         } else {
             outputs = frameOutputPaths(scene, std::nullopt);
         }
     } catch (const InputError& e) {
         problems.push_back(e.what());
+        return problems;
+    } catch (const std::invalid_argument& e) {   // a frame pattern in a folder's name over too many frames
+        problems.push_back(scene.volume.path + ": " + e.what());
         return problems;
     }
     if (const auto problem = outputPathProblem(scene)) {
@@ -195,7 +210,7 @@ int explainRender(const RenderCommand& cmd) {
         problems.push_back(e.what());
         scene = applyOverrides(quickScene(cmd.input), cmd.overrides);
     }
-    for (const auto& p : missingInputs(scene, cmd.sequence))
+    for (const auto& p : missingInputs(scene, cmd.sequence, notes))
         if (std::find(problems.begin(), problems.end(), p) == problems.end()) problems.push_back(p);
     std::cout << Renderer(scene).graph().explain(scene);
     if (problems.empty()) {

@@ -62,7 +62,8 @@ ViewAxis viewAxis(const glm::mat4& index_to_world, const glm::mat3& view_frame) 
 // each voxel's radiance x its length, dimmed by the optical depth of the density in front of it
 // (the voxel's own depth integrated as the march does, (1 - e^-tau) / tau). `radiance` maps an
 // emission value to radiance per world unit, `depth_per_density` a density value to the optical
-// depth of one voxel along the axis. Returns the columns' sums above zero.
+// depth of one voxel along the axis. The two grids share their voxels (Mantaflow's do). Returns the
+// columns' sums above zero.
 template <class F>
 std::vector<double> transmittedColumnEmission(const openvdb::FloatGrid& density, const openvdb::FloatGrid& emission,
                                               ViewAxis view, double depth_per_density, double voxel_length, F radiance) {
@@ -76,13 +77,9 @@ std::vector<double> transmittedColumnEmission(const openvdb::FloatGrid& density,
             for (c[v] = box.min()[v]; c[v] <= box.max()[v]; ++c[v])
                 for (c[a] = box.min()[a]; c[a] <= box.max()[a]; ++c[a]) columns[{c[u], c[v]}].emplace_back(c[a], le);
     }
-    const bool same_index = density.transform() == emission.transform();
     const openvdb::CoordBBox reach = density.evalActiveVoxelBoundingBox();
     auto acc = density.getConstAccessor();
-    const auto densityAt = [&](openvdb::Coord c) {
-        if (!same_index) c = density.transform().worldToIndexCellCentered(emission.transform().indexToWorld(c));
-        return std::max(0.0f, acc.getValue(c));
-    };
+    const auto densityAt = [&](openvdb::Coord c) { return std::max(0.0f, acc.getValue(c)); };
     std::vector<double> sums;
     sums.reserve(columns.size());
     for (auto& [key, emitters] : columns) {
@@ -159,8 +156,11 @@ Scene completeQuickScene(Scene scene, const SceneOverrides& o, std::optional<int
         EmissionSource& source = scene.emission[e];
         if (source.kind != EmissionKind::Blackbody) continue;
         const glm::mat3 xyz(1.0f);   // luminance is Y
-        const double p99 = quantile(transmittedColumnEmission(*volume.density, *volume.emission[e], view, depth_per_density, voxel_length,
-                                                              [&](float v) { return double(emissionRadiance(source, v, xyz).y); }),
+        const auto radiance = [&](float v) { return double(emissionRadiance(source, v, xyz).y); };
+        // Grids on other voxels than the density's: the columns' emission before absorption.
+        const double p99 = quantile(volume.density->transform() == volume.emission[e]->transform()
+                                        ? transmittedColumnEmission(*volume.density, *volume.emission[e], view, depth_per_density, voxel_length, radiance)
+                                        : columnSums(*volume.emission[e], axis, [&](float v) { return radiance(v) * voxel_length; }),
                                     0.99);
         if (p99 > 0.0) {
             source.intensity = float(source.intensity / p99);

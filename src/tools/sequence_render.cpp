@@ -105,7 +105,12 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
     std::optional<FrameSet> frames = requested;
     FrameSet missing;
     if (requested) {
-        const FrameSet disk = framesOnDisk(scene.volume.path);
+        FrameSet disk;
+        try {
+            disk = framesOnDisk(scene.volume.path, *requested);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(scene.volume.path + ": " + e.what());
+        }
         frames = requested->among(disk);
         missing = requested->notAmong(disk);
         if (frames->count() == 0)
@@ -148,7 +153,7 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
             const FrameCheck check = checkFrame(scene, frame, hash);
             if (check.state == FrameCheck::State::Done) {
                 ++skipped;
-                done_frames.add(*frame);
+                if (frame) done_frames.add(*frame);
                 out << "skipped " << name << ": " << check.path << " is done\n";
                 line.update({{"status", "skipped"}, {"path", check.path}, {"time", utcNow()}});
                 log.write(line);

@@ -66,6 +66,9 @@ bool SceneEditor::set(const std::string& assignment) {
 void SceneEditor::adopt(const Scene& scene) {
     scene_ = scene;
     json_ = sceneToJson(scene_);
+    // The edit that failed to render is undone already: its step goes, and nothing is left to redo.
+    if (!undo_.empty() && undo_.back().before == json_) undo_.pop_back();
+    redo_.clear();
     ++version_;
 }
 

@@ -1,6 +1,5 @@
 #include "viewer/viewer_app.h"
 
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +20,7 @@
 #include "core/frame_pattern.h"
 #include "core/json_reader.h"
 #include "core/progress.h"
+#include "core/thread_limit.h"
 #include "core/quantile.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
@@ -172,15 +172,16 @@ void ViewerApp::syncRender() {
     shown_error_ = state_.editor.error();
     // The render is asked for the scene and frame shown, unless playback runs through the
     // flipbook: then the frame is submitted once playback stops or reaches a frame not in it.
+    if (state_.flipbook_version != state_.editor.version()) state_.emptyFlipbook();
     const bool flipping = state_.playing && state_.frame && state_.flipbook.count(*state_.frame);
     if ((state_.submitted_version != state_.editor.version() || state_.submitted_frame != state_.frame ||
          state_.submitted_region != state_.region) && !flipping) {
-        state_.render->submit(state_.renderedScene(), state_.frame);
+        state_.submitted_edit = state_.render->submit(state_.renderedScene(), state_.frame);
         state_.submitted_version = state_.editor.version();
         state_.submitted_frame = state_.frame;
         state_.submitted_region = state_.region;
     }
-    if (state_.frame) state_.remember(state_.render->latest(), state_.render->statistics().submitted);
+    if (state_.frame) state_.remember(state_.render->latest());
     if (rendering_.valid() && rendering_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         try {
             state_.showNote(rendering_.get());
@@ -407,9 +408,9 @@ int ViewerApp::run(GLFWwindow* window) {
     state_.submitted_frame = state_.frame;
     // SIGINT and SIGTERM wake the sleeping UI too: a signal handler may not call GLFW, so a thread
     // looks for one ten times a second (it costs nothing measurable).
-    std::atomic<bool> closing{false};
-    std::thread signal_watch([&closing] {
-        while (!closing) {
+    // A jthread: stopped and joined however the loop ends.
+    const std::jthread signal_watch([](std::stop_token stop) {
+        while (!stop.stop_requested()) {
             if (interruptSignal()) glfwPostEmptyEvent();
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
         }
@@ -467,8 +468,6 @@ int ViewerApp::run(GLFWwindow* window) {
         drawFrame(window);
         drawn_ = true;
     }
-    closing = true;
-    signal_watch.join();
     for (auto* f : {&rendering_, &script_render_})
         if (f->valid()) f->wait();
     return exit_code_;
@@ -487,7 +486,7 @@ int runViewer(const Scene& scene, const ViewerOptions& options) {
     // bench's first and converged images came 1.2-1.9x sooner (docs/viewer.md). A GL march on
     // llvmpipe would lose its threads too, so not when the scene asks for GL (auto takes GL only
     // on a GPU), and a value the user set stands.
-    if (scene.render.backend != Backend::Gl) setenv("LP_NUM_THREADS", "0", 0);
+    if (scene.render.backend != Backend::Gl) setenv("LP_NUM_THREADS", "0", ThreadLimit::setRasterizerThreads());
     glfwSetErrorCallback(onGlfwError);
     if (!glfwInit()) throw InputError("voxlux view: cannot open the display " + std::string(display) + " (" + glfwProblem + ")");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);

@@ -125,7 +125,7 @@ void lightEditor(ViewerState& state) {
     if (auto t = combo("type", type, {"directional", "point", "spot", "ambient"})) state.editor.changeLight(i, {{"type", *t}});
     bool changed = ImGui::ColorEdit3("colour", &l.color.x, ImGuiColorEditFlags_Float);
     // Intensity as exposure: a stop doubles it, as a lighter expects. Dragged a hundredth of a stop
-    // a pixel (Shift: a tenth, Alt: a thousandth), so a small move is a small change.
+    // a pixel (Dear ImGui's Shift: ten times that, Alt: a hundredth of it), so a small move is a small change.
     float stops = std::log2(std::max(l.intensity, 1e-6f));
     if (ImGui::DragFloat("exposure (stops)", &stops, kStopsPerPixel, -20.0f, 20.0f, "%.2f")) {
         l.intensity = std::exp2(stops);

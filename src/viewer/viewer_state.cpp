@@ -15,13 +15,14 @@ std::shared_ptr<const ViewFrame> ViewerState::image() const {
     return latest;
 }
 
-void ViewerState::remember(const std::shared_ptr<const ViewFrame>& f, uint64_t newest_edit) {
-    if (flipbook_version != editor.version()) {
-        flipbook.clear();
-        flipbook_bytes = 0;
-        flipbook_version = editor.version();
-    }
-    if (!f || !f->converged || !f->frame || f->edit != newest_edit || flipbook.count(*f->frame) || region) return;
+void ViewerState::emptyFlipbook() {
+    flipbook.clear();
+    flipbook_bytes = 0;
+    flipbook_version = editor.version();
+}
+
+void ViewerState::remember(const std::shared_ptr<const ViewFrame>& f) {
+    if (!f || !f->converged || !f->frame || f->edit != submitted_edit || flipbook.count(*f->frame) || region) return;
     if (flipbook_bytes + f->display_texels.size() > frame_cache_bytes) return;
     auto slim = std::make_shared<ViewFrame>();
     slim->edit = f->edit;

@@ -25,6 +25,7 @@ struct ViewerState {
     SceneEditor editor;
     std::unique_ptr<ProgressiveRender> render;
     uint64_t submitted_version = ~uint64_t(0);   // the editor version last handed to the render
+    uint64_t submitted_edit = 0;                 // the render's number for that submit
     std::optional<int> submitted_frame;          // and the frame
     uint64_t failure_seen = 0;                   // the newest failed edit already shown
     std::string message;                         // the line under the viewport: an error, or what was written
@@ -71,9 +72,10 @@ struct ViewerState {
     // The image to show: the render's newest, or the flipbook's of `frame` while the render has
     // none of that frame.
     std::shared_ptr<const ViewFrame> image() const;
-    // Keeps `f` in the flipbook when it is the converged image of this frame and edit, within the
-    // frame cache's budget; empties the flipbook after an edit.
-    void remember(const std::shared_ptr<const ViewFrame>& f, uint64_t newest_edit);
+    // Keeps `f` in the flipbook when it is the converged image of the newest submit, within the
+    // frame cache's budget. emptyFlipbook: after an edit, which makes every image in it stale.
+    void remember(const std::shared_ptr<const ViewFrame>& f);
+    void emptyFlipbook();
     // The sequence's frames a second: render.motion_blur.fps, whose default (24) stands without it.
     double fps() const;
     // The scene's camera, or the framing the render chose when it has none yet.

@@ -78,7 +78,7 @@ void Viewport::draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     const Scene& scene = state.editor.scene();
     fit(glm::vec2(scene.render.width, scene.render.height), lo, hi, image_lo_, image_hi_);
     state.widgets["image"] = glm::vec4(image_lo_, image_hi_);
-    if (frame && !frame->display.empty()) {
+    if (frame && !frame->display_texels.empty()) {
         current_->keep = frame;
         try {
             upload(state, *current_, *frame);

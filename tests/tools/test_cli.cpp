@@ -228,7 +228,7 @@ TEST(Cli, ExplainShowsThePlan) {
     EXPECT_NE(r.out.find("run   march             1 light, ray-marched shadow rays per sample (reference)  [after: "
                          "color_space brick classify empty_check camera light_cache propagation eye_pass; reads: "
                          "/render/resolution /render/step /render/shadow_step /render/transmittance_cutoff /render/filter /render/backend "
-                         "/render/method /render/reference /render/motion_blur /material"),
+                         "/render/method /render/reference /render/motion_blur /render/region /material"),
               std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("skip  light_cache       skipped: no effect in the scene needs a precomputed light cache"),

@@ -128,6 +128,27 @@ TEST(Sequence, FailedFramesAreNamedAndTheOthersRender) {
     EXPECT_FALSE(fs::exists(dir + "/out.0004.exr"));
 }
 
+// A damaged file among the frames on disk, outside the range asked for, stops nothing: the frames
+// asked for render, and a note names it. A frame number in a folder's name is looked up frame by
+// frame, as no one folder lists the frames.
+TEST(Sequence, ADamagedFrameOutsideTheRangeAndAFrameFolderRender) {
+    const std::string dir = cloudFrames("damaged_outside");
+    { std::ofstream(dir + "/cloud.0004.vdb", std::ios::trunc) << "half written"; }
+    CliResult r = runCli("render " + dir + "/cloud.####.vdb --frames 1-2 --res 16x16 --backend cpu --shadows none -o " + dir + "/out.####.exr");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("voxlux: frames 4 on disk cannot be read and are left out of what the data decides (" + dir + "/cloud.0004.vdb: "),
+              std::string::npos) << r.err;
+    for (int f : {1, 2}) {
+        fs::create_directories(dir + "/f_000" + std::to_string(f));
+        fs::copy_file(dir + "/cloud.0001.vdb", dir + "/f_000" + std::to_string(f) + "/density.vdb", fs::copy_options::overwrite_existing);
+    }
+    r = runCli("render " + dir + "/f_####/density.vdb --frames 1-3 --res 16x16 --backend cpu --shadows none -o " + dir + "/folder.####.exr");
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_TRUE(fs::exists(dir + "/folder.0001.exr") && fs::exists(dir + "/folder.0002.exr"));
+    EXPECT_NE(r.err.find("voxlux: error: frames 3 of 1-3 are not on disk (" + dir + "/f_0003/density.vdb: no such file); the others render\n"),
+              std::string::npos) << r.err;
+}
+
 // The time left comes from the frames' own times: a simulation whose frames grow by a second each
 // is extended along its line, not by the mean of its first frames.
 TEST(Sequence, TimeLeftFollowsTheFramesTimes) {
