@@ -38,6 +38,16 @@ CliResult runEvents(const std::string& dir, std::string shell, const std::map<st
     return runShell(kXvfb + "bash " + dir + "/events.sh");
 }
 
+// Frames 1..`frames` of a box growing `growth` voxels a frame (box_0001.vdb, ...), and boxes.json
+// rendering them at 160x100 on the CPU.
+void writeBoxSequence(const std::string& dir, int frames, int growth) {
+    for (int f = 1; f <= frames; ++f)
+        openvdb::io::File(dir + "/box_000" + std::to_string(f) + ".vdb").write({boxGrid({0, 0, 0}, {growth * f, 15, 15}, 2.0f, 0.1)});
+    std::ofstream(dir + "/boxes.json") << R"({"volume": {"path": "box_####.vdb", "frames": [1, )" << frames << R"(]},
+        "lights": [{"type": "directional", "direction": [-1, -1, 0], "intensity": 2}],
+        "render": {"resolution": [160, 100], "backend": "cpu"}})";
+}
+
 nlohmann::json readJson(const std::string& path) {
     std::ifstream in(path);
     return nlohmann::json::parse(in);
@@ -189,11 +199,7 @@ TEST(ViewerWindow, RealXEventsOrbitTheCameraAndUncheckALight) {
 TEST(ViewerWindow, AClickOnTheTimelineRendersThatFrame) {
     const std::string dir = tempDir("viewer-timeline");
     for (const char* f : {"layout.json", "go.flag", "stats.json"}) std::filesystem::remove(dir + "/" + f);
-    for (int f = 1; f <= 3; ++f)
-        openvdb::io::File(dir + "/box_000" + std::to_string(f) + ".vdb").write({boxGrid({0, 0, 0}, {8 * f, 15, 15}, 2.0f, 0.1)});
-    std::ofstream(dir + "/boxes.json") << R"({"volume": {"path": "box_####.vdb", "frames": [1, 3]},
-        "lights": [{"type": "directional", "direction": [-1, -1, 0], "intensity": 2}],
-        "render": {"resolution": [160, 100], "backend": "cpu"}})";
+    writeBoxSequence(dir, 3, 8);
     const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}},
                                                            {{"wait_file", dir + "/go.flag"}, {"timeout", 120}},
                                                            {{"wait", "converged"}}, {{"stats", dir + "/stats.json"}}, {{"quit", true}}});
@@ -299,11 +305,7 @@ TEST(ViewerWindow, TypedPathsKeepEveryKeyAndTheExposureDragIsFine) {
 TEST(ViewerWindow, TheTimelineTakesATypedFrameAndTheArrowKeys) {
     const std::string dir = tempDir("viewer-timeline-keys");
     for (const char* f : {"layout.json", "go1", "go2"}) std::filesystem::remove(dir + "/" + f);
-    for (int f = 1; f <= 4; ++f)
-        openvdb::io::File(dir + "/box_000" + std::to_string(f) + ".vdb").write({boxGrid({0, 0, 0}, {6 * f, 15, 15}, 2.0f, 0.1)});
-    std::ofstream(dir + "/boxes.json") << R"({"volume": {"path": "box_####.vdb", "frames": [1, 4]},
-        "lights": [{"type": "directional", "direction": [-1, -1, 0], "intensity": 2}],
-        "render": {"resolution": [160, 100], "backend": "cpu"}})";
+    writeBoxSequence(dir, 4, 6);
     const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}},
                                                            {{"wait_file", dir + "/go1"}, {"timeout", 120}}, {{"wait", "converged"}},
                                                            {{"stats", dir + "/typed.json"}},
