@@ -6,6 +6,7 @@ cd "$(dirname "$0")"
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  ccache                      # rebuilds of unchanged files (and CI on a warm cache) are cache hits
   libopenvdb-dev libboost-iostreams-dev libopenvdb-tools
   libboost-dev                # Boost.Random's Sobol sequence (the reference's stratified numbers)
   libopenexr-dev openexr libtbb-dev libglm-dev nlohmann-json3-dev libcli11-dev

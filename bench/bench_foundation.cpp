@@ -22,6 +22,7 @@
 #include "backend/backend_choice.h"
 #include "volume/page_table.h"
 #include "render/renderer.h"
+#include "volume/volume_stages.h"
 #include "volume/vdb_loader.h"
 
 namespace {

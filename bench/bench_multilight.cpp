@@ -45,6 +45,7 @@
 
 #include "bench_timing.h"
 #include "render/light_rig.h"
+#include "lighting/propagation/propagation_stages.h"
 #include "render/renderer.h"
 #include "volume/vdb_loader.h"
 

@@ -30,6 +30,7 @@
 #include "scene/camera.h"
 #include "lighting/propagation/light_sweeps.h"
 #include "render/renderer.h"
+#include "volume/volume_stages.h"
 #include "tools/svg_plot.h"
 #include "volume/vdb_loader.h"
 

@@ -13,7 +13,6 @@
 
 #include "volume/brick_atlas.h"
 #include "kernel/kernel_inputs.h"
-#include "lighting/propagation/propagation_stages.h"
 #include "render/renderer.h"
 #include "kernel/kernel_backend.h"
 #include "volume/page_table.h"

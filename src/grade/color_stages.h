@@ -16,7 +16,7 @@ namespace voxlux {
 class ColorSpaceStage final : public Stage {
 public:
     std::string name() const override { return "color_space"; }
-    StageReads reads() const override { return {{"/color/config", "/color/working_space", "/input/ocio", "/emission/*/kind"}, {}}; }
+    StageReads reads() const override { return {{"/color/config", "/color/working_space", "/input/ocio", "/emission/*/kind"}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     const ColorPipeline& working() const { return *working_; }
@@ -29,9 +29,9 @@ private:
 
 class ColorTransformsStage final : public Stage {
 public:
-    explicit ColorTransformsStage(const ColorSpaceStage& space) : space_(space) {}
+    explicit ColorTransformsStage(const ColorSpaceStage& space) : space_(input(space)) {}
     std::string name() const override { return "color_transforms"; }
-    StageReads reads() const override { return {{"/color", "/output/preview"}, {"color_space"}}; }
+    StageReads reads() const override { return {{"/color", "/output/preview"}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     const ColorPipeline& pipeline() const { return *pipeline_; }

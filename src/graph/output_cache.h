@@ -8,14 +8,35 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
 namespace voxlux {
 
+// A stage's output as the cache holds it: shared, and knowing its type, so that it is taken back
+// only as what it is (`as` refuses another type).
+class SharedOutput {
+public:
+    SharedOutput() = default;
+    template <class T>
+    SharedOutput(std::shared_ptr<const T> value) : value_(std::move(value)), type_(&typeid(T)) {}
+    explicit operator bool() const { return value_ != nullptr; }
+    template <class T>
+    std::shared_ptr<const T> as() const {
+        if (!value_ || *type_ != typeid(T)) throw std::logic_error("output cache: an output taken back as another type");
+        return std::static_pointer_cast<const T>(value_);
+    }
+
+private:
+    std::shared_ptr<const void> value_;
+    const std::type_info* type_ = nullptr;
+};
+
 struct CachedOutput {
-    std::shared_ptr<const void> value;   // the stage's own type: only that stage adopts it
+    SharedOutput value;                  // the stage's own type: only that stage adopts it
     size_t bytes = 0;
     std::vector<std::string> warnings;   // the stage's output warnings, repeated when it is reused
 };

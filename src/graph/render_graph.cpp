@@ -90,9 +90,10 @@ RenderGraph::RenderGraph(std::vector<Stage*> stages) {
     std::function<void(Stage*)> place = [&](Stage* s) {
         if (placed.count(s->name())) return;
         if (!visiting.insert(s->name()).second) throw std::logic_error("render graph: a cycle through stage " + s->name());
-        for (const auto& up : s->reads().stages) {
-            auto it = by_name_.find(up);
-            if (it == by_name_.end()) throw std::logic_error("render graph: stage " + s->name() + " reads unknown stage " + up);
+        for (const Stage* up : s->inputs()) {
+            auto it = by_name_.find(up->name());
+            if (it == by_name_.end() || it->second != up)
+                throw std::logic_error("render graph: stage " + s->name() + " reads stage " + up->name() + ", which is not in the graph");
             place(it->second);
         }
         placed.insert(s->name());
@@ -107,7 +108,7 @@ std::vector<Stage*> RenderGraph::needed(const std::vector<std::string>& targets)
     std::set<std::string> want;
     std::function<void(const std::string&)> need = [&](const std::string& name) {
         if (!want.insert(name).second) return;
-        for (const auto& up : by_name_.at(name)->reads().stages) need(up);
+        for (const Stage* up : by_name_.at(name)->inputs()) need(up->name());
     };
     for (const auto& t : targets) need(t);
     std::vector<Stage*> out;
@@ -128,18 +129,32 @@ std::map<std::string, std::string> RenderGraph::keys(const Scene& scene, const n
     return keys;
 }
 
+namespace {
+
+// The key `stage` hands its readers: its own, or when it does not take part its inputs' ("" when
+// nothing upstream of it takes part either).
+std::string handedOn(const Stage& stage, const std::map<std::string, std::string>& keys) {
+    const std::string& own = keys.at(stage.name());
+    if (!own.empty()) return own;
+    std::string through;
+    for (const Stage* up : stage.inputs()) through += handedOn(*up, keys);
+    return through.empty() ? "" : hashText(through);
+}
+
+}  // namespace
+
 std::string stageKey(const Stage& stage, const nlohmann::json& document, const std::map<std::string, std::string>& keys) {
-    const StageReads r = stage.reads();
     std::string text = stage.name() + "\n";
-    for (const auto& k : r.keys) text += readKey(document, k) + "\n";
-    for (const auto& up : r.stages) text += up + "=" + keys.at(up) + "\n";
+    for (const auto& k : stage.reads().keys) text += readKey(document, k) + "\n";
+    for (const Stage* up : stage.inputs()) text += up->name() + "=" + handedOn(*up, keys) + "\n";
     return hashText(text);
 }
 
 bool RenderGraph::reads(const std::string& stage, const std::string& pointer) const {
-    const StageReads r = by_name_.at(stage)->reads();
+    const Stage& s = *by_name_.at(stage);
+    const StageReads r = s.reads();
     return std::any_of(r.keys.begin(), r.keys.end(), [&](const std::string& k) { return covers(k, pointer); }) ||
-           std::any_of(r.stages.begin(), r.stages.end(), [&](const std::string& up) { return reads(up, pointer); });
+           std::any_of(s.inputs().begin(), s.inputs().end(), [&](const Stage* up) { return reads(up->name(), pointer); });
 }
 
 std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::json& document,
@@ -211,8 +226,8 @@ std::string RenderGraph::explain(const Scene& scene) const {
         out << (a.runs ? "run   " : "skip  ") << s->name();
         for (size_t pad = s->name().size(); pad < 18; ++pad) out << ' ';
         out << a.reason << "  [after:";
-        for (const auto& up : r.stages) out << ' ' << up;
-        if (r.stages.empty()) out << " -";
+        for (const Stage* up : s->inputs()) out << ' ' << up->name();
+        if (s->inputs().empty()) out << " -";
         out << "; reads:";
         for (const auto& k : r.keys) out << ' ' << (k.empty() ? "(the whole document)" : k);
         if (r.keys.empty()) out << " -";

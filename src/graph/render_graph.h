@@ -1,7 +1,8 @@
 // The render as a graph that runs, as a build system or Inviwo's processors do. Each stage
 // declares what it reads: keys of the render document (the scene as `voxlux scene` writes it, plus
-// the frame's input file) and the outputs of upstream stages. The graph orders the stages from
-// these declarations, derives each stage's key by hashing what it declares, and runs a stage only
+// the frame's input file), and the upstream stages whose outputs it takes, which its constructor
+// registers as it takes them (Stage::input, as Inviwo's ports), so an edge is stated once. The
+// graph orders the stages from these declarations, derives each stage's key by hashing what it declares, and runs a stage only
 // when its key changed; otherwise the stage keeps its last output. `voxlux render --explain`
 // prints this graph, and --stats and the EXR timings name the stages as it does.
 // Cost: a hash of each stage's declared JSON values per frame, microseconds next to any stage.
@@ -26,7 +27,6 @@ namespace voxlux {
 // size their memory by whether an effect is on, not by its knobs.
 struct StageReads {
     std::vector<std::string> keys;
-    std::vector<std::string> stages;   // upstream stages whose outputs it takes
 };
 
 // Whether a stage takes part in rendering a scene, and why: the line --explain prints.
@@ -70,15 +70,28 @@ public:
     // A stage whose output is dear to remake and worth keeping past its key (a frame's grids and
     // bricks, which a viewer scrubbing a sequence comes back to) shares it with the graph's output
     // cache, and adopts one the cache gives back for its key. Others share nothing.
-    virtual std::shared_ptr<const void> sharedOutput() const { return nullptr; }
+    virtual SharedOutput sharedOutput() const { return {}; }
     virtual size_t outputBytes() const { return 0; }
-    virtual void adoptOutput(std::shared_ptr<const void>) {}
+    virtual void adoptOutput(const SharedOutput&) {}
     // Warnings that belong to the current output, repeated on every frame that reuses it.
     const std::vector<std::string>& outputWarnings() const { return output_warnings_; }
+    // The upstream stages whose outputs it takes: the graph's edges into it.
+    const std::vector<const Stage*>& inputs() const { return inputs_; }
 
 protected:
+    // Registers `upstream` as an input and hands it back: a stage's constructor takes each
+    // upstream stage through this (`brick_(input(brick))`), which states the edge.
+    template <class UpstreamStage>
+    const UpstreamStage& input(const UpstreamStage& upstream) {
+        inputs_.push_back(&upstream);
+        return upstream;
+    }
+
     friend class RenderGraph;
     std::vector<std::string> output_warnings_;
+
+private:
+    std::vector<const Stage*> inputs_;
 };
 
 enum class StageStatus { Ran, Reused, Skipped };
@@ -112,13 +125,15 @@ std::string hashBytes(const T& value) {
 }
 
 // The key of `stage` for `document`: the hash of the values it reads and of its upstream stages'
-// `keys` (what RenderGraph::keys gives every stage that takes part).
+// `keys` (what RenderGraph::keys gives every stage that takes part). An upstream stage that does
+// not take part hands on its own inputs' keys: its readers then read what it would have passed
+// through (transfer_2d, when it does not run, hands on load's grids).
 std::string stageKey(const Stage& stage, const nlohmann::json& document, const std::map<std::string, std::string>& keys);
 
 class RenderGraph {
 public:
     // Orders `stages` (not owned): each after the stages it reads, otherwise as given. Throws
-    // std::logic_error on a read of an unknown stage or a cycle.
+    // std::logic_error when a stage reads one that is not among them, or on a cycle.
     explicit RenderGraph(std::vector<Stage*> stages);
 
     const std::vector<Stage*>& stages() const { return order_; }

@@ -73,9 +73,9 @@ struct CpuKernel {
     float vx_prop_in(int i) const { return prop_in.at(i, "sweep input"); }
 
 #include "vx_march.h"
-#include "lighting/extinction_sat/kernel/vx_sat.h"
-#include "lighting/propagation/kernel/vx_propagation.h"
 };
+// The lighting methods' own kernel text compiles into structs derived from this one
+// (CpuSatKernel, CpuPropagationKernel in their kernel/ folders).
 
 }  // namespace voxlux::kernel
 

@@ -7,7 +7,7 @@
 namespace voxlux {
 
 StageReads LightGridStage::reads() const {
-    return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb"}, {"brick", "classify"}};
+    return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb"}};
 }
 
 StageActivity LightGridStage::activity(const Scene& s) const {

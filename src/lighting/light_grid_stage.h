@@ -29,8 +29,10 @@ struct LightGridReader {
 
 class LightGridStage final : public Stage {
 public:
-    LightGridStage(const BrickStage& brick, const ClassifyStage& classify, std::vector<LightGridReader> readers)
-        : brick_(brick), classify_(classify), readers_(std::move(readers)) {}
+    LightGridStage(const BrickStage& brick, const ClassifyStage& classify) : brick_(input(brick)), classify_(input(classify)) {}
+    // A lighting method that sums or sweeps the grid says so as its stages are made: the grid is
+    // built when one of its readers runs.
+    void addReader(LightGridReader reader) { readers_.push_back(std::move(reader)); }
     std::string name() const override { return "light_grid"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;

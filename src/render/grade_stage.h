@@ -19,9 +19,9 @@ namespace voxlux {
 // exposure, grade steps, another output space or a preview, and a grade edit re-runs it without the march.
 class GradeStage final : public Stage {
 public:
-    GradeStage(const MarchStage& march, const ColorTransformsStage& color) : march_(march), color_(color) {}
+    GradeStage(const MarchStage& march, const ColorTransformsStage& color) : march_(input(march)), color_(input(color)) {}
     std::string name() const override { return "grade"; }
-    StageReads reads() const override { return {{"/output/aovs", "/render/backend", "/render/exposure"}, {"march", "color_transforms"}}; }
+    StageReads reads() const override { return {{"/output/aovs", "/render/backend", "/render/exposure"}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     void release() override;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 
+#include "grade/color_stages.h"
+#include "lighting/march_lighting.h"
 #include "lighting/propagation/emitted_light.h"
 #include "lighting/propagation/propagation_stages.h"
-#include "reference/reference_renderer.h"
+#include "volume/volume_stages.h"
 
 namespace voxlux {
 namespace {
@@ -32,6 +34,15 @@ void MarchStage::release() {
     sums_key_.clear();
 }
 
+MarchStage::MarchStage(const ColorSpaceStage& color, const BrickStage& brick, const ClassifyStage& classify,
+                       const EmptyFrameStage& empty_check, const CameraStage& camera,
+                       std::vector<const MarchLightingStage*> lighting)
+    : color_(input(color)), brick_(input(brick)), classify_(input(classify)), camera_(input(camera)),
+      lighting_(std::move(lighting)) {
+    input(empty_check);   // read for its order alone: an empty frame stops before the march
+    for (const MarchLightingStage* s : lighting_) input(*s);
+}
+
 // The march's key as if the reference's sample count were not read.
 std::string MarchStage::referenceSetupKey(const StageRun& run) const {
     nlohmann::json document = run.document;
@@ -45,8 +56,7 @@ StageReads MarchStage::reads() const {
     return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
              "/render/method", "/render/reference", "/render/motion_blur", "/render/region", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
-             "/emission", "/output/deep", "/output/deep_samples", "/input/frame"},
-            {"color_space", "brick", "classify", "empty_check", "camera", "light_cache", "propagation", "eye_pass"}};
+             "/emission", "/output/deep", "/output/deep_samples", "/input/frame"}};
 }
 
 StageActivity MarchStage::activity(const Scene& s) const {
@@ -83,9 +93,7 @@ void MarchStage::run(StageRun& run) {
     const Scene& scene = run.scene;
     MarchSources sources;
     sources.camera = &camera_.camera();
-    if (lighting_.light_cache.cache().channels > 0) sources.light_cache = &lighting_.light_cache.cache();
-    if (!lighting_.eye_pass.volume().values.empty()) sources.illumination = &lighting_.eye_pass.volume();
-    else if (!lighting_.propagation.volume().values.empty()) sources.illumination = &lighting_.propagation.volume();
+    for (const MarchLightingStage* s : lighting_) s->lightTheMarch(sources);
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), documentFrame(run.document),
                                                  color_.xyzToWorking(), sources);
     if (scene.render.method != RenderMethod::Reference) {

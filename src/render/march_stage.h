@@ -3,27 +3,27 @@
 // as typed outputs (the light cache, the illumination volume) and the scene's own light.
 // Cost: pixels x samples per ray; empty bricks are skipped by the page table's DDA.
 #pragma once
-#include "grade/color_stages.h"
-#include "lighting/extinction_sat/extinction_sat_stages.h"
-#include "kernel/kernel_backend.h"
-#include "lighting/propagation/propagation_stages.h"
+#include <vector>
+
 #include "graph/render_graph.h"
+#include "kernel/kernel_backend.h"
 #include "reference/reference_renderer.h"
-#include "volume/volume_stages.h"
 
 namespace voxlux {
 
-struct LightingStages {
-    const LightCacheStage& light_cache;
-    const PropagationStage& propagation;
-    const EyePassStage& eye_pass;
-};
+class BrickStage;
+class CameraStage;
+class ClassifyStage;
+class EmptyFrameStage;
+class ColorSpaceStage;
+class MarchLightingStage;
 
 class MarchStage final : public Stage {
 public:
+    // `lighting`: the lighting methods' stages the march reads (MarchLightingStage), in the order
+    // they set its sources.
     MarchStage(const ColorSpaceStage& color, const BrickStage& brick, const ClassifyStage& classify,
-               const CameraStage& camera, LightingStages lighting)
-        : color_(color), brick_(brick), classify_(classify), camera_(camera), lighting_(lighting) {}
+               const EmptyFrameStage& empty_check, const CameraStage& camera, std::vector<const MarchLightingStage*> lighting);
     std::string name() const override { return "march"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -40,7 +40,7 @@ private:
     const BrickStage& brick_;
     const ClassifyStage& classify_;
     const CameraStage& camera_;
-    LightingStages lighting_;
+    std::vector<const MarchLightingStage*> lighting_;
     RenderImage image_;
     bool keep_sums_ = false;
     std::string referenceSetupKey(const StageRun& run) const;

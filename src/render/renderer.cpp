@@ -7,9 +7,64 @@
 #include "backend/backend_choice.h"
 #include "core/error.h"
 #include "core/frame_pattern.h"
+#include "grade/color_stages.h"
+#include "kernel/kernel_inputs.h"
+#include "lighting/light_grid_stage.h"
+#include "lighting/lighting_method.h"
+#include "lighting/march_lighting.h"
+#include "render/grade_stage.h"
+#include "render/march_stage.h"
+#include "render/write_stage.h"
 #include "scene/scene_json.h"
+#include "volume/volume_stages.h"
 
 namespace voxlux {
+
+// The shared stages, every registered lighting method's, then the march reading the methods'
+// outputs, the grade and the write.
+struct Renderer::Stages {
+    explicit Stages(std::optional<LoadedVolume> given) : load(given ? LoadStage(std::move(*given)) : LoadStage()) {}
+    std::vector<Stage*> all() {
+        std::vector<Stage*> out{&color_space, &color_transforms, &load, &transfer_2d, &brick, &classify, &empty_check, &camera, &light_grid};
+        for (const auto& m : methods)
+            for (Stage* s : m->stages()) out.push_back(s);
+        out.insert(out.end(), {&march, &grade, &write});
+        return out;
+    }
+    std::vector<std::unique_ptr<LightingMethod>> makeMethods() {
+        const SharedStages shared{color_space, [this] { return color_space.xyzToWorking(); }, brick, classify, camera, light_grid};
+        std::vector<std::unique_ptr<LightingMethod>> out;
+        for (const LightingMethodEntry& entry : lightingMethods()) out.push_back(entry.make(shared));
+        return out;
+    }
+    std::vector<const MarchLightingStage*> marchInputs() const {
+        std::vector<const MarchLightingStage*> out;
+        for (const auto& m : methods)
+            for (const MarchLightingStage* s : m->marchInputs()) out.push_back(s);
+        return out;
+    }
+    // What the march read last: each method's output it reads, as the march gathers them.
+    MarchSources marchSources() const {
+        MarchSources sources;
+        for (const MarchLightingStage* s : marchInputs()) s->lightTheMarch(sources);
+        return sources;
+    }
+
+    ColorSpaceStage color_space;
+    ColorTransformsStage color_transforms{color_space};
+    LoadStage load;
+    Transfer2dStage transfer_2d{load};
+    BrickStage brick{transfer_2d};
+    ClassifyStage classify{transfer_2d, brick};
+    EmptyFrameStage empty_check{classify};
+    CameraStage camera{transfer_2d};
+    LightGridStage light_grid{brick, classify};
+    std::vector<std::unique_ptr<LightingMethod>> methods = makeMethods();
+    MarchStage march{color_space, brick, classify, empty_check, camera, marchInputs()};
+    GradeStage grade{march, color_transforms};
+    WriteStage write{grade, camera, color_transforms};
+};
+
 namespace {
 
 // The file's identity: equal identities (path, size, modification time) mean equal grids, so the
@@ -28,12 +83,15 @@ nlohmann::json fileIdentity(const std::string& file) {
 
 }  // namespace
 
-Renderer::Renderer(Scene scene) : scene_(std::move(scene)) {}
+Renderer::Renderer(Scene scene)
+    : scene_(std::move(scene)), stages_(std::make_unique<Stages>(std::nullopt)), graph_(stages_->all()) {}
 
 Renderer::Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend)
-    : scene_(std::move(scene)),
-      backend_(&backend),
-      load_(std::move(volume)) {}
+    : scene_(std::move(scene)), backend_(&backend), stages_(std::make_unique<Stages>(std::move(volume))), graph_(stages_->all()) {}
+
+Renderer::~Renderer() = default;
+
+void Renderer::keepReferenceSums(bool keep) { stages_->march.keepReferenceSums(keep); }
 
 void Renderer::setScene(Scene scene) {
     if (owned_backend_ && scene.render.backend != scene_.render.backend) {
@@ -55,7 +113,7 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
     nlohmann::json doc = sceneToJson(scene_);
     nlohmann::json& in = doc["input"];
     const std::string file = frame ? expandFramePattern(scene_.volume.path, *frame) : scene_.volume.path;
-    in["file"] = load_.given() ? nlohmann::json{{"path", "grids in memory"}} : fileIdentity(file);
+    in["file"] = stages_->load.given() ? nlohmann::json{{"path", "grids in memory"}} : fileIdentity(file);
     in["frame"] = frame ? nlohmann::json(*frame) : nlohmann::json(nullptr);
     const char* ocio = std::getenv("OCIO");
     in["ocio"] = ocio ? ocio : "";
@@ -66,27 +124,21 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
 FrameResult Renderer::runGraph(std::optional<int> frame, bool allow_empty, const std::vector<std::string>& targets) {
     FrameResult r;
     r.stages = graph_.run(scene_, document(frame, allow_empty), backend(), targets, r.reused, r.warnings, cancelled_, stage_start_);
-    for (const StageReport& s : r.stages) {
+    for (const StageReport& s : r.stages)
         if (s.status == StageStatus::Ran) r.stage_seconds.emplace_back(s.name, s.seconds);
-        if (s.name == "propagation" && s.status == StageStatus::Ran) r.light_update = propagation_.lastUpdate();
-        if (s.name == "propagation" && s.status == StageStatus::Reused) {
-            LightUpdate kept;   // nothing the sweeps read changed
-            kept.mode = LightUpdate::Mode::Kept;
-            kept.lights = propagation_.lastUpdate().lights;
-            r.light_update = kept;
-        }
-    }
-    r.camera = camera_.camera();
-    r.bricks = classify_.pages().occupied;
-    r.empty = classify_.pages().empty();
-    r.atlas_bytes = brick_.atlas().bytes();
+    for (const auto& m : stages_->methods)
+        if (auto update = m->lightUpdate(r.stages)) r.light_update = update;
+    r.camera = stages_->camera.camera();
+    r.bricks = stages_->classify.pages().occupied;
+    r.empty = stages_->classify.pages().empty();
+    r.atlas_bytes = stages_->brick.atlas().bytes();
     return r;
 }
 
 FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     FrameResult r = runGraph(frame, allow_empty, {"march", "grade"});
-    r.image = grade_.result();
-    r.preview = grade_.preview();
+    r.image = stages_->grade.result();
+    r.preview = stages_->grade.preview();
     return r;
 }
 
@@ -102,11 +154,11 @@ std::optional<std::string> outputPathProblem(const Scene& scene) {
 FrameResult Renderer::renderToFile(std::optional<int> frame, bool allow_empty) {
     if (const auto problem = outputPathProblem(scene_)) throw InputError(*problem);
     FrameResult r = runGraph(frame, allow_empty, {"write"});
-    r.image = grade_.result();
-    r.preview = grade_.preview();
-    r.path = write_.path();
-    r.preview_path = write_.previewPath();
-    r.deep_path = write_.deepPath();
+    r.image = stages_->grade.result();
+    r.preview = stages_->grade.preview();
+    r.path = stages_->write.path();
+    r.preview_path = stages_->write.previewPath();
+    r.deep_path = stages_->write.deepPath();
     return r;
 }
 
@@ -119,11 +171,8 @@ std::string writtenFilesText(const FrameResult& r) {
     return text;
 }
 
-const IlluminationVolume* Renderer::illumination() const {
-    if (!eye_pass_.volume().values.empty()) return &eye_pass_.volume();
-    return propagation_.volume().values.empty() ? nullptr : &propagation_.volume();
-}
+const IlluminationVolume* Renderer::illumination() const { return stages_->marchSources().illumination; }
 
-const LightCache* Renderer::lightCache() const { return light_cache_.cache().channels > 0 ? &light_cache_.cache() : nullptr; }
+const LightCache* Renderer::lightCache() const { return stages_->marchSources().light_cache; }
 
 }  // namespace voxlux

@@ -16,18 +16,19 @@
 #include <utility>
 #include <vector>
 
-#include "grade/color_stages.h"
-#include "lighting/extinction_sat/extinction_sat_stages.h"
-#include "render/grade_stage.h"
-#include "kernel/kernel_backend.h"
-#include "render/march_stage.h"
-#include "lighting/propagation/propagation_stages.h"
+#include <glm/glm.hpp>
+
 #include "graph/render_graph.h"
+#include "kernel/kernel_backend.h"
+#include "lighting/light_update.h"
 #include "scene/scene.h"
-#include "volume/volume_stages.h"
-#include "render/write_stage.h"
+
 
 namespace voxlux {
+
+struct IlluminationVolume;
+struct LightCache;
+struct LoadedVolume;
 
 struct FrameResult {
     RenderImage image;                                      // graded when the grade ran
@@ -55,6 +56,7 @@ std::optional<std::string> outputPathProblem(const Scene& scene);
 class Renderer {
 public:
     explicit Renderer(Scene scene);
+    ~Renderer();
     // The stages hold references to each other: a Renderer stays where it was made.
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -69,7 +71,7 @@ public:
     // Told the name of each stage as it starts to run: a sequence's progress bar shows it.
     void setStageStart(std::function<void(const std::string&)> starting) { stage_start_ = std::move(starting); }
     // A reference render whose sample count grows continues its image (MarchStage::keepReferenceSums).
-    void keepReferenceSums(bool keep) { march_.keepReferenceSums(keep); }
+    void keepReferenceSums(bool keep);
     // Keeps the grids and bricks of frames rendered before within `bytes`, so that coming back
     // to a frame reads and densifies nothing (RenderGraph::setCacheBudget): a viewer's timeline.
     void setCacheBudget(size_t bytes) { graph_.setCacheBudget(bytes); }
@@ -106,26 +108,11 @@ private:
     std::function<void(const std::string&)> stage_start_;
     std::unique_ptr<KernelBackend> owned_backend_;
     KernelBackend* backend_ = nullptr;
-    ColorSpaceStage color_space_;
-    ColorTransformsStage color_transforms_{color_space_};
-    LoadStage load_;
-    Transfer2dStage transfer_2d_{load_};
-    BrickStage brick_{transfer_2d_};
-    ClassifyStage classify_{transfer_2d_, brick_};
-    EmptyFrameStage empty_check_{classify_};
-    CameraStage camera_{transfer_2d_};
-    LightGridStage light_grid_{brick_, classify_, {{"the SAT", lightCacheRuns}, {"the illumination volume", illuminationVolumeRuns}}};
-    SatStage sat_{brick_, classify_, light_grid_};
-    LightCacheStage light_cache_{brick_, classify_, sat_};
-    IlluminationGridStage illumination_grid_{[this] { return color_space_.xyzToWorking(); }, brick_, classify_, light_grid_};
-    PropagationStage propagation_{brick_, classify_, illumination_grid_};
-    EyePassStage eye_pass_{brick_, classify_, camera_, illumination_grid_, propagation_};
-    MarchStage march_{color_space_, brick_, classify_, camera_, {light_cache_, propagation_, eye_pass_}};
-    GradeStage grade_{march_, color_transforms_};
-    WriteStage write_{grade_, camera_, color_transforms_};
-    RenderGraph graph_{{&color_space_, &color_transforms_, &load_, &transfer_2d_, &brick_, &classify_, &empty_check_, &camera_,
-                         &light_grid_, &sat_, &light_cache_, &illumination_grid_, &propagation_, &eye_pass_, &march_,
-                         &grade_, &write_}};
+    // The stages, each holding references to the ones it reads (renderer.cpp), and the graph
+    // over them.
+    struct Stages;
+    std::unique_ptr<Stages> stages_;
+    RenderGraph graph_;
 };
 
 }  // namespace voxlux

@@ -18,9 +18,9 @@ namespace voxlux {
 class WriteStage final : public Stage {
 public:
     WriteStage(const GradeStage& grade, const CameraStage& camera, const ColorTransformsStage& color)
-        : grade_(grade), camera_(camera), color_(color) {}
+        : grade_(input(grade)), camera_(input(camera)), color_(input(color)) {}
     std::string name() const override { return "write"; }
-    StageReads reads() const override { return {{""}, {"march", "grade", "camera", "color_transforms"}}; }
+    StageReads reads() const override { return {{""}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     const std::string& path() const { return path_; }                 // the EXR written

@@ -15,6 +15,7 @@
 #include "core/frame_pattern.h"
 #include "tools/image_metrics.h"
 #include "render/renderer.h"
+#include "render/write_stage.h"
 #include "scene/scene_json.h"
 #include "tools/study_plan.h"
 #include "tools/study_report.h"

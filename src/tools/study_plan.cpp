@@ -5,6 +5,7 @@
 
 #include "scene/quality_presets.h"
 #include "render/renderer.h"
+#include "render/write_stage.h"
 #include "scene/scene_json.h"
 
 namespace voxlux {

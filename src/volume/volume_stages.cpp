@@ -27,8 +27,7 @@ std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas, const
 StageReads LoadStage::reads() const {
     return {{"/input/file", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/emission/*/grid",
              "/render/motion_blur?", "/render/motion_blur/velocity", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale",
-             "/render/motion_blur/fps"},
-            {}};
+             "/render/motion_blur/fps"}};
 }
 
 StageActivity LoadStage::activity(const Scene& s) const {
@@ -84,8 +83,7 @@ void Transfer2dStage::run(StageRun& run) {
 }
 
 StageReads BrickStage::reads() const {
-    return {{"/render/motion_blur?", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps"},
-            {"load", "transfer_2d"}};
+    return {{"/render/motion_blur?", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps"}};
 }
 
 StageActivity BrickStage::activity(const Scene& s) const {
@@ -99,7 +97,7 @@ void BrickStage::run(StageRun& run) {
     run.warnings = sanitizeReport(*atlas_, load_.volume());
 }
 
-StageReads ClassifyStage::reads() const { return {{"/material", "/emission", "/render/filter"}, {"load", "transfer_2d", "brick"}}; }
+StageReads ClassifyStage::reads() const { return {{"/material", "/emission", "/render/filter"}}; }
 
 StageActivity ClassifyStage::activity(const Scene& s) const {
     std::string what = !s.material.transfer.empty()    ? "drops bricks the transfer function makes transparent"
@@ -127,7 +125,7 @@ void EmptyFrameStage::run(StageRun& run) {
     run.warnings.push_back(why + "; rendered as an empty frame");
 }
 
-StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution", "/volume/up"}, {"load", "transfer_2d"}}; }
+StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution", "/volume/up"}}; }
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera ? "the scene's camera" : "frames the density grid's active voxels (no camera in the scene)"};

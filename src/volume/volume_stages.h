@@ -25,9 +25,9 @@ public:
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     void stale() override { volume_.reset(); }
-    std::shared_ptr<const void> sharedOutput() const override { return volume_; }
+    SharedOutput sharedOutput() const override { return volume_; }
     size_t outputBytes() const override;
-    void adoptOutput(std::shared_ptr<const void> kept) override { volume_ = std::static_pointer_cast<const LoadedVolume>(kept); }
+    void adoptOutput(const SharedOutput& kept) override { volume_ = kept.as<LoadedVolume>(); }
     bool given() const { return given_.has_value(); }
     const LoadedVolume& volume() const { return *volume_; }
 
@@ -43,16 +43,16 @@ private:
 // output cache, as load's, so that a viewer scrubbing a sequence does not classify a frame twice.
 class Transfer2dStage final : public Stage {
 public:
-    explicit Transfer2dStage(const LoadStage& load) : load_(load) {}
+    explicit Transfer2dStage(const LoadStage& load) : load_(input(load)) {}
     std::string name() const override { return "transfer_2d"; }
-    StageReads reads() const override { return {{"/material/transfer_function_2d"}, {"load"}}; }
+    StageReads reads() const override { return {{"/material/transfer_function_2d"}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     void release() override { volume_.reset(); }
     void stale() override { volume_.reset(); }
-    std::shared_ptr<const void> sharedOutput() const override { return volume_; }
+    SharedOutput sharedOutput() const override { return volume_; }
     size_t outputBytes() const override;
-    void adoptOutput(std::shared_ptr<const void> kept) override { volume_ = std::static_pointer_cast<const LoadedVolume>(kept); }
+    void adoptOutput(const SharedOutput& kept) override { volume_ = kept.as<LoadedVolume>(); }
     const LoadedVolume& volume() const { return volume_ ? *volume_ : load_.volume(); }
 
 private:
@@ -62,15 +62,15 @@ private:
 
 class BrickStage final : public Stage {
 public:
-    explicit BrickStage(const Transfer2dStage& load) : load_(load) {}
+    explicit BrickStage(const Transfer2dStage& load) : load_(input(load)) {}
     std::string name() const override { return "brick"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     void stale() override { atlas_.reset(); }
-    std::shared_ptr<const void> sharedOutput() const override { return atlas_; }
+    SharedOutput sharedOutput() const override { return atlas_; }
     size_t outputBytes() const override { return atlas_ ? atlas_->bytes() : 0; }
-    void adoptOutput(std::shared_ptr<const void> kept) override { atlas_ = std::static_pointer_cast<const BrickAtlas>(kept); }
+    void adoptOutput(const SharedOutput& kept) override { atlas_ = kept.as<BrickAtlas>(); }
     const BrickAtlas& atlas() const { return *atlas_; }
 
 private:
@@ -80,7 +80,7 @@ private:
 
 class ClassifyStage final : public Stage {
 public:
-    ClassifyStage(const Transfer2dStage& load, const BrickStage& brick) : load_(load), brick_(brick) {}
+    ClassifyStage(const Transfer2dStage& load, const BrickStage& brick) : load_(input(load)), brick_(input(brick)) {}
     std::string name() const override { return "classify"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -100,9 +100,9 @@ private:
 // that allowing empty frames re-runs nothing but the stages after it.
 class EmptyFrameStage final : public Stage {
 public:
-    explicit EmptyFrameStage(const ClassifyStage& classify) : classify_(classify) {}
+    explicit EmptyFrameStage(const ClassifyStage& classify) : classify_(input(classify)) {}
     std::string name() const override { return "empty_check"; }
-    StageReads reads() const override { return {{"/input/allow_empty"}, {"classify"}}; }
+    StageReads reads() const override { return {{"/input/allow_empty"}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
 
@@ -112,7 +112,7 @@ private:
 
 class CameraStage final : public Stage {
 public:
-    explicit CameraStage(const Transfer2dStage& load) : load_(load) {}
+    explicit CameraStage(const Transfer2dStage& load) : load_(input(load)) {}
     std::string name() const override { return "camera"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;

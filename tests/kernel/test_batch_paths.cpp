@@ -11,7 +11,8 @@
 #include <random>
 #include <string>
 
-#include "kernel/cpu_kernel.h"
+#include "lighting/extinction_sat/kernel/cpu_sat_kernel.h"
+#include "lighting/propagation/kernel/cpu_propagation_kernel.h"
 #include "lighting/extinction_sat/cpu_light_pass.h"
 #include "lighting/propagation/cpu_propagation.h"
 #include "lighting/light_grid.h"
@@ -109,7 +110,7 @@ TEST(BatchPaths, LightPassRowsMatchThePerCellQueries) {
         batched.values.assign(grid.cells(), -1.0f);
         fillLightChannelCpu(pass, batched);
 
-        kernel::CpuKernel k;
+        kernel::CpuSatKernel k;
         k.S = S;
         k.sat = sat.words;
         k.lights = lights;
@@ -212,7 +213,7 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                 if (source) pass.input = &sources;
                 propagateCpu(pass, batched, scratch);
 
-                kernel::CpuKernel k;
+                kernel::CpuPropagationKernel k;
                 k.P = march;
                 k.Q = Q;
                 k.Q.strides = glm::ivec3(1, dims.x, dims.x * dims.y);

@@ -3,7 +3,7 @@
 // another cell's memory. Other builds skip these tests.
 #include <gtest/gtest.h>
 
-#include "kernel/cpu_kernel.h"
+#include "lighting/extinction_sat/kernel/cpu_sat_kernel.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -65,7 +65,7 @@ TEST(KernelBounds, ACacheChannelPastTheCellTraps) {
 
 TEST(KernelBounds, ASatPlanePastThePlanesTraps) {
     SKIP_UNLESS_CHECKED();
-    kernel::CpuKernel k;
+    kernel::CpuSatKernel k;
     k.S.planes = 1;
     k.S.quantum = glm::vec4(0.5f);
     EXPECT_EQ(k.vx_sat_quantum(0), 0.5f);

@@ -19,10 +19,15 @@
 namespace voxlux::test {
 namespace {
 
-// A stage that counts its runs and reads what it is told to.
+// A stage that counts its runs and reads what it is told to: document keys, and the stages given
+// (or added with `after`, which can make a cycle no constructor could).
 class ToyStage final : public Stage {
 public:
-    ToyStage(std::string name, StageReads reads) : name_(std::move(name)), reads_(std::move(reads)) {}
+    ToyStage(std::string name, std::vector<std::string> keys, std::vector<const Stage*> upstream = {})
+        : name_(std::move(name)), reads_{std::move(keys)} {
+        for (const Stage* up : upstream) input(*up);
+    }
+    void after(const Stage& upstream) { input(upstream); }
     std::string name() const override { return name_; }
     StageReads reads() const override { return reads_; }
     StageActivity activity(const Scene&) const override { return {active, active ? "on" : "skipped: off"}; }
@@ -33,9 +38,11 @@ public:
         if (!warning.empty()) run.warnings.push_back(warning);
     }
     void release() override { output.clear(); }
-    std::shared_ptr<const void> sharedOutput() const override { return shares ? std::make_shared<const std::string>(output) : nullptr; }
+    SharedOutput sharedOutput() const override {
+        return shares ? SharedOutput(std::make_shared<const std::string>(output)) : SharedOutput();
+    }
     size_t outputBytes() const override { return output.size(); }
-    void adoptOutput(std::shared_ptr<const void> kept) override { output = *std::static_pointer_cast<const std::string>(kept); }
+    void adoptOutput(const SharedOutput& kept) override { output = *kept.as<std::string>(); }
 
     bool active = true, fail = false, shares = false;
     int runs = 0;
@@ -64,20 +71,21 @@ ToyRun runToy(RenderGraph& graph, const nlohmann::json& document, std::vector<st
 }
 
 TEST(RenderGraph, OrdersStagesFromWhatTheyRead) {
-    ToyStage write("write", {{}, {"march"}}), march("march", {{"/render"}, {"load"}}), load("load", {{"/volume"}, {}});
+    ToyStage load("load", {"/volume"}), march("march", {"/render"}, {&load}), write("write", {}, {&march});
     RenderGraph graph({&write, &march, &load});
     std::vector<std::string> order;
     for (const Stage* s : graph.stages()) order.push_back(s->name());
     EXPECT_EQ(order, (std::vector<std::string>{"load", "march", "write"}));
 
-    ToyStage lonely("lonely", {{}, {"nowhere"}});
+    ToyStage nowhere("nowhere", {}), lonely("lonely", {}, {&nowhere});
     try {
         RenderGraph bad({&lonely});
         FAIL() << "no error";
     } catch (const std::logic_error& e) {
-        EXPECT_EQ(std::string(e.what()), "render graph: stage lonely reads unknown stage nowhere");
+        EXPECT_EQ(std::string(e.what()), "render graph: stage lonely reads stage nowhere, which is not in the graph");
     }
-    ToyStage a("a", {{}, {"b"}}), b("b", {{}, {"a"}});
+    ToyStage a("a", {}), b("b", {}, {&a});
+    a.after(b);
     try {
         RenderGraph cyclic({&a, &b});
         FAIL() << "no error";
@@ -87,8 +95,7 @@ TEST(RenderGraph, OrdersStagesFromWhatTheyRead) {
 }
 
 TEST(RenderGraph, RunsAStageOnlyWhenWhatItReadsChanged) {
-    ToyStage load("load", {{"/volume"}, {}}), light("light", {{"/lights/*/position"}, {"load"}}),
-        march("march", {{"/render"}, {"light"}});
+    ToyStage load("load", {"/volume"}), light("light", {"/lights/*/position"}, {&load}), march("march", {"/render"}, {&light});
     RenderGraph graph({&load, &light, &march});
     nlohmann::json doc = {{"volume", "a.vdb"}, {"lights", {{{"position", {0, 1, 0}}, {"color", 1}}}}, {"render", 1}};
     ToyRun first = runToy(graph, doc, {"march"});
@@ -112,8 +119,26 @@ TEST(RenderGraph, RunsAStageOnlyWhenWhatItReadsChanged) {
     EXPECT_EQ(march.runs, 3);
 }
 
+// A stage that does not take part passes its inputs' keys on (as transfer_2d, when it does not
+// run, passes load's grids on): what reads it still re-runs when what is upstream of it changed.
+TEST(RenderGraph, AStageThatDoesNotRunHandsOnItsInputsKeys) {
+    ToyStage load("load", {"/volume"}), filter("filter", {"/filter"}, {&load}), march("march", {}, {&filter});
+    filter.active = false;
+    RenderGraph graph({&load, &filter, &march});
+    nlohmann::json doc = {{"volume", "a.vdb"}, {"filter", 1}};
+    ToyRun first = runToy(graph, doc, {"march"});
+    EXPECT_EQ(first.status("load") + first.status("filter") + first.status("march"), "ranskippedran");
+    doc["filter"] = 2;   // read only by the stage that does not run
+    ToyRun filtered = runToy(graph, doc, {"march"});
+    EXPECT_EQ(filtered.status("load") + filtered.status("filter") + filtered.status("march"), "reusedskippedreused");
+    doc["volume"] = "b.vdb";
+    ToyRun volume = runToy(graph, doc, {"march"});
+    EXPECT_EQ(volume.status("load") + volume.status("filter") + volume.status("march"), "ranskippedran");
+    EXPECT_EQ(march.runs, 2);
+}
+
 TEST(RenderGraph, AFailedStageRunsAgainAndInactiveOnesReleaseTheirOutput) {
-    ToyStage load("load", {{"/volume"}, {}}), light("light", {{}, {"load"}});
+    ToyStage load("load", {"/volume"}), light("light", {}, {&load});
     light.warning = "a warning that belongs to the light's output";
     RenderGraph graph({&load, &light});
     const nlohmann::json doc = {{"volume", "a.vdb"}};
@@ -226,10 +251,22 @@ TEST(RenderGraph, FramesThatMoveOrFailLeaveNothingStale) {
     EXPECT_EQ(maxDifference(two.image, Renderer(scene).render(2, false).image), 0.0f);
 }
 
+// A kept output is taken back only as the type it was kept as.
+TEST(RenderGraph, AKeptOutputIsTakenBackOnlyAsItsOwnType) {
+    const SharedOutput kept(std::make_shared<const std::string>("grids"));
+    EXPECT_EQ(*kept.as<std::string>(), "grids");
+    try {
+        kept.as<int>();
+        FAIL() << "no error";
+    } catch (const std::logic_error& e) {
+        EXPECT_EQ(std::string(e.what()), "output cache: an output taken back as another type");
+    }
+}
+
 // A stage that shares its output gets it back from the cache when its key returns, with its
 // warnings, as long as the budget holds it; the least recently used goes first.
 TEST(RenderGraph, SharedOutputsComeBackFromTheCacheWithinItsBudget) {
-    ToyStage load("load", {{"/frame"}, {}}), march("march", {{"/camera"}, {"load"}});
+    ToyStage load("load", {"/frame"}), march("march", {"/camera"}, {&load});
     load.shares = true;
     RenderGraph graph({&load, &march});
     const nlohmann::json one = {{"frame", 1}, {"camera", 0}}, two = {{"frame", 2}, {"camera", 0}}, three = {{"frame", 3}, {"camera", 0}};
@@ -465,8 +502,8 @@ Mutation mutate(const nlohmann::json& scene, const std::string& pointer, const s
 std::set<std::string> upstreamOf(const RenderGraph& g, const std::string& name) {
     std::set<std::string> out;
     std::function<void(const std::string&)> walk = [&](const std::string& s) {
-        for (const auto& up : g.stage(s).reads().stages)
-            if (out.insert(up).second) walk(up);
+        for (const Stage* up : g.stage(s).inputs())
+            if (out.insert(up->name()).second) walk(up->name());
     };
     walk(name);
     return out;

@@ -10,6 +10,7 @@
 
 #include "tools/image_metrics.h"
 #include "render/renderer.h"
+#include "render/write_stage.h"
 #include "scene/scene_json.h"
 #include "tools/study.h"
 #include "tools/study_plan.h"

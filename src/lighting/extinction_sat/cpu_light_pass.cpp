@@ -10,28 +10,28 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
-#include "kernel/cpu_kernel.h"
+#include "lighting/extinction_sat/kernel/cpu_sat_kernel.h"
 
 namespace voxlux {
 namespace {
 
-using kernel::CpuKernel;
+using kernel::CpuSatKernel;
 constexpr int kRow = 16;  // cells per batch: one AVX-512 vector of 32-bit words
 
 // The cuboids every cell of the pass shares, or none when they depend on the cell.
-std::vector<CpuKernel::VxCuboid> sharedStencil(CpuKernel& k, int light) {
-    std::vector<CpuKernel::VxCuboid> stencil;
+std::vector<CpuSatKernel::VxCuboid> sharedStencil(CpuSatKernel& k, int light) {
+    std::vector<CpuSatKernel::VxCuboid> stencil;
     if (light < 0) {
         for (int i = 1; i <= k.S.shells; ++i) stencil.push_back(k.vx_shell_cuboid(i));
         return stencil;
     }
     const kernel::VxLight L = k.vx_light(light);
     if (L.type != VX_LIGHT_DIRECTIONAL) return stencil;
-    const CpuKernel::VxCone cone = k.vx_cone_from(glm::ivec3(0), L);
+    const CpuSatKernel::VxCone cone = k.vx_cone_from(glm::ivec3(0), L);
     stencil.push_back(k.vx_cone_own_cell(cone));
-    CpuKernel::VxConeWalk walk = k.vx_cone_walk_begin();
+    CpuSatKernel::VxConeWalk walk = k.vx_cone_walk_begin();
     for (int j = 1; j <= k.S.cone_cuboids; ++j) {
-        CpuKernel::VxCuboid q;
+        CpuSatKernel::VxCuboid q;
         if (k.vx_cone_step(cone, walk, q)) stencil.push_back(q);
     }
     return stencil;
@@ -40,7 +40,7 @@ std::vector<CpuKernel::VxCuboid> sharedStencil(CpuKernel& k, int light) {
 // acc[i] += weight * SAT box (c + lo, c + hi) for the cells c = (x0 + i, y, z), i < kRow.
 // `Clamp` is false when every lane's x range lies inside the grid, so the loads are contiguous.
 template <bool Clamp>
-void addCuboidRow(CpuKernel& k, int plane, float quantum, const CpuKernel::VxCuboid& q, glm::ivec3 c,
+void addCuboidRow(CpuSatKernel& k, int plane, float quantum, const CpuSatKernel::VxCuboid& q, glm::ivec3 c,
                   float* __restrict acc) {
     const glm::ivec3 dims(k.S.dims);
     const int ay = glm::clamp(c.y + q.lo.y, 0, dims.y), by = glm::clamp(c.y + q.hi.y, 0, dims.y);
@@ -69,7 +69,7 @@ struct RowBoxes {
 };
 
 // acc[i] += weight[i] * SAT box [a_i, b_i) for i < n: a gather per corner word, across lanes.
-void addRowBoxes(CpuKernel& k, int plane, float quantum, const RowBoxes& r, int n, float* __restrict acc) {
+void addRowBoxes(CpuSatKernel& k, int plane, float quantum, const RowBoxes& r, int n, float* __restrict acc) {
     const int *ax = r.ax.data(), *ay = r.ay.data(), *az = r.az.data();
     const int *bx = r.bx.data(), *by = r.by.data(), *bz = r.bz.data();
     const float* weight = r.weight.data();
@@ -83,7 +83,7 @@ void addRowBoxes(CpuKernel& k, int plane, float quantum, const RowBoxes& r, int 
 }  // namespace
 
 void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
-    CpuKernel k;
+    CpuSatKernel k;
     k.S = pass.params;
     k.sat = pass.sat->words;
     k.lights = *pass.lights;
@@ -91,7 +91,7 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
     const int light = pass.params.light, channel = pass.params.channel;
     const int plane = light < 0 ? pass.params.ao_plane : 0;
     const uint8_t* needed = pass.needed->data();
-    const std::vector<CpuKernel::VxCuboid> stencil = sharedStencil(k, light);
+    const std::vector<CpuSatKernel::VxCuboid> stencil = sharedStencil(k, light);
     const float quantum = k.vx_sat_quantum(plane);
     auto store = [&](size_t cell, float tau) { cache.values[cell * size_t(cache.channels) + size_t(channel)] = tau; };
 
@@ -103,11 +103,11 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
     };
     const int chunks = (d.x + kRow - 1) / kRow;
     tbb::parallel_for(tbb::blocked_range2d<int>(0, d.z, 1, 0, d.y, 4), [&](const tbb::blocked_range2d<int>& r) {
-        CpuKernel kk = k;
+        CpuSatKernel kk = k;
         std::vector<float> acc(size_t(chunks) * kRow);
         std::vector<uint8_t> active(static_cast<size_t>(chunks));
-        std::vector<CpuKernel::VxCone> cones(static_cast<size_t>(d.x));
-        std::vector<CpuKernel::VxConeWalk> walks(static_cast<size_t>(d.x));
+        std::vector<CpuSatKernel::VxCone> cones(static_cast<size_t>(d.x));
+        std::vector<CpuSatKernel::VxConeWalk> walks(static_cast<size_t>(d.x));
         RowBoxes boxes(d.x);
         const glm::ivec3 dims(d);
         for (int z = r.rows().begin(); z < r.rows().end(); ++z)
@@ -126,7 +126,7 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
                     for (int j = 1; j <= kk.S.cone_cuboids; ++j) {
                         // Each cell's cuboid (scalar geometry), then every box sum of the row at once.
                         for (int x = 0; x < d.x; ++x) {
-                            CpuKernel::VxCuboid q;
+                            CpuSatKernel::VxCuboid q;
                             const bool on = needed[row + size_t(x)] && kk.vx_cone_step(cones[size_t(x)], walks[size_t(x)], q);
                             const glm::ivec3 a = on ? glm::clamp(glm::ivec3(x, y, z) + q.lo, glm::ivec3(0), dims) : glm::ivec3(0);
                             const glm::ivec3 b = on ? glm::max(glm::clamp(glm::ivec3(x, y, z) + q.hi, glm::ivec3(0), dims), a)

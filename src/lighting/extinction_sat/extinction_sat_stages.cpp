@@ -59,8 +59,7 @@ StageReads SatStage::reads() const {
     // What its grid holds beyond the shared extinction (bleeding) and what the SAT and cache cost
     // (planes, and a channel per light), which may lower its resolution below the shared grid's.
     return {{"/effects/color_bleeding", "/effects/ambient_occlusion?", "/effects/shadows", "/lights/*/type",
-             "/lights/*/enabled", "/render/backend"},
-            {"brick", "classify", "light_grid"}};
+             "/lights/*/enabled", "/render/backend"}};
 }
 
 StageActivity SatStage::activity(const Scene& s) const {
@@ -95,8 +94,7 @@ void SatStage::run(StageRun& run) {
 
 StageReads LightCacheStage::reads() const {
     return {{"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows", "/lights/*/type",
-             "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/render/backend"},
-            {"brick", "classify", "sat"}};
+             "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/render/backend"}};
 }
 
 StageActivity LightCacheStage::activity(const Scene& s) const {
@@ -117,6 +115,10 @@ StageActivity LightCacheStage::activity(const Scene& s) const {
     if (fx.ambient_occlusion && !needsAmbientOcclusion(s)) what += " (ambient_occlusion is on but no ambient light is in the scene)";
     if (fx.color_bleeding > 0 && !needsAmbientOcclusion(s)) what += " (color_bleeding needs ambient occlusion)";
     return satActivity(s, what);
+}
+
+void LightCacheStage::lightTheMarch(MarchSources& sources) const {
+    if (cache_.channels > 0) sources.light_cache = &cache_;
 }
 
 void LightCacheStage::release() {

@@ -15,6 +15,7 @@
 
 #include "lighting/extinction_sat/kernel/light_cache.h"
 #include "lighting/light_grid_stage.h"
+#include "lighting/march_lighting.h"
 #include "graph/render_graph.h"
 #include "lighting/extinction_sat/sat_passes.h"
 #include "lighting/extinction_sat/summed_volume.h"
@@ -28,7 +29,7 @@ bool lightCacheRuns(const Scene& scene);
 class SatStage final : public Stage {
 public:
     SatStage(const BrickStage& brick, const ClassifyStage& classify, const LightGridStage& shared)
-        : brick_(brick), classify_(classify), shared_(shared) {}
+        : brick_(input(brick)), classify_(input(classify)), shared_(input(shared)) {}
     std::string name() const override { return "sat"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -53,10 +54,10 @@ private:
     uint64_t generation_ = 0;
 };
 
-class LightCacheStage final : public Stage {
+class LightCacheStage final : public MarchLightingStage {
 public:
     LightCacheStage(const BrickStage& brick, const ClassifyStage& classify, const SatStage& sat)
-        : brick_(brick), classify_(classify), sat_(sat) {}
+        : brick_(input(brick)), classify_(input(classify)), sat_(input(sat)) {}
     std::string name() const override { return "light_cache"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -64,6 +65,7 @@ public:
     bool idle() const override { return sat_.grid().cells() == 0; }
     void release() override;
     const LightCache& cache() const { return cache_; }
+    void lightTheMarch(MarchSources& sources) const override;
 
 private:
     // Runs `pass` into `channel` unless the channel was computed from `key`; true if it ran.

@@ -6,12 +6,12 @@
 #include <tbb/parallel_for.h>
 
 #include "core/huge_pages.h"
-#include "kernel/cpu_kernel.h"
+#include "lighting/extinction_sat/kernel/cpu_sat_kernel.h"
 
 namespace voxlux {
 namespace {
 
-using U96 = kernel::CpuKernel::VxU96;
+using U96 = kernel::CpuSatKernel::VxU96;
 constexpr size_t kColumns = 64;  // columns whose sums the y and z pass keeps at once
 __extension__ using U128 = unsigned __int128;
 
@@ -129,7 +129,7 @@ void buildSummedVolume(const LightGrid& g, SummedVolume& s) {
             // a task more): each cell reads two table entries, R(y) and S'(y), where
             // R(y) + S(y-1) + S'(y) - S'(y-1) reads four.
             tbb::parallel_for(tbb::blocked_range<size_t>(0, sx, kColumns), [&](const tbb::blocked_range<size_t>& cols) {
-                kernel::CpuKernel k;
+                kernel::CpuSatKernel k;
                 uint32_t c_lo[kColumns], c_mid[kColumns], c_hi[kColumns];
                 const Words c{c_lo, c_mid, c_hi};
                 for (size_t x0 = cols.begin(); x0 < cols.end(); x0 += kColumns) {

@@ -9,7 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/huge_pages.h"
-#include "kernel/cpu_kernel.h"
+#include "lighting/propagation/kernel/cpu_propagation_kernel.h"
 
 namespace voxlux {
 namespace {
@@ -75,7 +75,7 @@ const std::vector<float>& slicedSigma(const PropagationPass& pass, const SliceMa
 // everywhere, and the tests hold the two backends together.
 class RowBatch {
 public:
-    RowBatch(kernel::CpuKernel& k, int nu, int nv) : k_(k), nu_(nu), nv_(nv) {
+    RowBatch(kernel::CpuPropagationKernel& k, int nu, int nv) : k_(k), nu_(nu), nv_(nv) {
         const kernel::VxPropParams& Q = k.Q;
         const int axis = Q.axis, u = k.vx_axis_u(axis), v = k.vx_axis_v(axis);
         usable_ = Q.source_is_position == 0 && Q.eye_sweep == 0 && !k.vx_perturbed() && Q.strides[u] == 1;
@@ -222,7 +222,7 @@ private:
         stencil_.push_back({di, dj, float(w)});
     }
 
-    kernel::CpuKernel& k_;
+    kernel::CpuPropagationKernel& k_;
     int nu_, nv_;
     bool usable_ = false;
     std::vector<SigmaRead> sigma_;
@@ -260,7 +260,7 @@ inline float bilinearOrZero(const float* slice, int nu, int nv, int stride, floa
 // sweep that blends two axes (its weight needs the angles of vx_sweep_weight).
 class FlowRowBatch {
 public:
-    FlowRowBatch(kernel::CpuKernel& k, int nu, int nv) : k_(k), nu_(nu), nv_(nv) {
+    FlowRowBatch(kernel::CpuPropagationKernel& k, int nu, int nv) : k_(k), nu_(nu), nv_(nv) {
         const kernel::VxPropParams& Q = k.Q;
         axis_ = Q.axis;
         u_ = k.vx_axis_u(axis_);
@@ -436,7 +436,7 @@ private:
         weight[i] = k_.vx_prop_weight(i, j);
     }
 
-    kernel::CpuKernel& k_;
+    kernel::CpuPropagationKernel& k_;
     int nu_, nv_;
     int axis_ = 0, u_ = 0, v_ = 0;
     bool usable_ = false;
@@ -449,7 +449,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
     const kernel::VxPropParams& first = pass.sweeps.front();
     const glm::ivec3 dims = first.dims;
     const int channels = first.channels;
-    kernel::CpuKernel axes;
+    kernel::CpuPropagationKernel axes;
     const int axis = first.axis, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
     const int nu = dims[u], nv = dims[v], slices = dims[axis];
     const bool eye = first.eye_sweep != 0;
@@ -473,7 +473,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
 
     // One lane per light: its own kernel parameters and its own pair of 2D slice buffers.
     struct Lane {
-        kernel::CpuKernel k;
+        kernel::CpuPropagationKernel k;
         std::vector<float> prev, cur;
         std::unique_ptr<RowBatch> batch;
         std::unique_ptr<FlowRowBatch> flow;
@@ -507,7 +507,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
             for (int j = rows.begin(); j < rows.end(); ++j) {
                 std::fill(rgb.begin(), rgb.end(), 0.0f);
                 for (auto& lane : lanes) {
-                    kernel::CpuKernel& k = lane->k;
+                    kernel::CpuPropagationKernel& k = lane->k;
                     float* row = &lane->cur[size_t(j) * nu * channels];
                     const glm::vec3 tint = k.Q.tint;
                     const int step = channels == 1 ? 0 : 1;

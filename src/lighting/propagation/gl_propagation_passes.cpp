@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "kernel/cpu_kernel.h"
+#include "lighting/propagation/kernel/cpu_propagation_kernel.h"
 #include "gl/gl_buffer.h"
 #include "gl/gl_context.h"
 #include "lighting/propagation/propagation_passes.h"
@@ -21,7 +21,7 @@ public:
         ensureGlContext();
         const GLuint program = kernelProgram("propagate.comp");
         const kernel::VxPropParams& first = pass.sweeps.front();
-        kernel::CpuKernel axes;
+        kernel::CpuPropagationKernel axes;
         const int axis = first.axis, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
         const size_t slice_cells = size_t(first.dims[u]) * first.dims[v];
         const size_t block = size_t(first.dims.x) * first.dims.y * first.dims.z * 3;

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <numeric>
 
-#include "kernel/cpu_kernel.h"
+#include "lighting/propagation/kernel/cpu_propagation_kernel.h"
 
 namespace voxlux {
 
 std::vector<Sweep> sweepsFor(glm::vec3 flow, bool blend) {
     const glm::vec3 f = flow == glm::vec3(0.0f) ? glm::vec3(0.0f, 0.0f, 1.0f) : flow;
-    kernel::CpuKernel k;
+    kernel::CpuPropagationKernel k;
     std::vector<Sweep> out;
     for (int axis = 0; axis < 3; ++axis) {
         const int sign = f[axis] < 0.0f ? -1 : 1;
@@ -60,7 +60,7 @@ std::vector<Sweep> spotLightSweeps(const std::vector<Sweep>& sweeps, glm::vec3 d
         const float a = 2.0f * float(M_PI) * float(k) / 64.0f;
         rim.push_back(world_to_grid * (cos_outer * d + sin_outer * (std::cos(a) * side + std::sin(a) * up)));
     }
-    kernel::CpuKernel k;
+    kernel::CpuPropagationKernel k;
     std::vector<Sweep> out;
     for (const Sweep& s : sweeps) {
         // The cone meets the sweep's pyramid if the pyramid's axis or one of its edges lies in the
@@ -94,7 +94,7 @@ kernel::VxTap tap(glm::vec2 offset, float weight) {
 
 std::vector<kernel::VxTap> blurTaps(const Indirect& in) {
     const float tan_half = std::tan(glm::radians(0.5f * in.angle));
-    kernel::CpuKernel k;   // for its phase function
+    kernel::CpuPropagationKernel k;   // for its phase function
     auto weight = [&](float r) {
         const float cos_a = 1.0f / std::sqrt(1.0f + r * r * tan_half * tan_half);
         if (in.phase == BlurPhase::Phong) return std::pow(cos_a, in.exponent);

@@ -313,8 +313,7 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission,
 
 StageReads IlluminationGridStage::reads() const {
     return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
-             "/effects/propagation/chroma_subsampling", "/emission"},
-            {"color_space", "brick", "classify", "light_grid"}};
+             "/effects/propagation/chroma_subsampling", "/emission"}};
 }
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
@@ -418,8 +417,7 @@ StageReads PropagationStage::reads() const {
     return {{"/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/lights/*/color",
              "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects/propagation/blend_axes",
              "/effects/propagation/chroma_subsampling", "/effects/propagation/coherent", "/effects/indirect",
-             "/effects/perturbation", "/material/albedo", "/material/anisotropy", "/input/frame", "/render/backend"},
-            {"brick", "classify", "illumination_grid"}};
+             "/effects/perturbation", "/material/albedo", "/material/anisotropy", "/input/frame", "/render/backend"}};
 }
 
 StageActivity PropagationStage::activity(const Scene& s) const {
@@ -447,6 +445,10 @@ StageActivity PropagationStage::activity(const Scene& s) const {
     }
     if (fx.perturbation) out += ", perturbed";
     return propagationActivity(s, out);
+}
+
+void PropagationStage::lightTheMarch(MarchSources& sources) const {
+    if (!volume_.values.empty()) sources.illumination = &volume_;
 }
 
 void PropagationStage::release() {
@@ -564,8 +566,7 @@ void PropagationStage::run(StageRun& run) {
 }
 
 StageReads EyePassStage::reads() const {
-    return {{"/effects/indirect", "/effects/perturbation", "/input/frame", "/render/backend"},
-            {"brick", "classify", "camera", "illumination_grid", "propagation"}};
+    return {{"/effects/indirect", "/effects/perturbation", "/input/frame", "/render/backend"}};
 }
 
 StageActivity EyePassStage::activity(const Scene& s) const {
@@ -574,6 +575,10 @@ StageActivity EyePassStage::activity(const Scene& s) const {
     if (!s.effects.indirect) return {false, "skipped: the eye pass carries indirect light (effects.indirect is off)"};
     if (!s.effects.propagation.eye_pass) return {false, "skipped: effects.propagation.eye_pass is off"};
     return {true, "indirect light swept once more towards the camera"};
+}
+
+void EyePassStage::lightTheMarch(MarchSources& sources) const {
+    if (!volume_.values.empty()) sources.illumination = &volume_;
 }
 
 void EyePassStage::run(StageRun& run) {

@@ -21,7 +21,9 @@
 #include <vector>
 
 #include "lighting/propagation/kernel/illumination_volume.h"
+#include "lighting/light_update.h"
 #include "lighting/light_grid_stage.h"
+#include "lighting/march_lighting.h"
 #include "lighting/propagation/propagation_passes.h"
 #include "graph/render_graph.h"
 #include "volume/volume_stages.h"
@@ -38,21 +40,6 @@ size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emissi
 // Whether `scene` lights the march from an illumination volume: propagation shadows, a light or
 // lit emission to propagate, and not the Monte Carlo reference.
 bool illuminationVolumeRuns(const Scene& scene);
-
-// What one update of the light sweeps did, for logs, the light-edit report and tests.
-struct LightUpdate {
-    enum class Mode { Kept, Entire, Selective };
-    Mode mode = Mode::Entire;
-    std::string reason;          // why this mode (empty when kept)
-    int lights = 0;              // lights in the volume afterwards
-    int lights_out = 0;          // light states taken out (selective: the changed lights' old states)
-    int lights_in = 0;           // light states put in (selective: their new states; entire: all lights)
-    int sweeps = 0;              // light sweeps run, over both blocks (a light in two passes counts twice)
-    int passes = 0;              // passes over the volume
-    long long slices = 0;        // slices walked, over all passes
-    double selective_cost = 0;   // the estimates compared (units: cells times a directional sweep's work)
-    double entire_cost = 0;
-};
 
 // The weights of the estimate that picks a selective or an entire update, in units of one
 // directional direct sweep over the same cells: CPU figures measured by voxlux_bench_multilight
@@ -85,10 +72,13 @@ struct SweepGrid {
 
 class IlluminationGridStage final : public Stage {
 public:
-    // `xyz_to_working`: the colour-space stage's matrix, which emission colours are converted by.
-    IlluminationGridStage(std::function<glm::mat3()> xyz_to_working, const BrickStage& brick, const ClassifyStage& classify,
-                          const LightGridStage& shared)
-        : xyz_to_working_(std::move(xyz_to_working)), brick_(brick), classify_(classify), shared_(shared) {}
+    // `xyz_to_working`: the matrix of `color_space` (a stage of a higher layer, grade), which
+    // emission colours are converted by.
+    IlluminationGridStage(const Stage& color_space, std::function<glm::mat3()> xyz_to_working, const BrickStage& brick,
+                          const ClassifyStage& classify, const LightGridStage& shared)
+        : xyz_to_working_(std::move(xyz_to_working)), brick_(input(brick)), classify_(input(classify)), shared_(input(shared)) {
+        input(color_space);
+    }
     std::string name() const override { return "illumination_grid"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -116,10 +106,10 @@ private:
     uint64_t generation_ = 0;
 };
 
-class PropagationStage final : public Stage {
+class PropagationStage final : public MarchLightingStage {
 public:
     PropagationStage(const BrickStage& brick, const ClassifyStage& classify, const IlluminationGridStage& grid)
-        : brick_(brick), classify_(classify), grid_(grid) {}
+        : brick_(input(brick)), classify_(input(classify)), grid_(input(grid)) {}
     std::string name() const override { return "propagation"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -128,6 +118,7 @@ public:
     void release() override;
     const IlluminationVolume& volume() const { return volume_; }
     const LightUpdate& lastUpdate() const { return last_update_; }
+    void lightTheMarch(MarchSources& sources) const override;
 
 private:
     const BrickStage& brick_;
@@ -141,11 +132,11 @@ private:
     IlluminationVolume volume_;
 };
 
-class EyePassStage final : public Stage {
+class EyePassStage final : public MarchLightingStage {
 public:
     EyePassStage(const BrickStage& brick, const ClassifyStage& classify, const CameraStage& camera,
                  const IlluminationGridStage& grid, const PropagationStage& propagation)
-        : brick_(brick), classify_(classify), camera_(camera), grid_(grid), propagation_(propagation) {}
+        : brick_(input(brick)), classify_(input(classify)), camera_(input(camera)), grid_(input(grid)), propagation_(input(propagation)) {}
     std::string name() const override { return "eye_pass"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -156,6 +147,7 @@ public:
         passes_.release();
     }
     const IlluminationVolume& volume() const { return volume_; }
+    void lightTheMarch(MarchSources& sources) const override;
 
 private:
     const BrickStage& brick_;

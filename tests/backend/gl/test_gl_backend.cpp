@@ -11,6 +11,7 @@
 #include "scene/camera.h"
 #include "gl/gl_context.h"
 #include "gl/gl_program.h"
+#include "lighting/extinction_sat/extinction_sat_stages.h"
 #include "render/renderer.h"
 #include "kernel/shader_source.h"
 #include "test_support.h"

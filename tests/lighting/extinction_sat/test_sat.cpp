@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "kernel/cpu_kernel.h"
+#include "lighting/extinction_sat/kernel/cpu_sat_kernel.h"
 #include "lighting/extinction_sat/summed_volume.h"
 #include "test_support.h"
 
@@ -15,7 +15,7 @@ namespace {
 struct SatGrid {
     LightGrid grid;
     SummedVolume sat;
-    kernel::CpuKernel k;
+    kernel::CpuSatKernel k;
 
     SatGrid(glm::ivec3 dims, std::vector<float> values, float cell_world = 1.0f) {
         grid.dims = dims;
@@ -79,7 +79,7 @@ std::vector<std::pair<glm::ivec3, glm::ivec3>> testBoxes(glm::ivec3 d, int rando
 
 // The bound: every box sum within 1e-6 of the brute-force double sum, relative.
 void expectExactBoxes(const SatGrid& g, int random_boxes, int max_edge) {
-    kernel::CpuKernel k = g.k;
+    kernel::CpuSatKernel k = g.k;
     double worst = 0.0;
     for (const auto& [lo, hi] : testBoxes(g.grid.dims, random_boxes, max_edge)) {
         const double exact = g.bruteForce(lo, hi);
@@ -155,7 +155,7 @@ std::vector<int> shellHalfWidths(int n, float radius_cells) {
     return k;
 }
 
-void setShells(kernel::CpuKernel& k, int shells, float radius_cells, float cell_world) {
+void setShells(kernel::CpuSatKernel& k, int shells, float radius_cells, float cell_world) {
     k.S.shells = shells;
     k.S.shell_radius = radius_cells;
     k.S.cell_world = cell_world;
@@ -166,7 +166,7 @@ TEST(AmbientOcclusion, EmptyNeighbourhoodIsExactlyOne) {
     std::vector<float> v(size_t(d.x) * d.y * d.z, 0.0f);
     v[0] = 50.0f;  // far from the cell below
     SatGrid g(d, v);
-    kernel::CpuKernel k = g.k;
+    kernel::CpuSatKernel k = g.k;
     setShells(k, 5, 8.0f, 1.0f);
     const float tau = k.vx_ambient_tau({30, 30, 30}, 0);
     EXPECT_EQ(tau, 0.0f);
@@ -179,7 +179,7 @@ TEST(AmbientOcclusion, HomogeneousMediumMatchesTheShellSum) {
     const float sigma = 0.3f, cell = 0.25f;
     SatGrid g(d, std::vector<float>(size_t(d.x) * d.y * d.z, sigma), cell);
     for (int shells : {1, 3, 7, 11, 40}) {  // 40 > radius: repeated cubes
-        kernel::CpuKernel k = g.k;
+        kernel::CpuSatKernel k = g.k;
         const float radius = 12.0f;
         setShells(k, shells, radius, cell);
         double expected = 0.0, inner = 0.0;
@@ -201,7 +201,7 @@ TEST(AmbientOcclusion, ManyShellsGiveTheOpticalDepthToTheEdge) {
     const glm::ivec3 d(64);
     const float sigma = 0.4f, cell = 0.5f, radius = 24.0f;
     SatGrid g(d, std::vector<float>(size_t(d.x) * d.y * d.z, sigma), cell);
-    kernel::CpuKernel k = g.k;
+    kernel::CpuSatKernel k = g.k;
     setShells(k, 96, radius, cell);
     const double edge = sigma * (radius + 0.5) * cell;  // the outermost cube's inscribed radius
     const double ratio = k.vx_ambient_tau({32, 32, 32}, 0) / edge;
@@ -216,7 +216,7 @@ TEST(AmbientOcclusion, MonotoneInDensity) {
     std::mt19937 rng(4);
     for (auto& x : denser) x *= 1.0f + std::uniform_real_distribution<float>(0.0f, 1.0f)(rng);
     SatGrid a(d, base), b(d, denser);
-    kernel::CpuKernel ka = a.k, kb = b.k;
+    kernel::CpuSatKernel ka = a.k, kb = b.k;
     setShells(ka, 3, 6.0f, 1.0f);
     setShells(kb, 3, 6.0f, 1.0f);
     for (int z = 0; z < d.z; z += 3)
@@ -239,7 +239,7 @@ kernel::VxLight point(glm::vec3 position) {
     return l;
 }
 
-void setCone(kernel::CpuKernel& k, float angle_deg, int samples, float growth) {
+void setCone(kernel::CpuSatKernel& k, float angle_deg, int samples, float growth) {
     k.S.cone_tan = std::tan(glm::radians(angle_deg));
     k.S.cone_cuboids = samples;
     k.S.cone_growth = growth;
@@ -265,7 +265,7 @@ TEST(ConeShadow, SlabMatchesBeerLambertWhenThePrimaryAxisIsTheNormal) {
     for (glm::vec3 travel : {glm::vec3(0, 0, -1), glm::vec3(0.3f, 0.2f, -1), glm::vec3(-0.6f, 0.5f, -1)})
         for (float angle : {0.0f, 1.0f, 4.0f})
             for (int samples : {12, 50}) {
-                kernel::CpuKernel k = g.k;
+                kernel::CpuSatKernel k = g.k;
                 setCone(k, angle, samples, 0.05f);
                 const glm::ivec3 c(32, 32, 20);
                 const glm::vec3 to_light = -glm::normalize(travel);
@@ -285,7 +285,7 @@ TEST(ConeShadow, GrazingSlabWithinTheCuboidBound) {
     const float sigma = 0.2f, cell = 0.5f;
     SatGrid g(d, slab(d, 8, 40, sigma), cell);
     const glm::vec3 travel(-1.0f, 0.0f, -0.4f);  // primary axis x
-    kernel::CpuKernel k = g.k;
+    kernel::CpuSatKernel k = g.k;
     setCone(k, 0.0f, 50, 0.0f);
     const glm::vec3 w = -travel / std::abs(travel.x);
     const double bound = 2.0 * sigma * cell * glm::length(w);
@@ -307,7 +307,7 @@ TEST(ConeShadow, PointLightInsideOrOnTheFaceOfAHomogeneousVolume) {
     const float sigma = 0.5f, cell = 0.25f;
     SatGrid g(d, std::vector<float>(size_t(d.x) * d.y * d.z, sigma), cell);
     for (glm::vec3 light_cells : {glm::vec3(20.3f, 19.6f, 21.1f), glm::vec3(0.0f, 20.0f, 20.0f)}) {
-        kernel::CpuKernel k = g.k;
+        kernel::CpuSatKernel k = g.k;
         setCone(k, 1.0f, 20, 0.1f);
         const kernel::VxLight light = point(light_cells * cell);
         for (glm::ivec3 c : {glm::ivec3(5, 20, 20), glm::ivec3(33, 8, 30), glm::ivec3(20, 20, 20), glm::ivec3(1, 3, 36)}) {
@@ -323,7 +323,7 @@ TEST(ConeShadow, PointLightInsideOrOnTheFaceOfAHomogeneousVolume) {
 TEST(ConeShadow, DenseMediaAndDegenerateLightsStayFinite) {
     const glm::ivec3 d(24);
     SatGrid g(d, std::vector<float>(size_t(d.x) * d.y * d.z, 1e4f));
-    kernel::CpuKernel k = g.k;
+    kernel::CpuSatKernel k = g.k;
     setCone(k, 3.0f, 20, 0.05f);
     const float dense = k.vx_cone_tau({12, 12, 2}, directional({0, 0, -1}));
     EXPECT_TRUE(std::isfinite(dense));

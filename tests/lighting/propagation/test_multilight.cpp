@@ -9,7 +9,7 @@
 #include <random>
 
 #include "backend/backend_choice.h"
-#include "kernel/cpu_kernel.h"
+#include "lighting/propagation/kernel/cpu_propagation_kernel.h"
 #include "lighting/propagation/cpu_propagation.h"
 #include "core/error.h"
 #include "lighting/propagation/propagation_stages.h"
@@ -95,7 +95,7 @@ TEST(LightGroups, SpotLightsInsideNeedOnlyThePassesTheirConeReaches) {
 // Every cell's flow is carried in full: the weights of the six sweeps sum to 1, with and without
 // blending, including flows on diagonals and along axes.
 TEST(LightGroups, PerCellWeightsSumToOne) {
-    kernel::CpuKernel k;
+    kernel::CpuPropagationKernel k;
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::vector<glm::vec3> flows = {{1, 0, 0}, {0, -1, 0}, {1, 1, 0}, {-1, 1, 1}, {0, 1e-6f, 1}, {3, 0.01f, 0.2f}};

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "backend/backend_choice.h"
-#include "kernel/cpu_kernel.h"
+#include "lighting/propagation/kernel/cpu_propagation_kernel.h"
 #include "lighting/propagation/propagation_stages.h"
 #include "lighting/propagation/light_sweeps.h"
 #include "optics/diffusion_profile.h"
@@ -267,7 +267,7 @@ TEST(Propagation, OpticalDepthIsIndependentOfTheGridResolution) {
 TEST(Propagation, IndirectEnergyPerSliceIsConserved) {
     const glm::ivec3 dims(40, 40, 24);
     std::vector<float> sigma(size_t(dims.x) * dims.y * dims.z, 0.3f);
-    kernel::CpuKernel k;
+    kernel::CpuPropagationKernel k;
     k.Q.grid_to_world = glm::mat4(1.0f);
     k.Q.world_to_grid = glm::mat4(1.0f);
     k.Q.dims = dims;

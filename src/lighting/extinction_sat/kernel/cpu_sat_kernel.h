@@ -1,0 +1,14 @@
+// The extinction SAT's light passes (vx_sat.h: the summed-area table's exact box sums, the
+// AO shells and the shadow cones of cuboids, Schlegel 2011) compiled as C++ over the march
+// kernel's accessors, as cpu_kernel.h compiles the march. A struct of its own, so that editing the
+// light passes' kernel text recompiles only what runs them, never the march.
+#pragma once
+#include "kernel/cpu_kernel.h"
+
+namespace voxlux::kernel {
+
+struct CpuSatKernel : CpuKernel {
+#include "lighting/extinction_sat/kernel/vx_sat.h"
+};
+
+}  // namespace voxlux::kernel
