@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "test_support.h"
+
 namespace voxlux::test {
 namespace {
 
@@ -82,7 +84,7 @@ std::vector<std::pair<std::string, std::string>> includes(const fs::path& root) 
 }
 
 TEST(Layers, EveryFolderIsALayer) {
-    const fs::path root = VOXLUX_SOURCE_DIR;
+    const fs::path root = sourceDir();
     std::set<std::string> unplaced;
     for (const auto& [file, header] : includes(root))
         for (const std::string& path : {file, header})
@@ -110,7 +112,7 @@ TEST(Layers, PathsFallInTheirLayers) {
 }
 
 TEST(Layers, NoFileIncludesALayerAboveItsOwn) {
-    const fs::path root = VOXLUX_SOURCE_DIR;
+    const fs::path root = sourceDir();
     std::ostringstream upward;
     for (const auto& [file, header] : includes(root))
         if (layerOf(header) > layerOf(file))
@@ -141,7 +143,7 @@ std::set<std::string> voxluxSymbols(const std::string& archive, bool defined) {
 TEST(Layers, NoLibraryNeedsALayerAboveItsOwn) {
     // The layers' archives, lowest first (VOXLUX_LAYERS in CMakeLists.txt).
     std::vector<std::string> archives;
-    std::stringstream list(VOXLUX_LAYER_LIBRARIES);
+    std::stringstream list(layerLibraries());
     for (std::string archive; std::getline(list, archive, ',');) archives.push_back(archive);
     ASSERT_GE(archives.size(), 13u);
     std::set<std::string> below;  // defined by this layer's library or a lower one

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 std::string sharedData(const std::string& relative) {
     const char* root = std::getenv("VOXLUX_SHARED_DATA");  // another checkout layout
-    fs::path p = fs::path(root ? root : VOXLUX_SHARED_DATA) / relative;
+    fs::path p = fs::path(root ? root : defaultSharedData()) / relative;
     return fs::exists(p) ? p.string() : std::string();
 }
 
@@ -90,7 +90,7 @@ std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const
     return p;
 }
 
-CliResult runCli(const std::string& args) { return runShell(std::string(VOXLUX_BINARY) + " " + args); }
+CliResult runCli(const std::string& args) { return runShell(voxluxBinary() + " " + args); }
 
 CliResult runShell(const std::string& command) {
     static int counter = 0;

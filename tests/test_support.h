@@ -21,6 +21,14 @@
 
 namespace voxlux::test {
 
+// Where this build's files are (test_paths.cpp, which CMake generates): read at run time, so that
+// no test's compile line holds an absolute path and a clone in another folder, as CI's, hits
+// ccache. Plain values, safe to read while other files' statics are made.
+std::string sourceDir();          // the repository
+std::string voxluxBinary();       // the voxlux program under test
+std::string defaultSharedData();  // ../shared/data beside the repository
+std::string layerLibraries();     // every layer's static library, comma-separated (Layers.*)
+
 // Path of a file in ../shared/data (or $VOXLUX_SHARED_DATA), or empty when it is absent: a
 // user's fresh clone has no ../shared, CI does; VOXLUX_REQUIRE_SHARED then skips with a message.
 std::string sharedData(const std::string& relative);

@@ -223,8 +223,8 @@ std::string RenderGraph::explain(const Scene& scene) const {
     for (const Stage* s : order_) {
         const StageActivity a = s->activity(scene);
         const StageReads r = s->reads();
-        out << (a.runs ? "run   " : "skip  ") << s->name();
-        for (size_t pad = s->name().size(); pad < 18; ++pad) out << ' ';
+        out << (a.runs ? "run   " : "skip  ") << s->name() << ' ';   // a long name still ends in a space
+        for (size_t pad = s->name().size() + 1; pad < 18; ++pad) out << ' ';
         out << a.reason << "  [after:";
         for (const Stage* up : s->inputs()) out << ' ' << up->name();
         if (s->inputs().empty()) out << " -";

@@ -86,10 +86,9 @@ void setLights(const Scene& scene, KernelInputs& in) {
     }
     P.ambient = ambient;
     P.has_ambient = glm::any(glm::greaterThan(ambient, glm::vec3(0.0f))) ? 1 : 0;
-    P.shadow_mode = scene.effects.shadows == ShadowMethod::Raymarch      ? VX_SHADOWS_RAYMARCH
-                    : scene.effects.shadows == ShadowMethod::SatCone     ? VX_SHADOWS_SAT_CONE
-                    : scene.effects.shadows == ShadowMethod::Propagation ? VX_SHADOWS_PROPAGATION
-                                                                         : VX_SHADOWS_NONE;
+    static_assert(int(ShadowMethod::None) == VX_SHADOWS_NONE && int(ShadowMethod::Raymarch) == VX_SHADOWS_RAYMARCH &&
+                  int(ShadowMethod::SatCone) == VX_SHADOWS_SAT_CONE && int(ShadowMethod::Propagation) == VX_SHADOWS_PROPAGATION);
+    P.shadow_mode = int(scene.effects.shadows);
     P.light_count = int(in.lights.size());
     P.local_light_count = local_lights;
 }

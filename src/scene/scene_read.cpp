@@ -426,11 +426,8 @@ Effects readEffects(const JsonObject& o) {
     o.rejectUnknown({"shadows", "ambient_occlusion", "color_bleeding", "cone", "propagation", "indirect", "surface",
                      "perturbation", "light_resolution", "light_memory_mb"});
     Effects e;
-    std::string shadows = o.choice("shadows", {"none", "raymarch", "sat_cone", "propagation"}, "raymarch");
-    e.shadows = shadows == "none"         ? ShadowMethod::None
-                : shadows == "sat_cone"   ? ShadowMethod::SatCone
-                : shadows == "propagation" ? ShadowMethod::Propagation
-                                           : ShadowMethod::Raymarch;
+    const std::string shadows = o.choice("shadows", kShadowMethodNames, shadowMethodName(ShadowMethod::Raymarch));
+    e.shadows = ShadowMethod(std::find(kShadowMethodNames.begin(), kShadowMethodNames.end(), shadows) - kShadowMethodNames.begin());
     if (o.has("propagation")) e.propagation = readPropagation(o.object("propagation"));
     if (o.has("indirect")) e.indirect = readOptional(o, "indirect", readIndirect);
     if (o.has("surface")) e.surface = readOptional(o, "surface", readSurface);

@@ -199,10 +199,7 @@ nlohmann::json sceneToJson(const Scene& s) {
     if (const auto& b = s.render.region) r["region"] = {decimal((*b)[0]), decimal((*b)[1]), decimal((*b)[2]), decimal((*b)[3])};
 
     auto& e = j["effects"];
-    e["shadows"] = s.effects.shadows == ShadowMethod::None          ? "none"
-                   : s.effects.shadows == ShadowMethod::SatCone     ? "sat_cone"
-                   : s.effects.shadows == ShadowMethod::Propagation ? "propagation"
-                                                                    : "raymarch";
+    e["shadows"] = shadowMethodName(s.effects.shadows);
     if (s.effects.ambient_occlusion)
         e["ambient_occlusion"] = {{"shells", s.effects.ambient_occlusion->shells},
                                   {"radius", decimal(s.effects.ambient_occlusion->radius)}};

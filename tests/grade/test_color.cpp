@@ -309,7 +309,7 @@ void expectOcioconvertMatches(const std::string& arguments, const std::vector<gl
         const auto at = command.find(name + ".exr");
         command.replace(at, name.size() + 4, dir + (name == "IN" ? "/in.exr" : "/out.exr"));
     }
-    const std::string line = "OCIO=" VOXLUX_SOURCE_DIR "/ocio/voxlux.ocio ocioconvert " + command + " > /dev/null 2>&1";
+    const std::string line = "OCIO=" + sourceDir() + "/ocio/voxlux.ocio ocioconvert " + command + " > /dev/null 2>&1";
     ASSERT_EQ(std::system(line.c_str()), 0) << line;
     Exr out = readExr(dir + "/out.exr");
     float worst = 0.0f;

@@ -183,7 +183,7 @@ TEST(DeepOutput, AHoldoutPlaneBetweenTheBoxesLeavesTheFrontBox) {
 // image's metadata; --resume renders a frame again when its deep image is missing.
 TEST(DeepOutput, TheDeepFlagWritesNukesChannelsBesideTheImage) {
     const std::string dir = tempDir("deep_cli");
-    const std::string args = "render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb --res 16x16 --backend cpu --deep -o " + dir + "/c.exr";
+    const std::string args = "render " + sourceDir() + "/grids/cloud.vdb --res 16x16 --backend cpu --deep -o " + dir + "/c.exr";
     CliResult r = runCli(args);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     Imf::DeepScanLineInputFile deep((dir + "/c.deep.exr").c_str());

@@ -16,8 +16,8 @@ namespace {
 // Renders the bundled scene `scene_file` small on the CPU and compares it with the committed
 // tests/golden/`golden` (or rewrites that under VOXLUX_UPDATE_GOLDEN=1).
 void expectMatchesGolden(const std::string& scene_file, const std::string& golden, int width, int height) {
-    const std::string path = std::string(VOXLUX_SOURCE_DIR) + "/tests/golden/" + golden;
-    Scene scene = loadSceneFile(std::string(VOXLUX_SOURCE_DIR) + "/grids/" + scene_file);
+    const std::string path = sourceDir() + "/tests/golden/" + golden;
+    Scene scene = loadSceneFile(sourceDir() + "/grids/" + scene_file);
     scene.render.width = width;
     scene.render.height = height;
     scene.render.backend = Backend::Cpu;

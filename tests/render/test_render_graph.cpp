@@ -172,7 +172,7 @@ TEST(RenderGraph, KeysReadWildcardsAndPresence) {
 
 // ---- The real graph ----
 
-std::string cloudPath() { return std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb"; }
+std::string cloudPath() { return sourceDir() + "/grids/cloud.vdb"; }
 
 // The crash scene of the render-graph issue: a disabled light before an enabled one.
 Scene disabledLightScene(ShadowMethod shadows, Backend backend) {
@@ -185,7 +185,7 @@ Scene disabledLightScene(ShadowMethod shadows, Backend backend) {
         "camera": {"position": [0.2, 0.25, 3.6], "look_at": [0, 0, 0], "fov": 30},
         "render": {"resolution": [40, 30]},
         "effects": {"light_resolution": 32, "ambient_occlusion": {"shells": 3}, "indirect": {"strength": 0.5}}})",
-                         "disabled.json", std::string(VOXLUX_SOURCE_DIR) + "/grids");
+                         "disabled.json", sourceDir() + "/grids");
     s.effects.shadows = shadows;
     s.render.backend = backend;
     return s;
@@ -399,7 +399,7 @@ TEST(RenderGraph, AllowingEmptyFramesReRunsNoLighting) {
 std::vector<std::pair<std::string, nlohmann::json>> sweepScenes() {
     std::vector<std::pair<std::string, nlohmann::json>> scenes;
     for (const char* name : {"default", "cloud_sat", "cloud_propagation", "cloud_multilight"}) {
-        std::ifstream in(std::string(VOXLUX_SOURCE_DIR) + "/grids/" + name + ".json");
+        std::ifstream in(sourceDir() + "/grids/" + name + ".json");
         scenes.emplace_back(name, nlohmann::json::parse(in));
     }
     nlohmann::json none = scenes[0].second, reference = none, eye = scenes[2].second, graded = none;
@@ -513,7 +513,7 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
     const std::string dir = tempDir("every_key");
     const std::string copy = dir + "/cloud_copy.vdb";
     std::filesystem::copy_file(cloudPath(), copy, std::filesystem::copy_options::overwrite_existing);
-    const std::string grids = std::string(VOXLUX_SOURCE_DIR) + "/grids";
+    const std::string grids = sourceDir() + "/grids";
     int swept = 0;
     std::set<std::string> skipped;
     for (const auto& [label, raw] : sweepScenes()) {

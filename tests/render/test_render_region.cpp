@@ -14,7 +14,7 @@ namespace {
 // [0.625, 0.75] (pixels 12..30 x 12..24), and compares every channel.
 void expectRegionMatchesTheWholeImage(const std::string& name, const std::string& flags) {
     const std::string dir = tempDir("region_" + name);
-    const std::string base = "render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --res 48x32 --pixel-type float " +
+    const std::string base = "render " + sourceDir() + "/grids/default.json --res 48x32 --pixel-type float " +
                              "--aovs direct,transmittance " + flags;
     CliResult r = runCli(base + " -o " + dir + "/whole.exr");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -56,7 +56,7 @@ TEST(RenderRegion, TheMarchFillsTheRegionAsTheWholeImageOnGl) {
 // The march reads the region: setting it on a renderer that has rendered re-runs the march (and
 // nothing before it), and the image changes.
 TEST(RenderRegion, SettingARegionRerunsTheMarchAlone) {
-    Scene scene = loadSceneFile(std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json");
+    Scene scene = loadSceneFile(sourceDir() + "/grids/default.json");
     scene.render.width = 32;
     scene.render.height = 24;
     scene.render.backend = Backend::Cpu;
@@ -78,7 +78,7 @@ TEST(RenderRegion, SettingARegionRerunsTheMarchAlone) {
 
 TEST(RenderRegion, ARegionOutsideTheImageIsRefused) {
     const std::string dir = tempDir("region_bad");
-    const CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --set 'render.region=[0.5,0,0.4,1]' -o " +
+    const CliResult r = runCli("render " + sourceDir() + "/grids/default.json --set 'render.region=[0.5,0,0.4,1]' -o " +
                                dir + "/x.exr");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: --set 'render.region=[0.5,0,0.4,1]': /render/region: expected [x_min, y_min, x_max, y_max], fractions "

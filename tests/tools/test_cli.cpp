@@ -81,7 +81,7 @@ TEST(Cli, DamagedFilesAreRefused) {
 
 // OpenVDB reads a file cut short without complaint; voxlux refuses it, wherever it was cut.
 TEST(Cli, TruncatedFilesAreRefused) {
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     const std::string cut = tempDir("truncated") + "/cloud.vdb";
     const auto size = fs::file_size(cloud);
     std::ifstream in(cloud, std::ios::binary);
@@ -206,7 +206,7 @@ TEST(Cli, InfoListsGridsAndBricks) {
 }
 
 TEST(Cli, InfoAsJson) {
-    CliResult r = runCli("info --json " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb");
+    CliResult r = runCli("info --json " + sourceDir() + "/grids/cloud.vdb");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto j = nlohmann::json::parse(r.out);
     ASSERT_EQ(j["grids"].size(), 1u);
@@ -222,7 +222,7 @@ TEST(Cli, InfoAsJson) {
 
 TEST(Cli, ExplainShowsThePlan) {
     // The quick form: one key light, ray-marched shadows.
-    CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb --explain -o x.exr");
+    CliResult r = runCli("render " + sourceDir() + "/grids/cloud.vdb --explain -o x.exr");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("run   load"), std::string::npos);
     EXPECT_NE(r.out.find("run   march             1 light, ray-marched shadow rays per sample (reference)  [after: "
@@ -235,7 +235,7 @@ TEST(Cli, ExplainShowsThePlan) {
               std::string::npos);
     EXPECT_NE(r.out.find("skip  grade"), std::string::npos);
 
-    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_sat.json --explain");
+    r = runCli("render " + sourceDir() + "/grids/cloud_sat.json --explain");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("run   light_grid        extinction box-filtered into a 128-cell light grid over the occupied bricks"),
               std::string::npos)
@@ -243,12 +243,12 @@ TEST(Cli, ExplainShowsThePlan) {
     EXPECT_NE(r.out.find("run   light_cache       ambient occlusion, 5 shells, 1 shadow cone of 20 cuboids (2 deg)"),
               std::string::npos)
         << r.out;
-    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) +
+    r = runCli("render " + sourceDir() +
                "/grids/cloud_sat.json --explain --light directional:dir=0,-1,0 --set effects.color_bleeding=1");
     EXPECT_NE(r.out.find("ambient_occlusion is on but no ambient light is in the scene"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("color_bleeding needs ambient occlusion"), std::string::npos) << r.out;
 
-    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_propagation.json --explain");
+    r = runCli("render " + sourceDir() + "/grids/cloud_propagation.json --explain");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("run   propagation       1 light swept along the closest axis; direct RGB, indirect RGB blurred "
                          "in a 30 deg cone over 9 taps, transport colour (0.8, 0.6, 0.45), perturbed"),
@@ -258,7 +258,7 @@ TEST(Cli, ExplainShowsThePlan) {
                          "noise-perturbed"),
               std::string::npos)
         << r.out;
-    r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --explain --shadows raymarch");
+    r = runCli("render " + sourceDir() + "/grids/default.json --explain --shadows raymarch");
     EXPECT_NE(r.out.find("skip  illumination_grid skipped: no effect in the scene needs an illumination volume (indirect light "
                          "needs effects.shadows = propagation)"),
               std::string::npos)
@@ -268,7 +268,7 @@ TEST(Cli, ExplainShowsThePlan) {
 // The SAT scene end to end through the CLI: the light passes run, the ambient AOV is written.
 TEST(Cli, SatSceneRendersWithAmbientLayer) {
     const std::string dir = tempDir("sat_cli");
-    CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_sat.json --backend cpu --res 80x50 -o " +
+    CliResult r = runCli("render " + sourceDir() + "/grids/cloud_sat.json --backend cpu --res 80x50 -o " +
                          dir + "/sat.exr");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     // Stage times print as "  <stage> 0.012 s" (the output path contains "sat" too).
@@ -281,7 +281,7 @@ TEST(Cli, SatSceneRendersWithAmbientLayer) {
 
 TEST(Cli, SceneCommandReproducesTheQuickForm) {
     const std::string dir = tempDir("quick");
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     CliResult scene = runCli("scene " + cloud + " --res 40x30 --shadows none --density-scale 30");
     ASSERT_EQ(scene.exit_code, 0) << scene.err;
     std::ofstream(dir + "/scene.json") << scene.out;
@@ -296,7 +296,7 @@ TEST(Cli, SceneCommandReproducesTheQuickForm) {
 
 TEST(Cli, ExrHasRequestedLayersAndMetadata) {
     const std::string dir = tempDir("exr");
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     CliResult r = runCli("render " + cloud + " --res 32x24 --backend cpu --aovs direct,depth --pixel-type float "
                          "--density-scale 30 --stats " + dir + "/stats.json -o " + dir + "/a.exr");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -335,11 +335,11 @@ TEST(Cli, OddPathsAndMistypedEditsAreNeverInternalErrors) {
     std::ofstream(dir + "/edit.json") << R"({"edits": [{"light": 0, "set": {"type": 5}}]})";
     // File names are bytes: a Latin-1 name (not UTF-8) renders, keys and hashes escape it.
     const std::string latin1 = dir + "/caf\xe9";
-    fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", latin1 + ".vdb");
+    fs::copy_file(sourceDir() + "/grids/cloud.vdb", latin1 + ".vdb");
     const CliResult r = runCli("render '" + latin1 + ".vdb' --res 16x16 --backend cpu --shadows none -o '" + latin1 + ".exr'");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(fs::exists(latin1 + ".exr"));
-    expectRejected("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud_multilight.json --res 16x16 --light-edit " + dir +
+    expectRejected("render " + sourceDir() + "/grids/cloud_multilight.json --res 16x16 --light-edit " + dir +
                        "/edit.json",
                    dir + "/edit.json: /edits/0/set/type: expected a string, got number");
 }
@@ -348,7 +348,7 @@ TEST(Cli, OddPathsAndMistypedEditsAreNeverInternalErrors) {
 // leaves no EXR behind (it used to exit 2 with the EXR written).
 TEST(Cli, AnOutputThatCannotBeWrittenLeavesNoOther) {
     const std::string dir = tempDir("all_or_none");
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     std::ofstream(dir + "/a_file") << "not a folder";
     const std::string args = "render " + cloud + " --res 16x16 --backend cpu --shadows none -o " + dir + "/out.exr";
     CliResult r = runCli(args + " --preview " + dir + "/a_file/preview.png");
@@ -374,7 +374,7 @@ TEST(Cli, AnOutputThatCannotBeWrittenLeavesNoOther) {
 // --fail-fast stops before any frame.
 TEST(Cli, AHugeFrameRangeNamesItsMissingFramesInOneLine) {
     const std::string dir = tempDir("huge_range");
-    fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud.0001.vdb", fs::copy_options::overwrite_existing);
+    fs::copy_file(sourceDir() + "/grids/cloud.vdb", dir + "/cloud.0001.vdb", fs::copy_options::overwrite_existing);
     const std::string command = "render " + dir + "/cloud.####.vdb --frames 1-2000000000 --res 16x16 --backend cpu --shadows none -o " +
                                 dir + "/out.####.exr";
     CliResult r = runCli(command + " --fail-fast");
@@ -406,7 +406,7 @@ TEST(Cli, AnUnwritableOutputStopsTheRunBeforeTheFirstFrame) {
     if (!ro.problem.empty()) GTEST_SKIP() << ro.problem;
     const std::string dir = tempDir("unwritable_frames");
     for (const char* f : {"0001", "0002"})
-        fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud." + f + ".vdb", fs::copy_options::overwrite_existing);
+        fs::copy_file(sourceDir() + "/grids/cloud.vdb", dir + "/cloud." + f + ".vdb", fs::copy_options::overwrite_existing);
     const std::string args = "render " + dir + "/cloud.####.vdb --frames 1-2 --res 16x16 --backend cpu --shadows none";
     const std::map<std::string, std::string> cases = {
         {" -o " + ro.path + "/sub/f.####.exr", ro.path + "/sub/f.0001.exr: cannot create folder " + ro.path + "/sub: " + ro.cause},
@@ -437,7 +437,7 @@ TEST(Cli, AWordThatIsNoCommandIsNamed) {
 // go to standard error for every command. The "wrote" line names every file a frame wrote.
 TEST(Cli, NotesGoToStandardErrorAndWroteNamesEveryFile) {
     const std::string dir = tempDir("notes_and_wrote");
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     CliResult r = runCli("render " + cloud + " --res 16x16 --backend cpu --shadows none --deep -o " + dir + "/a.exr --preview " + dir + "/a.png");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out.rfind("wrote " + dir + "/a.exr, " + dir + "/a.deep.exr and " + dir + "/a.png (cpu, ", 0), 0u) << r.out;
@@ -453,7 +453,7 @@ TEST(Cli, NotesGoToStandardErrorAndWroteNamesEveryFile) {
 // its wall time, where all cores of this machine would take more. Bad values are refused.
 TEST(Cli, ThreadsOneKeepsARenderOnOneCore) {
     const std::string dir = tempDir("threads");
-    const std::string render = std::string(VOXLUX_BINARY) + " render " + std::string(VOXLUX_SOURCE_DIR) +
+    const std::string render = voxluxBinary() + " render " + sourceDir() +
                                "/grids/default.json --res 96x64 --backend cpu --method reference --spp 64 -o " + dir + "/t.exr";
     for (const std::string& command : {render + " --threads 1", "VOXLUX_THREADS=1 " + render}) {
         rusage before{}, after{};
@@ -467,10 +467,10 @@ TEST(Cli, ThreadsOneKeepsARenderOnOneCore) {
         ASSERT_GT(wall, 0.3) << command << ": too short to measure";
         EXPECT_LE(cpu, 1.1 * wall) << command << ": " << cpu << " s of CPU in " << wall << " s";
     }
-    CliResult r = runCli("render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --threads 0 -o " + dir + "/x.exr");
+    CliResult r = runCli("render " + sourceDir() + "/grids/default.json --threads 0 -o " + dir + "/x.exr");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: --threads 0: must be 1 or more\n");
-    r = runShell("VOXLUX_THREADS=many " + std::string(VOXLUX_BINARY) + " render " + std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json -o " +
+    r = runShell("VOXLUX_THREADS=many " + voxluxBinary() + " render " + sourceDir() + "/grids/default.json -o " +
                  dir + "/x.exr");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: VOXLUX_THREADS='many': expected a number of threads, 1 or more\n");
@@ -514,7 +514,7 @@ TEST(Cli, RepeatedGridNamesArePickedByIndexWithAWarning) {
 }
 
 TEST(Cli, BadOptionsAreRefusedWithTheOptionNamed) {
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     expectRejected("render " + cloud + " --res 512", "--res 512: expected WIDTHxHEIGHT");
     expectRejected("render " + cloud + " --res 0x10", "--res 0x10: /render/resolution: expected [width, height], integers in 1..16384");
     // Past int's range: converted to int before the check, it was undefined (fuzz_cli_specs found it).
@@ -532,7 +532,7 @@ TEST(Cli, BadOptionsAreRefusedWithTheOptionNamed) {
 // A light from the command line is read by the scene's light reader, so it gets exactly the
 // scene's checks, and its errors name the flag.
 TEST(Cli, LightFlagsGetTheScenesChecks) {
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     expectRejected("render " + cloud + " --light area:pos=0,0,0",
                    "--light 'area:pos=0,0,0': /type: 'area' is not one of directional, point, spot, ambient");
     expectRejected("render " + cloud + " --light ambient:dir=0,1,0",
@@ -551,7 +551,7 @@ TEST(Cli, LightFlagsGetTheScenesChecks) {
 
 // Numbers that have no value in the scene are refused, never turned into the default or wrapped.
 TEST(Cli, NonFiniteAndOutOfRangeNumbersAreRefused) {
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     expectRejected("render " + cloud + " --step nan", "--step: nan is not a finite number");
     expectRejected("render " + cloud + " --density-scale inf", "--density-scale: inf is not a finite number");
     expectRejected("render " + cloud + " --set effects.cone.samples=4294967316",

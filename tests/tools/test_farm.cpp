@@ -28,7 +28,7 @@ TEST(Farm, DryRunWritesTheJobFolderAndTheBatchScript) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     for (const char* f : {"0001", "0002", "0003", "0004", "0005"})
-        fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud." + f + ".vdb");
+        fs::copy_file(sourceDir() + "/grids/cloud.vdb", dir + "/cloud." + f + ".vdb");
     const std::string submit = "farm submit " + dir + "/cloud.####.vdb --frames 1-5 --chunk 2 --frame-on 1 --res 16x16 --backend cpu -o " +
                                dir + "/out/cloud.####.exr --job-dir " + dir + "/job";
     CliResult r = runCli(submit + " --dry-run");
@@ -37,7 +37,7 @@ TEST(Farm, DryRunWritesTheJobFolderAndTheBatchScript) {
                                                  "--job-name=voxlux-job --output=" + dir + "/job/logs/chunk_%a.out --open-mode=append " +
                                                  dir + "/job/slurm.sh");
     const std::string script = fileText(dir + "/job/slurm.sh");
-    const std::string task = std::string(VOXLUX_BINARY) + " render " + dir + "/job/scene.json --frames ";
+    const std::string task = voxluxBinary() + " render " + dir + "/job/scene.json --frames ";
     EXPECT_NE(script.find("  0) exec " + task + "1-2 --resume --log-json " + dir + "/job/logs/chunk_0.jsonl ;;\n"), std::string::npos) << script;
     EXPECT_NE(script.find("  2) exec " + task + "5 --resume --log-json " + dir + "/job/logs/chunk_2.jsonl ;;\n"), std::string::npos) << script;
     // The task's scene has the camera fixed and the output absolute; a dry run leaves no job.
@@ -55,16 +55,16 @@ TEST(Farm, DryRunWritesTheJobFolderAndTheBatchScript) {
               std::string::npos);
 
     // Without sbatch on PATH, submit says so and leaves no job either.
-    r = runShell("PATH=/nonexistent " + std::string(VOXLUX_BINARY) + " " + submit);
+    r = runShell("PATH=/nonexistent " + voxluxBinary() + " " + submit);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: sbatch: cannot run (not installed, or not on PATH)\n");
     EXPECT_FALSE(fs::exists(dir + "/job/job.json"));
     r = runCli("farm status " + dir + "/job");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: " + dir + "/job/job.json: no farm job here (voxlux farm submit makes one)\n");
-    r = runCli("farm submit " + std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb -o x.exr --dry-run");
+    r = runCli("farm submit " + sourceDir() + "/grids/cloud.vdb -o x.exr --dry-run");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "voxlux: error: " + std::string(VOXLUX_SOURCE_DIR) +
+    EXPECT_EQ(r.err, "voxlux: error: " + sourceDir() +
                          "/grids/cloud.vdb: renders one file; a farm job needs a #### sequence and its frames\n");
 }
 
@@ -76,7 +76,7 @@ public:
         const char* made = mkdtemp(name);
         if (!made) return;
         dir_ = made;
-        const CliResult r = runShell(std::string(VOXLUX_SOURCE_DIR) + "/tests/farm/slurm_cluster.sh start " + dir_);
+        const CliResult r = runShell(sourceDir() + "/tests/farm/slurm_cluster.sh start " + dir_);
         started_ = r.exit_code == 0;
         skipped_ = r.exit_code == 77;   // a daemon could not start; any other failure is the script's
         message_ = r.err;
@@ -84,7 +84,7 @@ public:
     }
     ~SlurmCluster() {
         if (dir_.empty()) return;
-        runShell(std::string(VOXLUX_SOURCE_DIR) + "/tests/farm/slurm_cluster.sh stop " + dir_);
+        runShell(sourceDir() + "/tests/farm/slurm_cluster.sh stop " + dir_);
         unsetenv("SLURM_CONF");
         fs::remove_all(dir_);
     }

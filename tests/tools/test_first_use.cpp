@@ -100,7 +100,7 @@ TEST(FirstUse, DensityInVoxelUnitsGivesTheSameLookAtAnyScale) {
 // Exposure scales light by 2^stops before the output transform, never alpha, and is recorded.
 TEST(FirstUse, ExposureScalesLightByStopsAndIsRecorded) {
     const std::string dir = tempDir("exposure");
-    const std::string base = "render " + std::string(VOXLUX_SOURCE_DIR) +
+    const std::string base = "render " + sourceDir() +
                              "/grids/default.json --res 40x25 --backend cpu --pixel-type float --aovs direct";
     ASSERT_EQ(runCli(base + " -o " + dir + "/zero.exr").exit_code, 0);
     CliResult r = runCli(base + " --set render.exposure=1.5 -o " + dir + "/lifted.exr");
@@ -116,7 +116,7 @@ TEST(FirstUse, ExposureScalesLightByStopsAndIsRecorded) {
 }
 
 TEST(FirstUse, OutputExtensionsNeverLie) {
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     const std::string dir = tempDir("extensions");
     CliResult r = runCli("render " + cloud + " -o " + dir + "/out.png");
     EXPECT_EQ(r.exit_code, 2);
@@ -136,7 +136,7 @@ TEST(FirstUse, SceneWritesARenderableScene) {
     const std::string dir = tempDir("scene_cmd");
     fs::create_directories(dir + "/shots/a");
     fs::create_directories(dir + "/caches");
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     for (int f : {1, 2}) fs::copy_file(cloud, dir + "/caches/cloud." + std::to_string(f) + ".vdb", fs::copy_options::overwrite_existing);
     CliResult r = runCli("scene " + dir + "/caches/cloud.#.vdb --frames 1-2 --res 16x16 -o " + dir + "/shots/a/shot.json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -149,12 +149,12 @@ TEST(FirstUse, SceneWritesARenderableScene) {
     EXPECT_EQ(j["output"]["path"], "cloud.#.exr");
     EXPECT_TRUE(j.contains("camera"));
     // Rendered from another folder: the volume is found beside the scene, the image lands here.
-    const std::string render = "cd " + dir + " && " + VOXLUX_BINARY + " render shots/a/shot.json --backend cpu >/dev/null";
+    const std::string render = "cd " + dir + " && " + voxluxBinary() + " render shots/a/shot.json --backend cpu >/dev/null";
     ASSERT_EQ(std::system(render.c_str()), 0);
     EXPECT_TRUE(fs::exists(dir + "/cloud.1.exr"));
     EXPECT_TRUE(fs::exists(dir + "/cloud.2.exr"));
     // Given relative to the folder the command runs in, it is written relative to the scene's folder.
-    ASSERT_EQ(std::system(("cd " + dir + " && " + VOXLUX_BINARY + " scene caches/cloud.#.vdb --frames 1-2 -o shots/a/rel.json 2>/dev/null >/dev/null").c_str()), 0);
+    ASSERT_EQ(std::system(("cd " + dir + " && " + voxluxBinary() + " scene caches/cloud.#.vdb --frames 1-2 -o shots/a/rel.json 2>/dev/null >/dev/null").c_str()), 0);
     EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/shots/a/rel.json"))["volume"]["path"], "../../caches/cloud.#.vdb");
     // To standard output the volume path is absolute, and the image is named after the cache.
     r = runCli("scene " + cloud);
@@ -166,7 +166,7 @@ TEST(FirstUse, SceneWritesARenderableScene) {
 
 // --explain prints the graph, then what stops the render, without reading voxels.
 TEST(FirstUse, ExplainSaysWhatIsMissing) {
-    const std::string cloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb";
+    const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     CliResult r = runCli("render " + cloud + " --explain");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.out.find("\ncannot render:\n  no output path: pass -o FILE.exr or set output.path in the scene\n"),
@@ -218,7 +218,7 @@ TEST(FirstUse, InfoReportsWhatATdChecksFirst) {
 // no file, not even a temporary.
 TEST(FirstUse, ProgressLinesAndCtrlCLeaveNothingBehind) {
     const std::string dir = tempDir("interrupt");
-    const std::string scene = std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json";
+    const std::string scene = sourceDir() + "/grids/default.json";
     CliResult r = runCli("render " + scene + " --res 8x8 --method reference --spp 4 --progress -o " + dir + "/small.exr");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.err.rfind("voxlux: progress: [>                   ] reference 0/256 samples  elapsed 0m00s", 0), 0u) << r.err;
@@ -227,7 +227,7 @@ TEST(FirstUse, ProgressLinesAndCtrlCLeaveNothingBehind) {
     fs::remove(dir + "/small.exr");
     fs::remove(dir + "/quiet.exr");
 
-    const std::string command = std::string(VOXLUX_BINARY) + " render " + scene + " --res 256x256 --method reference --spp 4096 -o " +
+    const std::string command = voxluxBinary() + " render " + scene + " --res 256x256 --method reference --spp 4096 -o " +
                                 dir + "/long.exr --preview " + dir + "/long.png 2>" + dir + "/err.txt & pid=$!; sleep 2; kill -INT $pid; "
                                 "wait $pid; echo $? >" + dir + "/rc.txt";
     ASSERT_EQ(std::system(("bash -c '" + command + "'").c_str()), 0);
@@ -243,7 +243,7 @@ TEST(FirstUse, ProgressLinesAndCtrlCLeaveNothingBehind) {
 TEST(FirstUse, AMissingFrameOfAQuickFormSequenceStopsOnlyThatFrame) {
     const std::string dir = tempDir("quick_missing");
     for (int f : {1, 2, 4, 5})
-        fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud.000" + std::to_string(f) + ".vdb",
+        fs::copy_file(sourceDir() + "/grids/cloud.vdb", dir + "/cloud.000" + std::to_string(f) + ".vdb",
                       fs::copy_options::overwrite_existing);
     const CliResult r = runCli("render " + dir + "/cloud.####.vdb --frames 1-5 --res 16x16 --backend cpu --shadows none -o " + dir +
                                "/out.####.exr");

@@ -21,7 +21,7 @@ std::string cloudFrames(const std::string& name) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     for (const char* f : {"0001", "0002", "0003", "0004"})
-        fs::copy_file(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb", dir + "/cloud." + f + ".vdb");
+        fs::copy_file(sourceDir() + "/grids/cloud.vdb", dir + "/cloud." + f + ".vdb");
     return dir;
 }
 
@@ -194,7 +194,7 @@ TEST(Sequence, StepsAndListsRenderTheirFramesOnly) {
 // On a terminal the bar names the frame and the stage running (script(1) gives the render one).
 TEST(Sequence, TheProgressBarShowsTheFrameAndStage) {
     const std::string dir = cloudFrames("progress_bar");
-    CliResult r = runShell("script -qec '" + std::string(VOXLUX_BINARY) + " " + renderArgs(dir, "1-2") + "' /dev/null");
+    CliResult r = runShell("script -qec '" + voxluxBinary() + " " + renderArgs(dir, "1-2") + "' /dev/null");
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     const size_t bar = r.out.find("] sequence 0/2 frames  elapsed ");
     ASSERT_NE(bar, std::string::npos) << r.out;

@@ -20,7 +20,7 @@
 namespace voxlux::test {
 namespace {
 
-const std::string kDefaultScene = std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json";
+const std::string kDefaultScene = sourceDir() + "/grids/default.json";
 
 // The bundled cloud at a small size, trilinear, so a render takes milliseconds.
 Scene smallCloud() {

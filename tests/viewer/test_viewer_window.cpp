@@ -15,7 +15,7 @@ namespace voxlux::test {
 namespace {
 
 const std::string kXvfb = "xvfb-run -a -s '-screen 0 1600x900x24' ";
-const std::string kCloud = std::string(VOXLUX_SOURCE_DIR) + "/grids/default.json --res 160x100 --filter trilinear";
+const std::string kCloud = sourceDir() + "/grids/default.json --res 160x100 --filter trilinear";
 
 // Writes {"actions": actions} to `dir`/`name` and returns its path.
 std::string writeScript(const std::string& dir, const std::string& name, const nlohmann::json& actions) {
@@ -24,7 +24,7 @@ std::string writeScript(const std::string& dir, const std::string& name, const n
     return path;
 }
 
-CliResult view(const std::string& args) { return runShell(kXvfb + VOXLUX_BINARY + " view " + args); }
+CliResult view(const std::string& args) { return runShell(kXvfb + voxluxBinary() + " view " + args); }
 
 // Runs the shell script `shell` on the virtual display, with each key of `words` in it replaced,
 // then DIR (which the words may hold): the viewer in the background and xdotool's events beside it.
@@ -151,11 +151,11 @@ TEST(ViewerWindow, BadEditsAndMissingFilesShowTheErrorAndTheViewerGoesOn) {
     // The last good state, shown again and saved.
     EXPECT_EQ(readPng(dir + "/a.png").bytes, readPng(dir + "/b.png").bytes);
     const std::string saved_volume = readJson(dir + "/saved.json")["volume"]["path"];
-    EXPECT_EQ(std::filesystem::canonical(dir + "/" + saved_volume), std::filesystem::canonical(std::string(VOXLUX_SOURCE_DIR) + "/grids/cloud.vdb"));
+    EXPECT_EQ(std::filesystem::canonical(dir + "/" + saved_volume), std::filesystem::canonical(sourceDir() + "/grids/cloud.vdb"));
 }
 
 TEST(ViewerWindow, WithoutADisplayItSaysSoAndExitsWith2) {
-    const CliResult r = runShell("env -u DISPLAY " + std::string(VOXLUX_BINARY) + " view " + kCloud);
+    const CliResult r = runShell("env -u DISPLAY " + voxluxBinary() + " view " + kCloud);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: voxlux view: no display (DISPLAY is not set); run it on a desktop, or under xvfb-run for scripts\n");
 }
@@ -182,7 +182,7 @@ TEST(ViewerWindow, RealXEventsOrbitTheCameraAndUncheckALight) {
         touch DIR/go.flag)sh";
     const CliResult r = runEvents(dir, "VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done;" +
                                            events + "; wait $pid",
-                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SCRIPT", script}});
+                                  {{"VIEWER", voxluxBinary() + " view " + kCloud}, {"SCRIPT", script}});
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json saved = readJson(dir + "/saved.json");
     EXPECT_EQ(saved["lights"][0]["enabled"], false);
@@ -209,7 +209,7 @@ TEST(ViewerWindow, AClickOnTheTimelineRendersThatFrame) {
         wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
         xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool click 1; sleep 0.3
         touch DIR/go.flag; wait $pid)sh",
-                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + dir + "/boxes.json"}, {"SCRIPT", script}});
+                                  {{"VIEWER", voxluxBinary() + " view " + dir + "/boxes.json"}, {"SCRIPT", script}});
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json stats = readJson(dir + "/stats.json");
     EXPECT_EQ(stats["shown_frame"], 3);
@@ -252,7 +252,7 @@ TEST(ViewerWindow, PlainDragsNavigateAndALightDragIsOneUndoStep) {
         touch DIR/go2; sleep 1
         xdotool key ctrl+z; sleep 0.3; touch DIR/go3; sleep 1
         xdotool key ctrl+shift+z; sleep 0.3; touch DIR/go4; wait $pid)sh",
-                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SCRIPT", script},
+                                  {{"VIEWER", voxluxBinary() + " view " + kCloud}, {"SCRIPT", script},
                                    {"IMAGE", centreOf("image")}, {"HANDLE", orbitedHandle}});
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     std::vector<nlohmann::json> s;
@@ -291,7 +291,7 @@ TEST(ViewerWindow, TypedPathsKeepEveryKeyAndTheExposureDragIsFine) {
         set -- EXPOSURE; xdotool mousemove --window $wid $1 $2; sleep 0.3
         xdotool mousedown 1; sleep 0.2; for i in $(seq 12); do xdotool mousemove_relative 5 0; sleep 0.05; done; xdotool mouseup 1; sleep 0.3
         touch DIR/go2; wait $pid)sh",
-                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SCRIPT", script},
+                                  {{"VIEWER", voxluxBinary() + " view " + kCloud}, {"SCRIPT", script},
                                    {"OUTPUT", centreOf("output")}, {"EXPOSURE", centreOf("light/exposure")}});
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json before = readJson(dir + "/before.json"), after = readJson(dir + "/after.json");
@@ -319,7 +319,7 @@ TEST(ViewerWindow, TheTimelineTakesATypedFrameAndTheArrowKeys) {
         set -- IMAGE; xdotool mousemove --window $wid $1 $2; sleep 0.2
         xdotool key Right; sleep 0.3; xdotool key Left; sleep 0.3; xdotool key Left; sleep 0.5
         touch DIR/go2; wait $pid)sh",
-                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + dir + "/boxes.json"}, {"SCRIPT", script},
+                                  {{"VIEWER", voxluxBinary() + " view " + dir + "/boxes.json"}, {"SCRIPT", script},
                                    {"TYPED", centreOf("timeline/typed")}, {"IMAGE", centreOf("image")}});
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     EXPECT_EQ(readJson(dir + "/typed.json")["shown_frame"], 3);
@@ -345,7 +345,7 @@ TEST(ViewerWindow, ACtrlDragRendersARegionAndACtrlClickClearsIt) {
         xdotool mouseup 1 keyup ctrl; sleep 0.5; touch DIR/go1
         for i in $(seq 600); do [ -f DIR/region.png ] && break; sleep 0.1; done; sleep 0.3
         xdotool keydown ctrl click 1; xdotool keyup ctrl; sleep 0.5; touch DIR/go2; wait $pid)sh",
-                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SCRIPT", script}});
+                                  {{"VIEWER", voxluxBinary() + " view " + kCloud}, {"SCRIPT", script}});
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     const nlohmann::json region = readJson(dir + "/region.json")["region"];
     ASSERT_EQ(region.size(), 4u) << readJson(dir + "/region.json").dump();
@@ -370,7 +370,7 @@ TEST(ViewerWindow, IdleTakesUnderOnePercentOfACore) {
         last=$(ticks); for i in $(seq 120); do sleep 1; now=$(ticks); [ $((now - last)) -le 2 ] && break; last=$now; done
         start=$(ticks); sleep 5; end=$(ticks)
         echo $((end - start)) $(getconf CLK_TCK) > DIR/cpu.txt; kill -TERM $pid; wait $pid)sh",
-                                  {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}});
+                                  {{"VIEWER", voxluxBinary() + " view " + kCloud}});
     EXPECT_EQ(r.exit_code, 143) << r.err << r.out;
     double ticks = -1, per_second = 100;
     std::ifstream(dir + "/cpu.txt") >> ticks >> per_second;
@@ -388,7 +388,7 @@ TEST(ViewerWindow, OneSignalClosesTheWindowWithinTwoSeconds) {
             timeout 120 xdotool search --sync --onlyvisible --name "voxlux view" >/dev/null; sleep 1
             kill -SIGNAL $pid; start=$(date +%s%N); wait $pid; rc=$?
             echo $rc $(( ($(date +%s%N) - start) / 1000000 )) > DIR/rc.txt)sh",
-                                      {{"VIEWER", std::string(VOXLUX_BINARY) + " view " + kCloud}, {"SIGNAL", signal}});
+                                      {{"VIEWER", voxluxBinary() + " view " + kCloud}, {"SIGNAL", signal}});
         ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
         int rc = -1, ms = -1;
         std::ifstream(dir + "/rc.txt") >> rc >> ms;

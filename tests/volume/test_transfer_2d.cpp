@@ -229,7 +229,7 @@ TEST(Transfer2d, PresetsAreNamedInTheScene) {
 TEST(Transfer2d, RegionsSurviveWritingAndReadingTheScene) {
     std::vector<std::vector<TransferRegion>> lists;
     for (const TransferPreset& p : transferPresets()) lists.push_back(p.regions);
-    lists.push_back(loadSceneFile(std::string(VOXLUX_SOURCE_DIR) + "/grids/mri_head.json").material.transfer_2d);
+    lists.push_back(loadSceneFile(sourceDir() + "/grids/mri_head.json").material.transfer_2d);
     for (const auto& regions : lists) {
         Scene s;
         s.volume.path = "a.vdb";
