@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "source_dir.h"
 #include "volume/brick_atlas.h"
 #include "scene/camera.h"
 #include "io/exr_writer.h"
@@ -95,7 +96,7 @@ void emptySpaceRows(const LoadedVolume& volume, const Scene& scene, const Camera
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string cache = std::string(VOXLUX_SOURCE_DIR) + "/../shared/data/arnold-usd/smoke.vdb";
+    std::string cache = bench::sourceDir() + "/../shared/data/arnold-usd/smoke.vdb";
     int res = 512, repeats = 3;
     std::vector<std::string> backends{"cpu", "gl"};
     for (int i = 1; i < argc; ++i) {

@@ -43,6 +43,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "source_dir.h"
 #include "bench_timing.h"
 #include "render/light_rig.h"
 #include "lighting/propagation/propagation_stages.h"
@@ -519,7 +520,7 @@ void calibration(const Volume& vol, int resolution, int repeats) {
 int main(int argc, char** argv) {
     std::setvbuf(stdout, nullptr, _IOLBF, 0);   // tables show as they come when redirected
     bench::Options options;
-    if (!bench::parseOptions(argc, argv, "voxlux_bench_multilight", std::string(VOXLUX_SOURCE_DIR) + "/../shared/data",
+    if (!bench::parseOptions(argc, argv, "voxlux_bench_multilight", bench::sourceDir() + "/../shared/data",
                              options))
         return 2;
     const bool quick = options.quick;

@@ -26,6 +26,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "source_dir.h"
 #include "bench_timing.h"
 #include "scene/camera.h"
 #include "lighting/propagation/light_sweeps.h"
@@ -547,7 +548,7 @@ void sweep(const Dataset& d, bool quick, std::vector<PlotSeries>& plot, const ch
 int main(int argc, char** argv) {
     std::setvbuf(stdout, nullptr, _IOLBF, 0);   // progress shows when redirected (a full run takes minutes)
     bench::Options options;
-    if (!bench::parseOptions(argc, argv, "voxlux_bench_propagation", std::string(VOXLUX_SOURCE_DIR) + "/../shared/data", options)) return 2;
+    if (!bench::parseOptions(argc, argv, "voxlux_bench_propagation", bench::sourceDir() + "/../shared/data", options)) return 2;
     const std::string& data = options.data;
     const std::string& svg = options.svg;
     const bool quick = options.quick, paper = options.paper, sweeps = options.sweeps;

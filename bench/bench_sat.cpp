@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "source_dir.h"
 #include "bench_timing.h"
 #include "scene/camera.h"
 #include "lighting/extinction_sat/cpu_light_pass.h"
@@ -265,7 +266,7 @@ void sweep(const Dataset& d, bool quick, std::vector<PlotSeries>& plot, const ch
 
 int main(int argc, char** argv) {
     bench::Options options;
-    if (!bench::parseOptions(argc, argv, "voxlux_bench_sat", std::string(VOXLUX_SOURCE_DIR) + "/../shared/data", options)) return 2;
+    if (!bench::parseOptions(argc, argv, "voxlux_bench_sat", bench::sourceDir() + "/../shared/data", options)) return 2;
     const std::string& data = options.data;
     const std::string& svg = options.svg;
     const bool quick = options.quick, paper = options.paper, sweeps = options.sweeps;
