@@ -43,10 +43,7 @@ public:
     // Those the march reads, in the order they set its sources (MarchLightingStage).
     virtual std::vector<const MarchLightingStage*> marchInputs() const = 0;
     // What its light update did in the frame whose stage reports are `frame`, if it has one.
-    virtual std::optional<LightUpdate> lightUpdate(const std::vector<StageReport>& frame) const {
-        (void)frame;
-        return std::nullopt;
-    }
+    virtual std::optional<LightUpdate> lightUpdate(const std::vector<StageReport>& /* frame */) const { return std::nullopt; }
 };
 
 struct LightingMethodEntry {

@@ -89,11 +89,16 @@ StageActivity MarchStage::activity(const Scene& s) const {
     return {true, march};
 }
 
+MarchSources MarchStage::lightingSources() const {
+    MarchSources sources;
+    for (const MarchLightingStage* s : lighting_) s->lightTheMarch(sources);
+    return sources;
+}
+
 void MarchStage::run(StageRun& run) {
     const Scene& scene = run.scene;
-    MarchSources sources;
+    MarchSources sources = lightingSources();
     sources.camera = &camera_.camera();
-    for (const MarchLightingStage* s : lighting_) s->lightTheMarch(sources);
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), documentFrame(run.document),
                                                  color_.xyzToWorking(), sources);
     if (scene.render.method != RenderMethod::Reference) {

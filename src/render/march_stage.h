@@ -17,6 +17,7 @@ class ClassifyStage;
 class EmptyFrameStage;
 class ColorSpaceStage;
 class MarchLightingStage;
+struct MarchSources;
 
 class MarchStage final : public Stage {
 public:
@@ -30,6 +31,9 @@ public:
     void run(StageRun& run) override;
     void release() override;
     const RenderImage& image() const { return image_; }
+    // The lighting methods' outputs the march reads (no camera): what each of its lighting stages
+    // holds now, the later ones over the earlier.
+    MarchSources lightingSources() const;
     // For an interactive render: keep the reference's per-pixel sums (ReferenceSums, 144 bytes a
     // pixel), so that when only render.reference.spp grows the new samples are added to the
     // image instead of starting it again.

@@ -43,12 +43,6 @@ struct Renderer::Stages {
             for (const MarchLightingStage* s : m->marchInputs()) out.push_back(s);
         return out;
     }
-    // What the march read last: each method's output it reads, as the march gathers them.
-    MarchSources marchSources() const {
-        MarchSources sources;
-        for (const MarchLightingStage* s : marchInputs()) s->lightTheMarch(sources);
-        return sources;
-    }
 
     ColorSpaceStage color_space;
     ColorTransformsStage color_transforms{color_space};
@@ -171,8 +165,8 @@ std::string writtenFilesText(const FrameResult& r) {
     return text;
 }
 
-const IlluminationVolume* Renderer::illumination() const { return stages_->marchSources().illumination; }
+const IlluminationVolume* Renderer::illumination() const { return stages_->march.lightingSources().illumination; }
 
-const LightCache* Renderer::lightCache() const { return stages_->marchSources().light_cache; }
+const LightCache* Renderer::lightCache() const { return stages_->march.lightingSources().light_cache; }
 
 }  // namespace voxlux
