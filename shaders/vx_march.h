@@ -1,11 +1,12 @@
 // Ray marching through the brick atlas: the brick walk of vx_dda.h, which skips empty space, optical depth
 // accumulated as a sum (tau += sigma * dt, T = exp(-tau)), brute-force shadow rays, compositing.
+// The light a sample scatters comes from the lighting methods through the vx_lighting_* hooks
+// (generated from the registered methods, cmake/kernel_contract.cmake), so no method is named here.
 #pragma once
-#include "lighting/extinction_sat/kernel/vx_cache.h"
-#include "lighting/propagation/kernel/vx_illumination.h"
 #include "vx_dda.h"
 #include "vx_deep.h"
 #include "vx_motion.h"
+#include "vx_lighting.h"
 #include "vx_noise.h"
 
 // Clips [t0, t1] against the box of occupied bricks (grown by the perturbation's displacement,
@@ -226,11 +227,10 @@ VX_INLINE float vx_surface_factor(VxSurface surface, vec3 wi, vec3 dir) {
 // Single-scattered light at world point x for a camera ray travelling along unit direction dir,
 // from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
-// `cell` locates x in the light cache (read only for SAT-cone shadows); `surface` is vx_surface.
-vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxGridCell cell, VxSurface surface) {
+// `lit` is what the lighting methods looked up at x; `surface` is vx_surface.
+vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VX_IN(VxLightingSample) lit, VxSurface surface) {
     vec3 sum = vec3(0.0f);
-    vec3 unshadowed = vec3(0.0f);   // what the lights would bring unshadowed (propagation)
-    bool propagated = P.shadow_mode == VX_SHADOWS_PROPAGATION && P.illum_dims.x > 0;
+    vec3 unshadowed = vec3(0.0f);   // what the lights would bring unshadowed
     for (int i = 0; i < P.light_count; ++i) {
         VxLight light = vx_light(i);
         bool directional = light.type == VX_LIGHT_DIRECTIONAL;
@@ -239,22 +239,12 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VxGridCell cell, VxSurface sur
         float dist;
         vec3 e = vx_light_incident(light, x, wi, dist);
         if (e.x + e.y + e.z <= 0.0f) continue;
-        float shadow = 1.0f;
-        if (P.shadow_mode == VX_SHADOWS_RAYMARCH) shadow = vx_shadow_transmittance(x, wi, dist);
-        if (P.shadow_mode == VX_SHADOWS_SAT_CONE && P.shadow_channel >= 0) shadow = vx_exp(-vx_cache_value(cell, P.shadow_channel + i));
+        float shadow = P.shadow_rays != 0 ? vx_shadow_transmittance(x, wi, dist) : 1.0f;
+        shadow *= vx_lighting_shadow(lit, i);
         unshadowed = vx_radiance_add(unshadowed, e);
         sum = vx_radiance_add(sum, e * (shadow * vx_phase_hg(dot(wi, dir), P.anisotropy) * vx_surface_factor(surface, wi, dir)));
     }
-    // The illumination volume holds the lights' attenuated RGB together: each light keeps its
-    // phase, scaled per channel by the fraction of the lights' unshadowed radiance that arrives.
-    // Exact for one light, and for any number when the phase is isotropic. Slightly negative
-    // values (float residue of subtracted lights) count as none.
-    if (propagated) {
-        vec3 arrived = max(vx_illum_direct(x), vec3(0.0f));
-        sum *= vec3(unshadowed.x > 0.0f ? arrived.x / unshadowed.x : 0.0f, unshadowed.y > 0.0f ? arrived.y / unshadowed.y : 0.0f,
-                    unshadowed.z > 0.0f ? arrived.z / unshadowed.z : 0.0f);
-    }
-    return sum;
+    return vx_lighting_direct(lit, sum, unshadowed);
 }
 
 // Optical depth is accumulated as a sum (Schlegel 2011, Eq. 2) and turned into transmittance
@@ -321,14 +311,11 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     float dt = P.step;
     float cutoff = P.transmittance_cutoff;
     bool shaded_surface = P.surface_inv_range > 0.0f;
-    bool per_ray_directional = P.shadow_mode == VX_SHADOWS_NONE && !shaded_surface;
-    VxGridCell no_cell;
-    no_cell.base = 0;
-    no_cell.fx = 0.0f;
-    no_cell.fy = 0.0f;
-    no_cell.fz = 0.0f;
-    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, no_cell, vx_no_surface()) : vec3(0.0f);
-    bool cached = P.cache_dims.x > 0;
+    bool per_ray_directional = P.shadow_rays == 0 && !vx_lighting_shadows() && !shaded_surface;
+    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, vx_lighting_sample(origin), vx_no_surface())
+                                           : vec3(0.0f);
+    bool lit_varies = vx_lighting_varies();
+    bool lit_indirect = vx_lighting_indirect_on();
     vec3 ambient = P.ambient;
     int per_sample_lights = per_ray_directional ? VX_LIGHTS_LOCAL : VX_LIGHTS_ALL;
     bool emits = P.emission_sources > 0;
@@ -338,7 +325,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     // lights and unoccluded ambient only, one albedo, no emission), a chunk's scattered light
     // telescopes exactly to albedo * L * (T before - T after): no per-sample work beyond the
     // SIMD batches.
-    bool constant_light = per_ray_directional && plain_albedo && !emits && P.local_light_count == 0 && !cached;
+    bool constant_light = per_ray_directional && plain_albedo && !emits && P.local_light_count == 0 && !lit_varies;
     bool moving = vx_moving(time);
     float tau = 0.0f;
     float T = 1.0f;
@@ -404,14 +391,13 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                 if (absorbed > 0.0f) {
                     vec3 x = origin + dir * t - shift;
                     vec3 albedo = plain_albedo || !here ? P.albedo : vx_albedo(taps);
-                    VxGridCell cell = cached ? vx_cache_cell(x) : no_cell;
+                    VxLightingSample lit = vx_lighting_sample(x);
                     VxSurface surface = shaded_surface ? vx_surface(moving ? p - vx_to_index_dir(shift) : p) : vx_no_surface();
                     if (surface_grid && here) surface.weight *= vx_surface_weight_at(taps);
-                    vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, cell, surface));
+                    vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, lit, surface));
                     px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
-                    if (P.indirect_weight > 0.0f)
-                        px.indirect = vx_radiance_add(px.indirect, albedo * vx_illum_indirect(x) * (P.indirect_weight * absorbed));
-                    px.ambient = vx_radiance_add(px.ambient, albedo * ambient * vx_ambient_occlusion(cell) * absorbed);
+                    if (lit_indirect) px.indirect = vx_radiance_add(px.indirect, albedo * vx_lighting_indirect(lit) * absorbed);
+                    px.ambient = vx_radiance_add(px.ambient, albedo * ambient * vx_lighting_ambient(lit) * absorbed);
                     depth_weighted += absorbed * t * cos_forward;
                 }
                 px.emission = vx_radiance_add(px.emission, le * (sigma > 1e-6f ? absorbed / sigma : T * dt));

@@ -25,8 +25,6 @@ struct VxLight {
 struct VxParams {
     mat4 camera_to_world;   // camera looks down -Z, +Y up
     mat4 world_to_index;    // affine inverse of the grid's index-to-world transform
-    mat4 world_to_cache;    // world -> light-cache cell coordinates (cell centres at i + 0.5)
-    mat4 world_to_illum;    // world -> illumination-volume cell coordinates (cell centres at i + 0.5)
 
     float tan_half_fov;     // tan(vertical field of view / 2)
     float aspect;           // width / height
@@ -48,7 +46,7 @@ struct VxParams {
 
     int light_count;        // lights in the light array (ambient lights are summed into `ambient`)
     int local_light_count;  // of which point and spot lights
-    int shadow_mode;        // VX_SHADOWS_*
+    int shadow_rays;        // 1: shadows are brute-force rays through the medium (effects.shadows "raymarch")
     int emission_sources;   // emitting grids (0 = none)
 
     vec3 ambient;           // ambient light radiance (light type "ambient")
@@ -62,20 +60,7 @@ struct VxParams {
     int use_transfer;       // 1 if the transfer-function LUT is used
     int use_color_grid;     // 1 if a colour (Cd) grid is bound
 
-    ivec3 cache_dims;       // light-cache cells (0 = no cache)
-    int cache_floats;       // floats per light-cache cell
-    int ao_channel;         // first ambient-occlusion channel (-1: none)
-    int ao_channels;        // 3 if AO is RGB (colour bleeding), else 1
-    int shadow_channel;     // first per-light shadow channel (-1: none)
     int emission_source_floats;  // atlas floats per emission source
-
-    // The illumination volume (propagation shadows): direct RGB per cell, then the indirect RGB
-    // block, possibly at a coarser (chroma-subsampled) resolution.
-    ivec3 illum_dims;       // direct-light cells (0 = no volume)
-    int chroma_factor;      // indirect block's subsampling (1 or 2)
-    ivec3 chroma_dims;      // indirect-light cells
-    int indirect_offset;    // first float of the indirect block
-    float indirect_weight;  // indirect strength / 4 pi (0 = no indirect light)
     float surface_low;      // Kniss Eq. 11: gradient where surface shading starts
     float surface_inv_range;  // 1 / (gradient where it is full - surface_low) (0 = off)
     float specular;         // specular weight
@@ -90,10 +75,10 @@ struct VxParams {
     float noise_density;    // extinction amplitude
     float noise_transport;  // transport-colour amplitude
     int voxel_filter;       // VX_FILTER_* (filter is a GLSL reserved word)
-    int light_filter;       // VX_FILTER_*: how the illumination volume is read between cells
     int deep_samples;       // deep samples per ray (output.deep_samples), 0 = no deep output
     int motion_blur;        // 1: camera rays take times within the shutter (vx_motion.h)
     int time_samples;       // rays a pixel spreads over the shutter (the march; 1 without motion blur)
+    int pad5;
 
     int use_velocity;       // 1 if a velocity grid is bound (atlas channel vx_atlas_velocity)
     float velocity_per_frame;  // velocity_scale / fps: world units a frame per unit of the velocity grid
@@ -111,78 +96,6 @@ struct VxParams {
     int pad4;
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
-};
-
-// The light passes' parameters (Schlegel 2011): the extinction SAT over the light grid and the
-// AO-shell and shadow-cone queries that fill the light cache. Light-grid coordinates are cells:
-// cell (i, j, k) spans [i, i+1) x [j, j+1) x [k, k+1).
-struct VxSatParams {
-    mat4 light_to_world;    // light-grid coordinates -> world
-    mat4 world_to_light;
-    ivec3 dims;             // light-grid cells
-    int planes;             // SAT planes (1 extinction, 4 with bleeding)
-    vec4 quantum;           // per SAT plane: the value of one integer unit (a power of two)
-    int shells;             // AO shell count
-    float shell_radius;     // AO neighbourhood radius, cells
-    float cell_world;       // world edge of one cell
-    int ao_plane;           // SAT plane the AO pass reads
-    float cone_tan;         // tan(cone half-angle)
-    int cone_cuboids;       // cuboids per cone
-    float cone_growth;      // each cuboid this much longer than the one before
-    float cone_growth_total;  // (1 + growth)^cuboids
-    int light;              // light index (shadow pass), -1 for ambient occlusion
-    int channel;            // cache channel written
-    int cache_floats;       // floats per cache cell
-    int pad0;
-};
-
-// One propagation sweep (Ropinski 2010, Sec. 4.1) over a grid of cells, slice by slice along an
-// axis. A light sweep carries one light through the grid (1 channel: direct luminance, unblurred;
-// 3: indirect RGB, blurred in a cone) and adds it, tinted and weighted, to the RGB block of the
-// illumination volume; the eye sweep carries the indirect light towards the camera. Grid
-// coordinates are cells: cell (i, j, k) spans [i, i+1) x [j, j+1) x [k, k+1).
-#define VX_MAX_TAPS 32
-// The second blend axis fades out before its steps move this many cells sideways per slice.
-#define VX_PROP_MAX_SLOPE 16.0f
-
-// One blur tap: an offset in the unit disc and its weight (the weights sum to 1).
-struct VxTap {
-    vec2 offset;
-    float weight;
-    float pad0;
-};
-
-struct VxPropParams {
-    mat4 grid_to_world;
-    mat4 world_to_grid;
-    ivec3 dims;             // cells
-    int channels;           // propagated per cell (1 or 3)
-    int axis;               // the sweep axis
-    int direction;          // +1 / -1: the way slices advance
-    int slice;              // the slice written
-    int tap_count;          // blur taps
-    ivec3 strides;          // index step per cell along x, y, z of the extinction grid and sweep input
-    int max_slope;          // the steepest slope (cells sideways per slice) a point sweep computes
-    int per_cell_flow;      // 1: weight each cell by its own flow (point and spot lights)
-    int blend_axes;         // 1: blend the two closest axes (Sunden 2015, Eq. 5)
-    int eye_sweep;          // 1 for the eye sweep (flow towards the camera)
-    int source_sweep;       // 1: light enters nowhere from outside, and each cell adds its own source
-                            // (vx_prop_in, radiance per world unit: emission, or scattered light)
-    vec3 source;            // grid position of the light (or camera), or for a directional light
-                            // the grid-space direction it travels
-    int source_is_position; // 1 for a position, 0 for a direction
-    float flow;             // +1 light sweep (flow away from the source), -1 eye sweep (towards it)
-    float blur_tan;         // tan(blur cone half-angle)
-    float weight;           // what this sweep adds (negative: subtracts)
-    float cells_per_voxel;  // grid cells per index voxel (the perturbation's displacement is in voxels)
-    vec3 atten;             // optical-depth multiplier per channel (1 direct, -ln(transport) indirect)
-    int transport_planes;   // 1: the indirect sweep's -ln(transport) is per cell, in planes 1-3 of
-                            // vx_prop_sigma (extinction times it), and atten is unused
-    vec3 tint;              // RGB added per unit propagated (direct: the light's colour over its
-                            // luminance; indirect and eye: 1)
-    float pad2;
-    VxLight light;          // the light (world), for the radiance that enters from outside the grid
-    VxTap taps[VX_MAX_TAPS];
 };
 
 // What one camera ray returns; the AOVs are kept separate so the EXR writer can lay them out.

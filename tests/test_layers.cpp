@@ -24,8 +24,9 @@ namespace fs = std::filesystem;
 // Lowest first; each layer is the paths that match one of its patterns (from the start of the
 // path), and a path belongs to the first layer that matches it. The kernel's data layout (its
 // constants, parameter structs and page-table hash) sits below everything that bakes data for the
-// kernel. The scene's description (scene.h) sits below optics, which reading a scene validates
-// against. A lighting method's kernel/ folder (its kernel text and the output the march reads) is
+// kernel, and with them each lighting method's parameter blocks (its kernel/vx_<method>_types.h,
+// which kernel_types.h reaches through the generated vx_lighting_types.h). The scene's
+// description (scene.h) sits below optics, which reading a scene validates against. A lighting method's kernel/ folder (its kernel text and the output the march reads) is
 // part of the kernel, which compiles every method's kernel text into one program.
 struct Layer {
     std::string name;
@@ -33,7 +34,8 @@ struct Layer {
 };
 const std::vector<Layer> kLayers = {
     {"core", {"src/core/"}},
-    {"kernel layout", {"shaders/vx_prelude\\.h$", "shaders/vx_types\\.h$", "src/kernel/kernel_types\\.h$"}},
+    {"kernel layout", {"shaders/vx_prelude\\.h$", "shaders/vx_types\\.h$", "src/kernel/kernel_types\\.h$",
+                       "src/lighting/[^/]+/kernel/vx_[^/]+_types\\.h$"}},
     {"scene description", {"src/scene/scene\\.(h|cpp)$"}},
     {"optics", {"src/optics/"}},
     {"scene", {"src/scene/"}},
@@ -102,6 +104,7 @@ TEST(Layers, PathsFallInTheirLayers) {
         {"src/lighting/propagation/kernel/vx_propagation.h", "kernel"},
         {"src/lighting/propagation/cpu_propagation.cpp", "lighting"},
         {"src/lighting/new_method/kernel/vx_new.h", "kernel"},
+        {"src/lighting/new_method/kernel/vx_new_types.h", "kernel layout"},
         {"src/tools/main.cpp", "tools"},
     };
     for (const auto& [path, layer] : cases) {

@@ -13,6 +13,7 @@
 
 #include "volume/brick_atlas.h"
 #include "kernel/kernel_inputs.h"
+#include "lighting/propagation/kernel/illumination_volume.h"
 #include "render/renderer.h"
 #include "kernel/kernel_backend.h"
 #include "volume/page_table.h"
@@ -90,7 +91,7 @@ struct Lit {
     std::unique_ptr<Renderer> renderer;
     Camera camera;
     FrameResult result;                    // of the last update
-    const IlluminationVolume& volume() const { return *renderer->illumination(); }
+    const IlluminationVolume& volume() const { return *renderer->lightingOutput<IlluminationVolume>(); }
     const LightUpdate& update() const { return *result.light_update; }
     // Lights `scene` (seen from the same camera) on the same renderer: only what changed re-runs.
     void relight(Scene scene);

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 
 namespace voxlux {
 
@@ -22,8 +23,9 @@ kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
     k.lights = in.lights;
     k.tf_lut = in.tf_lut;
     k.emission_lut = in.emission_lut;
-    if (in.light_cache) k.cache = in.light_cache->values;
-    if (in.illumination) k.illum = in.illumination->values;
+    k.L = in.lighting.blocks;
+    for (const KernelArrayRef& a : in.lighting.arrays)
+        if (!k.vx_bind_array(a.block, a.data, a.bytes)) throw std::logic_error("the kernel has no array " + a.block);
     k.noise = in.noise;
     return k;
 }

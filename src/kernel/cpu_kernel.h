@@ -2,6 +2,8 @@
 // struct, so their functions become members and the backend data accessors below are in scope,
 // exactly as the GL backend provides them as buffer reads (shaders/march.comp).
 #pragma once
+#include <array>
+#include <string_view>
 #include <vector>
 
 #include "kernel/kernel_inputs.h"
@@ -31,28 +33,14 @@ struct KernelArray {
 };
 
 struct CpuKernel {
-    VxParams P{};
-    KernelArray<float> density;
-    KernelArray<float> emission;           // source-major channels (P.emission_source_floats each)
+    // The parameter blocks, arrays and accessors of the kernel contract (generated,
+    // cmake/kernel_contract.cmake): P, L, a pass's block; density, page, lights, cache, ...
+#include "vx_cpu_data.inc"
+
+    // The atlas's vector grids, one block on GL (vx_gl_bindings.glsl), arrays of their own here.
     KernelArray<float> color;              // 3 floats per voxel
     KernelArray<float> surface;            // 1 float per voxel
     KernelArray<float> velocity;           // 3 floats per voxel
-    KernelArray<ivec4> page;
-    KernelArray<VxLight> lights;
-    KernelArray<vec4> tf_lut;
-    KernelArray<vec4> emission_lut;        // VX_EMISSION_LUT_SIZE rows per emission source
-    KernelArray<float> cache;              // light cache, P.cache_floats per cell
-    VxSatParams S{};                       // light passes only
-    KernelArray<uint> sat;
-    KernelArray<float> illum;              // illumination volume (march)
-    KernelArray<vec4> noise;               // perturbation table
-    VxPropParams Q{};                      // propagation sweeps only
-    KernelArray<float> prop_sigma;
-    KernelArray<float> prop_prev;
-    KernelArray<float> prop_in;
-
-    float vx_atlas_density(int i) const { return density.at(i, "atlas density"); }
-    float vx_atlas_emission(int i) const { return emission.at(i, "atlas emission"); }
     vec3 vx_atlas_color(int i) const {
         return vec3(color.at(3 * i, "atlas colour"), color.at(3 * i + 1, "atlas colour"), color.at(3 * i + 2, "atlas colour"));
     }
@@ -60,17 +48,6 @@ struct CpuKernel {
     vec3 vx_atlas_velocity(int i) const {
         return vec3(velocity.at(3 * i, "atlas velocity"), velocity.at(3 * i + 1, "atlas velocity"), velocity.at(3 * i + 2, "atlas velocity"));
     }
-    ivec4 vx_page_entry(int i) const { return page.at(i, "page table"); }
-    VxLight vx_light(int i) const { return lights.at(i, "light"); }
-    vec4 vx_tf_lut(int i) const { return tf_lut.at(i, "transfer LUT"); }
-    vec4 vx_emission_lut(int i) const { return emission_lut.at(i, "emission LUT"); }
-    float vx_cache(int i) const { return cache.at(i, "light cache"); }
-    uint vx_sat_word(int i) const { return sat.at(i, "SAT"); }
-    float vx_illum(int i) const { return illum.at(i, "illumination volume"); }
-    vec4 vx_noise(int i) const { return noise.at(i, "noise table"); }
-    float vx_prop_sigma(int i) const { return prop_sigma.at(i, "propagation extinction"); }
-    float vx_prop_prev(int i) const { return prop_prev.at(i, "propagation slice"); }
-    float vx_prop_in(int i) const { return prop_in.at(i, "sweep input"); }
 
 #include "vx_march.h"
 };

@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "scene/camera.h"
-#include "optics/diffusion_profile.h"
 #include "optics/noise_table.h"
 #include "optics/transfer_function.h"
 
@@ -37,7 +36,6 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     P.world_to_index = glm::inverse(atlas.index_to_world);
     P.step = r.step * edge;
     P.voxel_filter = r.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
-    P.light_filter = scene.effects.propagation.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
     P.deep_samples = scene.output.deep ? std::clamp(scene.output.deep_samples, 1, 64) : 0;   // a ray holds 65 (vx_deep.h)
     P.shadow_step = r.shadow_step * edge;
     P.transmittance_cutoff = r.transmittance_cutoff;
@@ -86,44 +84,9 @@ void setLights(const Scene& scene, KernelInputs& in) {
     }
     P.ambient = ambient;
     P.has_ambient = glm::any(glm::greaterThan(ambient, glm::vec3(0.0f))) ? 1 : 0;
-    static_assert(int(ShadowMethod::None) == VX_SHADOWS_NONE && int(ShadowMethod::Raymarch) == VX_SHADOWS_RAYMARCH &&
-                  int(ShadowMethod::SatCone) == VX_SHADOWS_SAT_CONE && int(ShadowMethod::Propagation) == VX_SHADOWS_PROPAGATION);
-    P.shadow_mode = int(scene.effects.shadows);
+    P.shadow_rays = scene.effects.shadows == ShadowMethod::Raymarch ? 1 : 0;
     P.light_count = int(in.lights.size());
     P.local_light_count = local_lights;
-}
-
-// The lighting methods' outputs the march reads: the light cache, the illumination volume.
-void setLighting(const Scene& scene, const MarchSources& sources, KernelInputs& in) {
-    auto& P = in.params;
-    P.ao_channel = -1;
-    P.ao_channels = 1;
-    P.shadow_channel = -1;
-    if (const LightCache* c = sources.light_cache; c && c->channels > 0) {
-        in.light_cache = c;
-        P.world_to_cache = c->world_to_cache;
-        P.cache_dims = c->dims;
-        P.cache_floats = c->channels;
-        P.ao_channel = c->ambient_channel;
-        P.ao_channels = c->ambient_width;
-        P.shadow_channel = c->shadow_channel;
-    }
-    P.chroma_factor = 1;
-    if (const IlluminationVolume* v = sources.illumination; v && !v->values.empty()) {
-        in.illumination = v;
-        P.world_to_illum = v->world_to_illum;
-        P.illum_dims = v->dims;
-        P.chroma_factor = v->chroma;
-        P.chroma_dims = v->chroma_dims;
-        P.indirect_offset = int(v->indirectOffset());
-    }
-    if (const auto& ind = scene.effects.indirect; ind && scene.effects.shadows == ShadowMethod::Propagation) {
-        P.indirect_weight = ind->strength / (4.0f * float(M_PI));
-        // The march scatters the sky's radiance unoccluded; a multiply scattering medium keeps only
-        // this share of it at its surface. The reference traces the sky itself.
-        if (ind->model == IndirectModel::Diffusion && scene.render.method == RenderMethod::March)
-            P.ambient *= diffuseSkyFactor(scene.material.albedo, scene.material.anisotropy);
-    }
 }
 
 // Kniss 2003's surface shading and perturbation.
@@ -180,6 +143,11 @@ void setMotionBlur(const Scene& scene, const BrickAtlas& atlas, const Camera* ca
 
 }  // namespace
 
+void MarchLighting::setArray(const std::string& block, const void* data, size_t bytes) {
+    std::erase_if(arrays, [&](const KernelArrayRef& a) { return a.block == block; });
+    arrays.push_back({block, data, bytes});
+}
+
 KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const PageTable& pages, float frame,
                               const glm::mat3& xyz_to_working, const MarchSources& sources) {
     KernelInputs in;
@@ -202,7 +170,8 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     P.region_max_probe = pages.region_max_probe;
     setMedium(scene, atlas, xyz_to_working, in);
     setLights(scene, in);
-    setLighting(scene, sources, in);
+    in.lighting = sources.lighting;   // the methods' blocks and arrays, as their stages set them
+    P.ambient *= sources.lighting.ambient_scale;
     setKnissEffects(scene.effects, voxelEdge(atlas.index_to_world), frame, in);
     setMotionBlur(scene, atlas, sources.camera, in);
     return in;

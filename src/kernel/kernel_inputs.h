@@ -1,18 +1,37 @@
 // Everything the march kernel reads, gathered from the scene and the earlier stages' outputs.
 // Both backends take this one struct: the CPU backend points at its arrays, the GL backend uploads
-// them. The light stages build theirs without a camera, light cache or illumination volume.
+// them. The light stages build theirs without a camera or the lighting methods' outputs.
 #pragma once
 #include <vector>
 
+#include <string>
+
 #include "volume/brick_atlas.h"
 #include "optics/emission.h"
-#include "lighting/propagation/kernel/illumination_volume.h"
 #include "kernel/kernel_types.h"
-#include "lighting/extinction_sat/kernel/light_cache.h"
 #include "volume/page_table.h"
 #include "scene/scene.h"
 
 namespace voxlux {
+
+// One of the kernel's arrays by its storage block's name (the kernel contract's, e.g.
+// "LightCache"): its first byte and length, owned by the stage that made it.
+struct KernelArrayRef {
+    std::string block;
+    const void* data = nullptr;
+    size_t bytes = 0;
+};
+
+// What the lighting methods hand the march: each method's parameter block (its member of
+// VxLighting; zero, its "off", when it does not run) and the arrays its hooks read.
+struct MarchLighting {
+    kernel::VxLighting blocks{};
+    std::vector<KernelArrayRef> arrays;
+    glm::vec3 ambient_scale{1.0f};   // the share of the ambient light the methods keep (multiple scattering)
+
+    // Sets the array of `block`, replacing an earlier method stage's.
+    void setArray(const std::string& block, const void* data, size_t bytes);
+};
 
 struct KernelInputs {
     kernel::VxParams params{};
@@ -21,8 +40,7 @@ struct KernelInputs {
     std::vector<glm::vec4> emission_lut;    // VX_EMISSION_LUT_SIZE rows per emission source
     const BrickAtlas* atlas = nullptr;
     const PageTable* pages = nullptr;
-    const LightCache* light_cache = nullptr;             // the light_cache stage's output, or none
-    const IlluminationVolume* illumination = nullptr;    // the propagation or eye_pass stage's, or none
+    MarchLighting lighting;                 // the lighting methods' blocks and arrays
     std::vector<glm::vec4> noise;           // perturbation table, empty without perturbation
     glm::ivec4 region{0};                   // the pixels [x0, y0) to [x1, y1) to march (render.region)
 };
@@ -30,8 +48,7 @@ struct KernelInputs {
 // The stage outputs the march reads besides the medium (each optional).
 struct MarchSources {
     const Camera* camera = nullptr;                      // resolved: the scene's, or the framing
-    const LightCache* light_cache = nullptr;
-    const IlluminationVolume* illumination = nullptr;
+    MarchLighting lighting;
 };
 
 // `frame` (the sequence frame) animates the perturbation. `xyz_to_working` takes blackbody

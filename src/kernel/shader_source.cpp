@@ -29,13 +29,8 @@ void appendFile(std::string& out, const std::string& name) {
 }  // namespace
 
 std::string assembleComputeShader(const std::string& entry, const std::string& defines) {
-    // The GL bindings declare `P` and the data accessors, which the later headers call.
-    static const char* kKernel[] = {"vx_prelude.h", "vx_types.h", "vx_gl_bindings.glsl", "vx_sample.h",
-                                    "vx_optics.h", "vx_grid.h", "vx_cache.h", "vx_illumination.h", "vx_noise.h",
-                                    "vx_motion.h", "vx_deep.h", "vx_dda.h", "vx_march.h", "vx_sat.h",
-                                    "vx_propagation.h"};
     std::string out = kHeader + defines;
-    for (const char* f : kKernel) appendFile(out, f);
+    for (const std::string& f : kernelProgramFiles()) appendFile(out, f);
     appendFile(out, entry);
     return out;
 }
@@ -43,6 +38,7 @@ std::string assembleComputeShader(const std::string& entry, const std::string& d
 std::string assembleGradeShader(const std::string& ocio_shader) {
     std::string out = kHeader;
     appendFile(out, "vx_prelude.h");
+    appendFile(out, "vx_kernel_bindings.h");
     appendFile(out, "vx_grade.h");
     appendSource(out, ocio_shader);
     appendFile(out, "grade.comp");

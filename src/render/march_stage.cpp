@@ -89,15 +89,10 @@ StageActivity MarchStage::activity(const Scene& s) const {
     return {true, march};
 }
 
-MarchSources MarchStage::lightingSources() const {
-    MarchSources sources;
-    for (const MarchLightingStage* s : lighting_) s->lightTheMarch(sources);
-    return sources;
-}
-
 void MarchStage::run(StageRun& run) {
     const Scene& scene = run.scene;
-    MarchSources sources = lightingSources();
+    MarchSources sources;
+    for (const MarchLightingStage* s : lighting_) s->lightTheMarch(scene, sources.lighting);
     sources.camera = &camera_.camera();
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), documentFrame(run.document),
                                                  color_.xyzToWorking(), sources);

@@ -17,7 +17,6 @@ class ClassifyStage;
 class EmptyFrameStage;
 class ColorSpaceStage;
 class MarchLightingStage;
-struct MarchSources;
 
 class MarchStage final : public Stage {
 public:
@@ -31,9 +30,8 @@ public:
     void run(StageRun& run) override;
     void release() override;
     const RenderImage& image() const { return image_; }
-    // The lighting methods' outputs the march reads (no camera): what each of its lighting stages
-    // holds now, the later ones over the earlier.
-    MarchSources lightingSources() const;
+    // The lighting methods' stages the march reads, in the order they hand it their outputs.
+    const std::vector<const MarchLightingStage*>& lightingStages() const { return lighting_; }
     // For an interactive render: keep the reference's per-pixel sums (ReferenceSums, 144 bytes a
     // pixel), so that when only render.reference.spp grows the new samples are added to the
     // image instead of starting it again.

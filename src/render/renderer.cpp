@@ -165,8 +165,6 @@ std::string writtenFilesText(const FrameResult& r) {
     return text;
 }
 
-const IlluminationVolume* Renderer::illumination() const { return stages_->march.lightingSources().illumination; }
-
-const LightCache* Renderer::lightCache() const { return stages_->march.lightingSources().light_cache; }
+const std::vector<const MarchLightingStage*>& Renderer::lightingStages() const { return stages_->march.lightingStages(); }
 
 }  // namespace voxlux

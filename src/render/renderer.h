@@ -21,13 +21,12 @@
 #include "graph/render_graph.h"
 #include "kernel/kernel_backend.h"
 #include "lighting/light_update.h"
+#include "lighting/march_lighting.h"
 #include "scene/scene.h"
 
 
 namespace voxlux {
 
-struct IlluminationVolume;
-struct LightCache;
 struct LoadedVolume;
 
 struct FrameResult {
@@ -90,10 +89,18 @@ public:
     // outputPathProblem's message when the scene has none.
     FrameResult renderToFile(std::optional<int> frame, bool allow_empty);
 
-    // What the march read last: the illumination volume (with the eye pass's indirect light when
-    // it ran), or null without propagation; and the light cache, or null.
-    const IlluminationVolume* illumination() const;
-    const LightCache* lightCache() const;
+    // What the march read last of type `Output` (a lighting method's: IlluminationVolume, with the
+    // eye pass's indirect light when it ran; LightCache), the later of its lighting stages over the
+    // earlier, or null when none holds one.
+    template <class Output>
+    const Output* lightingOutput() const {
+        const Output* out = nullptr;
+        for (const MarchLightingStage* stage : lightingStages())
+            if (const auto* typed = dynamic_cast<const MarchLightingStageOf<Output>*>(stage); typed && typed->marchOutput())
+                out = typed->marchOutput();
+        return out;
+    }
+    const std::vector<const MarchLightingStage*>& lightingStages() const;
 
     // The render document for `frame`: the scene as sceneToJson writes it, plus /input (the
     // frame's file and its size and time, the frame number, $OCIO and allow_empty).

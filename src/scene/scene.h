@@ -160,7 +160,7 @@ glm::ivec4 regionPixels(const RenderSettings& render, int width, int height);
 // SAT cuboids, precomputed into the light cache. Propagation: Ropinski 2010 illumination volume,
 // swept slice by slice from the lights.
 enum class ShadowMethod { None, Raymarch, SatCone, Propagation };
-// effects.shadows' names, in ShadowMethod's order (which the kernel's VX_SHADOWS_* follow too).
+// effects.shadows' names, in ShadowMethod's order.
 inline const std::vector<std::string> kShadowMethodNames{"none", "raymarch", "sat_cone", "propagation"};
 inline const std::string& shadowMethodName(ShadowMethod m) { return kShadowMethodNames[size_t(m)]; }
 

@@ -54,9 +54,9 @@ TEST(KernelBounds, ACacheChannelPastTheCellTraps) {
     const std::vector<float> cache(2 * 2 * 2 * 3, 1.0f);
     kernel::CpuKernel k;
     k.cache = cache;
-    k.P.world_to_cache = glm::mat4(1.0f);
-    k.P.cache_dims = glm::ivec3(2);
-    k.P.cache_floats = 3;
+    k.L.extinction_sat.world_to_cache = glm::mat4(1.0f);
+    k.L.extinction_sat.cache_dims = glm::ivec3(2);
+    k.L.extinction_sat.cache_floats = 3;
     const auto cell = k.vx_cache_cell(glm::vec3(1.0f));
     EXPECT_EQ(k.vx_cache_value(cell, 2), 1.0f);
     // Channel 3 would read channel 0 of the next cell: no memory error, a wrong shadow.

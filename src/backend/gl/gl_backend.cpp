@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -52,6 +53,8 @@ public:
         const GLint ray_uniform = glGetUniformLocation(program, "vx_ray");
         params_.upload(&in.params, sizeof in.params, GL_STREAM_DRAW, "parameter");
         params_.bind(program, GL_UNIFORM_BLOCK, "Params");
+        lighting_.upload(&in.lighting.blocks, sizeof in.lighting.blocks, GL_STREAM_DRAW, "lighting parameter");
+        lighting_.bind(program, GL_UNIFORM_BLOCK, "Lighting");
         const BrickAtlas& atlas = *in.atlas;
         const struct {
             GlBuffer& buffer;
@@ -65,16 +68,24 @@ public:
             {lights_, "Lights", in.lights.data(), in.lights.size() * sizeof(kernel::VxLight)},
             {tf_lut_, "TransferLut", in.tf_lut.data(), in.tf_lut.size() * sizeof(glm::vec4)},
             {emission_lut_, "EmissionLut", in.emission_lut.data(), in.emission_lut.size() * sizeof(glm::vec4)},
-            {cache_, "LightCache", in.light_cache ? in.light_cache->values.data() : nullptr,
-             in.light_cache ? in.light_cache->values.size() * sizeof(float) : 0},
-            {illum_, "Illumination", in.illumination ? in.illumination->values.data() : nullptr,
-             in.illumination ? in.illumination->values.size() * sizeof(float) : 0},
             {noise_, "Noise", in.noise.data(), in.noise.size() * sizeof(glm::vec4)},
         };
         for (const auto& a : arrays) {
             checkStorageSize(a.block, a.bytes);
             a.buffer.upload(a.data, a.bytes, GL_STATIC_DRAW, a.block);
             a.buffer.bind(program, GL_SHADER_STORAGE_BLOCK, a.block);
+        }
+        // The lighting methods' arrays (the kernel contract's), each bound even when its method is
+        // off (GlBuffer's 16 zero bytes).
+        for (size_t i = 0; i < kernel::CpuKernel::kLightingArrays.size(); ++i) {
+            const std::string block(kernel::CpuKernel::kLightingArrays[i]);
+            const auto given = std::find_if(in.lighting.arrays.begin(), in.lighting.arrays.end(),
+                                            [&](const KernelArrayRef& a) { return a.block == block; });
+            const void* data = given == in.lighting.arrays.end() ? nullptr : given->data;
+            const size_t bytes = given == in.lighting.arrays.end() ? 0 : given->bytes;
+            checkStorageSize(block.c_str(), bytes);
+            lighting_arrays_[i].upload(data, bytes, GL_STATIC_DRAW, block);
+            lighting_arrays_[i].bind(program, GL_SHADER_STORAGE_BLOCK, block.c_str());
         }
         // Colour, velocity and surface weight share a block: llvmpipe allows a compute program 16
         // storage blocks.
@@ -162,7 +173,8 @@ private:
     }
 
     const GlContextInfo& context_;
-    GlBuffer params_, density_, emission_, vectors_, pages_, lights_, tf_lut_, emission_lut_, cache_, illum_, noise_, band_, deep_band_;
+    GlBuffer params_, lighting_, density_, emission_, vectors_, pages_, lights_, tf_lut_, emission_lut_, noise_, band_, deep_band_;
+    std::array<GlBuffer, kernel::CpuKernel::kLightingArrays.size()> lighting_arrays_;
 };
 
 }  // namespace

@@ -117,8 +117,17 @@ StageActivity LightCacheStage::activity(const Scene& s) const {
     return satActivity(s, what);
 }
 
-void LightCacheStage::lightTheMarch(MarchSources& sources) const {
-    if (cache_.channels > 0) sources.light_cache = &cache_;
+void LightCacheStage::lightTheMarch(const Scene& scene, MarchLighting& lighting) const {
+    if (cache_.channels <= 0) return;
+    kernel::VxSatMarch& b = lighting.blocks.extinction_sat;
+    b.world_to_cache = cache_.world_to_cache;
+    b.cache_dims = cache_.dims;
+    b.cache_floats = cache_.channels;
+    b.ao_channel = std::max(cache_.ambient_channel, 0);
+    b.ao_channels = cache_.ambient_channel >= 0 ? cache_.ambient_width : 0;
+    b.shadow_channel = std::max(cache_.shadow_channel, 0);
+    b.shadows = scene.effects.shadows == ShadowMethod::SatCone && cache_.shadow_channel >= 0 ? 1 : 0;
+    lighting.setArray("LightCache", cache_.values.data(), cache_.values.size() * sizeof(float));
 }
 
 void LightCacheStage::release() {

@@ -54,7 +54,7 @@ private:
     uint64_t generation_ = 0;
 };
 
-class LightCacheStage final : public MarchLightingStage {
+class LightCacheStage final : public MarchLightingStageOf<LightCache> {
 public:
     LightCacheStage(const BrickStage& brick, const ClassifyStage& classify, const SatStage& sat)
         : brick_(input(brick)), classify_(input(classify)), sat_(input(sat)) {}
@@ -65,7 +65,8 @@ public:
     bool idle() const override { return sat_.grid().cells() == 0; }
     void release() override;
     const LightCache& cache() const { return cache_; }
-    void lightTheMarch(MarchSources& sources) const override;
+    void lightTheMarch(const Scene& scene, MarchLighting& lighting) const override;
+    const LightCache* marchOutput() const override { return cache_.channels > 0 ? &cache_ : nullptr; }
 
 private:
     // Runs `pass` into `channel` unless the channel was computed from `key`; true if it ran.

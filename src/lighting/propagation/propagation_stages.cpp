@@ -282,6 +282,26 @@ uint64_t nextGridGeneration() {
 }
 
 
+// Hands the march volume `v` (the propagation's or the eye pass's) under `scene`: its block, and
+// the share of the sky a multiply scattering medium keeps at its surface (the march scatters the
+// sky unoccluded; the reference traces it itself).
+void lightTheMarchFrom(const IlluminationVolume& v, const Scene& scene, MarchLighting& lighting) {
+    if (scene.effects.shadows != ShadowMethod::Propagation) return;
+    const auto& indirect = scene.effects.indirect;
+    if (indirect && indirect->model == IndirectModel::Diffusion && scene.render.method == RenderMethod::March)
+        lighting.ambient_scale = diffuseSkyFactor(scene.material.albedo, scene.material.anisotropy);
+    if (v.values.empty()) return;
+    kernel::VxPropagationMarch& b = lighting.blocks.propagation;
+    b.world_to_illum = v.world_to_illum;
+    b.illum_dims = v.dims;
+    b.chroma_factor = v.chroma;
+    b.chroma_dims = v.chroma_dims;
+    b.indirect_offset = int(v.indirectOffset());
+    b.indirect_weight = indirect ? indirect->strength / (4.0f * float(M_PI)) : 0.0f;
+    b.light_filter = scene.effects.propagation.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
+    lighting.setArray("Illumination", v.values.data(), v.values.size() * sizeof(float));
+}
+
 }  // namespace
 
 bool illuminationVolumeRuns(const Scene& scene) { return propagationActivity(scene, "").runs; }
@@ -447,9 +467,7 @@ StageActivity PropagationStage::activity(const Scene& s) const {
     return propagationActivity(s, out);
 }
 
-void PropagationStage::lightTheMarch(MarchSources& sources) const {
-    if (!volume_.values.empty()) sources.illumination = &volume_;
-}
+void PropagationStage::lightTheMarch(const Scene& scene, MarchLighting& lighting) const { lightTheMarchFrom(volume_, scene, lighting); }
 
 void PropagationStage::release() {
     volume_ = IlluminationVolume{};
@@ -577,9 +595,7 @@ StageActivity EyePassStage::activity(const Scene& s) const {
     return {true, "indirect light swept once more towards the camera"};
 }
 
-void EyePassStage::lightTheMarch(MarchSources& sources) const {
-    if (!volume_.values.empty()) sources.illumination = &volume_;
-}
+void EyePassStage::lightTheMarch(const Scene& scene, MarchLighting& lighting) const { lightTheMarchFrom(volume_, scene, lighting); }
 
 void EyePassStage::run(StageRun& run) {
     passes_.keepFor(grid_.generation());   // as the propagation's, above

@@ -106,7 +106,7 @@ private:
     uint64_t generation_ = 0;
 };
 
-class PropagationStage final : public MarchLightingStage {
+class PropagationStage final : public MarchLightingStageOf<IlluminationVolume> {
 public:
     PropagationStage(const BrickStage& brick, const ClassifyStage& classify, const IlluminationGridStage& grid)
         : brick_(input(brick)), classify_(input(classify)), grid_(input(grid)) {}
@@ -118,7 +118,8 @@ public:
     void release() override;
     const IlluminationVolume& volume() const { return volume_; }
     const LightUpdate& lastUpdate() const { return last_update_; }
-    void lightTheMarch(MarchSources& sources) const override;
+    void lightTheMarch(const Scene& scene, MarchLighting& lighting) const override;
+    const IlluminationVolume* marchOutput() const override { return volume_.values.empty() ? nullptr : &volume_; }
 
 private:
     const BrickStage& brick_;
@@ -132,7 +133,7 @@ private:
     IlluminationVolume volume_;
 };
 
-class EyePassStage final : public MarchLightingStage {
+class EyePassStage final : public MarchLightingStageOf<IlluminationVolume> {
 public:
     EyePassStage(const BrickStage& brick, const ClassifyStage& classify, const CameraStage& camera,
                  const IlluminationGridStage& grid, const PropagationStage& propagation)
@@ -147,7 +148,8 @@ public:
         passes_.release();
     }
     const IlluminationVolume& volume() const { return volume_; }
-    void lightTheMarch(MarchSources& sources) const override;
+    void lightTheMarch(const Scene& scene, MarchLighting& lighting) const override;
+    const IlluminationVolume* marchOutput() const override { return volume_.values.empty() ? nullptr : &volume_; }
 
 private:
     const BrickStage& brick_;

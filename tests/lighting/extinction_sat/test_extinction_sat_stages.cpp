@@ -4,6 +4,7 @@
 #include <limits>
 #include <filesystem>
 
+#include "lighting/extinction_sat/kernel/light_cache.h"
 #include "lighting/light_grid.h"
 #include "render/renderer.h"
 #include "test_support.h"
@@ -103,9 +104,9 @@ TEST(LightStage, PassesTheSceneDoesNotNeedNeverRun) {
     Renderer shadows_only(scene);
     FrameResult r = shadows_only.render(std::nullopt, false);
     EXPECT_TRUE(ran(r, "light_cache"));
-    ASSERT_NE(shadows_only.lightCache(), nullptr);
-    EXPECT_EQ(shadows_only.lightCache()->ambient_channel, -1);
-    EXPECT_EQ(shadows_only.lightCache()->channels, 2);   // one cone channel per light
+    ASSERT_NE(shadows_only.lightingOutput<LightCache>(), nullptr);
+    EXPECT_EQ(shadows_only.lightingOutput<LightCache>()->ambient_channel, -1);
+    EXPECT_EQ(shadows_only.lightingOutput<LightCache>()->channels, 2);   // one cone channel per light
     scene.effects.shadows = ShadowMethod::Raymarch;  // and no SAT shadows: no light cache at all
     r = Renderer(scene).render(std::nullopt, false);
     for (const char* stage : {"light_grid", "sat", "light_cache"}) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "lighting/extinction_sat/kernel/light_cache.h"
 #include "backend/backend_choice.h"
 #include "backend/gl/gl_agreement.h"
 #include "lighting/extinction_sat/extinction_sat_stages.h"
@@ -46,7 +47,7 @@ TEST(GlBackend, LightCacheMatchesCpu) {
     on_gl.prepare(std::nullopt, false);
     auto satOf = [](const Renderer& r) { return dynamic_cast<const SatStage&>(r.graph().stage("sat")).sat().words; };
     EXPECT_TRUE(satOf(on_cpu) == satOf(on_gl)) << "CPU and GL SATs differ";
-    const LightCache &c = *on_cpu.lightCache(), &g = *on_gl.lightCache();
+    const LightCache &c = *on_cpu.lightingOutput<LightCache>(), &g = *on_gl.lightingOutput<LightCache>();
     ASSERT_EQ(c.channels, 3 + 3);  // RGB ambient occlusion, three lights
     ASSERT_EQ(c.values.size(), g.values.size());
     for (int ch = 0; ch < c.channels; ++ch) {

@@ -115,8 +115,8 @@ TEST(EmittedLight, ALightEditKeepsItAndMatchesAnEntireUpdate) {
     EXPECT_EQ(r.light_update->mode, LightUpdate::Mode::Selective) << r.light_update->reason;
     Renderer entire(s);
     entire.prepare(std::nullopt, false);
-    const std::vector<float>& a = edited.illumination()->values;
-    const std::vector<float>& b = entire.illumination()->values;
+    const std::vector<float>& a = edited.lightingOutput<IlluminationVolume>()->values;
+    const std::vector<float>& b = entire.lightingOutput<IlluminationVolume>()->values;
     ASSERT_EQ(a.size(), b.size());
     double peak = 0.0, error = 0.0;
     for (size_t i = 0; i < a.size(); ++i) {
@@ -129,7 +129,7 @@ TEST(EmittedLight, ALightEditKeepsItAndMatchesAnEntireUpdate) {
     s.lights.clear();
     Renderer unlit(s);
     unlit.prepare(std::nullopt, false);
-    const IlluminationVolume& glow = *unlit.illumination();
+    const IlluminationVolume& glow = *unlit.lightingOutput<IlluminationVolume>();
     const float indirect_peak = *std::max_element(glow.values.begin() + long(glow.indirectOffset()), glow.values.end());
     EXPECT_GT(indirect_peak, 0.0f);
 }
@@ -159,8 +159,8 @@ TEST(EmittedLight, RegionTransportPlanesLeaveTheEmittedLightAlone) {
     s.effects.indirect->transport_color = glm::vec3(0.3f);
     Renderer regions(s);
     regions.prepare(std::nullopt, false);
-    const std::vector<float>& a = global.illumination()->values;
-    const std::vector<float>& b = regions.illumination()->values;
+    const std::vector<float>& a = global.lightingOutput<IlluminationVolume>()->values;
+    const std::vector<float>& b = regions.lightingOutput<IlluminationVolume>()->values;
     ASSERT_EQ(a.size(), b.size());
     double peak = 0.0, error = 0.0;
     for (size_t i = 0; i < a.size(); ++i) {

@@ -42,12 +42,13 @@ TEST(IlluminationLookup, SplineEqualsTheBSplineSumOverItsCells) {
     for (size_t i = 0; i < values.size(); ++i) values[i] = hashed(int(i));
     kernel::CpuKernel k;
     k.illum = values;
-    k.P.illum_dims = dims;
-    k.P.world_to_illum = glm::mat4(1.0f);
-    k.P.indirect_weight = 1.0f;
-    k.P.chroma_factor = 2;
-    k.P.chroma_dims = coarse;
-    k.P.indirect_offset = indirect_offset;
+    kernel::VxPropagationMarch& b = k.L.propagation;
+    b.illum_dims = dims;
+    b.world_to_illum = glm::mat4(1.0f);
+    b.indirect_weight = 1.0f;
+    b.chroma_factor = 2;
+    b.chroma_dims = coarse;
+    b.indirect_offset = indirect_offset;
     const auto cellOf = [&](glm::ivec3 d, int offset) {
         return [&values, d, offset](glm::ivec3 c, int ch) { return double(values[size_t(offset + 3 * ((c.z * d.y + c.y) * d.x + c.x) + ch)]); };
     };
@@ -57,11 +58,13 @@ TEST(IlluminationLookup, SplineEqualsTheBSplineSumOverItsCells) {
         const glm::vec3 q = glm::vec3(hashed(3 * n + 1), hashed(3 * n + 2), hashed(3 * n + 3)) * glm::vec3(dims + 2) - 1.0f;
         const glm::dvec3 direct = bruteForceSpline(q, dims, cellOf(dims, 0));
         const glm::dvec3 indirect = bruteForceSpline(q / 2.0f, coarse, cellOf(coarse, indirect_offset));
-        k.P.light_filter = VX_FILTER_TRICUBIC;
-        worst = std::max({worst, glm::length(glm::dvec3(k.vx_illum_direct(q)) - direct),
-                          glm::length(glm::dvec3(k.vx_illum_indirect(q)) - indirect)});
-        k.P.light_filter = VX_FILTER_TRILINEAR;
-        worst_trilinear = std::max(worst_trilinear, glm::length(glm::dvec3(k.vx_illum_direct(q)) - direct));
+        // The volume's sample at q: the world is its cell space here.
+        const auto at = k.vx_propagation_sample(q);
+        b.light_filter = VX_FILTER_TRICUBIC;
+        worst = std::max({worst, glm::length(glm::dvec3(k.vx_propagation_direct(at, glm::vec3(1.0f), glm::vec3(1.0f))) - direct),
+                          glm::length(glm::dvec3(k.vx_propagation_indirect(at)) - indirect)});
+        b.light_filter = VX_FILTER_TRILINEAR;
+        worst_trilinear = std::max(worst_trilinear, glm::length(glm::dvec3(k.vx_propagation_direct(at, glm::vec3(1.0f), glm::vec3(1.0f))) - direct));
     }
     EXPECT_LT(worst, 1e-5);
     EXPECT_GT(worst_trilinear, 1e-2) << "the test sees the filter";

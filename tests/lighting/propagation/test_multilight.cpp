@@ -411,8 +411,8 @@ void expectEditsMatchFromScratch(Backend backend, int light_resolution) {
     }
     Renderer fresh(rig.scene());
     fresh.prepare(std::nullopt, false);
-    const auto& got = renderer.illumination()->values;
-    const auto& want = fresh.illumination()->values;
+    const auto& got = renderer.lightingOutput<IlluminationVolume>()->values;
+    const auto& want = fresh.lightingOutput<IlluminationVolume>()->values;
     ASSERT_EQ(got.size(), want.size());
     float peak = 0.0f, worst = 0.0f;
     for (size_t i = 0; i < want.size(); ++i) {
@@ -441,7 +441,7 @@ TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
     Renderer renderer(scene);
     LightRig rig(renderer, scene);
     rig.apply();
-    const std::vector<float> before = renderer.illumination()->values;
+    const std::vector<float> before = renderer.lightingOutput<IlluminationVolume>()->values;
     rig.toggle(2, false);
     const LightRigUpdate off = rig.apply();
     ASSERT_TRUE(off.lighting);
@@ -449,11 +449,11 @@ TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
     EXPECT_EQ(off.lighting->lights_out, 1);
     EXPECT_EQ(off.lighting->lights_in, 0);
     EXPECT_EQ(off.dirty, std::vector<int>{2});
-    EXPECT_GT(relativeL2(renderer.illumination()->values, before), 0.01f);
+    EXPECT_GT(relativeL2(renderer.lightingOutput<IlluminationVolume>()->values, before), 0.01f);
     rig.toggle(2, true);
     const LightRigUpdate on = rig.apply();
     EXPECT_EQ(on.lighting->mode, LightUpdate::Mode::Selective);
-    const float restored = relativeL2(renderer.illumination()->values, before);
+    const float restored = relativeL2(renderer.lightingOutput<IlluminationVolume>()->values, before);
     std::printf("  toggled off and on: relative L2 %.2g; one toggle walked %lld slices in %d passes\n", restored,
                 on.lighting->slices, on.lighting->passes);
     EXPECT_LT(restored, 1e-5f);
@@ -476,7 +476,7 @@ TEST(MultiLight, SelectiveUpdatesUnderTheEyePassMatchFromScratch) {
     ASSERT_EQ(u.lighting->mode, LightUpdate::Mode::Selective) << u.lighting->reason;
     Renderer fresh(rig.scene());
     fresh.prepare(std::nullopt, false);
-    const float error = relativeL2(renderer.illumination()->values, fresh.illumination()->values);
+    const float error = relativeL2(renderer.lightingOutput<IlluminationVolume>()->values, fresh.lightingOutput<IlluminationVolume>()->values);
     std::printf("  selective update under the eye pass: relative L2 %.2g against a fresh volume\n", error);
     EXPECT_LT(error, 1e-5f);
 }

@@ -2,11 +2,11 @@
 // light cache holds one optical depth for every light everywhere, registered by the test alone
 // (registerLightingMethod). It proves that a method is a unit: its stage joins the render graph
 // with the edges its constructor states, --explain lists it, and the march reads its output
-// through MarchLightingStage without naming it. It hands the march a light cache, so it lights
-// scenes whose effects.shadows is "sat_cone" (the kernel's light-cache hook), after the SAT's.
+// through MarchLightingStage without naming it. Its kernel is the SAT's light-cache hook: it hands
+// the march L.extinction_sat and the "LightCache" array, so it lights scenes whose effects.shadows
+// is "sat_cone", after the SAT's.
 #include <cmath>
 
-#include "lighting/extinction_sat/kernel/light_cache.h"
 #include "lighting/lighting_method.h"
 #include "lighting/march_lighting.h"
 #include "kernel/kernel_inputs.h"
@@ -30,22 +30,27 @@ public:
         return {true, "every light's transmittance is exp(-0.75)"};
     }
     void run(StageRun& run) override {
-        const int lights = enabledLightCount(run.scene, false);   // the kernel's packed lights
-        cache_ = LightCache{};
-        cache_.dims = glm::ivec3(2);   // the smallest grid the trilinear lookup reads
-        cache_.channels = lights;
-        cache_.shadow_channel = 0;
-        cache_.values.assign(size_t(8 * lights), kOpticalDepth);
+        lights_ = enabledLightCount(run.scene, false);   // the kernel's packed lights
+        // 2^3 cells, the smallest grid the trilinear lookup reads, one channel a light.
+        values_.assign(size_t(8 * lights_), kOpticalDepth);
         ++runs;
     }
-    void release() override { cache_ = LightCache{}; }
-    void lightTheMarch(MarchSources& sources) const override {
-        if (cache_.channels > 0) sources.light_cache = &cache_;
+    void release() override { values_.clear(); }
+    void lightTheMarch(const Scene& /* scene */, MarchLighting& lighting) const override {
+        if (values_.empty()) return;
+        kernel::VxSatMarch& b = lighting.blocks.extinction_sat;
+        b = kernel::VxSatMarch{};
+        b.world_to_cache = glm::mat4(1.0f);
+        b.cache_dims = glm::ivec3(2);
+        b.cache_floats = lights_;
+        b.shadows = 1;
+        lighting.setArray("LightCache", values_.data(), values_.size() * sizeof(float));
     }
     int runs = 0;
 
 private:
-    LightCache cache_;
+    int lights_ = 0;
+    std::vector<float> values_;
 };
 
 class ConstantTransmittanceMethod final : public LightingMethod {

@@ -7,6 +7,15 @@
 
 namespace voxlux::kernel {
 
+// Its blocks' C++ bytes are their std140 bytes (vx_types.h's layout rule).
+static_assert(sizeof(VxSatParams) % 16 == 0);
+VX_LINE_ALIGNED(VxSatParams, light_to_world);
+VX_LINE_ALIGNED(VxSatParams, world_to_light);
+VX_LINE_ALIGNED(VxSatParams, dims);
+VX_LINE_ALIGNED(VxSatParams, quantum);
+static_assert(sizeof(VxSatMarch) % 16 == 0);
+VX_LINE_ALIGNED(VxSatMarch, cache_dims);
+
 struct CpuSatKernel : CpuKernel {
 #include "lighting/extinction_sat/kernel/vx_sat.h"
 };

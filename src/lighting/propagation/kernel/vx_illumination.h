@@ -1,9 +1,11 @@
 // The illumination volume as the march reads it (propagation shadows): direct and indirect RGB
-// radiance between cell centres, trilinear (8 cells) or, under P.light_filter tricubic, the cubic
+// radiance between cell centres, trilinear (8 cells) or, under L.propagation.light_filter tricubic, the cubic
 // B-spline (64 cells). Trilinear has a kink at every cell centre, which shows as bands where a
 // light cell spans several pixels and the light falls steeply across it (a dense medium); the
 // spline is smooth (C2). The indirect block may be coarser (chroma subsampling, Ropinski 2010
-// Sec. 4.1). Accessor: vx_illum(index), one float array.
+// Sec. 4.1). Accessor: vx_illum(index), one float array. The method's march hooks
+// (cmake/kernel_contract.cmake) over L.propagation. Cost per sample: one cell transform, then 24
+// reads (trilinear) or 192 (tricubic) for the direct light, and again for the indirect.
 #pragma once
 #include "vx_grid.h"
 #include "vx_optics.h"
@@ -46,20 +48,49 @@ vec3 vx_illum_spline(vec3 q, ivec3 dims, int offset) {
 
 // RGB at grid point q of the block of `dims` cells that starts at float `offset`.
 vec3 vx_illum_at(vec3 q, ivec3 dims, int offset) {
-    if (P.light_filter == VX_FILTER_TRICUBIC) return vx_illum_spline(q, dims, offset);
+    if (L.propagation.light_filter == VX_FILTER_TRICUBIC) return vx_illum_spline(q, dims, offset);
     VxGridCell c = vx_grid_cell(q, dims, 3);
     c.base += offset;
     return vec3(VX_GRID_TRILINEAR(vx_illum, c, dims, 3, 0), VX_GRID_TRILINEAR(vx_illum, c, dims, 3, 1),
                 VX_GRID_TRILINEAR(vx_illum, c, dims, 3, 2));
 }
 
-// Direct radiance of all lights arriving at world point x through the medium.
-vec3 vx_illum_direct(vec3 x) { return vx_illum_at(vec3(P.world_to_illum * vec4(x, 1.0f)), P.illum_dims, 0); }
+struct VxPropagationSample {
+    vec3 x;   // the sample's world point: the hooks that read the volume transform it themselves,
+              // so that a sample no hook reads costs nothing
+};
 
-// Indirect radiance at x (0 when the scene has no indirect light or no illumination volume).
-vec3 vx_illum_indirect(vec3 x) {
-    if (P.indirect_weight <= 0.0f || P.illum_dims.x == 0) return vec3(0.0f);
-    vec3 q = vec3(P.world_to_illum * vec4(x, 1.0f)) / float(P.chroma_factor);
+VX_INLINE bool vx_propagation_varies() { return L.propagation.illum_dims.x > 0; }
+
+// The volume holds the lights' shadowed light: the march lights every sample from it.
+VX_INLINE bool vx_propagation_shadows() { return vx_propagation_varies(); }
+
+VX_INLINE VxPropagationSample vx_propagation_sample(vec3 x) {
+    VxPropagationSample s;
+    s.x = x;
+    return s;
+}
+
+// The sample's point in direct-light cells.
+VX_INLINE vec3 vx_illum_point(VxPropagationSample s) { return vec3(L.propagation.world_to_illum * vec4(s.x, 1.0f)); }
+
+// The illumination volume holds the lights' attenuated RGB together: each light keeps its phase,
+// scaled per channel by the fraction of the lights' unshadowed radiance `unshadowed` that arrives.
+// Exact for one light, and for any number when the phase is isotropic. Slightly negative values
+// (float residue of subtracted lights) count as none.
+VX_INLINE vec3 vx_propagation_direct(VxPropagationSample s, vec3 sum, vec3 unshadowed) {
+    if (!vx_propagation_varies()) return sum;
+    vec3 arrived = max(vx_illum_at(vx_illum_point(s), L.propagation.illum_dims, 0), vec3(0.0f));
+    return sum * vec3(unshadowed.x > 0.0f ? arrived.x / unshadowed.x : 0.0f, unshadowed.y > 0.0f ? arrived.y / unshadowed.y : 0.0f,
+                      unshadowed.z > 0.0f ? arrived.z / unshadowed.z : 0.0f);
+}
+
+VX_INLINE bool vx_propagation_indirect_on() { return L.propagation.indirect_weight > 0.0f && vx_propagation_varies(); }
+
+// Indirect radiance at a sample, weighted (0 when the scene has no indirect light or no volume).
+VX_INLINE vec3 vx_propagation_indirect(VxPropagationSample s) {
+    if (!vx_propagation_indirect_on()) return vec3(0.0f);
     // Slightly negative values (float residue of subtracted lights) count as none.
-    return max(vx_illum_at(q, P.chroma_dims, P.indirect_offset), vec3(0.0f));
+    return max(vx_illum_at(vx_illum_point(s) / float(L.propagation.chroma_factor), L.propagation.chroma_dims, L.propagation.indirect_offset), vec3(0.0f)) *
+           L.propagation.indirect_weight;
 }
