@@ -509,8 +509,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
                 for (auto& lane : lanes) {
                     kernel::CpuPropagationKernel& k = lane->k;
                     float* row = &lane->cur[size_t(j) * nu * channels];
-                    const glm::vec3 tint = k.Q.tint;
-                    const int step = channels == 1 ? 0 : 1;
+                    const int step = channels == 1 ? 0 : 1;   // a direct sweep's one value feeds every channel
                     if (!eye && k.Q.per_cell_flow != 0) {   // a point or spot light: each cell's own weight
                         lane->flow->row(j, previous, row, weights.data());   // per cell where it cannot batch
 #pragma omp simd
@@ -518,9 +517,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
                             const float* slot = row + size_t(i) * channels;
                             float* sum = &rgb[size_t(i) * 3];
                             const float w = weights[size_t(i)];
-                            sum[0] = kernel::vx_radiance_add(sum[0], w * tint[0] * slot[0]);
-                            sum[1] = kernel::vx_radiance_add(sum[1], w * tint[1] * slot[step]);
-                            sum[2] = kernel::vx_radiance_add(sum[2], w * tint[2] * slot[2 * step]);
+                            for (int c = 0; c < 3; ++c) sum[c] = kernel::vx_radiance_add(sum[c], k.vx_prop_added(w, c, slot[c * step]));
                         }
                         continue;
                     }
@@ -535,16 +532,13 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
                     };
                     perCell(0, first_batched);
                     perCell(std::max(first_batched, last_batched), nu);
-                    // One weight for the row: (w * tint) * light, as the per-cell form multiplies.
+                    // One weight for the row (the eye sweep's is 1).
                     const float w = eye ? 1.0f : k.Q.weight;
-                    const float wt0 = w * tint[0], wt1 = w * tint[1], wt2 = w * tint[2];
 #pragma omp simd
                     for (int i = 0; i < nu; ++i) {
                         const float* slot = row + size_t(i) * channels;
                         float* sum = &rgb[size_t(i) * 3];
-                        sum[0] = kernel::vx_radiance_add(sum[0], wt0 * slot[0]);
-                        sum[1] = kernel::vx_radiance_add(sum[1], wt1 * slot[step]);
-                        sum[2] = kernel::vx_radiance_add(sum[2], wt2 * slot[2 * step]);
+                        for (int c = 0; c < 3; ++c) sum[c] = kernel::vx_radiance_add(sum[c], k.vx_prop_added(w, c, slot[c * step]));
                     }
                 }
                 // The row's cells are contiguous in `out` (u is the fastest axis of either layout).

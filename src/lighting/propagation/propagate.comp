@@ -1,7 +1,7 @@
 // GL entry point of one slice of a propagation sweep (vx_propagation.h): one invocation per cell
 // of slice Q.slice. The backend dispatches the slices in order, swapping the two slice buffers
-// between dispatches; a light sweep adds vx_prop_weight times its tinted light into the volume's
-// RGB block, the eye sweep replaces the block's light.
+// between dispatches; a light sweep adds its light into the volume's RGB block (vx_prop_added),
+// the eye sweep replaces the block's light.
 
 layout(local_size_x = 64) in;
 
@@ -23,8 +23,9 @@ void main() {
     c[u] = i;
     c[v] = j;
     int cell = ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x) * 3;
-    vec3 rgb = (Q.channels == 1 ? vec3(value.x) : value) * Q.tint;
-    float weight = vx_prop_weight(i, j);
-    for (int ch = 0; ch < 3; ++ch)
-        vx_volume[cell + ch] = Q.eye_sweep != 0 ? rgb[ch] : vx_radiance_add(vx_volume[cell + ch], weight * rgb[ch]);
+    float weight = Q.eye_sweep != 0 ? 1.0f : vx_prop_weight(i, j);
+    for (int ch = 0; ch < 3; ++ch) {
+        float added = vx_prop_added(weight, ch, value[Q.channels == 1 ? 0 : ch]);
+        vx_volume[cell + ch] = Q.eye_sweep != 0 ? added : vx_radiance_add(vx_volume[cell + ch], added);
+    }
 }

@@ -115,8 +115,9 @@ TEST(BatchPaths, PropagationRowsMatchThePerCellSweep) {
                             c[u] = i;
                             c[v] = j;
                             const size_t at = ((size_t(c.z) * dims.y + c.y) * dims.x + c.x) * 3;
-                            const glm::vec3 rgb = (Q.channels == 1 ? glm::vec3(value.x) : value) * Q.tint;
-                            for (int ch = 0; ch < 3; ++ch) per_cell[at + ch] += k.vx_prop_weight(i, j) * rgb[ch];
+                            for (int ch = 0; ch < 3; ++ch)
+                                per_cell[at + ch] = kernel::vx_radiance_add(
+                                    per_cell[at + ch], k.vx_prop_added(k.vx_prop_weight(i, j), ch, value[Q.channels == 1 ? 0 : ch]));
                         }
                     std::swap(prev, cur);
                 }

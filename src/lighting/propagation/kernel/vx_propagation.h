@@ -198,6 +198,12 @@ VX_INLINE float vx_prop_weight(int i, int j) {
     return Q.weight * vx_sweep_weight(vx_prop_light_flow(x), Q.axis, Q.direction, Q.blend_axes != 0) / vx_prop_distance2(x);
 }
 
+// What a light sweep adds to channel `ch` of a cell of the volume, `value` being what it carries
+// there in that channel (a direct sweep's one luminance, for every channel): its weight (the
+// cell's vx_prop_weight) times its tint times the value. The GPU's cells and the CPU's rows add
+// it alike (vx_radiance_add); the eye sweep's (weight 1) replaces the cell's light instead.
+VX_INLINE float vx_prop_added(float weight, int ch, float value) { return (weight * Q.tint[ch]) * value; }
+
 // The step from grid point x back to where its light comes from in the previous slice: the
 // direction light flows through x, in grid units, scaled to advance one slice.
 VX_INLINE vec3 vx_prop_back(vec3 x) {
