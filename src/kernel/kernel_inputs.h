@@ -2,9 +2,8 @@
 // Both backends take this one struct: the CPU backend points at its arrays, the GL backend uploads
 // them. The light stages build theirs without a camera or the lighting methods' outputs.
 #pragma once
-#include <vector>
-
 #include <string>
+#include <vector>
 
 #include "volume/brick_atlas.h"
 #include "optics/emission.h"

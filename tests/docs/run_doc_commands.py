@@ -29,7 +29,8 @@ A `build/PROGRAM` that is not built (a benchmark, the test binary) is skipped. T
 decide the rest:
   SKIPPED      commands that are never run (they build, install or run the whole suite);
   PLACEHOLDERS the doc's example file names, mapped to bundled or shared (third-party) data;
-               a command that needs the shared data is skipped when it is absent;
+               a command that needs the shared data is skipped when it is absent, and so is a later
+               command of the doc that reads a file it would have written (-o, --preview);
   REDUCTIONS   smaller images, fewer samples and frames, so the whole run stays short.
 GL commands (`--backend gl`, `--backends ...gl`) are skipped with --skip-gl or VOXLUX_SKIP_GL=1.
 A command is split into words as the shell does, the tables are applied to its words, and it is
@@ -394,6 +395,11 @@ def compare_output(expected, actual):
     return "output differs from the doc: the lines match, but not in the doc's order or count"
 
 
+def written_files(words):
+    """The files a command names as its outputs (-o, --output, --preview)."""
+    return [words[k + 1] for k, w in enumerate(words[:-1]) if w in ("-o", "--output", "--preview")]
+
+
 # ---- main ------------------------------------------------------------------------------------
 
 def main():
@@ -422,8 +428,16 @@ def main():
     t_all = time.monotonic()
     for doc, commands in docs:
         cwd = None
+        unwritten = {}   # file -> the command that would have written it, skipped for want of the shared data
         for c in commands:
             line, skip = runner.prepare(c)
+            # A later command of the doc may read what a skipped one would have written (a scene
+            # the quick form writes from the shared data): it cannot run either.
+            # (tokenize cannot fail on these: prepare has split the same text.)
+            if not skip and (read := next((w for w in tokenize(c.text) if w in unwritten), None)):
+                line, skip = None, f"reads {read}, which {unwritten[read]} would have written (it needs the shared data)"
+            if skip and skip.startswith("needs the shared data"):
+                unwritten.update({w: c.where() for w in written_files(tokenize(c.text))})
             if skip == "untagged":
                 status, seconds, detail = "FAIL", 0.0, ("a code block without a tag: tag it sh/bash/shell or console "
                                                         "(run) or text, json, ... (not run)")

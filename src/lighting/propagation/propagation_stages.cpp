@@ -281,7 +281,6 @@ uint64_t nextGridGeneration() {
     return next++;
 }
 
-
 // Hands the march volume `v` (the propagation's or the eye pass's) under `scene`: its block, and
 // the share of the sky a multiply scattering medium keeps at its surface (the march scatters the
 // sky unoccluded; the reference traces it itself).

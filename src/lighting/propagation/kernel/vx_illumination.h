@@ -1,11 +1,11 @@
 // The illumination volume as the march reads it (propagation shadows): direct and indirect RGB
-// radiance between cell centres, trilinear (8 cells) or, under L.propagation.light_filter tricubic, the cubic
-// B-spline (64 cells). Trilinear has a kink at every cell centre, which shows as bands where a
-// light cell spans several pixels and the light falls steeply across it (a dense medium); the
-// spline is smooth (C2). The indirect block may be coarser (chroma subsampling, Ropinski 2010
-// Sec. 4.1). Accessor: vx_illum(index), one float array. The method's march hooks
-// (cmake/kernel_contract.cmake) over L.propagation. Cost per sample: one cell transform, then 24
-// reads (trilinear) or 192 (tricubic) for the direct light, and again for the indirect.
+// radiance between cell centres, trilinear (8 cells) or, under L.propagation.light_filter
+// tricubic, the cubic B-spline (64 cells). Trilinear has a kink at every cell centre, which shows
+// as bands where a light cell spans several pixels and the light falls steeply across it (a dense
+// medium); the spline is smooth (C2). The indirect block may be coarser (chroma subsampling,
+// Ropinski 2010 Sec. 4.1). Accessor: vx_illum(index), one float array. The method's march hooks
+// (cmake/kernel_contract.cmake) over L.propagation. Cost per sample and lookup (direct, then
+// indirect): one cell transform and 24 reads (trilinear) or 192 (tricubic).
 #pragma once
 #include "vx_grid.h"
 #include "vx_optics.h"
