@@ -113,7 +113,8 @@ TEST(FarmSlurm, FireChunksMatchLocalRendersAndResubmitCompletesTheSequence) {
     unsetenv("SBATCH_HOLD");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string id = nlohmann::json::parse(fileText(dir + "/job/job.json"))["submissions"][0]["job_id"];
-    ASSERT_EQ(runShell("scancel " + id + "_1 && scontrol release " + id).exit_code, 0);
+    const CliResult released = runShell("scancel " + id + "_1 && scontrol release " + id);
+    ASSERT_EQ(released.exit_code, 0) << released.out << released.err;   // Slurm's own words, should it refuse
     r = runCli("farm collect " + dir + "/job --wait");
     EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
     EXPECT_NE(r.out.find("collect: 4 of 6 frames done; not done: frames 3-4\n"), std::string::npos) << r.out;
