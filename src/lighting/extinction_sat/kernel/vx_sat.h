@@ -83,28 +83,37 @@ VX_INLINE VxU96 vx_sat_lines(int plane, int bb, int ab, int ba, int aa, int xa, 
     return vx_u96_sub(s, vx_sat_entry(plane, aa + xa));
 }
 
-VX_INLINE VxU96 vx_sat_corners(int plane, ivec3 a, ivec3 b) {
-    return vx_sat_lines(plane, vx_sat_entry_index(0, b.y, b.z), vx_sat_entry_index(0, a.y, b.z),
-                        vx_sat_entry_index(0, b.y, a.z), vx_sat_entry_index(0, a.y, a.z), a.x, b.x);
-}
-
 VX_INLINE float vx_sat_quantum(int plane) {
     VX_CHECK_INDEX(plane, S.planes, "SAT plane");
     return S.quantum[plane];
 }
 
-// Sum over the cells of box [lo, hi) (clamped to the grid; cells outside are empty), in the
-// plane's value units: eight lookups, exact until the final float conversion.
-VX_INLINE float vx_sat_box(int plane, ivec3 lo, ivec3 hi) {
-    ivec3 a = clamp(lo, ivec3(0), S.dims);
-    ivec3 b = clamp(hi, ivec3(0), S.dims);
-    if (a.x >= b.x || a.y >= b.y || a.z >= b.z) return 0.0f;
-    return vx_u96_float(vx_sat_corners(plane, a, b)) * vx_sat_quantum(plane);
+// One term of a light pass: `weight` times the sum over the box whose corners lie on the x lines
+// bb, ab, ba, aa (as vx_sat_lines) between the x faces xa and xb, in the plane's value units
+// (`quantum`, vx_sat_quantum); 0 for an empty x range. Per cell in vx_sat_weighted_box, per lane
+// in the CPU's row batches below: the one copy of the arithmetic.
+// (The lookups are made for an empty range too, where they are in the table all the same: loads
+// under a condition would be masked loads in the CPU's SIMD loops.)
+VX_INLINE float vx_sat_term(int plane, float quantum, float weight, int bb, int ab, int ba, int aa, int xa, int xb) {
+    float sum = vx_u96_float(vx_sat_lines(plane, bb, ab, ba, aa, xa, xb)) * quantum;
+    return xa < xb ? weight * sum : 0.0f;
 }
 
+// `weight` times the sum over the cells of box [lo, hi) (clamped to the grid; cells outside are
+// empty): eight lookups, exact until the final float conversion.
+VX_INLINE float vx_sat_weighted_box(int plane, float weight, ivec3 lo, ivec3 hi) {
+    ivec3 a = clamp(lo, ivec3(0), S.dims);
+    ivec3 b = clamp(hi, ivec3(0), S.dims);
+    if (a.y >= b.y || a.z >= b.z) return 0.0f;
+    return vx_sat_term(plane, vx_sat_quantum(plane), weight, vx_sat_entry_index(0, b.y, b.z), vx_sat_entry_index(0, a.y, b.z),
+                       vx_sat_entry_index(0, b.y, a.z), vx_sat_entry_index(0, a.y, a.z), a.x, b.x);
+}
+
+VX_INLINE float vx_sat_box(int plane, ivec3 lo, ivec3 hi) { return vx_sat_weighted_box(plane, 1.0f, lo, hi); }
+
 // Both light passes are weighted sums of box sums, sum_j weight_j * SAT(c + lo_j, c + hi_j), over
-// cuboids given relative to the cell c. Where the cuboids are the same for every cell (AO shells,
-// directional-light cones) the CPU backend evaluates a row of cells per cuboid with SIMD.
+// cuboids given relative to the cell c. The GL backend runs them per cell (vx_ambient_tau,
+// vx_cone_tau); the CPU backend runs a row of cells at once (the row batches at the end).
 struct VxCuboid {
     ivec3 lo;
     ivec3 hi;
@@ -138,7 +147,7 @@ float vx_ambient_tau(ivec3 c, int plane) {
     float tau = 0.0f;
     for (int i = 1; i <= S.shells; ++i) {
         VxCuboid q = vx_shell_cuboid(i);
-        tau += q.weight * vx_sat_box(plane, c + q.lo, c + q.hi);
+        tau += vx_sat_weighted_box(plane, q.weight, c + q.lo, c + q.hi);
     }
     return tau;
 }
@@ -222,7 +231,7 @@ VxCuboid vx_cone_own_cell(VxCone k) {
 VX_INLINE float vx_cone_start(ivec3 c, VxCone k) {
     if (k.reach <= 0.0f || k.step_world <= 0.0f) return 0.0f;
     VxCuboid own = vx_cone_own_cell(k);
-    return own.weight * vx_sat_box(0, c + own.lo, c + own.hi);
+    return vx_sat_weighted_box(0, own.weight, c + own.lo, c + own.hi);
 }
 
 // A walk along a cone's cuboids: the one cone loop, which the GL pass, the CPU's row batches
@@ -262,7 +271,105 @@ float vx_cone_tau(ivec3 c, VxLight L) {
     VxConeWalk w = vx_cone_walk_begin();
     for (int j = 1; j <= S.cone_cuboids; ++j) {
         VxCuboid q;
-        if (vx_cone_step(k, w, q)) tau += q.weight * vx_sat_box(0, c + q.lo, c + q.hi);
+        if (vx_cone_step(k, w, q)) tau += vx_sat_weighted_box(0, q.weight, c + q.lo, c + q.hi);
     }
     return tau;
+}
+
+// The CPU's row batches: the cells c0 + (i, 0, 0) of a grid row, whose lookups along the lines
+// are neighbouring words. Each lane adds the same vx_sat_term, in the same order, as the
+// per-cell queries above. Widths (measured with voxlux_bench_sat --paper-only): one AVX-512
+// vector of 32-bit words for shared cuboids; two for cones, whose gathers then overlap more.
+#define VX_SAT_ROW 16
+#define VX_CONE_ROW 32
+
+struct VxSatRow {
+    float tau[VX_SAT_ROW];
+};
+
+// One cuboid every cell shares (an AO shell, a directional light's cone cuboid) across a row:
+// tau[i] += vx_sat_weighted_box(plane, q.weight, c0 + (i, 0, 0) + q.lo, ... + q.hi). With `clamp_x`
+// false (every lane's x range inside the grid) the loads are contiguous. A plain loop, not
+// VX_SIMD_LOOP: `omp simd` would privatise the VxU96 temporaries into memory before they are
+// inlined away; the auto-vectoriser, which runs after inlining, keeps them in registers.
+VX_INLINE void vx_sat_add_cuboid_row(int plane, VxCuboid q, ivec3 c0, bool clamp_x, VX_INOUT(VxSatRow) row) {
+    int ay = clamp(c0.y + q.lo.y, 0, S.dims.y);
+    int by = clamp(c0.y + q.hi.y, 0, S.dims.y);
+    int az = clamp(c0.z + q.lo.z, 0, S.dims.z);
+    int bz = clamp(c0.z + q.hi.z, 0, S.dims.z);
+    if (ay >= by || az >= bz) return;
+    int bb = vx_sat_entry_index(0, by, bz);
+    int ab = vx_sat_entry_index(0, ay, bz);
+    int ba = vx_sat_entry_index(0, by, az);
+    int aa = vx_sat_entry_index(0, ay, az);
+    float quantum = vx_sat_quantum(plane);
+    float weight = q.weight;
+    for (int i = 0; i < VX_SAT_ROW; ++i) {
+        int xa = c0.x + q.lo.x + i;
+        int xb = c0.x + q.hi.x + i;
+        xa = clamp_x ? clamp(xa, 0, S.dims.x) : xa;
+        xb = clamp_x ? clamp(xb, 0, S.dims.x) : xb;
+        row.tau[i] += vx_sat_term(plane, quantum, weight, bb, ab, ba, aa, xa, xb);
+    }
+}
+
+// vx_cone_tau for the cells c0 + (i, 0, 0), i < VX_CONE_ROW, whose bit i of `needed` is set (the
+// others get 0): the cones towards a point or spot light, which differ per cell. Each lane walks
+// its own cone (scalar geometry: vx_cone_row_boxes), then the row's boxes of that cuboid are
+// summed at once, a gather per corner word (vx_cone_row_add). The caller takes every row of a grid row through one stage
+// before the next, so that one cuboid's lookups run along the grid row and many gathers are in
+// flight together.
+struct VxConeRow {
+    ivec3 c0;
+    uint needed;
+    VxCone cones[VX_CONE_ROW];
+    VxConeWalk walks[VX_CONE_ROW];
+    // Each lane's current box clamped to the grid (an empty one at 0 for a lane without a
+    // cuboid), as separate arrays so that the sums vectorise.
+    int ax[VX_CONE_ROW];
+    int ay[VX_CONE_ROW];
+    int az[VX_CONE_ROW];
+    int bx[VX_CONE_ROW];
+    int by[VX_CONE_ROW];
+    int bz[VX_CONE_ROW];
+    float weight[VX_CONE_ROW];
+    float tau[VX_CONE_ROW];
+};
+
+// The cones and their own-cell terms (vx_cone_start).
+void vx_cone_row_begin(ivec3 c0, VxLight L, uint needed, VX_OUT(VxConeRow) r) {
+    r.c0 = c0;
+    r.needed = needed;
+    for (int i = 0; i < VX_CONE_ROW; ++i) {
+        ivec3 c = c0 + ivec3(i, 0, 0);
+        r.cones[i] = vx_cone_from(c, L);
+        r.walks[i] = vx_cone_walk_begin();
+        r.tau[i] = ((needed >> uint(i)) & 1u) != 0u ? vx_cone_start(c, r.cones[i]) : 0.0f;
+    }
+}
+
+// Every lane's next cuboid (one of vx_cone_tau's S.cone_cuboids steps, vx_cone_step) as its box.
+VX_INLINE void vx_cone_row_boxes(VX_INOUT(VxConeRow) r) {
+    for (int i = 0; i < VX_CONE_ROW; ++i) {
+        ivec3 c = r.c0 + ivec3(i, 0, 0);
+        VxCuboid q;
+        bool on = ((r.needed >> uint(i)) & 1u) != 0u && vx_cone_step(r.cones[i], r.walks[i], q);
+        ivec3 a = on ? clamp(c + q.lo, ivec3(0), S.dims) : ivec3(0);
+        ivec3 b = on ? max(clamp(c + q.hi, ivec3(0), S.dims), a) : ivec3(0);
+        r.ax[i] = a.x;
+        r.ay[i] = a.y;
+        r.az[i] = a.z;
+        r.bx[i] = b.x;
+        r.by[i] = b.y;
+        r.bz[i] = b.z;
+        r.weight[i] = on ? q.weight : 0.0f;
+    }
+}
+
+// The boxes' terms, added.
+VX_INLINE void vx_cone_row_add(VX_INOUT(VxConeRow) r) {
+    float quantum = vx_sat_quantum(0);
+    for (int i = 0; i < VX_CONE_ROW; ++i)
+        r.tau[i] += vx_sat_term(0, quantum, r.weight[i], vx_sat_entry_index(0, r.by[i], r.bz[i]), vx_sat_entry_index(0, r.ay[i], r.bz[i]),
+                                vx_sat_entry_index(0, r.by[i], r.az[i]), vx_sat_entry_index(0, r.ay[i], r.az[i]), r.ax[i], r.bx[i]);
 }
