@@ -1,6 +1,6 @@
-// The propagation's row batches (src/lighting/propagation/cpu_propagation.cpp) against the per-cell
-// sweep they stand in for (vx_prop_cell), cell by cell, on the CPU alone
-// (tests/lighting/batch_paths.h).
+// The propagation's row batches (vx_propagation.h's vx_prop_row_run and vx_prop_flow_run, run by
+// src/lighting/propagation/cpu_propagation.cpp) against the per-cell sweep they stand in for
+// (vx_prop_cell), cell by cell, on the CPU alone (tests/lighting/batch_paths.h).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -55,12 +55,15 @@ VX_INLINE float vx_sweep_weight(vec3 f, int axis, int sign, bool blend) {
     return (axis == p ? w0 : (axis == s ? w1 : 0.0f)) / (w0 + w1);
 }
 
+// The functions below that take the sweep's `axis` (Q.axis) as an argument are the ones the CPU's
+// row batches call with a constant: inlined, a vector's component along it then needs no select.
+
 // Grid point with coordinate s along the sweep axis and (a, b) along u and v.
-VX_INLINE vec3 vx_prop_point(float s, float a, float b) {
+VX_INLINE vec3 vx_prop_point(int axis, float s, float a, float b) {
     vec3 q;
-    q[Q.axis] = s;
-    q[vx_axis_u(Q.axis)] = a;
-    q[vx_axis_v(Q.axis)] = b;
+    q[axis] = s;
+    q[vx_axis_u(axis)] = a;
+    q[vx_axis_v(axis)] = b;
     return q;
 }
 
@@ -89,15 +92,15 @@ VX_INLINE float vx_prop_sigma_at(vec3 q, int plane) {
 
 // A plane of the extinction at in-slice coordinates (a, b) of slice `slice`, bilinear between
 // cell centres.
-VX_INLINE float vx_prop_sigma_slice(float a, float b, int slice, int plane) {
-    int u = vx_axis_u(Q.axis);
-    int v = vx_axis_v(Q.axis);
+VX_INLINE float vx_prop_sigma_slice(int axis, float a, float b, int slice, int plane) {
+    int u = vx_axis_u(axis);
+    int v = vx_axis_v(axis);
     float ga = a - 0.5f;
     float gb = b - 0.5f;
     float fa = floor(ga);
     float fb = floor(gb);
     ivec3 c;
-    c[Q.axis] = slice;
+    c[axis] = slice;
     c[u] = int(fa);
     c[v] = int(fb);
     ivec3 du = ivec3(0);
@@ -157,7 +160,7 @@ VX_INLINE vec3 vx_prop_prev_cell(int i, int j, int prev) {
     int u = vx_axis_u(Q.axis);
     int v = vx_axis_v(Q.axis);
     if (prev < 0 || prev >= Q.dims[Q.axis] || i < 0 || j < 0 || i >= Q.dims[u] || j >= Q.dims[v])
-        return vx_prop_outside(vx_prop_point(float(prev) + 0.5f, float(i) + 0.5f, float(j) + 0.5f));
+        return vx_prop_outside(vx_prop_point(Q.axis, float(prev) + 0.5f, float(i) + 0.5f, float(j) + 0.5f));
     int at = (j * Q.dims[u] + i) * Q.channels;
     if (Q.channels == 1) return vec3(vx_prop_prev(at), 0.0f, 0.0f);
     return vec3(vx_prop_prev(at), vx_prop_prev(at + 1), vx_prop_prev(at + 2));
@@ -178,24 +181,39 @@ VX_INLINE vec3 vx_prop_prev_at(float a, float b, int prev) {
 }
 
 // Grid point of cell (i, j) of slice Q.slice.
-VX_INLINE vec3 vx_prop_cell_point(int i, int j) {
-    return vx_prop_point(float(Q.slice) + 0.5f, float(i) + 0.5f, float(j) + 0.5f);
+VX_INLINE vec3 vx_prop_cell_point(int axis, int i, int j) {
+    return vx_prop_point(axis, float(Q.slice) + 0.5f, float(i) + 0.5f, float(j) + 0.5f);
 }
 
 // A point or spot light's flow through grid point x (a light exactly at x flows along +z).
 VX_INLINE vec3 vx_prop_light_flow(vec3 x) {
     vec3 f = x - Q.source;
-    return f == vec3(0.0f) ? vec3(0.0f, 0.0f, 1e-6f) : f;
+    bool at_light = f.x == 0.0f && f.y == 0.0f && f.z == 0.0f;
+    return at_light ? vec3(0.0f, 0.0f, 1e-6f) : f;
 }
 
-// What cell (i, j) adds of its value: the sweep's weight; for a point or spot light (Q.per_cell_flow)
-// times the share of the cell's own flow that this sweep carries, so that a light inside or
+// What a point or spot light's sweep adds of its value at grid point x: its weight times the share
+// of the flow through x that this sweep carries (`blend`: Q.blend_axes), so that a light inside or
 // beside the volume lights each cell from the sweeps facing it, and over vx_prop_distance2, back
 // to radiance.
+VX_INLINE float vx_prop_point_weight(int axis, vec3 x, bool blend) {
+    return Q.weight * vx_sweep_weight(vx_prop_light_flow(x), axis, Q.direction, blend) / vx_prop_distance2(x);
+}
+
+// What cell (i, j) adds of its value: the sweep's weight, or a point or spot light's
+// (Q.per_cell_flow) at the cell.
 VX_INLINE float vx_prop_weight(int i, int j) {
     if (Q.per_cell_flow == 0) return Q.weight;
-    vec3 x = vx_prop_cell_point(i, j);
-    return Q.weight * vx_sweep_weight(vx_prop_light_flow(x), Q.axis, Q.direction, Q.blend_axes != 0) / vx_prop_distance2(x);
+    return vx_prop_point_weight(Q.axis, vx_prop_cell_point(Q.axis, i, j), Q.blend_axes != 0);
+}
+
+// Whether a point or spot light's sweep leaves a cell whose flow is f dark: one before the light's
+// plane, or too far sideways (Q.max_slope) for any cell this sweep weights to read. (Slope from
+// one slice behind the light: the first slice past it may be much closer than a cell, and its
+// steep neighbours are read by the next slice.)
+VX_INLINE bool vx_prop_unlit(int axis, vec3 f) {
+    return float(Q.direction) * f[axis] <= 0.0f ||
+           max(abs(f[vx_axis_u(axis)]), abs(f[vx_axis_v(axis)])) > float(Q.max_slope) * (abs(f[axis]) + 1.0f);
 }
 
 // What a light sweep adds to channel `ch` of a cell of the volume, `value` being what it carries
@@ -206,17 +224,24 @@ VX_INLINE float vx_prop_added(float weight, int ch, float value) { return (weigh
 
 // The step from grid point x back to where its light comes from in the previous slice: the
 // direction light flows through x, in grid units, scaled to advance one slice.
-VX_INLINE vec3 vx_prop_back(vec3 x) {
-    vec3 flow = Q.source_is_position != 0 ? (x - Q.source) * Q.flow : Q.source;
-    return flow / max(abs(flow[Q.axis]), 1e-6f);
+// (Both flows are computed and selected component by component: a vector's copy or a conditional
+// load would keep the CPU's row batches from vectorising.)
+VX_INLINE vec3 vx_prop_back(int axis, vec3 x) {
+    bool positional = Q.source_is_position != 0;
+    vec3 away = (x - Q.source) * Q.flow;
+    vec3 flow = vec3(positional ? away.x : Q.source.x, positional ? away.y : Q.source.y, positional ? away.z : Q.source.z);
+    return flow / max(abs(flow[axis]), 1e-6f);
 }
 
 // The pieces of the composite trapezoid over a step `back`: one per cell it moves sideways (a
 // step of the second blend axis can cross many cells, and the medium's edge, within one slice;
 // one of the principal axis moves at most one cell sideways: the plain trapezoid).
-VX_INLINE int vx_prop_pieces(vec3 back) {
-    return max(int(ceil(max(abs(back[vx_axis_u(Q.axis)]), abs(back[vx_axis_v(Q.axis)])) - 1e-3f)), 1);
+VX_INLINE int vx_prop_pieces(int axis, vec3 back) {
+    return max(int(ceil(max(abs(back[vx_axis_u(axis)]), abs(back[vx_axis_v(axis)])) - 1e-3f)), 1);
 }
+
+// The composite trapezoid's inner point k of `pieces` along the step `back` from p.
+VX_INLINE vec3 vx_prop_piece_point(vec3 p, vec3 back, int k, int pieces) { return p + back * (float(k) / float(pieces)); }
 
 // World length of a step `back`.
 VX_INLINE float vx_prop_step_world(vec3 back) { return length(mat3(Q.grid_to_world) * back); }
@@ -232,7 +257,7 @@ float vx_prop_step_depth(int i, int j, vec3 x, vec3 p, vec3 back, vec4 nx, bool 
     int axis = Q.axis;
     int u = vx_axis_u(axis);
     int v = vx_axis_v(axis);
-    int pieces = vx_prop_pieces(back);
+    int pieces = vx_prop_pieces(axis, back);
     float ends;
     if (!exact_ends) {
         ends = vx_prop_extinction(x, nx, plane) + vx_prop_extinction(p, vx_prop_noise(p), plane);
@@ -241,11 +266,11 @@ float vx_prop_step_depth(int i, int j, vec3 x, vec3 p, vec3 back, vec4 nx, bool 
         cx[axis] = Q.slice;
         cx[u] = i;
         cx[v] = j;
-        ends = vx_prop_sigma_cell(cx, plane) + vx_prop_sigma_slice(p[u], p[v], Q.slice - Q.direction, plane);
+        ends = vx_prop_sigma_cell(cx, plane) + vx_prop_sigma_slice(axis, p[u], p[v], Q.slice - Q.direction, plane);
     }
     float sum = 0.5f * ends;
     for (int k = 1; k < pieces; ++k) {
-        vec3 q = p + back * (float(k) / float(pieces));
+        vec3 q = vx_prop_piece_point(p, back, k, pieces);
         sum += vx_prop_extinction(q, vx_prop_noise(q), plane);
     }
     return sum * vx_prop_step_world(back) / float(pieces);
@@ -258,19 +283,16 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     int v = vx_axis_v(axis);
     int s = Q.slice;
     int prev = s - Q.direction;
-    vec3 x = vx_prop_cell_point(i, j);
-    vec3 back = vx_prop_back(x);
+    vec3 x = vx_prop_cell_point(axis, i, j);
+    vec3 back = vx_prop_back(axis, x);
     vec3 p = x - back;
     // A point or spot light's sweep starts at the light's own plane (Sunden 2015, Fig. 5): cells
-    // before it, and cells too far sideways (Q.max_slope) for any cell this sweep weights to read,
-    // stay dark; the first slice past the plane takes the light straight from its source.
+    // before it, and cells too far sideways for any cell this sweep weights to read, stay dark;
+    // the first slice past the plane takes the light straight from its source.
     bool first = false;
     if (Q.per_cell_flow != 0) {
         vec3 f = vx_prop_light_flow(x);
-        // (Slope from one slice behind the light: the first slice past it may be much closer
-        // than a cell, and its steep neighbours are read by the next slice.)
-        if (float(Q.direction) * f[axis] <= 0.0f || max(abs(f[u]), abs(f[v])) > float(Q.max_slope) * (abs(f[axis]) + 1.0f))
-            return vec3(0.0f);
+        if (vx_prop_unlit(axis, f)) return vec3(0.0f);
         first = float(Q.direction) * (float(prev) + 0.5f - Q.source[axis]) <= 0.0f;
         if (first) {
             back = f;
@@ -320,4 +342,297 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
         return vx_radiance_add(incoming * transmitted, q * (kept * step_world));
     }
     return incoming * transmitted;
+}
+
+// The CPU's batch of vx_prop_cell for a point or spot light's sweep: a run of cells (i0 + l, j),
+// l < n <= VX_PROP_RUN, of slice Q.slice, of an unperturbed sweep (Q.per_cell_flow) without axis
+// blending or per-material transport, on a slice past the first beyond the light's plane. Each
+// cell steps back along its own ray from the light, so its reads land at offsets of its own
+// (gathers), but every lane goes through vx_prop_cell's arithmetic, stage by stage in SIMD: its
+// step and the ends of its trapezoid (vx_prop_flow_lane), the inner points (vx_prop_flow_piece),
+// the blur taps (vx_prop_flow_tap), the step's transmittance (vx_prop_flow_transmit), leaving its
+// value in `incoming`. A lane whose step moves more
+// than VX_PROP_RUN_PIECES cells sideways, or whose taps read beyond the slice (where vx_prop_cell
+// reads the light itself), is left VX_LANE_REDO for the caller to run vx_prop_cell. The caller
+// passes `axis` as a constant (one call per axis), so that these inline without selects.
+#define VX_PROP_RUN 256
+#define VX_PROP_RUN_PIECES 4     // the default cone's sweeps reach slope 4 (Q.max_slope)
+#define VX_LANE_ON 0             // the run's value is the lane's
+#define VX_LANE_DARK 1           // no light reaches the cell (vx_prop_cell's early 0)
+#define VX_LANE_REDO 2           // the caller runs vx_prop_cell for it
+
+struct VxPropRun {
+    float pu[VX_PROP_RUN];       // where the cell's step starts, in the previous slice
+    float pv[VX_PROP_RUN];
+    float radius[VX_PROP_RUN];   // of its blur disc
+    float depth[VX_PROP_RUN];    // its trapezoid's sum of extinction samples
+    float step_world[VX_PROP_RUN];
+    float weight[VX_PROP_RUN];   // vx_prop_weight
+    int pieces[VX_PROP_RUN];
+    int state[VX_PROP_RUN];      // VX_LANE_*
+    float incoming[3 * VX_PROP_RUN];   // channel-major: the blur taps' sum, then the cell's value
+};
+
+VX_INLINE void vx_prop_flow_lane(int axis, int i0, int j, int l, VX_INOUT(VxPropRun) r) {
+    int u = vx_axis_u(axis);
+    int v = vx_axis_v(axis);
+    vec3 x = vx_prop_cell_point(axis, i0 + l, j);
+    vec3 back = vx_prop_back(axis, x);
+    vec3 p = x - back;
+    int pieces = vx_prop_pieces(axis, back);
+    ivec3 cx;
+    cx[axis] = Q.slice;
+    cx[u] = i0 + l;
+    cx[v] = j;
+    r.pu[l] = p[u];
+    r.pv[l] = p[v];
+    r.radius[l] = vx_prop_blur_radius(back);
+    r.depth[l] = 0.5f * (vx_prop_sigma_cell(cx, 0) + vx_prop_sigma_slice(axis, p[u], p[v], Q.slice - Q.direction, 0));
+    r.step_world[l] = vx_prop_step_world(back);
+    r.weight[l] = vx_prop_point_weight(axis, x, false);
+    r.pieces[l] = pieces;
+    r.state[l] = vx_prop_unlit(axis, vx_prop_light_flow(x)) ? VX_LANE_DARK : (pieces <= VX_PROP_RUN_PIECES ? VX_LANE_ON : VX_LANE_REDO);
+}
+
+// Inner point k of the lane's trapezoid, added if its step has that many.
+VX_INLINE void vx_prop_flow_piece(int axis, int i0, int j, int k, int l, VX_INOUT(VxPropRun) r) {
+    vec3 x = vx_prop_cell_point(axis, i0 + l, j);
+    vec3 back = vx_prop_back(axis, x);
+    float inner = vx_prop_sigma_at(vx_prop_piece_point(x - back, back, k, r.pieces[l]), 0);
+    r.depth[l] += k < r.pieces[l] ? inner : 0.0f;
+}
+
+// Tap t of the lane's blur disc in channel ch: a bilinear read of the previous slice, as
+// vx_prop_prev_at reads it where all four corners lie in the slice (else the lane is redone).
+// (Outside, the slice's first cells are read and dropped; the slice has at least 2 x 2 cells.)
+VX_INLINE void vx_prop_flow_tap(int axis, int t, int ch, int l, VX_INOUT(VxPropRun) r) {
+    int nu = Q.dims[vx_axis_u(axis)];
+    int nv = Q.dims[vx_axis_v(axis)];
+    float ga = r.pu[l] + r.radius[l] * Q.taps[t].offset.x - 0.5f;
+    float gb = r.pv[l] + r.radius[l] * Q.taps[t].offset.y - 0.5f;
+    float fa = floor(ga);
+    float fb = floor(gb);
+    int ia = int(fa);
+    int ib = int(fb);
+    bool inside = ia >= 0 && ib >= 0 && ia + 1 < nu && ib + 1 < nv;
+    r.state[l] = !inside && r.state[l] == VX_LANE_ON ? VX_LANE_REDO : r.state[l];
+    int at = inside ? (ib * nu + ia) * Q.channels + ch : 0;
+    int row = nu * Q.channels;
+    float value = VX_BILERP(vx_prop_prev(at), vx_prop_prev(at + Q.channels), vx_prop_prev(at + row),
+                            vx_prop_prev(at + row + Q.channels), ga - fa, gb - fb);
+    r.incoming[ch * VX_PROP_RUN + l] = vx_radiance_add(r.incoming[ch * VX_PROP_RUN + l], Q.taps[t].weight * value);
+}
+
+// The lane's value in channel ch, in place of what its taps took in: that times the step's
+// transmittance, with `atten` the channel's Q.atten.
+VX_INLINE void vx_prop_flow_transmit(int ch, float atten, int l, VX_INOUT(VxPropRun) r) {
+    float tau = r.depth[l] * r.step_world[l] / float(r.pieces[l]);
+    float value = r.incoming[ch * VX_PROP_RUN + l] * vx_exp(-atten * tau);
+    r.incoming[ch * VX_PROP_RUN + l] = r.state[l] == VX_LANE_DARK ? 0.0f : value;
+}
+
+VX_INLINE void vx_prop_flow_run(int axis, int i0, int j, int n, VX_INOUT(VxPropRun) r) {
+    VX_SIMD_LOOP
+    for (int l = 0; l < n; ++l) vx_prop_flow_lane(axis, i0, j, l, r);
+    // The inner points, as far as the run's longest step needs (a light far away needs none).
+    int most = 1;
+    for (int l = 0; l < n; ++l) most = max(most, r.state[l] == VX_LANE_ON ? r.pieces[l] : 1);
+    for (int k = 1; k < most; ++k) {
+        VX_SIMD_LOOP
+        for (int l = 0; l < n; ++l) vx_prop_flow_piece(axis, i0, j, k, l, r);
+    }
+    for (int ch = 0; ch < Q.channels; ++ch) {
+        VX_SIMD_LOOP
+        for (int l = 0; l < n; ++l) r.incoming[ch * VX_PROP_RUN + l] = 0.0f;
+        for (int t = 0; t < Q.tap_count; ++t) {
+            VX_SIMD_LOOP
+            for (int l = 0; l < n; ++l) vx_prop_flow_tap(axis, t, ch, l, r);
+        }
+        float atten = Q.atten[ch];
+        VX_SIMD_LOOP
+        for (int l = 0; l < n; ++l) vx_prop_flow_transmit(ch, atten, l, r);
+    }
+}
+
+// The CPU's batch of vx_prop_cell for a sweep whose every cell steps back alike: a directional
+// light (or a source sweep along an axis), unperturbed. Every cell of a row then reads the
+// previous slice (and, for a step's inner points, its own slice) at the same offsets, so a row is
+// a weighted sum of shifted slice rows, SIMD loops over contiguous floats: the composite
+// trapezoid's samples (VxPropRead, bilinear blends of the two slices) and the blur taps, whose
+// bilinear corner weights add into one stencil (9 taps of 4 corners fall on 9-16 cells for the
+// default cone's blur radii: one multiply-add per stencil cell instead of a blend per tap). The
+// cells of a row whose reads would leave the slice, outside [lo, hi), run vx_prop_cell.
+#define VX_PROP_MAX_READS 17                    // trapezoid samples: a step VX_PROP_MAX_SLOPE cells sideways
+#define VX_PROP_MAX_STENCIL (4 * VX_MAX_TAPS)
+
+// A read at in-slice offset (di + ta, dj + tb) from a cell, bilinear, weighted by w; for a
+// trapezoid sample, a blend of the previous slice (slice 0) and the cell's own (1).
+struct VxPropRead {
+    int di;
+    int dj;
+    float ta;
+    float tb;
+    float w;
+    float slice;
+};
+
+struct VxPropStencil {
+    int reads;                                  // 0: the sweep does not batch
+    VxPropRead read[VX_PROP_MAX_READS];
+    int cells;
+    int cell_di[VX_PROP_MAX_STENCIL];
+    int cell_dj[VX_PROP_MAX_STENCIL];
+    float cell_w[VX_PROP_MAX_STENCIL];          // the taps' summed corner weights there
+    int lo;                                     // cells [lo, hi) of a row read inside the slice
+    int hi;
+    float step_world;
+};
+
+VX_INLINE VxPropRead vx_prop_read(float du, float dv, float w, float slice) {
+    VxPropRead r;
+    float fa = floor(du);
+    float fb = floor(dv);
+    r.di = int(fa);
+    r.dj = int(fb);
+    r.ta = du - fa;
+    r.tb = dv - fb;
+    r.w = w;
+    r.slice = slice;
+    return r;
+}
+
+// Adds weight w at stencil cell (di, dj); the sum is kept in double until it is stored.
+void vx_prop_stencil_add(VX_INOUT(VxPropStencil) s, int di, int dj, double w) {
+    if (w == 0.0) return;
+    for (int c = 0; c < s.cells; ++c)
+        if (s.cell_di[c] == di && s.cell_dj[c] == dj) {
+            s.cell_w[c] = float(double(s.cell_w[c]) + w);
+            return;
+        }
+    s.cell_di[s.cells] = di;
+    s.cell_dj[s.cells] = dj;
+    s.cell_w[s.cells] = float(w);
+    s.cells += 1;
+}
+
+// Narrows [lo, hi) to the cells whose read r stays inside a row of nu cells.
+void vx_prop_stencil_narrow(VX_INOUT(VxPropStencil) s, int di, int nu) {
+    s.lo = max(s.lo, -di);
+    s.hi = min(s.hi, nu - 1 - di);
+}
+
+// The stencil of sweep Q (reads = 0 when its cells do not step alike, or step further than
+// VX_PROP_MAX_READS samples reach).
+void vx_prop_row_stencil(VX_OUT(VxPropStencil) s) {
+    int axis = Q.axis;
+    int u = vx_axis_u(axis);
+    int v = vx_axis_v(axis);
+    int nu = Q.dims[u];
+    s.reads = 0;
+    s.cells = 0;
+    s.lo = 0;
+    s.hi = nu;
+    vec3 back = vx_prop_back(axis, vec3(0.0f));   // the same for every cell
+    int pieces = vx_prop_pieces(axis, back);
+    if (Q.source_is_position != 0 || Q.eye_sweep != 0 || vx_perturbed() || pieces + 1 > VX_PROP_MAX_READS) return;
+    s.step_world = vx_prop_step_world(back);
+    // The trapezoid's samples: at fraction f of the step from p (previous slice) to the cell, a
+    // blend of the two slices' bilinear reads.
+    for (int q = 0; q <= pieces; ++q) {
+        float f = float(q) / float(pieces);
+        float w = (q == 0 || q == pieces ? 0.5f : 1.0f) * s.step_world / float(pieces);
+        s.read[q] = vx_prop_read(-back[u] * (1.0f - f), -back[v] * (1.0f - f), w, f);
+        vx_prop_stencil_narrow(s, s.read[q].di, nu);
+    }
+    s.reads = pieces + 1;
+    float radius = vx_prop_blur_radius(back);
+    for (int t = 0; t < Q.tap_count; ++t) {
+        VxPropRead r = vx_prop_read(-back[u] + radius * Q.taps[t].offset.x, -back[v] + radius * Q.taps[t].offset.y,
+                                    Q.taps[t].weight, 0.0f);
+        vx_prop_stencil_narrow(s, r.di, nu);
+        for (int q = 0; q < 4; ++q) {
+            double wu = (q & 1) != 0 ? double(r.ta) : 1.0 - double(r.ta);
+            double wv = (q & 2) != 0 ? double(r.tb) : 1.0 - double(r.tb);
+            vx_prop_stencil_add(s, r.di + (q & 1), r.dj + (q >> 1), wu * wv * double(r.w));
+        }
+    }
+}
+
+// Whether row j's reads stay inside the slice (rows dj and dj + 1 of every read).
+VX_INLINE bool vx_prop_row_fits(VX_IN(VxPropStencil) s, int j) {
+    int nv = Q.dims[vx_axis_v(Q.axis)];
+    bool fits = s.reads > 0 && s.lo < s.hi;
+    for (int k = 0; k < s.reads; ++k) fits = fits && j + s.read[k].dj >= 0 && j + s.read[k].dj + 1 < nv;
+    for (int c = 0; c < s.cells; ++c) fits = fits && j + s.cell_dj[c] >= 0 && j + s.cell_dj[c] < nv;
+    return fits;
+}
+
+struct VxPropRowRun {
+    float tau[4 * VX_PROP_RUN];     // plane-major: the step's optical depth (plane 0), or with
+                                    // per-material transport each channel's (planes 1-3)
+    float light[3 * VX_PROP_RUN];   // interleaved as the slice: the taps' sum, then the cells' values
+};
+
+// Cells [base, base + n) of row j (n <= VX_PROP_RUN, inside [s.lo, s.hi)), `prev` the previous
+// slice, into r.light: vx_prop_cell's value, Q.channels floats per cell.
+VX_INLINE void vx_prop_row_run(VX_IN(VxPropStencil) s, int j, int prev, int base, int n, VX_INOUT(VxPropRowRun) r) {
+    int axis = Q.axis;
+    int sv = Q.strides[vx_axis_v(axis)];
+    int sa = Q.strides[axis];
+    int nu = Q.dims[vx_axis_u(axis)];
+    int channels = Q.channels;
+    int plane_cells = Q.dims.x * Q.dims.y * Q.dims.z;
+    int planes = Q.transport_planes != 0 ? 4 : 1;
+    for (int plane = planes > 1 ? 1 : 0; plane < planes; ++plane) {
+        int at_tau = plane * VX_PROP_RUN;
+        VX_SIMD_LOOP
+        for (int q = 0; q < n; ++q) r.tau[at_tau + q] = 0.0f;
+        for (int k = 0; k < s.reads; ++k) {
+            int row_prev = plane * plane_cells + prev * sa + (j + s.read[k].dj) * sv + base + s.read[k].di;
+            int row_here = plane * plane_cells + Q.slice * sa + (j + s.read[k].dj) * sv + base + s.read[k].di;
+            float ta = s.read[k].ta;
+            float tb = s.read[k].tb;
+            float f = s.read[k].slice;
+            float w = s.read[k].w;
+            VX_SIMD_LOOP
+            for (int q = 0; q < n; ++q) {
+                float in_prev = VX_BILERP(vx_prop_sigma(row_prev + q), vx_prop_sigma(row_prev + q + 1), vx_prop_sigma(row_prev + q + sv),
+                                          vx_prop_sigma(row_prev + q + sv + 1), ta, tb);
+                float in_here = VX_BILERP(vx_prop_sigma(row_here + q), vx_prop_sigma(row_here + q + 1), vx_prop_sigma(row_here + q + sv),
+                                          vx_prop_sigma(row_here + q + sv + 1), ta, tb);
+                r.tau[at_tau + q] += w * mix(in_prev, in_here, f);
+            }
+        }
+    }
+    // The blur taps, as their stencil. A cell reads every channel at the same offsets with the
+    // same weights, so on the interleaved slice a run of n cells is n * channels contiguous floats.
+    int floats = n * channels;
+    VX_SIMD_LOOP
+    for (int m = 0; m < floats; ++m) r.light[m] = 0.0f;
+    for (int c = 0; c < s.cells; ++c) {
+        int at = ((j + s.cell_dj[c]) * nu + base + s.cell_di[c]) * channels;
+        float w = s.cell_w[c];
+        VX_SIMD_LOOP
+        for (int m = 0; m < floats; ++m) r.light[m] = vx_radiance_add(r.light[m], w * vx_prop_prev(at + m));
+    }
+    // Each channel times its transmittance over the step (its own plane's optical depth, or tau
+    // times the medium's k); a source sweep adds the cell's own source over the step.
+    int source_row = (Q.slice * sa + j * sv + base) * 3;
+    float step = s.step_world;
+    for (int ch = 0; ch < channels; ++ch) {
+        float kc = Q.atten[ch];
+        int at_tau = planes > 1 ? (ch + 1) * VX_PROP_RUN : 0;
+        float scale = planes > 1 ? 1.0f : kc;
+        if (Q.source_sweep == 0) {
+            VX_SIMD_LOOP
+            for (int q = 0; q < n; ++q) r.light[q * channels + ch] *= vx_exp(-(scale * r.tau[at_tau + q]));
+        } else {
+            VX_SIMD_LOOP
+            for (int q = 0; q < n; ++q) {
+                float kt = scale * r.tau[at_tau + q];
+                r.light[q * channels + ch] = vx_radiance_add(r.light[q * channels + ch] * vx_exp(-kt),
+                                                             vx_prop_in(source_row + q * 3 + ch) * (step * vx_exp_integral(kt)));
+            }
+        }
+    }
 }
