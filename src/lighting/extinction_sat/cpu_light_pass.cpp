@@ -1,5 +1,5 @@
-// CPU light passes: AO shells and shadow cones from the SAT, in rows of VX_SAT_ROW cells along x
-// (the row batches of src/lighting/extinction_sat/kernel/vx_sat.h). When every cell of a pass uses
+// CPU light passes: AO shells and shadow cones from the SAT, in rows of cells along x (the row
+// batches of src/lighting/extinction_sat/kernel/vx_sat.h: VX_SAT_ROW cells, VX_CONE_ROW for cones). When every cell of a pass uses
 // the same cuboids (AO shells, directional lights) the row is evaluated cuboid by cuboid, the
 // eight corner lookups being contiguous loads across it; cones towards point and spot lights
 // differ per cell, and each row walks its cells' cones together. Both add the same vx_sat_term as
@@ -16,6 +16,8 @@ namespace voxlux {
 namespace {
 
 using kernel::CpuSatKernel;
+// A row's cells are the bits of one 32-bit mask (the march needs them, or not).
+static_assert(VX_SAT_ROW <= 32 && VX_CONE_ROW <= 32);
 
 // The cuboids every cell of the pass shares, or none when they depend on the cell.
 std::vector<CpuSatKernel::VxCuboid> sharedStencil(CpuSatKernel& k, int light) {
@@ -92,7 +94,7 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
                     for (int c = 0; c < chunks; ++c) {
                         if (chunk_needed[size_t(c)] == 0) continue;
                         const int x0 = c * width;
-                        if (x0 + q.lo.x >= 0 && x0 + width - 1 + q.hi.x <= d.x)
+                        if (kk.vx_sat_row_inside(q, x0))
                             kk.vx_sat_add_cuboid_row(plane, q, {x0, y, z}, false, rows[size_t(c)]);
                         else
                             kk.vx_sat_add_cuboid_row(plane, q, {x0, y, z}, true, rows[size_t(c)]);

@@ -1,8 +1,9 @@
 // The Extinction-SAT method's passes on one device (Schlegel 2011): the SAT scan over the light
 // grid and the light-cache channels, AO shells and shadow cones, queried from it. The CPU runs
-// them with TBB and SIMD row batches (summed_volume.cpp, cpu_light_pass.cpp), GL as the compute
-// programs sat_scan.comp and light_cache.comp (gl_sat_passes.cpp); both give the same integers
-// and, per cell, the same kernel arithmetic (src/lighting/extinction_sat/kernel/vx_sat.h).
+// them with TBB (summed_volume.cpp, cpu_light_pass.cpp) and, for the light passes, the kernel's
+// SIMD row batches, GL as the compute programs sat_scan.comp and light_cache.comp
+// (gl_sat_passes.cpp); both give the same integers and, per cell, the same kernel arithmetic
+// (src/lighting/extinction_sat/kernel/vx_sat.h).
 #pragma once
 #include <memory>
 

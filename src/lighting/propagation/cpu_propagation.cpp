@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cmath>
 #include <memory>
+#include <type_traits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -20,8 +20,6 @@
 
 namespace voxlux {
 namespace {
-
-using glm::mix;   // the kernel's filters (VX_BILERP) call it unqualified, as GLSL does
 
 // A sweep reads and writes whole slices. For y and z sweeps a slice is rows of x, contiguous in
 // the volume's layout; an x sweep's slice is one float per cache line there, so it runs on copies
@@ -73,25 +71,29 @@ const std::vector<float>& slicedSigma(const PropagationPass& pass, const SliceMa
     return slot->values;
 }
 
+// GCC only: no unroll-and-jam, which would fuse two of the directional row batch's SIMD loops and
+// read the second one's contiguous floats as gathers.
+#if defined(__GNUC__) && !defined(__clang__)
+#define VOXLUX_NO_UNROLL_AND_JAM gnu::optimize("no-loop-unroll-and-jam")
+#else
+#define VOXLUX_NO_UNROLL_AND_JAM
+#endif
+
 // Runs `run` with every call in it inlined, recursively: the kernel's functions and vector
 // operators then all inline into the SIMD loops of a row batch, where the inliner's growth limits
-// would leave calls, and into the per-cell kernel at a row's ends (which then takes 0.63-0.88 of
-// the time of the sweeps' rows before, docs/accuracy-propagation.md). Without unroll-and-jam,
-// which would fuse two of the row batch's SIMD loops and read the second one's contiguous floats
-// as gathers.
+// would leave calls, and into the per-cell kernel at a row's ends (the directional sweeps then take
+// 0.64-0.90 of their time before, docs/accuracy-propagation.md).
 template <class Run>
-[[gnu::flatten, gnu::optimize("no-loop-unroll-and-jam")]] void flattened(Run&& run) {
+[[gnu::flatten, VOXLUX_NO_UNROLL_AND_JAM]] void flattened(Run&& run) {
     run();
 }
 
-// A sweep whose every cell steps back alike (a directional light, unperturbed): each row's cells
+// A sweep whose every cell steps back alike (vx_prop_row_stencil says which): each row's cells
 // [lo, hi) through the kernel's row batch (vx_prop_row_run), the row's ends, and every row whose
 // reads leave the slice, through vx_prop_cell.
 class RowBatch {
 public:
-    explicit RowBatch(kernel::CpuPropagationKernel& k) : k_(k) {
-        if (k.Q.strides[k.vx_axis_u(k.Q.axis)] == 1) k.vx_prop_row_stencil(stencil_);
-    }
+    explicit RowBatch(kernel::CpuPropagationKernel& k) : k_(k) { k.vx_prop_row_stencil(stencil_); }
 
     // Row j's values (channels floats per cell) into `out`.
     void row(int j, int prev, float* out) const {
@@ -119,32 +121,21 @@ public:
 
 private:
     kernel::CpuPropagationKernel& k_;
-    kernel::CpuPropagationKernel::VxPropStencil stencil_{};   // reads = 0: no row batches
+    kernel::CpuPropagationKernel::VxPropStencil stencil_;
 };
 
-// A point or spot light's sweep (Q.per_cell_flow), unperturbed, on the slices past the one next to
-// the light's plane: runs of a row through the kernel's batch (vx_prop_flow_run), the lanes it
-// leaves, every cell of the first slice past the light's plane and of a sweep that blends two
-// axes (its weight needs the angles of vx_sweep_weight) through vx_prop_cell.
+// A point or spot light's sweep (Q.per_cell_flow): the rows of a slice the kernel's batch takes
+// (vx_prop_flow_batches) in runs through it (vx_prop_flow_run), the lanes it leaves and every
+// other row (the first slice past the light's plane, a sweep that blends two axes, perturbed
+// media, per-material transport) through vx_prop_cell.
 class FlowRowBatch {
 public:
-    FlowRowBatch(kernel::CpuPropagationKernel& k, int nu, int nv) : k_(k), nu_(nu) {
-        const kernel::VxPropParams& Q = k.Q;
-        // (A slice of at least 2 x 2 cells: a lane reading beyond it reads its first cells.)
-        // (Per-material transport runs per cell: a point light's indirect sweep through a 2D
-        // transfer function's regions.)
-        usable_ = Q.per_cell_flow != 0 && Q.eye_sweep == 0 && Q.source_sweep == 0 && Q.blend_axes == 0 &&
-                  Q.transport_planes == 0 && !k.vx_perturbed() && Q.strides[k.vx_axis_u(Q.axis)] == 1 && nu >= 2 && nv >= 2;
-    }
+    FlowRowBatch(kernel::CpuPropagationKernel& k, int nu) : k_(k), nu_(nu) {}
 
     // Row j's values (channels floats per cell) into `out` and its cells' weights into `weight`.
     void row(int j, int prev, float* out, float* weight) const {
-        const kernel::VxPropParams& Q = k_.Q;
-        const int axis = Q.axis, channels = Q.channels;
-        const float dir = float(Q.direction);
-        const bool lanes = usable_ && prev >= 0 && prev < Q.dims[axis] && dir * (float(Q.slice) + 0.5f - Q.source[axis]) > 0.0f &&
-                           dir * (float(prev) + 0.5f - Q.source[axis]) > 0.0f;
-        if (!lanes) {
+        const int axis = k_.Q.axis, channels = k_.Q.channels;
+        if (!k_.vx_prop_flow_batches(prev)) {
             flattened([&] {
                 for (int i = 0; i < nu_; ++i) redo(i, j, out, weight);
             });
@@ -153,15 +144,21 @@ public:
         kernel::CpuPropagationKernel::VxPropRun run;
         for (int base = 0; base < nu_; base += VX_PROP_RUN) {
             const int n = std::min(VX_PROP_RUN, nu_ - base);
-            // The axis as a constant: the kernel's vectors are then read without selects. On a copy
-            // of the kernel on the stack, whose array pointers the compiler then sees stay put while
-            // the run is written: it hoists them out of the lanes' conditional reads.
+            // The axis as a constant, so that the kernel's vectors are read without selects; on a
+            // copy of the kernel on the stack, whose array pointers the compiler then sees stay put
+            // while the run is written: it hoists them out of the lanes' conditional reads.
+            const auto runAlong = [&](auto axis_constant) {
+                flattened([&] {
+                    kernel::CpuPropagationKernel k = k_;
+                    k.vx_prop_flow_run(decltype(axis_constant)::value, base, j, n, run);
+                });
+            };
             if (axis == 0)
-                flattened([&] { kernel::CpuPropagationKernel k = k_; k.vx_prop_flow_run(0, base, j, n, run); });
+                runAlong(std::integral_constant<int, 0>());
             else if (axis == 1)
-                flattened([&] { kernel::CpuPropagationKernel k = k_; k.vx_prop_flow_run(1, base, j, n, run); });
+                runAlong(std::integral_constant<int, 1>());
             else
-                flattened([&] { kernel::CpuPropagationKernel k = k_; k.vx_prop_flow_run(2, base, j, n, run); });
+                runAlong(std::integral_constant<int, 2>());
             float* values = out + size_t(base) * channels;
             for (int c = 0; c < channels; ++c)
                 for (int l = 0; l < n; ++l) values[l * channels + c] = run.incoming[c * VX_PROP_RUN + l];
@@ -182,7 +179,6 @@ private:
 
     kernel::CpuPropagationKernel& k_;
     int nu_;
-    bool usable_ = false;
 };
 
 }  // namespace
@@ -232,7 +228,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
         lane->prev.assign(size_t(nu) * nv * channels, 0.0f);
         lane->cur.assign(lane->prev.size(), 0.0f);
         lane->batch = std::make_unique<RowBatch>(lane->k);
-        lane->flow = std::make_unique<FlowRowBatch>(lane->k, nu, nv);
+        lane->flow = std::make_unique<FlowRowBatch>(lane->k, nu);
         lanes.push_back(std::move(lane));
     }
 

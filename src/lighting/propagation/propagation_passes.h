@@ -1,7 +1,8 @@
 // The propagation method's passes on one device (Ropinski 2010, Sundén 2015): sweeps of lights,
 // slice by slice, through a grid of extinction into the illumination volume. The CPU runs them
-// with TBB and SIMD row batches (cpu_propagation.cpp), GL as the compute program propagate.comp
-// (gl_propagation_passes.cpp); per cell both run vx_prop_cell (src/lighting/propagation/kernel/vx_propagation.h).
+// with TBB (cpu_propagation.cpp) through the kernel's SIMD row batches, GL as the compute program
+// propagate.comp (gl_propagation_passes.cpp); per cell both run vx_prop_cell (all three in
+// src/lighting/propagation/kernel/vx_propagation.h).
 #pragma once
 #include <memory>
 

@@ -83,7 +83,7 @@ void expectExactBoxes(const SatGrid& g, int random_boxes, int max_edge) {
     double worst = 0.0;
     for (const auto& [lo, hi] : testBoxes(g.grid.dims, random_boxes, max_edge)) {
         const double exact = g.bruteForce(lo, hi);
-        const double got = k.vx_sat_box(0, lo, hi);
+        const double got = k.vx_sat_weighted_box(0, 1.0f, lo, hi);
         const double rel = std::abs(got - exact) / exact;
         worst = std::max(worst, rel);
         ASSERT_LE(rel, 1e-6) << "box [" << lo.x << "," << lo.y << "," << lo.z << ") - [" << hi.x << "," << hi.y << ","

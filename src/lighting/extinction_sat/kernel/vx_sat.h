@@ -104,12 +104,10 @@ VX_INLINE float vx_sat_term(int plane, float quantum, float weight, int bb, int 
 VX_INLINE float vx_sat_weighted_box(int plane, float weight, ivec3 lo, ivec3 hi) {
     ivec3 a = clamp(lo, ivec3(0), S.dims);
     ivec3 b = clamp(hi, ivec3(0), S.dims);
-    if (a.y >= b.y || a.z >= b.z) return 0.0f;
+    if (a.x >= b.x || a.y >= b.y || a.z >= b.z) return 0.0f;   // (the GL per-cell queries skip the lookups)
     return vx_sat_term(plane, vx_sat_quantum(plane), weight, vx_sat_entry_index(0, b.y, b.z), vx_sat_entry_index(0, a.y, b.z),
                        vx_sat_entry_index(0, b.y, a.z), vx_sat_entry_index(0, a.y, a.z), a.x, b.x);
 }
-
-VX_INLINE float vx_sat_box(int plane, ivec3 lo, ivec3 hi) { return vx_sat_weighted_box(plane, 1.0f, lo, hi); }
 
 // Both light passes are weighted sums of box sums, sum_j weight_j * SAT(c + lo_j, c + hi_j), over
 // cuboids given relative to the cell c. The GL backend runs them per cell (vx_ambient_tau,
@@ -278,8 +276,9 @@ float vx_cone_tau(ivec3 c, VxLight L) {
 
 // The CPU's row batches: the cells c0 + (i, 0, 0) of a grid row, whose lookups along the lines
 // are neighbouring words. Each lane adds the same vx_sat_term, in the same order, as the
-// per-cell queries above. Widths (measured with voxlux_bench_sat --paper-only): one AVX-512
-// vector of 32-bit words for shared cuboids; two for cones, whose gathers then overlap more.
+// per-cell queries above. Widths: one AVX-512 vector of 32-bit words for shared cuboids; two for
+// cones, whose gathers then overlap more (docs/accuracy-sat.md, measured with
+// voxlux_bench_sat --paper-only).
 #define VX_SAT_ROW 16
 #define VX_CONE_ROW 32
 
@@ -287,9 +286,13 @@ struct VxSatRow {
     float tau[VX_SAT_ROW];
 };
 
+// Whether every lane of the row from c0's x reads cuboid q's x range inside the grid, so that
+// vx_sat_add_cuboid_row may take it unclamped.
+VX_INLINE bool vx_sat_row_inside(VxCuboid q, int x0) { return x0 + q.lo.x >= 0 && x0 + VX_SAT_ROW - 1 + q.hi.x <= S.dims.x; }
+
 // One cuboid every cell shares (an AO shell, a directional light's cone cuboid) across a row:
 // tau[i] += vx_sat_weighted_box(plane, q.weight, c0 + (i, 0, 0) + q.lo, ... + q.hi). With `clamp_x`
-// false (every lane's x range inside the grid) the loads are contiguous. A plain loop, not
+// false (vx_sat_row_inside) the loads are contiguous. A plain loop, not
 // VX_SIMD_LOOP: `omp simd` would privatise the VxU96 temporaries into memory before they are
 // inlined away; the auto-vectoriser, which runs after inlining, keeps them in registers.
 VX_INLINE void vx_sat_add_cuboid_row(int plane, VxCuboid q, ivec3 c0, bool clamp_x, VX_INOUT(VxSatRow) row) {

@@ -154,6 +154,10 @@ vec3 vx_prop_outside(vec3 q) {
     return Q.channels == 1 ? vec3(vx_radiance_add(0.0f, vx_luminance(e)), 0.0f, 0.0f) : e;
 }
 
+// Where channel ch of cell (i, j) of the previous slice is (vx_prop_prev: Q.channels floats per
+// cell, rows of u).
+VX_INLINE int vx_prop_prev_index(int axis, int i, int j, int ch) { return (j * Q.dims[vx_axis_u(axis)] + i) * Q.channels + ch; }
+
 // The previous slice's value at cell (i, j) of the slice; `prev` is that slice's index (-1: the
 // virtual slice before the grid, all outside).
 VX_INLINE vec3 vx_prop_prev_cell(int i, int j, int prev) {
@@ -161,7 +165,7 @@ VX_INLINE vec3 vx_prop_prev_cell(int i, int j, int prev) {
     int v = vx_axis_v(Q.axis);
     if (prev < 0 || prev >= Q.dims[Q.axis] || i < 0 || j < 0 || i >= Q.dims[u] || j >= Q.dims[v])
         return vx_prop_outside(vx_prop_point(Q.axis, float(prev) + 0.5f, float(i) + 0.5f, float(j) + 0.5f));
-    int at = (j * Q.dims[u] + i) * Q.channels;
+    int at = vx_prop_prev_index(Q.axis, i, j, 0);
     if (Q.channels == 1) return vec3(vx_prop_prev(at), 0.0f, 0.0f);
     return vec3(vx_prop_prev(at), vx_prop_prev(at + 1), vx_prop_prev(at + 2));
 }
@@ -249,31 +253,34 @@ VX_INLINE float vx_prop_step_world(vec3 back) { return length(mat3(Q.grid_to_wor
 // Radius of the blur disc at the end of a step `back`: its length times tan(half-angle).
 VX_INLINE float vx_prop_blur_radius(vec3 back) { return length(back) * Q.blur_tan; }
 
+// The composite trapezoid's integral from its samples' `sum` (the ends halved) over a step of
+// world length `step_world` cut into `pieces`.
+VX_INLINE float vx_prop_trapezoid(float sum, float step_world, int pieces) { return sum * step_world / float(pieces); }
+
+// The ends of a step from p, on the previous slice's centre plane, to cell (i, j) of slice Q.slice,
+// unperturbed: the cell's extinction plus the previous slice's, bilinear at p.
+VX_INLINE float vx_prop_exact_ends(int axis, int i, int j, vec3 p, int plane) {
+    ivec3 cx;
+    cx[axis] = Q.slice;
+    cx[vx_axis_u(axis)] = i;
+    cx[vx_axis_v(axis)] = j;
+    return vx_prop_sigma_cell(cx, plane) + vx_prop_sigma_slice(axis, p[vx_axis_u(axis)], p[vx_axis_v(axis)], Q.slice - Q.direction, plane);
+}
+
 // The step's integral of one plane of the extinction from p to cell (i, j) of slice Q.slice at
 // grid point x: a composite trapezoid over `pieces`, times the step's world length. `exact_ends`:
 // x is the cell's centre and p lies on the previous slice's centre plane (no perturbation, not a
 // light's first slice), so the ends read the cell and a bilinear blend of the slice.
 float vx_prop_step_depth(int i, int j, vec3 x, vec3 p, vec3 back, vec4 nx, bool exact_ends, int plane) {
     int axis = Q.axis;
-    int u = vx_axis_u(axis);
-    int v = vx_axis_v(axis);
     int pieces = vx_prop_pieces(axis, back);
-    float ends;
-    if (!exact_ends) {
-        ends = vx_prop_extinction(x, nx, plane) + vx_prop_extinction(p, vx_prop_noise(p), plane);
-    } else {
-        ivec3 cx;
-        cx[axis] = Q.slice;
-        cx[u] = i;
-        cx[v] = j;
-        ends = vx_prop_sigma_cell(cx, plane) + vx_prop_sigma_slice(axis, p[u], p[v], Q.slice - Q.direction, plane);
-    }
-    float sum = 0.5f * ends;
+    float sum = 0.5f * (exact_ends ? vx_prop_exact_ends(axis, i, j, p, plane)
+                                   : vx_prop_extinction(x, nx, plane) + vx_prop_extinction(p, vx_prop_noise(p), plane));
     for (int k = 1; k < pieces; ++k) {
         vec3 q = vx_prop_piece_point(p, back, k, pieces);
         sum += vx_prop_extinction(q, vx_prop_noise(q), plane);
     }
-    return sum * vx_prop_step_world(back) / float(pieces);
+    return vx_prop_trapezoid(sum, vx_prop_step_world(back), pieces);
 }
 
 // The value of cell (i, j) of slice Q.slice.
@@ -374,20 +381,14 @@ struct VxPropRun {
 };
 
 VX_INLINE void vx_prop_flow_lane(int axis, int i0, int j, int l, VX_INOUT(VxPropRun) r) {
-    int u = vx_axis_u(axis);
-    int v = vx_axis_v(axis);
     vec3 x = vx_prop_cell_point(axis, i0 + l, j);
     vec3 back = vx_prop_back(axis, x);
     vec3 p = x - back;
     int pieces = vx_prop_pieces(axis, back);
-    ivec3 cx;
-    cx[axis] = Q.slice;
-    cx[u] = i0 + l;
-    cx[v] = j;
-    r.pu[l] = p[u];
-    r.pv[l] = p[v];
+    r.pu[l] = p[vx_axis_u(axis)];
+    r.pv[l] = p[vx_axis_v(axis)];
     r.radius[l] = vx_prop_blur_radius(back);
-    r.depth[l] = 0.5f * (vx_prop_sigma_cell(cx, 0) + vx_prop_sigma_slice(axis, p[u], p[v], Q.slice - Q.direction, 0));
+    r.depth[l] = 0.5f * vx_prop_exact_ends(axis, i0 + l, j, p, 0);
     r.step_world[l] = vx_prop_step_world(back);
     r.weight[l] = vx_prop_point_weight(axis, x, false);
     r.pieces[l] = pieces;
@@ -416,7 +417,7 @@ VX_INLINE void vx_prop_flow_tap(int axis, int t, int ch, int l, VX_INOUT(VxPropR
     int ib = int(fb);
     bool inside = ia >= 0 && ib >= 0 && ia + 1 < nu && ib + 1 < nv;
     r.state[l] = !inside && r.state[l] == VX_LANE_ON ? VX_LANE_REDO : r.state[l];
-    int at = inside ? (ib * nu + ia) * Q.channels + ch : 0;
+    int at = inside ? vx_prop_prev_index(axis, ia, ib, ch) : 0;
     int row = nu * Q.channels;
     float value = VX_BILERP(vx_prop_prev(at), vx_prop_prev(at + Q.channels), vx_prop_prev(at + row),
                             vx_prop_prev(at + row + Q.channels), ga - fa, gb - fb);
@@ -426,9 +427,21 @@ VX_INLINE void vx_prop_flow_tap(int axis, int t, int ch, int l, VX_INOUT(VxPropR
 // The lane's value in channel ch, in place of what its taps took in: that times the step's
 // transmittance, with `atten` the channel's Q.atten.
 VX_INLINE void vx_prop_flow_transmit(int ch, float atten, int l, VX_INOUT(VxPropRun) r) {
-    float tau = r.depth[l] * r.step_world[l] / float(r.pieces[l]);
+    float tau = vx_prop_trapezoid(r.depth[l], r.step_world[l], r.pieces[l]);
     float value = r.incoming[ch * VX_PROP_RUN + l] * vx_exp(-atten * tau);
     r.incoming[ch * VX_PROP_RUN + l] = r.state[l] == VX_LANE_DARK ? 0.0f : value;
+}
+
+// Whether the rows of slice Q.slice batch, `prev` the previous slice: the sweep is one the batch
+// stands in for, and both slices lie past the light's plane. (The slice has at least 2 x 2 cells:
+// a lane reading beyond it reads its first cells instead, and drops them.)
+VX_INLINE bool vx_prop_flow_batches(int prev) {
+    int axis = Q.axis;
+    float dir = float(Q.direction);
+    return Q.per_cell_flow != 0 && Q.eye_sweep == 0 && Q.source_sweep == 0 && Q.blend_axes == 0 && Q.transport_planes == 0 &&
+           !vx_perturbed() && Q.strides[vx_axis_u(axis)] == 1 && Q.dims[vx_axis_u(axis)] >= 2 && Q.dims[vx_axis_v(axis)] >= 2 &&
+           prev >= 0 && prev < Q.dims[axis] && dir * (float(Q.slice) + 0.5f - Q.source[axis]) > 0.0f &&
+           dir * (float(prev) + 0.5f - Q.source[axis]) > 0.0f;
 }
 
 VX_INLINE void vx_prop_flow_run(int axis, int i0, int j, int n, VX_INOUT(VxPropRun) r) {
@@ -455,13 +468,15 @@ VX_INLINE void vx_prop_flow_run(int axis, int i0, int j, int n, VX_INOUT(VxPropR
 }
 
 // The CPU's batch of vx_prop_cell for a sweep whose every cell steps back alike: a directional
-// light (or a source sweep along an axis), unperturbed. Every cell of a row then reads the
-// previous slice (and, for a step's inner points, its own slice) at the same offsets, so a row is
-// a weighted sum of shifted slice rows, SIMD loops over contiguous floats: the composite
-// trapezoid's samples (VxPropRead, bilinear blends of the two slices) and the blur taps, whose
-// bilinear corner weights add into one stencil (9 taps of 4 corners fall on 9-16 cells for the
-// default cone's blur radii: one multiply-add per stencil cell instead of a blend per tap). The
-// cells of a row whose reads would leave the slice, outside [lo, hi), run vx_prop_cell.
+// light (or a source sweep along an axis), unperturbed, stepping at most VX_PROP_MAX_SLOPE cells
+// sideways. Every cell of a row then reads the previous slice (and, for a step's inner points, its
+// own slice) at the same offsets, so a row is a weighted sum of shifted slice rows, SIMD loops
+// over contiguous floats: the composite trapezoid's samples (VxPropRead, bilinear blends of the
+// two slices) and the blur taps, whose bilinear corner weights add into one stencil (9 taps of 4
+// corners fall on 9-16 cells for the default cone's blur radii: one multiply-add per stencil cell
+// instead of a blend per tap). These regroup vx_prop_cell's sums, so the two agree to float
+// rounding, not bit for bit. The cells of a row whose reads would leave the slice, outside
+// [lo, hi), run vx_prop_cell.
 #define VX_PROP_MAX_READS 17                    // trapezoid samples: a step VX_PROP_MAX_SLOPE cells sideways
 #define VX_PROP_MAX_STENCIL (4 * VX_MAX_TAPS)
 
@@ -509,6 +524,7 @@ void vx_prop_stencil_add(VX_INOUT(VxPropStencil) s, int di, int dj, double w) {
             s.cell_w[c] = float(double(s.cell_w[c]) + w);
             return;
         }
+    VX_CHECK_INDEX(s.cells, VX_PROP_MAX_STENCIL, "propagation stencil cell");
     s.cell_di[s.cells] = di;
     s.cell_dj[s.cells] = dj;
     s.cell_w[s.cells] = float(w);
@@ -521,8 +537,9 @@ void vx_prop_stencil_narrow(VX_INOUT(VxPropStencil) s, int di, int nu) {
     s.hi = min(s.hi, nu - 1 - di);
 }
 
-// The stencil of sweep Q (reads = 0 when its cells do not step alike, or step further than
-// VX_PROP_MAX_READS samples reach).
+// The stencil of sweep Q. reads = 0 (and only reads, cells, lo and hi are set) when its cells do
+// not step alike, step further than VX_PROP_MAX_READS samples reach, or its rows are not
+// contiguous (Q.strides along u).
 void vx_prop_row_stencil(VX_OUT(VxPropStencil) s) {
     int axis = Q.axis;
     int u = vx_axis_u(axis);
@@ -534,7 +551,8 @@ void vx_prop_row_stencil(VX_OUT(VxPropStencil) s) {
     s.hi = nu;
     vec3 back = vx_prop_back(axis, vec3(0.0f));   // the same for every cell
     int pieces = vx_prop_pieces(axis, back);
-    if (Q.source_is_position != 0 || Q.eye_sweep != 0 || vx_perturbed() || pieces + 1 > VX_PROP_MAX_READS) return;
+    if (Q.source_is_position != 0 || Q.eye_sweep != 0 || vx_perturbed() || Q.strides[u] != 1 || pieces + 1 > VX_PROP_MAX_READS)
+        return;
     s.step_world = vx_prop_step_world(back);
     // The trapezoid's samples: at fraction f of the step from p (previous slice) to the cell, a
     // blend of the two slices' bilinear reads.
@@ -618,7 +636,7 @@ VX_INLINE void vx_prop_row_run(VX_IN(VxPropStencil) s, int j, int prev, int base
     // Each channel times its transmittance over the step (its own plane's optical depth, or tau
     // times the medium's k); a source sweep adds the cell's own source over the step.
     int source_row = (Q.slice * sa + j * sv + base) * 3;
-    float step = s.step_world;
+    float step_len = s.step_world;
     for (int ch = 0; ch < channels; ++ch) {
         float kc = Q.atten[ch];
         int at_tau = planes > 1 ? (ch + 1) * VX_PROP_RUN : 0;
@@ -631,7 +649,7 @@ VX_INLINE void vx_prop_row_run(VX_IN(VxPropStencil) s, int j, int prev, int base
             for (int q = 0; q < n; ++q) {
                 float kt = scale * r.tau[at_tau + q];
                 r.light[q * channels + ch] = vx_radiance_add(r.light[q * channels + ch] * vx_exp(-kt),
-                                                             vx_prop_in(source_row + q * 3 + ch) * (step * vx_exp_integral(kt)));
+                                                             vx_prop_in(source_row + q * 3 + ch) * (step_len * vx_exp_integral(kt)));
             }
         }
     }
