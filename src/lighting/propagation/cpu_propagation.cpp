@@ -88,6 +88,12 @@ template <class Run>
     run();
 }
 
+// Cell (i, j) of the slice by the per-cell kernel, into `out` (channels floats per cell).
+void cellByKernel(kernel::CpuPropagationKernel& k, int i, int j, float* out) {
+    const glm::vec3 value = k.vx_prop_cell(i, j);
+    for (int ch = 0; ch < k.Q.channels; ++ch) out[size_t(i) * k.Q.channels + ch] = value[ch];
+}
+
 // A sweep whose every cell steps back alike (vx_prop_row_stencil says which): each row's cells
 // [lo, hi) through the kernel's row batch (vx_prop_row_run), the row's ends, and every row whose
 // reads leave the slice, through vx_prop_cell.
@@ -99,7 +105,7 @@ public:
     void row(int j, int prev, float* out) const {
         const kernel::VxPropParams& Q = k_.Q;
         const int channels = Q.channels, nu = Q.dims[k_.vx_axis_u(Q.axis)];
-        const bool batched = prev >= 0 && prev < Q.dims[Q.axis] && k_.vx_prop_row_fits(stencil_, j);
+        const bool batched = k_.vx_prop_row_fits(stencil_, j, prev);
         const int lo = batched ? stencil_.lo : nu, hi = batched ? stencil_.hi : nu;
         kernel::CpuPropagationKernel::VxPropRowRun run;
         for (int base = lo; base < hi; base += VX_PROP_RUN) {
@@ -107,15 +113,9 @@ public:
             flattened([&] { k_.vx_prop_row_run(stencil_, j, prev, base, n, run); });
             std::copy_n(run.light, size_t(n) * channels, out + size_t(base) * channels);
         }
-        const auto perCell = [&](int from, int to) {
-            for (int i = from; i < to; ++i) {
-                const glm::vec3 value = k_.vx_prop_cell(i, j);
-                for (int ch = 0; ch < channels; ++ch) out[size_t(i) * channels + ch] = value[ch];
-            }
-        };
         flattened([&] {
-            perCell(0, lo);
-            perCell(hi, nu);
+            for (int i = 0; i < lo; ++i) cellByKernel(k_, i, j, out);
+            for (int i = hi; i < nu; ++i) cellByKernel(k_, i, j, out);
         });
     }
 
@@ -172,8 +172,7 @@ public:
 
 private:
     void redo(int i, int j, float* out, float* weight) const {
-        const glm::vec3 value = k_.vx_prop_cell(i, j);
-        for (int ch = 0; ch < k_.Q.channels; ++ch) out[size_t(i) * k_.Q.channels + ch] = value[ch];
+        cellByKernel(k_, i, j, out);
         weight[i] = k_.vx_prop_weight(i, j);
     }
 

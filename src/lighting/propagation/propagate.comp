@@ -18,10 +18,7 @@ void main() {
     int j = n / Q.dims[u];
     vec3 value = vx_prop_cell(i, j);
     for (int ch = 0; ch < Q.channels; ++ch) vx_slice_out[n * Q.channels + ch] = value[ch];
-    ivec3 c;
-    c[axis] = Q.slice;
-    c[u] = i;
-    c[v] = j;
+    ivec3 c = vx_prop_cell_at(axis, Q.slice, i, j);
     int cell = ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x) * 3;
     float weight = Q.eye_sweep != 0 ? 1.0f : vx_prop_weight(i, j);
     for (int ch = 0; ch < 3; ++ch) {

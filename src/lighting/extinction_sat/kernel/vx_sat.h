@@ -88,15 +88,16 @@ VX_INLINE float vx_sat_quantum(int plane) {
     return S.quantum[plane];
 }
 
-// One term of a light pass: `weight` times the sum over the box whose corners lie on the x lines
-// bb, ab, ba, aa (as vx_sat_lines) between the x faces xa and xb, in the plane's value units
-// (`quantum`, vx_sat_quantum); 0 for an empty x range. Per cell in vx_sat_weighted_box, per lane
-// in the CPU's row batches below: the one copy of the arithmetic.
-// (The lookups are made for an empty range too, where they are in the table all the same: loads
-// under a condition would be masked loads in the CPU's SIMD loops.)
-VX_INLINE float vx_sat_term(int plane, float quantum, float weight, int bb, int ab, int ba, int aa, int xa, int xb) {
-    float sum = vx_u96_float(vx_sat_lines(plane, bb, ab, ba, aa, xa, xb)) * quantum;
-    return xa < xb ? weight * sum : 0.0f;
+// One term of a light pass: `weight` times the sum over the box [a, b) (faces inside the grid,
+// a <= b), in the plane's value units (`quantum`, vx_sat_quantum); 0 for an empty x range. Per
+// cell in vx_sat_weighted_box, per lane in the CPU's row batches below: the one copy of the
+// arithmetic. (The lookups are made for an empty range too, where they are in the table all the
+// same: loads under a condition would be masked loads in the CPU's SIMD loops.)
+VX_INLINE float vx_sat_term(int plane, float quantum, float weight, int ax, int ay, int az, int bx, int by, int bz) {
+    float sum = vx_u96_float(vx_sat_lines(plane, vx_sat_entry_index(0, by, bz), vx_sat_entry_index(0, ay, bz),
+                                          vx_sat_entry_index(0, by, az), vx_sat_entry_index(0, ay, az), ax, bx)) *
+                quantum;
+    return ax < bx ? weight * sum : 0.0f;
 }
 
 // `weight` times the sum over the cells of box [lo, hi) (clamped to the grid; cells outside are
@@ -105,8 +106,7 @@ VX_INLINE float vx_sat_weighted_box(int plane, float weight, ivec3 lo, ivec3 hi)
     ivec3 a = clamp(lo, ivec3(0), S.dims);
     ivec3 b = clamp(hi, ivec3(0), S.dims);
     if (a.x >= b.x || a.y >= b.y || a.z >= b.z) return 0.0f;   // (the GL per-cell queries skip the lookups)
-    return vx_sat_term(plane, vx_sat_quantum(plane), weight, vx_sat_entry_index(0, b.y, b.z), vx_sat_entry_index(0, a.y, b.z),
-                       vx_sat_entry_index(0, b.y, a.z), vx_sat_entry_index(0, a.y, a.z), a.x, b.x);
+    return vx_sat_term(plane, vx_sat_quantum(plane), weight, a.x, a.y, a.z, b.x, b.y, b.z);
 }
 
 // Both light passes are weighted sums of box sums, sum_j weight_j * SAT(c + lo_j, c + hi_j), over
@@ -301,10 +301,6 @@ VX_INLINE void vx_sat_add_cuboid_row(int plane, VxCuboid q, ivec3 c0, bool clamp
     int az = clamp(c0.z + q.lo.z, 0, S.dims.z);
     int bz = clamp(c0.z + q.hi.z, 0, S.dims.z);
     if (ay >= by || az >= bz) return;
-    int bb = vx_sat_entry_index(0, by, bz);
-    int ab = vx_sat_entry_index(0, ay, bz);
-    int ba = vx_sat_entry_index(0, by, az);
-    int aa = vx_sat_entry_index(0, ay, az);
     float quantum = vx_sat_quantum(plane);
     float weight = q.weight;
     for (int i = 0; i < VX_SAT_ROW; ++i) {
@@ -312,16 +308,16 @@ VX_INLINE void vx_sat_add_cuboid_row(int plane, VxCuboid q, ivec3 c0, bool clamp
         int xb = c0.x + q.hi.x + i;
         xa = clamp_x ? clamp(xa, 0, S.dims.x) : xa;
         xb = clamp_x ? clamp(xb, 0, S.dims.x) : xb;
-        row.tau[i] += vx_sat_term(plane, quantum, weight, bb, ab, ba, aa, xa, xb);
+        row.tau[i] += vx_sat_term(plane, quantum, weight, xa, ay, az, xb, by, bz);
     }
 }
 
 // vx_cone_tau for the cells c0 + (i, 0, 0), i < VX_CONE_ROW, whose bit i of `needed` is set (the
 // others get 0): the cones towards a point or spot light, which differ per cell. Each lane walks
 // its own cone (scalar geometry: vx_cone_row_boxes), then the row's boxes of that cuboid are
-// summed at once, a gather per corner word (vx_cone_row_add). The caller takes every row of a grid row through one stage
-// before the next, so that one cuboid's lookups run along the grid row and many gathers are in
-// flight together.
+// summed at once, a gather per corner word (vx_cone_row_add). The caller takes every row of a
+// grid row through one stage before the next, so that one cuboid's lookups run along the grid row
+// and many gathers are in flight together.
 struct VxConeRow {
     ivec3 c0;
     uint needed;
@@ -339,6 +335,8 @@ struct VxConeRow {
     float tau[VX_CONE_ROW];
 };
 
+VX_INLINE bool vx_cone_row_needs(VX_IN(VxConeRow) r, int i) { return ((r.needed >> uint(i)) & 1u) != 0u; }
+
 // The cones and their own-cell terms (vx_cone_start).
 void vx_cone_row_begin(ivec3 c0, VxLight L, uint needed, VX_OUT(VxConeRow) r) {
     r.c0 = c0;
@@ -347,7 +345,7 @@ void vx_cone_row_begin(ivec3 c0, VxLight L, uint needed, VX_OUT(VxConeRow) r) {
         ivec3 c = c0 + ivec3(i, 0, 0);
         r.cones[i] = vx_cone_from(c, L);
         r.walks[i] = vx_cone_walk_begin();
-        r.tau[i] = ((needed >> uint(i)) & 1u) != 0u ? vx_cone_start(c, r.cones[i]) : 0.0f;
+        r.tau[i] = vx_cone_row_needs(r, i) ? vx_cone_start(c, r.cones[i]) : 0.0f;
     }
 }
 
@@ -356,7 +354,7 @@ VX_INLINE void vx_cone_row_boxes(VX_INOUT(VxConeRow) r) {
     for (int i = 0; i < VX_CONE_ROW; ++i) {
         ivec3 c = r.c0 + ivec3(i, 0, 0);
         VxCuboid q;
-        bool on = ((r.needed >> uint(i)) & 1u) != 0u && vx_cone_step(r.cones[i], r.walks[i], q);
+        bool on = vx_cone_row_needs(r, i) && vx_cone_step(r.cones[i], r.walks[i], q);
         ivec3 a = on ? clamp(c + q.lo, ivec3(0), S.dims) : ivec3(0);
         ivec3 b = on ? max(clamp(c + q.hi, ivec3(0), S.dims), a) : ivec3(0);
         r.ax[i] = a.x;
@@ -373,6 +371,5 @@ VX_INLINE void vx_cone_row_boxes(VX_INOUT(VxConeRow) r) {
 VX_INLINE void vx_cone_row_add(VX_INOUT(VxConeRow) r) {
     float quantum = vx_sat_quantum(0);
     for (int i = 0; i < VX_CONE_ROW; ++i)
-        r.tau[i] += vx_sat_term(0, quantum, r.weight[i], vx_sat_entry_index(0, r.by[i], r.bz[i]), vx_sat_entry_index(0, r.ay[i], r.bz[i]),
-                                vx_sat_entry_index(0, r.by[i], r.az[i]), vx_sat_entry_index(0, r.ay[i], r.az[i]), r.ax[i], r.bx[i]);
+        r.tau[i] += vx_sat_term(0, quantum, r.weight[i], r.ax[i], r.ay[i], r.az[i], r.bx[i], r.by[i], r.bz[i]);
 }

@@ -67,15 +67,27 @@ VX_INLINE vec3 vx_prop_point(int axis, float s, float a, float b) {
     return q;
 }
 
+// Grid cell s along the sweep axis and (i, j) along u and v (vx_prop_point's cell).
+VX_INLINE ivec3 vx_prop_cell_at(int axis, int s, int i, int j) {
+    ivec3 c = ivec3(0);   // (every component is set below; the compiler cannot tell with a run-time axis)
+    c[axis] = s;
+    c[vx_axis_u(axis)] = i;
+    c[vx_axis_v(axis)] = j;
+    return c;
+}
+
 // Where cell c's values are in the sweep's extinction grid and eye input (Q.strides: the CPU lays
 // an x sweep's grid out slice by slice).
 VX_INLINE int vx_prop_index(ivec3 c) { return c.x * Q.strides.x + c.y * Q.strides.y + c.z * Q.strides.z; }
+
+// Where plane `plane` of the extinction has cell c (vx_prop_sigma).
+VX_INLINE int vx_prop_sigma_index(ivec3 c, int plane) { return plane * Q.dims.x * Q.dims.y * Q.dims.z + vx_prop_index(c); }
 
 // Plane `plane` of the extinction (0: extinction per world unit; 1-3: times -ln(transport colour)
 // per channel) at grid cell c, unperturbed; 0 outside the grid.
 VX_INLINE float vx_prop_sigma_cell(ivec3 c, int plane) {
     if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= Q.dims.x || c.y >= Q.dims.y || c.z >= Q.dims.z) return 0.0f;
-    return vx_prop_sigma(plane * Q.dims.x * Q.dims.y * Q.dims.z + vx_prop_index(c));
+    return vx_prop_sigma(vx_prop_sigma_index(c, plane));
 }
 
 // A plane of the extinction at grid point q, trilinear between cell centres (0 beyond the grid).
@@ -93,20 +105,13 @@ VX_INLINE float vx_prop_sigma_at(vec3 q, int plane) {
 // A plane of the extinction at in-slice coordinates (a, b) of slice `slice`, bilinear between
 // cell centres.
 VX_INLINE float vx_prop_sigma_slice(int axis, float a, float b, int slice, int plane) {
-    int u = vx_axis_u(axis);
-    int v = vx_axis_v(axis);
     float ga = a - 0.5f;
     float gb = b - 0.5f;
     float fa = floor(ga);
     float fb = floor(gb);
-    ivec3 c;
-    c[axis] = slice;
-    c[u] = int(fa);
-    c[v] = int(fb);
-    ivec3 du = ivec3(0);
-    ivec3 dv = ivec3(0);
-    du[u] = 1;
-    dv[v] = 1;
+    ivec3 c = vx_prop_cell_at(axis, slice, int(fa), int(fb));
+    ivec3 du = vx_prop_cell_at(axis, 0, 1, 0);
+    ivec3 dv = vx_prop_cell_at(axis, 0, 0, 1);
     float ta = ga - fa;
     return VX_BILERP(vx_prop_sigma_cell(c, plane), vx_prop_sigma_cell(c + du, plane), vx_prop_sigma_cell(c + dv, plane),
                      vx_prop_sigma_cell(c + du + dv, plane), ta, gb - fb);
@@ -260,11 +265,7 @@ VX_INLINE float vx_prop_trapezoid(float sum, float step_world, int pieces) { ret
 // The ends of a step from p, on the previous slice's centre plane, to cell (i, j) of slice Q.slice,
 // unperturbed: the cell's extinction plus the previous slice's, bilinear at p.
 VX_INLINE float vx_prop_exact_ends(int axis, int i, int j, vec3 p, int plane) {
-    ivec3 cx;
-    cx[axis] = Q.slice;
-    cx[vx_axis_u(axis)] = i;
-    cx[vx_axis_v(axis)] = j;
-    return vx_prop_sigma_cell(cx, plane) + vx_prop_sigma_slice(axis, p[vx_axis_u(axis)], p[vx_axis_v(axis)], Q.slice - Q.direction, plane);
+    return vx_prop_sigma_cell(vx_prop_cell_at(axis, Q.slice, i, j), plane) + vx_prop_sigma_slice(axis, p[vx_axis_u(axis)], p[vx_axis_v(axis)], Q.slice - Q.direction, plane);
 }
 
 // The step's integral of one plane of the extinction from p to cell (i, j) of slice Q.slice at
@@ -576,10 +577,11 @@ void vx_prop_row_stencil(VX_OUT(VxPropStencil) s) {
     }
 }
 
-// Whether row j's reads stay inside the slice (rows dj and dj + 1 of every read).
-VX_INLINE bool vx_prop_row_fits(VX_IN(VxPropStencil) s, int j) {
+// Whether row j batches, `prev` the previous slice: the sweep has a stencil, `prev` lies in the
+// grid, and the row's reads stay inside the slice (rows dj and dj + 1 of every read).
+VX_INLINE bool vx_prop_row_fits(VX_IN(VxPropStencil) s, int j, int prev) {
     int nv = Q.dims[vx_axis_v(Q.axis)];
-    bool fits = s.reads > 0 && s.lo < s.hi;
+    bool fits = s.reads > 0 && s.lo < s.hi && prev >= 0 && prev < Q.dims[Q.axis];
     for (int k = 0; k < s.reads; ++k) fits = fits && j + s.read[k].dj >= 0 && j + s.read[k].dj + 1 < nv;
     for (int c = 0; c < s.cells; ++c) fits = fits && j + s.cell_dj[c] >= 0 && j + s.cell_dj[c] < nv;
     return fits;
@@ -606,6 +608,9 @@ VX_INLINE void vx_prop_row_run(VX_IN(VxPropStencil) s, int j, int prev, int base
         VX_SIMD_LOOP
         for (int q = 0; q < n; ++q) r.tau[at_tau + q] = 0.0f;
         for (int k = 0; k < s.reads; ++k) {
+            // (Index arithmetic from the strides, not vx_prop_sigma_index: built from a cell with a
+            // run-time axis, the directional sweeps took 5-10% longer in two runs of
+            // voxlux_bench_propagation --paper-only.)
             int row_prev = plane * plane_cells + prev * sa + (j + s.read[k].dj) * sv + base + s.read[k].di;
             int row_here = plane * plane_cells + Q.slice * sa + (j + s.read[k].dj) * sv + base + s.read[k].di;
             float ta = s.read[k].ta;
