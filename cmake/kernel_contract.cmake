@@ -4,7 +4,7 @@
 #   vx_kernel_bindings.h  every GL binding point, each once (uniform blocks and storage buffers apart);
 #   vx_lighting_types.h   the methods' parameter blocks, and VxLighting, the march's block of them all;
 #   vx_gl_data.glsl       the GL blocks and their accessor functions (vx_atlas_density(i), ...);
-#   vx_cpu_data.inc       the same as CpuKernel's members (src/kernel/cpu_kernel.h), bounds-checked;
+#   vx_cpu_data.inc       the same as CpuKernelData's members (src/kernel/cpu_kernel_data.h), bounds-checked;
 #   vx_lighting.h         the march's hooks: each one calls the registered methods' in turn;
 #   kernel_program.cpp    the order the GL programs concatenate the kernel text in.
 # A method declares itself in its folder's method.cmake (docs/architecture.md, "Adding a lighting

@@ -4,8 +4,10 @@
 // lookup, at most 3 * VX_REGION_BRICKS additions) instead of a lookup and an unpredictable branch
 // per brick, as NanoVDB's HDDA steps over empty nodes of its tree. The step lands on exactly the
 // brick and plane crossings the brick walk would reach (the same float additions, in the same
-// order), so skipping changes no sample.
+// order), so skipping changes no sample. Also here: a ray clipped to the occupied bricks' box, and
+// whether the walk visits a brick or may step over regions.
 #pragma once
+#include "vx_noise.h"
 #include "vx_sample.h"
 
 // Ray parameter t is world distance; the index-space point is o + t * d with d = W2I * world dir.
@@ -116,4 +118,37 @@ void vx_dda_skip_empty(VX_INOUT(VxDda) s, VX_INOUT(ivec3) region, bool skips) {
 void vx_dda_next(VX_INOUT(VxDda) s, VX_INOUT(ivec3) region, bool skips) {
     vx_dda_advance(s);
     vx_dda_skip_empty(s, region, skips);
+}
+
+// Clips [t0, t1] against the box of occupied bricks (grown by the perturbation's displacement,
+// which can pull density outwards). Returns false when nothing is left.
+bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
+    float grow = vx_displaced() ? P.displacement : 0.0f;
+    vec3 lo = vec3(P.bricks_min) * float(VX_BRICK) - vec3(grow);
+    vec3 hi = vec3(P.bricks_max + ivec3(1)) * float(VX_BRICK) + vec3(grow);
+    vec3 inv = vec3(vx_safe_inv(d.x), vx_safe_inv(d.y), vx_safe_inv(d.z));
+    vec3 ta = (lo - o) * inv;
+    vec3 tb = (hi - o) * inv;
+    vec3 tmin = min(ta, tb);
+    vec3 tmax = max(ta, tb);
+    t0 = max(t0, max(tmin.x, max(tmin.y, tmin.z)));
+    t1 = min(t1, min(tmax.x, min(tmax.y, tmax.z)));
+    return t0 < t1;
+}
+
+// Whether the march must visit a brick: occupied, or anywhere when displacement can pull
+// density into empty bricks.
+VX_INLINE bool vx_visits(int slot) { return slot != VX_PAGE_EMPTY || vx_displaced(); }
+
+// Whether the march may step over regions that hold no brick: only when the page table has a
+// regions' table (most regions of the box are empty), not when displacement can pull density into
+// them, and not in GLSL. Mesa's llvmpipe (22.3, the only GL we can test on) mis-runs
+// the region step: with it compiled in, some rays of a work group drop samples, even of scenes
+// with no empty region (GlBackend.MatchesCpuWithTransferFunction), so GL keeps the brick walk.
+VX_INLINE bool vx_skips_regions() {
+#ifdef VX_GLSL
+    return false;
+#else
+    return P.region_capacity > 0 && !vx_displaced();
+#endif
 }

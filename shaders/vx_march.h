@@ -8,22 +8,8 @@
 #include "vx_motion.h"
 #include "vx_lighting.h"
 #include "vx_noise.h"
-
-// Clips [t0, t1] against the box of occupied bricks (grown by the perturbation's displacement,
-// which can pull density outwards). Returns false when nothing is left.
-bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
-    float grow = vx_displaced() ? P.displacement : 0.0f;
-    vec3 lo = vec3(P.bricks_min) * float(VX_BRICK) - vec3(grow);
-    vec3 hi = vec3(P.bricks_max + ivec3(1)) * float(VX_BRICK) + vec3(grow);
-    vec3 inv = vec3(vx_safe_inv(d.x), vx_safe_inv(d.y), vx_safe_inv(d.z));
-    vec3 ta = (lo - o) * inv;
-    vec3 tb = (hi - o) * inv;
-    vec3 tmin = min(ta, tb);
-    vec3 tmax = max(ta, tb);
-    t0 = max(t0, max(tmin.x, max(tmin.y, tmin.z)));
-    t1 = min(t1, min(tmax.x, min(tmax.y, tmax.z)));
-    return t0 < t1;
-}
+#include "vx_pixel.h"
+#include "vx_surface.h"
 
 // Index of the first sample t_k = (k + 0.5f) * dt with t_k >= t (inv_dt = 1 / dt). The same t
 // ends one brick and starts the next, so every sample belongs to exactly one brick.
@@ -111,23 +97,6 @@ VX_INLINE void vx_chunk_extinction(int slot, ivec3 brick, vec3 o, vec3 d, vec3 w
     if (vx_moving(time)) vx_chunk_move(slot, brick, o, d, k, n, dt, time, c);
 }
 
-// Whether the march must visit a brick: occupied, or anywhere when displacement can pull
-// density into empty bricks.
-VX_INLINE bool vx_visits(int slot) { return slot != VX_PAGE_EMPTY || vx_displaced(); }
-
-// Whether the march may step over regions that hold no brick: only when the page table has a
-// regions' table (most regions of the box are empty), not when displacement can pull density into
-// them, and not in GLSL. Mesa's llvmpipe (22.3, the only GL we can test on) mis-runs
-// the region step: with it compiled in, some rays of a work group drop samples, even of scenes
-// with no empty region (GlBackend.MatchesCpuWithTransferFunction), so GL keeps the brick walk.
-VX_INLINE bool vx_skips_regions() {
-#ifdef VX_GLSL
-    return false;
-#else
-    return P.region_capacity > 0 && !vx_displaced();
-#endif
-}
-
 // Optical depth of a ray's samples t_k = (k + 0.5) * dt, k in [k0, k1), inside brick (slot, b),
 // in the medium at the frame's own time; x + wi * t is a sample's world point. Trilinear samples
 // are one SIMD sum on the CPU (gathers from the atlas, as vx_chunk_extinction's); perturbed and
@@ -181,49 +150,6 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
     return vx_exp(-tau);
 }
 
-// Kniss 2003 Eq. 11: how much of a sample is shaded as a surface (0 in homogeneous regions, 1
-// where the density gradient is steep) and its normal, from central differences of the data.
-struct VxSurface {
-    vec3 normal;
-    float weight;
-};
-
-VX_INLINE VxSurface vx_no_surface() {
-    VxSurface s;
-    s.normal = vec3(0.0f);
-    s.weight = 0.0f;
-    return s;
-}
-
-VxSurface vx_surface(vec3 p) {
-    if (P.surface_inv_range <= 0.0f) return vx_no_surface();
-    // One axis per iteration: a loop, so that a GLSL compiler inlines the density lookup (8 taps
-    // under the tricubic filter) twice rather than six times.
-    vec3 g = vec3(0.0f);
-    for (int a = 0; a < 3; ++a) {
-        vec3 e = vec3(a == 0 ? 1.0f : 0.0f, a == 1 ? 1.0f : 0.0f, a == 2 ? 1.0f : 0.0f);
-        g += e * (vx_density_index(p + e) - vx_density_index(p - e));
-    }
-    g *= 0.5f;
-    float m = length(g);
-    float weight = clamp((m - P.surface_low) * P.surface_inv_range, 0.0f, 1.0f);
-    // Index-space gradient to a world normal: the inverse transpose of index->world is world_to_index^T.
-    VxSurface s;
-    s.normal = m > 0.0f ? -normalize(transpose(mat3(P.world_to_index)) * g) : vec3(0.0f, 1.0f, 0.0f);
-    s.weight = weight;
-    return s;
-}
-
-// The factor Kniss Eq. 11 puts on the light from direction wi seen along dir: (1 - S) + S * f_s
-// with f_s Blinn-Phong (diffuse plus specular) about the surface normal.
-VX_INLINE float vx_surface_factor(VxSurface surface, vec3 wi, vec3 dir) {
-    if (surface.weight <= 0.0f) return 1.0f;
-    vec3 n = surface.normal;
-    vec3 h = normalize(wi - dir);
-    float fs = max(dot(n, wi), 0.0f) + P.specular * pow(max(dot(n, h), 0.0f), P.shininess);
-    return (1.0f - surface.weight) + surface.weight * fs;
-}
-
 // Single-scattered light at world point x for a camera ray travelling along unit direction dir,
 // from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
@@ -269,27 +195,6 @@ VX_INLINE float vx_chunk_depth(float T_before, int k, int n, int lanes, float dt
         sum += j < n ? (before - c.T[j]) * ((float(k + j) + 0.5f) * dt) : 0.0f;
     }
     return sum;
-}
-
-// The pixel's radiance so far: its four light AOVs summed.
-VX_INLINE vec3 vx_pixel_radiance(VxPixel px) {
-    return vx_radiance_add(vx_radiance_add(px.direct, px.ambient), vx_radiance_add(px.emission, px.indirect));
-}
-
-// A pixel no ray has met anything in: transparent and empty. The march starts from it, and a
-// render region (render.region) leaves the pixels outside it so.
-VX_INLINE VxPixel vx_empty_pixel() {
-    VxPixel px;
-    px.rgba = vec4(0.0f);
-    px.direct = vec3(0.0f);
-    px.ambient = vec3(0.0f);
-    px.emission = vec3(0.0f);
-    px.indirect = vec3(0.0f);
-    px.transmittance = 1.0f;
-    px.depth = 0.0f;
-    px.samples = 0.0f;
-    px.variance = 0.0f;
-    return px;
 }
 
 // March one camera ray (world origin, unit world direction, camera forward for depth) at `time`
@@ -412,59 +317,6 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     px.transmittance = T;
     px.depth = alpha > 0.0f ? depth_weighted / alpha : 0.0f;
     return px;
-}
-
-// The ray of camera-to-world `m` through the centre of pixel (x, y); y = 0 is the top row.
-void vx_camera_ray_of(mat4 m, int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
-    float w = float(P.width);
-    float h = float(P.height);
-    float sx = (2.0f * (float(x) + 0.5f) / w - 1.0f) * P.tan_half_fov * P.aspect;
-    float sy = (1.0f - 2.0f * (float(y) + 0.5f) / h) * P.tan_half_fov;
-    origin = vec3(m * vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    dir = normalize(vec3(m * vec4(sx, sy, -1.0f, 0.0f)));
-    forward = normalize(vec3(m * vec4(0.0f, 0.0f, -1.0f, 0.0f)));
-}
-
-// The camera ray through pixel (x, y) at the frame's own time.
-void vx_camera_ray(int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
-    vx_camera_ray_of(P.camera_to_world, x, y, origin, dir, forward);
-}
-
-// The same at `fraction` of the way from shutter open to close: where the camera moves, between
-// its open and close rays (origins linearly, directions normalised linearly, which follows the
-// rotation closely for the small turns of one shutter).
-void vx_camera_ray_at(int x, int y, float fraction, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
-    if (P.camera_moves == 0) {
-        vx_camera_ray(x, y, origin, dir, forward);
-        return;
-    }
-    vec3 o1;
-    vec3 d1;
-    vec3 f1;
-    vx_camera_ray_of(P.camera_open, x, y, origin, dir, forward);
-    vx_camera_ray_of(P.camera_close, x, y, o1, d1, f1);
-    origin = mix(origin, o1, fraction);
-    dir = normalize(mix(dir, d1, fraction));
-    forward = normalize(mix(forward, f1, fraction));
-}
-
-// Adds ray `px`, the n-th of a pixel's (n >= 2), to the mean `m` of the ones before: a running
-// mean, which stays exactly the value of rays that all return the same. Depth is the opacity-
-// weighted mean, as one ray weighs its samples (alpha_sum: the rays' alpha so far); the samples
-// (the cost) add up.
-void vx_pixel_mean_add(VX_INOUT(VxPixel) m, VxPixel px, int n, VX_INOUT(float) alpha_sum) {
-    float w = 1.0f / float(n);
-    m.rgba += (px.rgba - m.rgba) * w;
-    m.direct += (px.direct - m.direct) * w;
-    m.ambient += (px.ambient - m.ambient) * w;
-    m.emission += (px.emission - m.emission) * w;
-    m.indirect += (px.indirect - m.indirect) * w;
-    m.transmittance += (px.transmittance - m.transmittance) * w;
-    m.samples += px.samples;
-    float alpha = px.rgba.w;
-    if (alpha <= 0.0f) return;
-    alpha_sum += alpha;
-    m.depth = alpha_sum == alpha ? px.depth : m.depth + (px.depth - m.depth) * (alpha / alpha_sum);
 }
 
 // Ray i of pixel (x, y)'s P.time_samples (without motion blur, its one ray at the frame's time).

@@ -9,7 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/huge_pages.h"
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 
 namespace voxlux {
 namespace {
@@ -167,7 +167,7 @@ namespace {
 // blackbody's visible radiance grows many times faster than its temperature), so the emission
 // of the voxel's own value overstates the mean (Jensen's inequality): 1.5x in the Blender fire of
 // docs/accuracy.md.
-glm::vec3 meanEmission(kernel::CpuKernel& k, glm::ivec3 voxel) {
+glm::vec3 meanEmission(kernel::CpuKernelData& k, glm::ivec3 voxel) {
     glm::vec3 sum(0.0f);
     for (int q = 0; q < 8; ++q) {
         const glm::vec3 p = glm::vec3(voxel) + glm::vec3(q & 1 ? 0.25f : -0.25f, q & 2 ? 0.25f : -0.25f, q & 4 ? 0.25f : -0.25f);
@@ -181,7 +181,7 @@ glm::vec3 meanEmission(kernel::CpuKernel& k, glm::ivec3 voxel) {
 }  // namespace
 
 LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridContents contents) {
-    kernel::CpuKernel k = bindCpuKernel(in);
+    kernel::CpuKernelData k = bindKernelData(in);
     const float bleeding = contents.bleeding;
     const glm::ivec3 bmin = in.pages->medium_min, bmax = in.pages->medium_max;
     const glm::ivec3 voxels = (bmax - bmin + 1) * VX_BRICK;
@@ -225,7 +225,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
                 if (z_length <= 0) continue;
                 for (int oy = 0; oy < VX_BRICK; ++oy)
                     for (int ox = 0; ox < VX_BRICK; ++ox) {
-                        kernel::CpuKernel::VxCorners c{
+                        kernel::CpuKernelData::VxCorners c{
                             b->slot * VX_BRICK_VOXELS + (oz * VX_BRICK_STRIDE + oy) * VX_BRICK_STRIDE + ox, 0, 0, 0};
                         const float sigma = k.vx_value_extinction(k.vx_atlas_density(c.base));
                         const glm::vec3 le =

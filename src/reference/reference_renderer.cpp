@@ -11,33 +11,33 @@
 
 #include "core/progress.h"
 
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 #include "volume/brick_set.h"
 #include "core/error.h"
 
 namespace voxlux {
 namespace {
 
-using kernel::CpuKernel;
+using kernel::CpuKernelData;
 
 // The tracker: the kernel bound to the inputs, and the extinction bounds of its slots. Rays are in
 // world units; the kernel's brick DDA walks them in index space with t as world distance. Under
 // motion blur a path has one time, and every lookup along it sees the medium at that time.
 struct Tracker {
-    CpuKernel& k;
+    CpuKernelData& k;
     const ExtinctionBounds& bounds;
     std::atomic<uint64_t>& opaque_segments;
     float time = 0.0f;    // the path's, frames from the frame's own (vx_motion.h)
 
     // The medium at index point p of stored brick (slot, b) at the path's time; nothing where it
     // came from no stored brick (all its values are 0).
-    std::optional<CpuKernel::VxTaps> medium(int slot, glm::ivec3 b, glm::vec3 p) const {
+    std::optional<CpuKernelData::VxTaps> medium(int slot, glm::ivec3 b, glm::vec3 p) const {
         bool found = false;
-        const CpuKernel::VxTaps taps = k.vx_moved_taps(slot, b, p, k.vx_motion_shift(slot, b, p, time), found);
-        return found ? std::optional<CpuKernel::VxTaps>(taps) : std::nullopt;
+        const CpuKernelData::VxTaps taps = k.vx_moved_taps(slot, b, p, k.vx_motion_shift(slot, b, p, time), found);
+        return found ? std::optional<CpuKernelData::VxTaps>(taps) : std::nullopt;
     }
-    float extinction(const std::optional<CpuKernel::VxTaps>& c) const { return c ? k.vx_extinction(*c) : 0.0f; }
-    glm::vec3 emission(const std::optional<CpuKernel::VxTaps>& c) const { return c ? k.vx_emission(*c) : glm::vec3(0.0f); }
+    float extinction(const std::optional<CpuKernelData::VxTaps>& c) const { return c ? k.vx_extinction(*c) : 0.0f; }
+    glm::vec3 emission(const std::optional<CpuKernelData::VxTaps>& c) const { return c ? k.vx_emission(*c) : glm::vec3(0.0f); }
 
     // Tentative collisions one brick's segment may take: m * length of them are expected, a
     // handful where the majorant is tight, 65536 at an optical-depth bound of 65536 in one brick
@@ -64,7 +64,7 @@ struct Tracker {
         const glm::vec3 o = k.vx_to_index_point(x), d = k.vx_to_index_dir(w);
         float t0 = 0.0f, t1 = t_max;
         if (!k.vx_clip_to_bricks(o, d, t0, t1)) return;
-        CpuKernel::VxDda s = k.vx_dda_begin(o, d, t0, t1);
+        CpuKernelData::VxDda s = k.vx_dda_begin(o, d, t0, t1);
         const bool skips = k.vx_skips_regions();
         glm::ivec3 region = k.vx_no_region();
         k.vx_dda_skip_empty(s, region, skips);
@@ -118,7 +118,7 @@ struct Tracker {
     struct Flight {
         bool collided = false;
         float t = 0.0f;
-        CpuKernel::VxTaps cell{};
+        CpuKernelData::VxTaps cell{};
         glm::vec3 emitted{0.0f};  // emission collected up to the collision or the exit
     };
 
@@ -129,7 +129,7 @@ struct Tracker {
         const bool emits = k.P.emission_sources > 0;
         walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
             return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 p, bool opaque) {
-                const std::optional<CpuKernel::VxTaps> c = medium(slot, brick, p);
+                const std::optional<CpuKernelData::VxTaps> c = medium(slot, brick, p);
                 if (!opaque) {  // else the flight ends here
                     if (emits) f.emitted += emission(c) / m;
                     if (rng.next() * m >= extinction(c)) return true;  // a null collision
@@ -183,7 +183,7 @@ struct Tracker {
         walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
             return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 point, bool opaque) {
                 // A segment taken as opaque (nextCollision): all of T scatters here.
-                const std::optional<CpuKernel::VxTaps> c = medium(slot, brick, point);
+                const std::optional<CpuKernelData::VxTaps> c = medium(slot, brick, point);
                 const float sigma = opaque ? m : extinction(c);
                 const float term = opaque ? T : T * std::min(1.0f, sigma / m);
                 if (emits && !opaque) p.emitted += T * emission(c) / m;
@@ -201,7 +201,7 @@ struct Tracker {
         const auto chosen = std::min(std::upper_bound(candidates.begin(), candidates.end(), target,
                                                       [](float v, const Candidate& c) { return v < c.cumulative; }),
                                      candidates.end() - 1);
-        const std::optional<CpuKernel::VxTaps> cell = medium(chosen->slot, chosen->brick, chosen->index_point);
+        const std::optional<CpuKernelData::VxTaps> cell = medium(chosen->slot, chosen->brick, chosen->index_point);
         p.scatter = {true, chosen->t, cell ? *cell : k.vx_taps_at(chosen->slot, chosen->brick, chosen->index_point), glm::vec3(0.0f)};
         return p;
     }
@@ -222,7 +222,7 @@ struct PathSample {
 
 PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 origin, glm::vec3 dir,
                      glm::vec3 forward, ReferenceRng& rng) {
-    CpuKernel& k = tr.k;
+    CpuKernelData& k = tr.k;
     PathSample ps;
     const Tracker::RatioFlight camera = tr.ratioFlight(origin, dir, true, rng, ps.events);
     ps.transmittance = camera.transmittance;
@@ -235,7 +235,7 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
     const bool escapes_count = k.P.has_ambient != 0 || k.P.emission_sources > 0;
     const float g = k.P.anisotropy;
     glm::vec3 beta(camera.weight), x = origin + dir * camera.scatter.t, w = dir;
-    CpuKernel::VxTaps cell = camera.scatter.cell;
+    CpuKernelData::VxTaps cell = camera.scatter.cell;
     // Each turn scatters at x: next-event estimation to the lights, then a flight by delta tracking
     // (by ratio tracking when it is the last the path may take).
     for (int bounce = 0;; ++bounce) {
@@ -289,7 +289,7 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
 }  // namespace
 
 ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
-    CpuKernel k = bindCpuKernel(in);
+    CpuKernelData k = bindKernelData(in);
     const BrickAtlas& atlas = *in.atlas;
     const size_t slots = atlas.slots();
     const bool tf = k.P.use_transfer != 0;
@@ -345,7 +345,7 @@ ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
 
 float ratioTrackedTransmittance(const KernelInputs& in, const ExtinctionBounds& bounds, glm::vec3 x, glm::vec3 w,
                                 float dist, ReferenceRng& rng) {
-    CpuKernel k = bindCpuKernel(in);
+    CpuKernelData k = bindKernelData(in);
     int events = 0;
     std::atomic<uint64_t> opaque{0};
     return Tracker{k, bounds, opaque}.transmittance(x, w, dist, rng, events);
@@ -353,7 +353,7 @@ float ratioTrackedTransmittance(const KernelInputs& in, const ExtinctionBounds& 
 
 RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs, uint64_t* opaque_segments,
                             ReferenceSums* sums) {
-    CpuKernel k = bindCpuKernel(in);
+    CpuKernelData k = bindKernelData(in);
     if (k.P.surface_inv_range > 0.0f || k.P.noise_octaves > 0)
         throw InputError("render.method reference: effects.surface and effects.perturbation are march-only effects");
     const ExtinctionBounds bounds = brickExtinctionBounds(in);

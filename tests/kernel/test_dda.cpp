@@ -7,12 +7,12 @@
 #include <random>
 #include <vector>
 
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 
 namespace voxlux::test {
 namespace {
 
-using kernel::CpuKernel;
+using kernel::CpuKernelData;
 
 struct Ray {
     glm::vec3 o, d;
@@ -32,20 +32,20 @@ std::vector<Ray> testRays() {
     return rays;
 }
 
-bool sameState(const CpuKernel::VxDda& a, const CpuKernel::VxDda& b) {
+bool sameState(const CpuKernelData::VxDda& a, const CpuKernelData::VxDda& b) {
     return a.brick == b.brick && a.t_next == b.t_next && a.t == b.t;
 }
 
 TEST(BrickWalk, LeavingARegionLandsWhereTheBrickWalkDoes) {
-    CpuKernel k;
+    CpuKernelData k;
     int leaves = 0, wrong = 0;
     for (const Ray& ray : testRays()) {
-        CpuKernel::VxDda s = k.vx_dda_begin(ray.o, ray.d, 0.0f, 5000.0f);
+        CpuKernelData::VxDda s = k.vx_dda_begin(ray.o, ray.d, 0.0f, 5000.0f);
         for (int region = 0; region < 8; ++region) {
             const glm::ivec3 r = kernel::vx_region_of(s.brick);
-            CpuKernel::VxDda walked = s;
+            CpuKernelData::VxDda walked = s;
             while (kernel::vx_region_of(walked.brick) == r) k.vx_dda_advance(walked);
-            CpuKernel::VxDda jumped = s;
+            CpuKernelData::VxDda jumped = s;
             k.vx_dda_leave_region(jumped, r);
             ++leaves;
             if (!sameState(walked, jumped) && ++wrong <= 5)

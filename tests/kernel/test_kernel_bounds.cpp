@@ -3,6 +3,7 @@
 // another cell's memory. Other builds skip these tests.
 #include <gtest/gtest.h>
 
+#include "kernel/cpu_kernel.h"
 #include "lighting/extinction_sat/kernel/cpu_sat_kernel.h"
 #include "test_support.h"
 

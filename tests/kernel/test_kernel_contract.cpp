@@ -1,5 +1,5 @@
 // The CPU side of the kernel contract (cmake/kernel_contract.cmake): a lighting method's arrays
-// reach CpuKernel by their block names, as the GL backend binds them, and a march stage's block
+// reach CpuKernelData by their block names, as the GL backend binds them, and a march stage's block
 // and arrays reach the march's kernel through makeKernelInputs.
 #include <vector>
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "backend/backend_choice.h"
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 #include "reference/reference_renderer.h"
 #include "scene/camera.h"
 #include "test_support.h"
@@ -60,7 +60,7 @@ glm::vec3 samplePoint(int i) {
 
 TEST(Tricubic, EqualsTheBSplineSumOverItsVoxels) {
     auto prepared = prepare(volumeFromGrid(noisyGrid()), tricubicScene(), cameraAlong(glm::vec3(10), {0, 0, -1}, 200, 30));
-    kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
+    kernel::CpuKernelData k = bindKernelData(prepared->inputs);
     double worst = 0;
     for (int i = 0; i < 2000; ++i) {
         const glm::vec3 p = samplePoint(i);
@@ -80,7 +80,7 @@ TEST(Tricubic, EqualsTheBSplineSumOverItsVoxels) {
 TEST(Tricubic, ExtinctionBoundsBoundEverySample) {
     auto prepared = prepare(volumeFromGrid(noisyGrid(40)), tricubicScene(), cameraAlong(glm::vec3(10), {0, 0, -1}, 200, 30));
     const ExtinctionBounds bounds = brickExtinctionBounds(prepared->inputs);
-    kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
+    kernel::CpuKernelData k = bindKernelData(prepared->inputs);
     float worst_ratio = 0, own_range_ratio = 0, worst_below_minorant = 0;
     for (int i = 0; i < 4000; ++i) {
         const glm::vec3 p = 2.0f * samplePoint(i);  // over [0, 32)^3
@@ -107,7 +107,7 @@ TEST(Tricubic, ReadsTheColourOfBricksWithoutDensity) {
     color->denseFill(openvdb::CoordBBox({0, 0, 0}, {23, 23, 23}), openvdb::Vec3s(tint.x, tint.y, tint.z));
     auto prepared = prepare(volumeFromGrid(boxGrid({8, 8, 8}, {15, 15, 15}, 1.0f), {}, color), tricubicScene(),
                             cameraAlong(glm::vec3(12), {0, 0, -1}, 200, 30));
-    kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
+    kernel::CpuKernelData k = bindKernelData(prepared->inputs);
     ASSERT_NE(k.vx_page_lookup(glm::ivec3(0, 1, 1)), VX_PAGE_EMPTY) << "a brick of colour only, next to the density";
     for (float x : {8.05f, 8.5f, 12.0f, 15.5f}) {
         const glm::vec3 p(x, 12.3f, 11.7f);

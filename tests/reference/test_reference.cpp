@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "backend/backend_choice.h"
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 #include "core/error.h"
 #include "reference/reference_renderer.h"
 #include "scene/scene_json.h"

@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "backend/backend_choice.h"
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 #include "render/renderer.h"
 #include "test_support.h"
 #include "volume/transfer_2d.h"
@@ -98,7 +98,7 @@ TEST(RegionSurface, TheMarchReadsEachVoxelsOwnWeight) {
     ASSERT_TRUE(classified.surface);
     auto prepared = prepare(classified, scene, Camera{});
     ASSERT_EQ(prepared->inputs.params.use_surface_grid, 1);
-    kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
+    kernel::CpuKernelData k = bindKernelData(prepared->inputs);
     auto weightAt = [&](glm::vec3 p) {
         const glm::ivec3 brick = glm::ivec3(glm::floor(p / float(VX_BRICK)));
         return k.vx_surface_weight_at(k.vx_single_tap(k.vx_corners_at(k.vx_page_lookup(brick), brick, p)));

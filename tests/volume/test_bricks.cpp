@@ -1,7 +1,7 @@
 // Bricking: exact round trip of real data, tiles expanded, memory that follows active voxels.
 #include <unordered_map>
 
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 #include "core/error.h"
 #include "test_support.h"
 
@@ -16,7 +16,7 @@ struct BrickHash {
 // the atlas, through the slot the kernel's page lookup returns. Bricks that are zero throughout
 // are classified away, so a missing brick is right only for a zero voxel.
 void expectRoundTrip(const openvdb::FloatGrid& grid, const BrickAtlas& atlas, const PageTable& pages) {
-    kernel::CpuKernel k;
+    kernel::CpuKernelData k;
     k.P.page_capacity = pages.brick_capacity;
     k.P.page_max_probe = pages.max_probe;
     k.P.bricks_min = pages.bricks_min;
@@ -129,7 +129,7 @@ TEST(Bricks, RegionsTableListsTheOccupiedRegionsWhenSomeAreEmpty) {
     grid->denseFill(openvdb::CoordBBox({-24, 0, 512}, {-1, 7, 519}), 1.0f, true);
     const PageTable parts = pagesOf(grid);
     ASSERT_GT(parts.region_capacity, 0);
-    kernel::CpuKernel k;
+    kernel::CpuKernelData k;
     k.P.page_capacity = parts.brick_capacity;
     k.P.page_max_probe = parts.max_probe;
     k.P.bricks_min = parts.bricks_min;

@@ -1,6 +1,6 @@
 // CPU backend: the shared kernel with TBB, the march over 16x16 pixel tiles of the render region
 // (the whole image without one), reading the march inputs through the kernel binding
-// (src/kernel/cpu_kernel.cpp) the reference renderer and the light grid use too.
+// (src/kernel/cpu_kernel_data.cpp) the reference renderer and the light grid use too.
 #include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>

@@ -13,7 +13,7 @@
 #include "gl/gl_buffer.h"
 #include "gl/gl_context.h"
 #include "backend/backend_choice.h"
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 
 namespace voxlux {
 namespace {
@@ -77,8 +77,8 @@ public:
         }
         // The lighting methods' arrays (the kernel contract's), each bound even when its method is
         // off (GlBuffer's 16 zero bytes).
-        for (size_t i = 0; i < kernel::CpuKernel::kLightingArrays.size(); ++i) {
-            const std::string block(kernel::CpuKernel::kLightingArrays[i]);
+        for (size_t i = 0; i < kernel::CpuKernelData::kLightingArrays.size(); ++i) {
+            const std::string block(kernel::CpuKernelData::kLightingArrays[i]);
             const auto given = std::find_if(in.lighting.arrays.begin(), in.lighting.arrays.end(),
                                             [&](const KernelArrayRef& a) { return a.block == block; });
             const void* data = given == in.lighting.arrays.end() ? nullptr : given->data;
@@ -114,12 +114,12 @@ public:
         // Under motion blur a pixel's rays are dispatched one at a time and averaged here by the
         // kernel's own running mean, so that no invocation runs longer than one ray's march.
         const int rays = in.params.time_samples;
-        kernel::CpuKernel mean_of = rays > 1 ? bindCpuKernel(in) : kernel::CpuKernel{};
+        kernel::CpuKernelData mean_of = rays > 1 ? bindKernelData(in) : kernel::CpuKernelData{};
         std::vector<kernel::VxPixel> ray_band(rays > 1 ? size_t(img.width) * band_rows : 0);
         std::vector<float> alpha_sums(ray_band.size());
         // Only the render region's rows are dispatched; its columns are kept from them below.
         const glm::ivec4 region = in.region;
-        const kernel::VxPixel empty = kernel::CpuKernel{}.vx_empty_pixel();
+        const kernel::VxPixel empty = kernel::CpuKernelData{}.vx_empty_pixel();
         const auto outside = [&](size_t p) { const int x = int(p % size_t(img.width)); return x < region.x || x >= region.z; };
         std::fill(img.pixels.begin(), img.pixels.end(), empty);
         glUseProgram(program);
@@ -174,7 +174,7 @@ private:
 
     const GlContextInfo& context_;
     GlBuffer params_, lighting_, density_, emission_, vectors_, pages_, lights_, tf_lut_, emission_lut_, noise_, band_, deep_band_;
-    std::array<GlBuffer, kernel::CpuKernel::kLightingArrays.size()> lighting_arrays_;
+    std::array<GlBuffer, kernel::CpuKernelData::kLightingArrays.size()> lighting_arrays_;
 };
 
 }  // namespace

@@ -13,7 +13,7 @@
 
 #include "core/huge_pages.h"
 #include "scene/camera.h"
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 #include "lighting/propagation/emitted_light.h"
 #include "lighting/propagation/light_sweeps.h"
 #include "optics/diffusion_profile.h"
@@ -46,7 +46,7 @@ std::vector<float> halveGrid(const float* values, glm::ivec3 dims, int channels)
 }
 
 // Rec. 709 luminance, as the kernel weighs it.
-float luminance(glm::vec3 c) { return kernel::CpuKernel().vx_luminance(c); }
+float luminance(glm::vec3 c) { return kernel::CpuKernelData().vx_luminance(c); }
 
 // The indirect light's profile per unit of light entering: diffusion theory's
 // (src/optics/diffusion_profile.h), or Kniss's, attenuated by -ln(transport colour).

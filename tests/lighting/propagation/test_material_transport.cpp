@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "backend/backend_choice.h"
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 #include "lighting/propagation/light_sweeps.h"
 #include "lighting/propagation/propagation_passes.h"
 #include "render/renderer.h"

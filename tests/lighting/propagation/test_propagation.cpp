@@ -700,7 +700,7 @@ TEST(Propagation, SurfaceShadingFollowsTheGradient) {
     scene.effects.surface = sf;
     Camera camera;
     auto prepared = prepare(volumeFromGrid(slab(1.0f)), scene, camera);
-    kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
+    kernel::CpuKernelData k = bindKernelData(prepared->inputs);
     const auto inside = k.vx_surface(glm::vec3(16.0f, 16.0f, 16.0f));
     EXPECT_EQ(inside.weight, 0.0f);
     const auto top = k.vx_surface(glm::vec3(16.0f, 31.5f, 16.0f));
@@ -711,7 +711,7 @@ TEST(Propagation, SurfaceShadingFollowsTheGradient) {
     EXPECT_EQ(k.vx_surface_factor(inside, wi, glm::vec3(0, -1, 0)), 1.0f);
     // Half way between the thresholds the surface and volume terms are mixed half and half.
     prepared->inputs.params.surface_inv_range = 1.0f / 1.0f;   // gradient_high = 1: the top face's 0.5 is half way
-    k = bindCpuKernel(prepared->inputs);
+    k = bindKernelData(prepared->inputs);
     const auto half = k.vx_surface(glm::vec3(16.0f, 31.5f, 16.0f));
     EXPECT_NEAR(half.weight, 0.5f, 1e-6f);
     EXPECT_NEAR(k.vx_surface_factor(half, wi, glm::vec3(0, -1, 0)), 0.5f + 0.5f * std::sqrt(0.5f), 1e-6f);

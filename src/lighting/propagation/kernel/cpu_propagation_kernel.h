@@ -1,9 +1,9 @@
 // The propagation's sweeps (vx_propagation.h: Ropinski 2010's slice-by-slice transport with
-// Sunden 2015's axis blending) compiled as C++ over the march kernel's accessors and functions,
-// as cpu_kernel.h compiles the march. A struct of its own, so that editing the sweeps' kernel text
-// recompiles only what runs them, never the march.
+// Sunden 2015's axis blending) compiled as C++ over the kernel's data and shared functions
+// (cpu_kernel_data.h), as cpu_kernel.h compiles the march. A struct of its own, so that editing
+// the sweeps' kernel text recompiles only what runs them, never the march.
 #pragma once
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 
 namespace voxlux::kernel {
 
@@ -23,7 +23,7 @@ static_assert(sizeof(VxPropagationMarch) % 16 == 0);
 VX_LINE_ALIGNED(VxPropagationMarch, illum_dims);
 VX_LINE_ALIGNED(VxPropagationMarch, chroma_dims);
 
-struct CpuPropagationKernel : CpuKernel {
+struct CpuPropagationKernel : CpuKernelData {
 #include "lighting/propagation/kernel/vx_propagation.h"
 };
 

@@ -1,4 +1,4 @@
-#include "kernel/cpu_kernel.h"
+#include "kernel/cpu_kernel_data.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -11,8 +11,8 @@ namespace voxlux {
     std::abort();
 }
 
-kernel::CpuKernel bindCpuKernel(const KernelInputs& in) {
-    kernel::CpuKernel k;
+kernel::CpuKernelData bindKernelData(const KernelInputs& in) {
+    kernel::CpuKernelData k;
     k.P = in.params;
     k.density = in.atlas->density;
     k.emission = in.atlas->emission;

@@ -1,0 +1,79 @@
+// A pixel of the image: the camera rays through it (at the frame's time, or at a point of the
+// shutter when the camera moves), its value before any ray met anything, and the running mean of
+// its rays. The march (vx_march.h) fills it; the GL backend and the reference use these too.
+#pragma once
+#include "vx_types.h"
+
+// The pixel's radiance so far: its four light AOVs summed.
+VX_INLINE vec3 vx_pixel_radiance(VxPixel px) {
+    return vx_radiance_add(vx_radiance_add(px.direct, px.ambient), vx_radiance_add(px.emission, px.indirect));
+}
+
+// A pixel no ray has met anything in: transparent and empty. The march starts from it, and a
+// render region (render.region) leaves the pixels outside it so.
+VX_INLINE VxPixel vx_empty_pixel() {
+    VxPixel px;
+    px.rgba = vec4(0.0f);
+    px.direct = vec3(0.0f);
+    px.ambient = vec3(0.0f);
+    px.emission = vec3(0.0f);
+    px.indirect = vec3(0.0f);
+    px.transmittance = 1.0f;
+    px.depth = 0.0f;
+    px.samples = 0.0f;
+    px.variance = 0.0f;
+    return px;
+}
+
+// The ray of camera-to-world `m` through the centre of pixel (x, y); y = 0 is the top row.
+void vx_camera_ray_of(mat4 m, int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+    float w = float(P.width);
+    float h = float(P.height);
+    float sx = (2.0f * (float(x) + 0.5f) / w - 1.0f) * P.tan_half_fov * P.aspect;
+    float sy = (1.0f - 2.0f * (float(y) + 0.5f) / h) * P.tan_half_fov;
+    origin = vec3(m * vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    dir = normalize(vec3(m * vec4(sx, sy, -1.0f, 0.0f)));
+    forward = normalize(vec3(m * vec4(0.0f, 0.0f, -1.0f, 0.0f)));
+}
+
+// The camera ray through pixel (x, y) at the frame's own time.
+void vx_camera_ray(int x, int y, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+    vx_camera_ray_of(P.camera_to_world, x, y, origin, dir, forward);
+}
+
+// The same at `fraction` of the way from shutter open to close: where the camera moves, between
+// its open and close rays (origins linearly, directions normalised linearly, which follows the
+// rotation closely for the small turns of one shutter).
+void vx_camera_ray_at(int x, int y, float fraction, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+    if (P.camera_moves == 0) {
+        vx_camera_ray(x, y, origin, dir, forward);
+        return;
+    }
+    vec3 o1;
+    vec3 d1;
+    vec3 f1;
+    vx_camera_ray_of(P.camera_open, x, y, origin, dir, forward);
+    vx_camera_ray_of(P.camera_close, x, y, o1, d1, f1);
+    origin = mix(origin, o1, fraction);
+    dir = normalize(mix(dir, d1, fraction));
+    forward = normalize(mix(forward, f1, fraction));
+}
+
+// Adds ray `px`, the n-th of a pixel's (n >= 2), to the mean `m` of the ones before: a running
+// mean, which stays exactly the value of rays that all return the same. Depth is the opacity-
+// weighted mean, as one ray weighs its samples (alpha_sum: the rays' alpha so far); the samples
+// (the cost) add up.
+void vx_pixel_mean_add(VX_INOUT(VxPixel) m, VxPixel px, int n, VX_INOUT(float) alpha_sum) {
+    float w = 1.0f / float(n);
+    m.rgba += (px.rgba - m.rgba) * w;
+    m.direct += (px.direct - m.direct) * w;
+    m.ambient += (px.ambient - m.ambient) * w;
+    m.emission += (px.emission - m.emission) * w;
+    m.indirect += (px.indirect - m.indirect) * w;
+    m.transmittance += (px.transmittance - m.transmittance) * w;
+    m.samples += px.samples;
+    float alpha = px.rgba.w;
+    if (alpha <= 0.0f) return;
+    alpha_sum += alpha;
+    m.depth = alpha_sum == alpha ? px.depth : m.depth + (px.depth - m.depth) * (alpha / alpha_sum);
+}
