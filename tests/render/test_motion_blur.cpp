@@ -15,13 +15,13 @@
 namespace voxlux::test {
 namespace {
 
-// A box of extinction kSigma over voxels [24, 39]^3 (voxel size 1, so voxel i sits at world i),
+// A box of extinction kBoxSigma over voxels [24, 39]^3 (voxel size 1, so voxel i sits at world i),
 // seen from 1000 units down -z through a 64^2 image whose pixels are one world unit wide at the
 // box: pixel column c looks along world x = c + 0.5, row r along y = 63.5 - r.
-constexpr float kSigma = 0.1f;
+constexpr float kBoxSigma = 0.1f;
 constexpr int kImage = 64;
 
-openvdb::FloatGrid::Ptr movingBox() { return boxGrid({24, 24, 24}, {39, 39, 39}, kSigma); }
+openvdb::FloatGrid::Ptr movingBox() { return boxGrid({24, 24, 24}, {39, 39, 39}, kBoxSigma); }
 
 // A constant velocity over a box wider than the medium, as a simulation's velocity field is.
 openvdb::Vec3SGrid::Ptr constantVelocity(openvdb::Vec3s v) {
@@ -75,7 +75,7 @@ float alphaAt(const RenderImage& img, int x, int y) { return img.pixels[size_t(y
 // at world i, so density rises over [23, 24] and falls over [39, 40]), 16 voxels deep.
 double staticAlpha(double x) {
     const double share = std::clamp(std::min(x - 23.0, 40.0 - x), 0.0, 1.0);
-    return 1.0 - std::exp(-double(kSigma) * 16.0 * share);
+    return 1.0 - std::exp(-double(kBoxSigma) * 16.0 * share);
 }
 
 // The analytic smear: the static alpha averaged over the shutter, the box moved 16 t along x.

@@ -16,6 +16,7 @@
 #include "render/light_rig.h"
 #include "lighting/propagation/light_sweeps.h"
 #include "render/renderer.h"
+#include "lighting/propagation/illumination_cells.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -127,7 +128,7 @@ Scene cubeScene(std::vector<Light> lights, bool indirect) {
     return s;
 }
 
-Light pointLight(glm::vec3 at, glm::vec3 color, float intensity) {
+Light coloredPointLight(glm::vec3 at, glm::vec3 color, float intensity) {
     Light l;
     l.type = LightType::Point;
     l.position = at;
@@ -136,7 +137,7 @@ Light pointLight(glm::vec3 at, glm::vec3 color, float intensity) {
     return l;
 }
 
-Light directionalLight(glm::vec3 dir, glm::vec3 color, float intensity) {
+Light coloredDirectionalLight(glm::vec3 dir, glm::vec3 color, float intensity) {
     Light l;
     l.direction = glm::normalize(dir);
     l.color = color;
@@ -146,10 +147,6 @@ Light directionalLight(glm::vec3 dir, glm::vec3 color, float intensity) {
 
 const float* directAt(const IlluminationVolume& v, glm::ivec3 c) {
     return &v.values[((size_t(c.z) * v.dims.y + c.y) * v.dims.x + c.x) * 3];
-}
-
-glm::vec3 cellCentre(const IlluminationVolume& v, glm::ivec3 c) {
-    return glm::vec3(glm::inverse(v.world_to_illum) * glm::vec4(glm::vec3(c) + 0.5f, 1.0f));
 }
 
 // Inside the medium a point light's direct light is I exp(-sigma r) / r^2. With a light on a cell
@@ -165,7 +162,7 @@ void expectPointLightInsideCube(KernelBackend& backend) {
     for (float sigma : {1e-6f, 0.1f}) {
         auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, sigma);
         for (glm::vec3 at : {glm::vec3(12.0f), glm::vec3(11.7f, 12.2f, 12.45f)}) {
-            auto lit = illuminate(grid, cubeScene({pointLight(at, glm::vec3(1.0f), intensity)}, false), backend, Camera{});
+            auto lit = illuminate(grid, cubeScene({coloredPointLight(at, glm::vec3(1.0f), intensity)}, false), backend, Camera{});
             const IlluminationVolume& v = lit->volume();
             const bool centred = at == glm::vec3(12.0f);
             float exact_cells = 0.0f;   // relative error where the answer is exact
@@ -266,13 +263,13 @@ TEST(MultiLight, PointLightInsideTheMediumIsAnalyticOnGl) {
 // A mixed rig: a directional key, a point light inside the cube, a spot from outside, a point
 // light beside the volume, with indirect light.
 std::vector<Light> mixedRig() {
-    Light spot = pointLight({12, 30, 12}, {0.3f, 0.5f, 1.0f}, 400.0f);
+    Light spot = coloredPointLight({12, 30, 12}, {0.3f, 0.5f, 1.0f}, 400.0f);
     spot.type = LightType::Spot;
     spot.direction = glm::vec3(0, -1, 0);
     spot.cone_angle = 35.0f;
     spot.cone_softness = 10.0f;
-    return {directionalLight({0.3f, -1, 0.2f}, {1.0f, 0.9f, 0.8f}, 3.0f), pointLight({9.5f, 13.2f, 11.1f}, {1, 0.4f, 0.1f}, 20.0f),
-            spot, pointLight({-3.0f, 5.0f, 20.0f}, {0.2f, 1.0f, 0.3f}, 150.0f)};
+    return {coloredDirectionalLight({0.3f, -1, 0.2f}, {1.0f, 0.9f, 0.8f}, 3.0f), coloredPointLight({9.5f, 13.2f, 11.1f}, {1, 0.4f, 0.1f}, 20.0f),
+            spot, coloredPointLight({-3.0f, 5.0f, 20.0f}, {0.2f, 1.0f, 0.3f}, 150.0f)};
 }
 
 float relativeL2(const std::vector<float>& got, const std::vector<float>& want) {
@@ -394,8 +391,8 @@ void randomEdit(LightRig& rig, std::mt19937& rng, float extent) {
 // both blocks, relative to the from-scratch volume's L2.
 void expectEditsMatchFromScratch(Backend backend, int light_resolution) {
     Scene scene = ballScene("multilight_edits", light_resolution, backend);
-    scene.lights = {directionalLight({0.3f, -1, 0.2f}, {1, 0.9f, 0.8f}, 3.0f), pointLight({0.2f, -0.3f, 0.1f}, {1, 0.5f, 0.2f}, 2.0f),
-                    pointLight({3, 1, -2}, {0.3f, 0.6f, 1.0f}, 20.0f), directionalLight({-1, 0.2f, 0.5f}, {0.5f, 0.5f, 1}, 1.0f)};
+    scene.lights = {coloredDirectionalLight({0.3f, -1, 0.2f}, {1, 0.9f, 0.8f}, 3.0f), coloredPointLight({0.2f, -0.3f, 0.1f}, {1, 0.5f, 0.2f}, 2.0f),
+                    coloredPointLight({3, 1, -2}, {0.3f, 0.6f, 1.0f}, 20.0f), coloredDirectionalLight({-1, 0.2f, 0.5f}, {0.5f, 0.5f, 1}, 1.0f)};
     Renderer renderer(scene);
     LightRig rig(renderer, scene);
     rig.apply();
@@ -437,7 +434,7 @@ TEST(MultiLight, ThousandRandomEditsMatchFromScratchOnGl) {
 TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
     Scene scene = ballScene("multilight_toggle", 32);
     for (int k = 0; k < 6; ++k)
-        scene.lights.push_back(directionalLight({std::cos(float(k)), -1.0f, std::sin(float(k))}, {1, 0.2f * float(k), 0.5f}, 2.0f));
+        scene.lights.push_back(coloredDirectionalLight({std::cos(float(k)), -1.0f, std::sin(float(k))}, {1, 0.2f * float(k), 0.5f}, 2.0f));
     Renderer renderer(scene);
     LightRig rig(renderer, scene);
     rig.apply();
@@ -464,8 +461,8 @@ TEST(MultiLight, ToggleOffAndOnRestoresTheVolume) {
 TEST(MultiLight, SelectiveUpdatesUnderTheEyePassMatchFromScratch) {
     Scene scene = ballScene("multilight_eye", 24);
     scene.effects.propagation.eye_pass = true;
-    scene.lights = {directionalLight({0.3f, -1, 0.2f}, {1, 0.9f, 0.8f}, 3.0f), directionalLight({-1, -0.2f, 0.4f}, {0.4f, 0.5f, 1}, 2.0f),
-                    directionalLight({0.1f, 0.3f, -1}, {1, 0.3f, 0.3f}, 1.0f)};
+    scene.lights = {coloredDirectionalLight({0.3f, -1, 0.2f}, {1, 0.9f, 0.8f}, 3.0f), coloredDirectionalLight({-1, -0.2f, 0.4f}, {0.4f, 0.5f, 1}, 2.0f),
+                    coloredDirectionalLight({0.1f, 0.3f, -1}, {1, 0.3f, 0.3f}, 1.0f)};
     Renderer renderer(scene);
     LightRig rig(renderer, scene);
     rig.apply();
@@ -486,7 +483,7 @@ TEST(MultiLight, SelectiveUpdatesUnderTheEyePassMatchFromScratch) {
 TEST(MultiLight, HdrExtremesStayFiniteAndKeepTheirRatio) {
     auto cpu = makeCpuBackend();
     auto grid = boxGrid({0, 0, 0}, {kCube - 1, kCube - 1, kCube - 1}, 0.05f);
-    const Light strong = directionalLight({0, -1, 0}, {1, 0, 0}, 1e6f), weak = directionalLight({0, -1, 0.3f}, {0, 0, 1}, 1e-3f);
+    const Light strong = coloredDirectionalLight({0, -1, 0}, {1, 0, 0}, 1e6f), weak = coloredDirectionalLight({0, -1, 0.3f}, {0, 0, 1}, 1e-3f);
     auto both = illuminate(grid, cubeScene({strong, weak}, true), *cpu, Camera{});
     auto alone = illuminate(grid, cubeScene({weak}, true), *cpu, Camera{});
     const IlluminationVolume& v = both->volume();
@@ -504,9 +501,9 @@ TEST(MultiLight, HdrExtremesStayFiniteAndKeepTheirRatio) {
 
 TEST(LightRig, TracksIdsAndDirtyLightsAndRefusesUnknownOnes) {
     Scene scene = ballScene("multilight_rig", 16);
-    Light key = directionalLight({0, -1, 0}, glm::vec3(1), 2.0f);
+    Light key = coloredDirectionalLight({0, -1, 0}, glm::vec3(1), 2.0f);
     key.name = "key";
-    scene.lights = {key, pointLight({3, 0, 0}, glm::vec3(1), 10.0f)};
+    scene.lights = {key, coloredPointLight({3, 0, 0}, glm::vec3(1), 10.0f)};
     Renderer renderer(scene);
     LightRig rig(renderer, scene);
     EXPECT_EQ(rig.ids(), (std::vector<int>{0, 1}));
@@ -516,7 +513,7 @@ TEST(LightRig, TracksIdsAndDirtyLightsAndRefusesUnknownOnes) {
     const LightRigUpdate first = rig.apply();
     EXPECT_EQ(first.lighting->mode, LightUpdate::Mode::Entire);
     EXPECT_EQ(first.lighting->reason, "first update");
-    const int added = rig.add(directionalLight({1, -1, 0}, glm::vec3(0.5f), 1.0f));
+    const int added = rig.add(coloredDirectionalLight({1, -1, 0}, glm::vec3(0.5f), 1.0f));
     EXPECT_EQ(added, 2);
     rig.remove(0);
     EXPECT_EQ(rig.dirty(), (std::vector<int>{0, 2}));

@@ -11,6 +11,7 @@
 #include "lighting/propagation/light_sweeps.h"
 #include "optics/diffusion_profile.h"
 #include "render/renderer.h"
+#include "lighting/propagation/illumination_cells.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -71,11 +72,6 @@ float depthInCube(glm::vec3 c, glm::vec3 dir) {
 float luminanceAt(const IlluminationVolume& v, glm::ivec3 c) {
     const float* rgb = &v.values[((size_t(c.z) * v.dims.y + c.y) * v.dims.x + c.x) * 3];
     return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2];
-}
-
-// Index-space centre of cell c (voxel size 1: index space is world space).
-glm::vec3 cellCentre(const IlluminationVolume& v, glm::ivec3 c) {
-    return glm::vec3(glm::inverse(v.world_to_illum) * glm::vec4(glm::vec3(c) + 0.5f, 1.0f));
 }
 
 bool insideCube(glm::vec3 p, float margin) {
