@@ -14,7 +14,7 @@ namespace {
 constexpr double kWidth = 900, kHeight = 500;
 constexpr double kLeft = 80, kRight = 300, kTop = 40, kBottom = 60;  // margins: legend on the right
 
-std::string number(double v) {
+std::string svgNumber(double v) {
     std::ostringstream s;
     s.precision(3);
     s << v;
@@ -53,13 +53,13 @@ std::string plotSvg(const std::string& path, const LogLogPlot& plot, double top)
     for (double d = x0; d <= x1; ++d) {
         const double x = px(std::pow(10.0, d));
         svg << "<line x1='" << x << "' y1='" << kTop << "' x2='" << x << "' y2='" << kTop + ph << "' stroke='#ddd'/>\n"
-            << "<text x='" << x << "' y='" << kTop + ph + 18 << "' text-anchor='middle'>" << number(std::pow(10.0, d))
+            << "<text x='" << x << "' y='" << kTop + ph + 18 << "' text-anchor='middle'>" << svgNumber(std::pow(10.0, d))
             << "</text>\n";
     }
     for (double d = y0; d <= y1; ++d) {
         const double y = py(std::pow(10.0, d));
         svg << "<line x1='" << kLeft << "' y1='" << y << "' x2='" << kLeft + pw << "' y2='" << y << "' stroke='#ddd'/>\n"
-            << "<text x='" << kLeft - 6 << "' y='" << y + 4 << "' text-anchor='end'>" << number(std::pow(10.0, d))
+            << "<text x='" << kLeft - 6 << "' y='" << y + 4 << "' text-anchor='end'>" << svgNumber(std::pow(10.0, d))
             << "</text>\n";
     }
     svg << "<rect x='" << kLeft << "' y='" << kTop << "' width='" << pw << "' height='" << ph
