@@ -59,8 +59,9 @@ TEST(KernelPrograms, EveryProgramKeepsItsBlocksApartAtTheirGeneratedBindings) {
             for (const ActiveBlock& b : activeBlocks(program, interface)) {
                 seen.insert(b.name);
                 EXPECT_TRUE(bindings.insert(b.binding).second) << entry << ": " << b.name << " shares binding " << b.binding;
-                if (const auto n = numbers->find(b.name); n != numbers->end())
+                if (const auto n = numbers->find(b.name); n != numbers->end()) {
                     EXPECT_EQ(b.binding, n->second) << entry << ": " << b.name;
+                }
             }
         }
         for (const std::string& name : names) EXPECT_TRUE(seen.count(name)) << entry << " does not read " << name;
