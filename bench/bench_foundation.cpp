@@ -82,7 +82,7 @@ void emptySpaceRows(const LoadedVolume& volume, const Scene& scene, const Camera
         const PageTable pages = classifiedPageTable(atlas, scene);
         const glm::ivec3 span = pages.bricks_max - pages.bricks_min + 1;
         const double box_bricks = double(span.x) * span.y * span.z;
-        KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
+        KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera, {}});
         RenderImage image;
         const double t = best(repeats, [&] { image = cpu->march(inputs); });
         if (gap_diagonals == 0.0f) alone = t;
@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
         }
         for (ShadowMethod shadows : {ShadowMethod::None, ShadowMethod::Raymarch}) {
             scene.effects.shadows = shadows;
-            KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
+            KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera, {}});
             backend->march(inputs);  // warm-up: GL compiles its program and uploads here
             const int runs = shadows == ShadowMethod::None ? repeats : 1;
             const double t = best(runs, [&] { image = backend->march(inputs); });
@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
         cubic.effects.shadows = shadows;
         cubic.render.filter = Filter::Tricubic;
         const PageTable cubic_pages = classifiedPageTable(atlas, cubic);
-        KernelInputs inputs = makeKernelInputs(cubic, atlas, cubic_pages, 0.0f, kXyzD65ToAcescg, {&camera});
+        KernelInputs inputs = makeKernelInputs(cubic, atlas, cubic_pages, 0.0f, kXyzD65ToAcescg, {&camera, {}});
         auto cpu = makeCpuBackend();
         const double tricubic = best(shadows == ShadowMethod::None ? repeats : 1, [&] { image = cpu->march(inputs); });
         const std::string label = std::string("march cpu, tricubic, ") + (shadows == ShadowMethod::None ? "no shadows" : "shadows");
@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
     for (float step : {32.0f, 4.0f, 1.0f, 0.5f, 0.25f, 0.125f}) {
         scene.effects.shadows = ShadowMethod::None;
         scene.render.step = step;
-        KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera});
+        KernelInputs inputs = makeKernelInputs(scene, atlas, pages, 0.0f, kXyzD65ToAcescg, {&camera, {}});
         auto cpu = makeCpuBackend();
         const double t = best(repeats, [&] { image = cpu->march(inputs); });
         const double samples = totalSamples(image);

@@ -3,12 +3,18 @@
 # their paths under <root> (which is on the include path), so the templates they share (OpenVDB's,
 # nlohmann-json's, GoogleTest's) are instantiated and optimised once per folder, not once per file,
 # and ccache's keys stay the same in a clone elsewhere (CMake's own unity builds include absolute
-# paths). Sources outside <root> stay as they are. <out_var> receives the units and those others.
-# Editing a file recompiles its folder's unit.
+# paths). Sources outside <root>, and generator expressions, stay as they are. <out_var> receives
+# the units and those others. Editing a file recompiles its folder's unit. A folded file loses
+# options of its own (COMPILE_OPTIONS, SKIP_PRECOMPILE_HEADERS on the source): such a file belongs
+# to a target that does not fold (voxlux_layer's PER_FILE). Each target needs a <unit_dir> of its own.
 function(voxlux_folder_units out_var unit_dir root)
   set(units)
   set(others)
   foreach(source ${ARGN})
+    if(source MATCHES "^\\$<")
+      list(APPEND others ${source})
+      continue()
+    endif()
     get_filename_component(path ${source} ABSOLUTE)
     file(RELATIVE_PATH relative ${root} ${path})
     if(relative MATCHES "^\\.\\./" OR IS_ABSOLUTE "${relative}")

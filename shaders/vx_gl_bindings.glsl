@@ -1,7 +1,7 @@
 // GL side of the kernel's data that is not one array per accessor: the atlas's colour, velocity
 // and surface weight share one storage block (a compute program may have 16 on llvmpipe). Every
 // other block and accessor is generated (vx_gl_data.glsl, cmake/kernel_contract.cmake), which
-// this file follows in a program; the CPU keeps the three as arrays of their own (cpu_kernel.h).
+// this file follows in a program; the CPU keeps the three as arrays of their own (cpu_kernel_data.h).
 
 // The colour grid's 3 floats a voxel, then from P.velocity_offset the velocity's, then from
 // P.surface_offset the surface weight's 1.

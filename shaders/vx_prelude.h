@@ -1,7 +1,7 @@
 // Shared-kernel prelude: lets the vx_*.h headers compile both as GLSL 4.50 and as C++17 with GLM.
 // On the GL side the headers are concatenated after "#define VX_GLSL" (see src/kernel/shader_source.cpp),
 // with their #include / #pragma once lines stripped. On the C++ side they are #included inside a
-// struct body (src/kernel/cpu_kernel.h), so backend data accessors are members and the math is one copy.
+// struct body (src/kernel/cpu_kernel_data.h, cpu_kernel.h), so backend data accessors are members and the math is one copy.
 //
 // Rules for code in vx_*.h:
 //  - out/inout parameters use VX_OUT(T) / VX_INOUT(T), a large input struct may use VX_IN(T); no

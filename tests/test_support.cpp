@@ -86,7 +86,7 @@ std::unique_ptr<Prepared> prepare(LoadedVolume volume, const Scene& scene, const
     p->volume = std::move(volume);
     p->atlas = buildBrickAtlas(p->volume, motionReachBricks(p->volume, scene.render.motion_blur));
     p->pages = classifiedPageTable(p->atlas, scene);
-    p->inputs = makeKernelInputs(scene, p->atlas, p->pages, 0.0f, kXyzD65ToAcescg, {&camera});
+    p->inputs = makeKernelInputs(scene, p->atlas, p->pages, 0.0f, kXyzD65ToAcescg, {&camera, {}});
     return p;
 }
 

@@ -5,6 +5,8 @@
 // (cpu_kernel.h) nor its lighting hooks, so the light passes, the reference and the tools that
 // build on it do not recompile when a method's march hook changes.
 #pragma once
+#include <array>
+#include <string_view>
 #include <vector>
 
 #include "kernel/kernel_inputs.h"

@@ -1,7 +1,7 @@
 // Empty space between parts of a volume (shaders/vx_dda.h): the CPU march steps over regions that
 // hold no brick in one step, and what it renders is what each part renders alone, composited.
 // Two boxes 2000 voxels apart along the view, with 31 empty regions between them. GL keeps the
-// brick walk (vx_skips_regions in shaders/vx_march.h) and is held to the same composite.
+// brick walk (vx_skips_regions in shaders/vx_dda.h) and is held to the same composite.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -88,7 +88,10 @@ std::string shellQuoted(const std::string& arg) {
 
 std::string shellCommand(const std::vector<std::string>& argv) {
     std::string out;
-    for (const auto& a : argv) out += (out.empty() ? "" : " ") + shellQuoted(a);
+    for (const auto& a : argv) {
+        if (!out.empty()) out += ' ';
+        out += shellQuoted(a);
+    }
     return out;
 }
 

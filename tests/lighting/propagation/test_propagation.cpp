@@ -345,7 +345,7 @@ TEST(Propagation, TransportColourShiftsIndirectLightWithDepth) {
 
 // The noisy ball (radius 2 world units) on the CPU, lit by one directional light travelling at
 // `degrees` from -z towards +x, a little downwards; propagation shadows on a 32-cell grid.
-Scene ballScene(const std::string& vdb, float degrees) {
+Scene slantLitBallScene(const std::string& vdb, float degrees) {
     Scene s;
     s.volume.path = vdb;
     s.render.width = 64;
@@ -395,7 +395,7 @@ TEST(Propagation, LightMovingAcrossTheFaceBoundaryDoesNotPop) {
     for (bool blend : {true, false}) {
         std::vector<RenderImage> frames;
         for (float deg : {43.99f, 44.99f, 45.01f}) {
-            Scene s = ballScene(vdb, deg);
+            Scene s = slantLitBallScene(vdb, deg);
             const float a = glm::radians(deg);
             s.lights[0].type = LightType::Point;
             s.lights[0].position = 2.6f * glm::vec3(-std::sin(a), 0.3f, std::cos(a));
@@ -419,7 +419,7 @@ TEST(Propagation, LightMovingAcrossTheFaceBoundaryDoesNotPop) {
 // How it falls with resolution: Propagation.ConvergesOnRayMarchedShadowsOnSmoke.
 TEST(Propagation, DirectLightMatchesTheRayMarchedReference) {
     const std::string vdb = writeBall(tempDir("propagation_reference"));
-    Scene s = ballScene(vdb, 30.0f);
+    Scene s = slantLitBallScene(vdb, 30.0f);
     s.effects.light_resolution = 48;
     const RenderImage prop = renderScene(s).image;
     s.effects.shadows = ShadowMethod::Raymarch;
@@ -441,7 +441,7 @@ TEST(Propagation, DirectLightMatchesTheRayMarchedReference) {
 // Kniss Sec. III.D: the noise is seeded and deterministic; zero amplitude is no perturbation.
 TEST(Propagation, PerturbationIsSeededAndZeroAmplitudeIsExactlyNone) {
     const std::string vdb = writeBall(tempDir("propagation_noise"));
-    Scene s = ballScene(vdb, 30.0f);
+    Scene s = slantLitBallScene(vdb, 30.0f);
     Indirect in;
     in.model = IndirectModel::Kniss;
     in.transport_color = glm::vec3(1.0f, 0.7f, 0.4f);
@@ -568,7 +568,7 @@ TEST(Propagation, HostileLightsAndVoxelsStayFinite) {
 // camera change; the volume stays when the camera moves unless the eye pass depends on it.
 TEST(Propagation, EditsRecomputeOnlyWhatTheyInvalidate) {
     const std::string vdb = writeBall(tempDir("propagation_reuse"));
-    Scene s = ballScene(vdb, 30.0f);
+    Scene s = slantLitBallScene(vdb, 30.0f);
     Renderer r(s);
     auto ran = [](const FrameResult& f, const std::string& stage) {
         return std::any_of(f.stage_seconds.begin(), f.stage_seconds.end(), [&](const auto& p) { return p.first == stage; });
