@@ -94,6 +94,8 @@ void fillLightChannelCpu(const LightPass& pass, LightCache& cache) {
                     for (int c = 0; c < chunks; ++c) {
                         if (chunk_needed[size_t(c)] == 0) continue;
                         const int x0 = c * width;
+                        // (clamp_x as a constant: each call inlines a loop of its own, the
+                        // unclamped one with contiguous loads)
                         if (kk.vx_sat_row_inside(q, x0))
                             kk.vx_sat_add_cuboid_row(plane, q, {x0, y, z}, false, rows[size_t(c)]);
                         else

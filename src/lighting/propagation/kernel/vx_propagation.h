@@ -159,6 +159,13 @@ vec3 vx_prop_outside(vec3 q) {
     return Q.channels == 1 ? vec3(vx_radiance_add(0.0f, vx_luminance(e)), 0.0f, 0.0f) : e;
 }
 
+// Whether slice s lies in the grid along the sweep's axis (-1 and dims: the virtual slices around it).
+VX_INLINE bool vx_prop_slice_inside(int s) { return s >= 0 && s < Q.dims[Q.axis]; }
+
+// Whether slice s's centre plane lies past the light's plane, in the sweep's direction (a point or
+// spot light's sweep, Q.source its position).
+VX_INLINE bool vx_prop_past_light(int s) { return float(Q.direction) * (float(s) + 0.5f - Q.source[Q.axis]) > 0.0f; }
+
 // Where channel ch of cell (i, j) of the previous slice is (vx_prop_prev: Q.channels floats per
 // cell, rows of u).
 VX_INLINE int vx_prop_prev_index(int axis, int i, int j, int ch) { return (j * Q.dims[vx_axis_u(axis)] + i) * Q.channels + ch; }
@@ -168,7 +175,7 @@ VX_INLINE int vx_prop_prev_index(int axis, int i, int j, int ch) { return (j * Q
 VX_INLINE vec3 vx_prop_prev_cell(int i, int j, int prev) {
     int u = vx_axis_u(Q.axis);
     int v = vx_axis_v(Q.axis);
-    if (prev < 0 || prev >= Q.dims[Q.axis] || i < 0 || j < 0 || i >= Q.dims[u] || j >= Q.dims[v])
+    if (!vx_prop_slice_inside(prev) || i < 0 || j < 0 || i >= Q.dims[u] || j >= Q.dims[v])
         return vx_prop_outside(vx_prop_point(Q.axis, float(prev) + 0.5f, float(i) + 0.5f, float(j) + 0.5f));
     int at = vx_prop_prev_index(Q.axis, i, j, 0);
     if (Q.channels == 1) return vec3(vx_prop_prev(at), 0.0f, 0.0f);
@@ -301,7 +308,7 @@ VX_INLINE vec3 vx_prop_cell(int i, int j) {
     if (Q.per_cell_flow != 0) {
         vec3 f = vx_prop_light_flow(x);
         if (vx_prop_unlit(axis, f)) return vec3(0.0f);
-        first = float(Q.direction) * (float(prev) + 0.5f - Q.source[axis]) <= 0.0f;
+        first = !vx_prop_past_light(prev);
         if (first) {
             back = f;
             p = Q.source;
@@ -438,11 +445,9 @@ VX_INLINE void vx_prop_flow_transmit(int ch, float atten, int l, VX_INOUT(VxProp
 // a lane reading beyond it reads its first cells instead, and drops them.)
 VX_INLINE bool vx_prop_flow_batches(int prev) {
     int axis = Q.axis;
-    float dir = float(Q.direction);
     return Q.per_cell_flow != 0 && Q.eye_sweep == 0 && Q.source_sweep == 0 && Q.blend_axes == 0 && Q.transport_planes == 0 &&
            !vx_perturbed() && Q.strides[vx_axis_u(axis)] == 1 && Q.dims[vx_axis_u(axis)] >= 2 && Q.dims[vx_axis_v(axis)] >= 2 &&
-           prev >= 0 && prev < Q.dims[axis] && dir * (float(Q.slice) + 0.5f - Q.source[axis]) > 0.0f &&
-           dir * (float(prev) + 0.5f - Q.source[axis]) > 0.0f;
+           vx_prop_slice_inside(prev) && vx_prop_past_light(Q.slice) && vx_prop_past_light(prev);
 }
 
 VX_INLINE void vx_prop_flow_run(int axis, int i0, int j, int n, VX_INOUT(VxPropRun) r) {
@@ -581,7 +586,7 @@ void vx_prop_row_stencil(VX_OUT(VxPropStencil) s) {
 // grid, and the row's reads stay inside the slice (rows dj and dj + 1 of every read).
 VX_INLINE bool vx_prop_row_fits(VX_IN(VxPropStencil) s, int j, int prev) {
     int nv = Q.dims[vx_axis_v(Q.axis)];
-    bool fits = s.reads > 0 && s.lo < s.hi && prev >= 0 && prev < Q.dims[Q.axis];
+    bool fits = s.reads > 0 && s.lo < s.hi && vx_prop_slice_inside(prev);
     for (int k = 0; k < s.reads; ++k) fits = fits && j + s.read[k].dj >= 0 && j + s.read[k].dj + 1 < nv;
     for (int c = 0; c < s.cells; ++c) fits = fits && j + s.cell_dj[c] >= 0 && j + s.cell_dj[c] < nv;
     return fits;
