@@ -26,8 +26,11 @@ namespace fs = std::filesystem;
 // constants, parameter structs and page-table hash) sits below everything that bakes data for the
 // kernel, and with them each lighting method's parameter blocks (its kernel/vx_<method>_types.h,
 // which kernel_types.h reaches through the generated vx_lighting_types.h). The scene's
-// description (scene.h) sits below optics, which reading a scene validates against. A lighting method's kernel/ folder (its kernel text and the output the march reads) is
-// part of the kernel, which compiles every method's kernel text into one program.
+// description (scene.h) sits below optics, which reading a scene validates against; with it each
+// lighting method's settings (its <method>_settings.h, which scene.h reaches through the generated
+// method_settings.h), whose reading (<method>_settings.cpp) is the scene layer's. A lighting
+// method's kernel/ folder (its kernel text and the output the march reads) is part of the kernel,
+// which compiles every method's kernel text into one program.
 struct Layer {
     std::string name;
     std::vector<std::string> patterns;
@@ -36,9 +39,9 @@ const std::vector<Layer> kLayers = {
     {"core", {"src/core/"}},
     {"kernel layout", {"shaders/vx_prelude\\.h$", "shaders/vx_types\\.h$", "src/kernel/kernel_types\\.h$",
                        "src/lighting/[^/]+/kernel/vx_[^/]+_types\\.h$"}},
-    {"scene description", {"src/scene/scene\\.(h|cpp)$"}},
+    {"scene description", {"src/scene/scene\\.(h|cpp)$", "src/scene/filter\\.h$", "src/lighting/[^/]+/[^/]+_settings\\.h$"}},
     {"optics", {"src/optics/"}},
-    {"scene", {"src/scene/"}},
+    {"scene", {"src/scene/", "src/lighting/[^/]+/[^/]+_settings\\.cpp$"}},
     {"graph", {"src/graph/"}},
     {"volume", {"src/volume/"}},
     {"kernel", {"src/kernel/", "shaders/", "src/lighting/[^/]+/kernel/"}},
@@ -105,6 +108,9 @@ TEST(Layers, PathsFallInTheirLayers) {
         {"src/lighting/propagation/cpu_propagation.cpp", "lighting"},
         {"src/lighting/new_method/kernel/vx_new.h", "kernel"},
         {"src/lighting/new_method/kernel/vx_new_types.h", "kernel layout"},
+        {"src/lighting/new_method/new_method_settings.h", "scene description"},
+        {"src/lighting/new_method/new_method_settings.cpp", "scene"},
+        {"src/lighting/new_method/new_method_stages.h", "lighting"},
         {"src/tools/main.cpp", "tools"},
     };
     for (const auto& [path, layer] : cases) {

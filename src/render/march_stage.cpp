@@ -11,16 +11,6 @@
 namespace voxlux {
 namespace {
 
-std::string shadowDescription(ShadowMethod m) {
-    switch (m) {
-        case ShadowMethod::Raymarch: return "ray-marched shadow rays per sample (reference)";
-        case ShadowMethod::SatCone: return "SAT-cone shadows read from the light cache";
-        case ShadowMethod::Propagation: return "direct and indirect light read from the illumination volume";
-        case ShadowMethod::None: break;
-    }
-    return "unshadowed (effects.shadows = none)";
-}
-
 std::string emissionDescription(const EmissionSource& e) {
     const char* kind = e.kind == EmissionKind::Blackbody ? "blackbody" : e.kind == EmissionKind::Ramp ? "ramp" : "constant";
     return std::string(kind) + " from '" + e.grid.name + "'";
@@ -71,7 +61,7 @@ StageActivity MarchStage::activity(const Scene& s) const {
                                            : "no lights: emission and transmittance only";
     } else {
         march = std::to_string(s.lights.size()) + (s.lights.size() == 1 ? " light, " : " lights, ");
-        march += enabledLightCount(s, false) > 0 ? shadowDescription(s.effects.shadows) : "ambient only";
+        march += enabledLightCount(s, false) > 0 ? shadowMethodDescription(s.effects.shadows) : "ambient only";
         if (enabledLightCount(s, true) > 0)
             march += s.effects.ambient_occlusion ? ", occluded ambient" : ", unoccluded ambient";
     }

@@ -9,6 +9,8 @@
 #include <glm/glm.hpp>
 
 #include "core/frame_set.h"
+#include "method_settings.h"   // generated from the lighting methods (cmake/method_settings.cmake)
+#include "scene/filter.h"
 
 namespace voxlux {
 
@@ -116,10 +118,6 @@ struct ReferenceSettings {
     int roulette_depth = 3;                // bounces before Russian roulette may end a path
 };
 
-// How the grids are reconstructed between voxels: trilinear, or the smoother cubic B-spline
-// (shaders/vx_sample.h), which hides the voxel staircase of a low-resolution cache.
-enum class Filter { Trilinear, Tricubic };
-
 // Velocity motion blur (docs/scene.md, "Motion blur"): each camera ray takes a time within the
 // shutter, and the medium is looked up where the velocity grid says it was at that time.
 struct MotionBlur {
@@ -156,57 +154,6 @@ inline constexpr const char* kRegionExpected = "expected [x_min, y_min, x_max, y
 // outward to whole pixels, or the whole image.
 glm::ivec4 regionPixels(const RenderSettings& render, int width, int height);
 
-// Raymarch: a shadow ray per sample and light (the reference). SatCone: Schlegel 2011 cones of
-// SAT cuboids, precomputed into the light cache. Propagation: Ropinski 2010 illumination volume,
-// swept slice by slice from the lights.
-enum class ShadowMethod { None, Raymarch, SatCone, Propagation };
-// effects.shadows' names, in ShadowMethod's order.
-inline const std::vector<std::string> kShadowMethodNames{"none", "raymarch", "sat_cone", "propagation"};
-inline const std::string& shadowMethodName(ShadowMethod m) { return kShadowMethodNames[size_t(m)]; }
-
-struct AmbientOcclusion {
-    int shells = 3;
-    float radius = 0.0f;                   // world units; 0 = 6% of the light grid's longest side
-};
-
-struct ShadowCone {
-    float angle = 2.0f;                    // half-angle, degrees
-    int samples = 20;                      // cuboids per cone
-    float growth = 0.05f;                  // each cuboid this much longer than the one before
-};
-
-// Knobs of the illumination volume (shadows "propagation"); its resolution and memory budget are
-// light_resolution and light_memory_mb, as for the SAT.
-struct Propagation {
-    bool blend_axes = false;               // also sweep the second closest face axis and blend
-    bool eye_pass = false;                 // a second sweep scattering light towards the camera
-    bool chroma_subsampling = false;       // indirect light at half the resolution per axis
-    bool coherent = true;                  // all lights of a propagation direction in one pass (Sunden
-                                           // 2015); false: one pass per light. Same result, for timing
-    Filter filter = Filter::Tricubic;      // how the march reads the volume between cells: the B-spline
-                                           // leaves no bands at the cells (docs/accuracy.md)
-};
-
-// Indirect (multiply scattered) light, swept through the illumination volume, blurred within a cone
-// as it propagates (Kniss 2003 Eq. 9). Needs shadows "propagation". How deep it reaches and how
-// bright it is come from the model: "diffusion" derives both from the material's albedo and
-// anisotropy (src/optics/diffusion_profile.h), and scales the sky's light as diffusion theory does;
-// "kniss" is Kniss 2003 Eq. 8: an artist's transport colour.
-enum class BlurPhase { Phong, HenyeyGreenstein };
-enum class IndirectModel { Diffusion, Kniss };
-
-struct Indirect {
-    IndirectModel model = IndirectModel::Diffusion;
-    float strength = 1.0f;                 // scale of the indirect term in Kniss Eq. 12
-    float angle = 30.0f;                   // blur cone apex angle, degrees (Kniss theta)
-    int samples = 9;                       // blur taps per cell
-    BlurPhase phase = BlurPhase::Phong;    // tap weights: Phong lobe cos^exponent, or Henyey-Greenstein g
-    float exponent = 4.0f;
-    float g = 0.5f;
-    glm::vec3 transport_color{0.6f};       // kniss: share of indirect light kept per unit optical depth
-                                           // (direct keeps e^-1 = 0.37: indirect light reaches deeper)
-};
-
 // Kniss 2003 Eq. 11: Blinn-Phong surface shading blended in where the density gradient is steep.
 struct SurfaceShading {
     float gradient_low = 0.05f;            // |grad density| per voxel where surface shading starts
@@ -230,13 +177,10 @@ struct Perturbation {
     float time = 0.0f;                     // frames added to the sequence frame
 };
 
-struct Effects {
+// The effects: the march's own, and each lighting method's settings (MethodSettings, a base of
+// each registered method's, so that scene.effects.cone is effects.cone as the JSON spells it).
+struct Effects : MethodSettings {
     ShadowMethod shadows = ShadowMethod::Raymarch;
-    std::optional<AmbientOcclusion> ambient_occlusion;
-    float color_bleeding = 0.0f;           // 0..1: how much the neighbourhood's albedo tints AO
-    ShadowCone cone;
-    Propagation propagation;
-    std::optional<Indirect> indirect;
     std::optional<SurfaceShading> surface;
     std::optional<Perturbation> perturbation;
     int light_resolution = 128;            // light-grid cells along the volume's longest side

@@ -1,6 +1,7 @@
 // Scene <-> JSON (docs/scene.md): reading and validating (scene_read.cpp), writing
 // (scene_write.cpp) and `--set` edits of the JSON before it is read (scene_set.cpp).
 #pragma once
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -16,6 +17,20 @@ Scene loadSceneFile(const std::string& path);
 Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir);
 // The same, from parsed JSON: strings stay bytes (a Latin-1 file name), never re-encoded as text.
 Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const std::string& base_dir);
+
+// An optional effect: `true` takes the defaults, `false` turns it off, an object sets its knobs.
+template <class T>
+std::optional<T> readOptional(const JsonObject& o, const std::string& key, T (*read)(const JsonObject&)) {
+    const auto& v = o.raw(key);
+    if (v.is_boolean()) return v.get<bool>() ? std::optional<T>(read(JsonObject(nlohmann::json::object(), "", ""))) : std::nullopt;
+    if (!v.is_object()) o.fail(key, "expected true, false or an object");
+    return read(o.object(key));
+}
+
+// Floats as the shortest decimal that reads back to the same float (0.9f writes as 0.9), as the
+// scene's JSON and its hashes hold them.
+double jsonDecimal(float f);
+nlohmann::json jsonVec3(glm::vec3 v);
 
 // One light of a scene's "lights" array, and back.
 Light readLight(const JsonObject& o);

@@ -254,15 +254,6 @@ ReferenceSettings readReference(const JsonObject& o) {
     return r;
 }
 
-// Optional effects: `true` takes the defaults, `false` turns the effect off, an object sets knobs.
-template <class T>
-std::optional<T> readOptional(const JsonObject& o, const std::string& key, T (*read)(const JsonObject&)) {
-    const auto& v = o.raw(key);
-    if (v.is_boolean()) return v.get<bool>() ? std::optional<T>(read(JsonObject(nlohmann::json::object(), "", ""))) : std::nullopt;
-    if (!v.is_object()) o.fail(key, "expected true, false or an object");
-    return read(o.object(key));
-}
-
 MotionBlur readMotionBlur(const JsonObject& o) {
     o.rejectUnknown({"shutter", "velocity", "velocity_scale", "fps", "samples"});
     MotionBlur m;
@@ -322,66 +313,6 @@ RenderSettings readRender(const JsonObject& o) {
 }
 
 
-AmbientOcclusion readAmbientOcclusion(const JsonObject& ao) {
-    ao.rejectUnknown({"shells", "radius"});
-    AmbientOcclusion a;
-    a.shells = ao.integer("shells", a.shells);
-    if (a.shells < 1 || a.shells > 64) ao.fail("shells", "must lie in 1..64");
-    a.radius = ao.number("radius", a.radius);
-    if (!(a.radius >= 0) || !std::isfinite(a.radius)) ao.fail("radius", "must be a finite distance >= 0 (0 = automatic)");
-    return a;
-}
-
-ShadowCone readCone(const JsonObject& o) {
-    o.rejectUnknown({"angle", "samples", "growth"});
-    ShadowCone c;
-    c.angle = o.number("angle", c.angle);
-    if (!(c.angle >= 0 && c.angle < 60)) o.fail("angle", "must lie in [0, 60) degrees");
-    c.samples = o.integer("samples", c.samples);
-    if (c.samples < 1 || c.samples > 1024) o.fail("samples", "must lie in 1..1024");
-    c.growth = o.number("growth", c.growth);
-    if (!(c.growth >= 0 && c.growth <= 1)) o.fail("growth", "must lie in [0, 1]");
-    return c;
-}
-
-Propagation readPropagation(const JsonObject& o) {
-    o.rejectUnknown({"blend_axes", "eye_pass", "chroma_subsampling", "coherent", "filter"});
-    Propagation p;
-    p.coherent = o.boolean("coherent", p.coherent);
-    p.blend_axes = o.boolean("blend_axes", p.blend_axes);
-    p.eye_pass = o.boolean("eye_pass", p.eye_pass);
-    p.chroma_subsampling = o.boolean("chroma_subsampling", p.chroma_subsampling);
-    p.filter = o.choice("filter", {"trilinear", "tricubic"}, "tricubic") == "tricubic" ? Filter::Tricubic : Filter::Trilinear;
-    return p;
-}
-
-Indirect readIndirect(const JsonObject& o) {
-    o.rejectUnknown({"model", "strength", "angle", "samples", "phase", "exponent", "g", "transport_color"});
-    Indirect in;
-    // A transport colour is Kniss's parameter: giving one picks his model unless "model" says otherwise.
-    const std::string implied = o.has("transport_color") ? "kniss" : "diffusion";
-    in.model = o.choice("model", {"diffusion", "kniss"}, implied) == "kniss" ? IndirectModel::Kniss : IndirectModel::Diffusion;
-    if (in.model == IndirectModel::Diffusion && o.has("transport_color"))
-        o.fail("transport_color", "is the kniss model's; the diffusion model derives it from material.albedo and anisotropy");
-    in.strength = o.number("strength", in.strength);
-    if (!(in.strength >= 0) || !std::isfinite(in.strength)) o.fail("strength", "must be a finite value >= 0");
-    in.angle = o.number("angle", in.angle);
-    if (!(in.angle >= 0 && in.angle <= 90)) o.fail("angle", "must lie in [0, 90] degrees");
-    in.samples = o.integer("samples", in.samples);
-    if (in.samples < 1 || in.samples > VX_MAX_TAPS) o.fail("samples", "must lie in 1.." + std::to_string(VX_MAX_TAPS));
-    in.phase = o.choice("phase", {"phong", "henyey_greenstein"}, "phong") == "phong" ? BlurPhase::Phong
-                                                                                    : BlurPhase::HenyeyGreenstein;
-    in.exponent = o.number("exponent", in.exponent);
-    if (!(in.exponent >= 0 && in.exponent <= 1000)) o.fail("exponent", "must lie in [0, 1000]");
-    in.g = o.number("g", in.g);
-    if (!(in.g > -1 && in.g < 1)) o.fail("g", "must lie in (-1, 1)");
-    in.transport_color = o.vec3("transport_color", in.transport_color);
-    if (glm::any(glm::lessThanEqual(in.transport_color, glm::vec3(0))) ||
-        glm::any(glm::greaterThan(in.transport_color, glm::vec3(1))))
-        o.fail("transport_color", "each component must lie in (0, 1]");
-    return in;
-}
-
 SurfaceShading readSurface(const JsonObject& o) {
     o.rejectUnknown({"gradient_low", "gradient_high", "specular", "shininess"});
     SurfaceShading sf;
@@ -423,23 +354,15 @@ Perturbation readPerturbation(const JsonObject& o) {
 }
 
 Effects readEffects(const JsonObject& o) {
-    o.rejectUnknown({"shadows", "ambient_occlusion", "color_bleeding", "cone", "propagation", "indirect", "surface",
-                     "perturbation", "light_resolution", "light_memory_mb"});
+    std::vector<std::string> keys = {"shadows", "surface", "perturbation", "light_resolution", "light_memory_mb"};
+    for (const std::string& key : methodSettingKeys()) keys.push_back(key);
+    o.rejectUnknown(keys);
     Effects e;
     const std::string shadows = o.choice("shadows", kShadowMethodNames, shadowMethodName(ShadowMethod::Raymarch));
     e.shadows = ShadowMethod(std::find(kShadowMethodNames.begin(), kShadowMethodNames.end(), shadows) - kShadowMethodNames.begin());
-    if (o.has("propagation")) e.propagation = readPropagation(o.object("propagation"));
-    if (o.has("indirect")) e.indirect = readOptional(o, "indirect", readIndirect);
+    readMethodSettings(o, e);
     if (o.has("surface")) e.surface = readOptional(o, "surface", readSurface);
     if (o.has("perturbation")) e.perturbation = readOptional(o, "perturbation", readPerturbation);
-    if (o.has("ambient_occlusion")) e.ambient_occlusion = readOptional(o, "ambient_occlusion", readAmbientOcclusion);
-    if (o.has("color_bleeding")) {
-        const auto& v = o.raw("color_bleeding");
-        e.color_bleeding = v.is_boolean() ? (v.get<bool>() ? 1.0f : 0.0f) : o.number("color_bleeding");
-        if (!(e.color_bleeding >= 0 && e.color_bleeding <= 1))
-            o.fail("color_bleeding", "must be true, false or a strength in [0, 1]");
-    }
-    if (o.has("cone")) e.cone = readCone(o.object("cone"));
     e.light_resolution = o.integer("light_resolution", e.light_resolution);
     if (e.light_resolution < 2 || e.light_resolution > 1024) o.fail("light_resolution", "must lie in 2..1024 cells");
     e.light_memory_mb = o.integer("light_memory_mb", e.light_memory_mb);

@@ -20,12 +20,7 @@ const char* upAxisName(UpAxis up) {
     return up == UpAxis::X ? "x" : up == UpAxis::Y ? "y" : up == UpAxis::Z ? "z" : "auto";
 }
 
-namespace {
-
-const char* pixelTypeName(PixelType t) { return t == PixelType::Float ? "float" : "half"; }
-
-// Floats as the shortest decimal that reads back to the same float (0.9f prints as 0.9).
-double decimal(float f) {
+double jsonDecimal(float f) {
     char buf[32];
     for (int digits = 1; digits <= 9; ++digits) {
         std::snprintf(buf, sizeof buf, "%.*g", digits, f);
@@ -34,12 +29,16 @@ double decimal(float f) {
     return std::strtod(buf, nullptr);
 }
 
-nlohmann::json vec(glm::vec3 v) { return {decimal(v.x), decimal(v.y), decimal(v.z)}; }
+nlohmann::json jsonVec3(glm::vec3 v) { return {jsonDecimal(v.x), jsonDecimal(v.y), jsonDecimal(v.z)}; }
+
+namespace {
+
+const char* pixelTypeName(PixelType t) { return t == PixelType::Float ? "float" : "half"; }
 
 // Column-major, as camera.matrix reads it.
 nlohmann::json matrixToJson(const glm::mat4& m) {
     nlohmann::json out = nlohmann::json::array();
-    for (int i = 0; i < 16; ++i) out.push_back(decimal(m[i / 4][i % 4]));
+    for (int i = 0; i < 16; ++i) out.push_back(jsonDecimal(m[i / 4][i % 4]));
     return out;
 }
 
@@ -53,8 +52,8 @@ nlohmann::json colorToJson(const ColorSettings& c) {
         switch (g.kind) {
             case GradeKind::Look: step["look"] = g.look; break;
             case GradeKind::Cdl:
-                step["cdl"] = {{"slope", vec(g.slope)}, {"offset", vec(g.offset)}, {"power", vec(g.power)},
-                               {"saturation", decimal(g.saturation)}};
+                step["cdl"] = {{"slope", jsonVec3(g.slope)}, {"offset", jsonVec3(g.offset)}, {"power", jsonVec3(g.power)},
+                               {"saturation", jsonDecimal(g.saturation)}};
                 break;
             case GradeKind::CdlFile:
                 step["cdl_file"] = g.file;
@@ -77,24 +76,24 @@ nlohmann::json colorToJson(const ColorSettings& c) {
 }
 
 nlohmann::json emissionToJson(const EmissionSource& e) {
-    nlohmann::json j = {{"grid", gridRefToJson(e.grid)}, {"intensity", decimal(e.intensity)}};
+    nlohmann::json j = {{"grid", gridRefToJson(e.grid)}, {"intensity", jsonDecimal(e.intensity)}};
     switch (e.kind) {
         case EmissionKind::Constant:
             j["kind"] = "constant";
-            j["color"] = vec(e.color);
+            j["color"] = jsonVec3(e.color);
             break;
         case EmissionKind::Ramp:
             j["kind"] = "ramp";
-            for (const auto& p : e.ramp) j["ramp"].push_back({{"value", decimal(p.value)}, {"color", vec(p.color)}});
+            for (const auto& p : e.ramp) j["ramp"].push_back({{"value", jsonDecimal(p.value)}, {"color", jsonVec3(p.color)}});
             break;
         case EmissionKind::Blackbody:
             j["kind"] = "blackbody";
-            j["temperature_scale"] = decimal(e.temperature_scale);
-            j["temperature_offset"] = decimal(e.temperature_offset);
-            j["cutoff"] = decimal(e.cutoff);
+            j["temperature_scale"] = jsonDecimal(e.temperature_scale);
+            j["temperature_offset"] = jsonDecimal(e.temperature_offset);
+            j["cutoff"] = jsonDecimal(e.cutoff);
             j["normalization"] = e.normalization == BlackbodyNormalization::Physical ? "physical" : "luminance";
             if (e.normalization == BlackbodyNormalization::Physical)
-                j["reference_temperature"] = decimal(e.reference_temperature);
+                j["reference_temperature"] = jsonDecimal(e.reference_temperature);
             break;
     }
     return j;
@@ -110,13 +109,13 @@ nlohmann::json lightToJson(const Light& l) {
                  : l.type == LightType::Spot    ? "spot"
                  : l.type == LightType::Ambient ? "ambient"
                                                 : "directional";
-    if (l.type == LightType::Point || l.type == LightType::Spot) lj["position"] = vec(l.position);
-    if (l.type == LightType::Directional || l.type == LightType::Spot) lj["direction"] = vec(l.direction);
-    lj["color"] = vec(l.color);
-    lj["intensity"] = decimal(l.intensity);
+    if (l.type == LightType::Point || l.type == LightType::Spot) lj["position"] = jsonVec3(l.position);
+    if (l.type == LightType::Directional || l.type == LightType::Spot) lj["direction"] = jsonVec3(l.direction);
+    lj["color"] = jsonVec3(l.color);
+    lj["intensity"] = jsonDecimal(l.intensity);
     if (l.type == LightType::Spot) {
-        lj["cone_angle"] = decimal(l.cone_angle);
-        lj["cone_softness"] = decimal(l.cone_softness);
+        lj["cone_angle"] = jsonDecimal(l.cone_angle);
+        lj["cone_softness"] = jsonDecimal(l.cone_softness);
     }
     return lj;
 }
@@ -135,18 +134,18 @@ nlohmann::json sceneToJson(const Scene& s) {
     v["up"] = upAxisName(s.volume.up);
 
     auto& m = j["material"];
-    m["density_scale"] = decimal(s.material.density_scale);
+    m["density_scale"] = jsonDecimal(s.material.density_scale);
     m["density_units"] = s.material.density_units == DensityUnits::Voxel ? "voxel" : "world";
-    m["albedo"] = vec(s.material.albedo);
-    m["anisotropy"] = decimal(s.material.anisotropy);
+    m["albedo"] = jsonVec3(s.material.albedo);
+    m["anisotropy"] = jsonDecimal(s.material.anisotropy);
     for (const auto& p : s.material.transfer)
-        m["transfer_function"].push_back({{"value", decimal(p.value)}, {"extinction", decimal(p.extinction)}, {"albedo", vec(p.albedo)}});
+        m["transfer_function"].push_back({{"value", jsonDecimal(p.value)}, {"extinction", jsonDecimal(p.extinction)}, {"albedo", jsonVec3(p.albedo)}});
     for (const auto& r : s.material.transfer_2d) {
-        nlohmann::json region = {{"fade", decimal(r.fade)}, {"extinction", decimal(r.extinction)}, {"albedo", vec(r.albedo)}};
+        nlohmann::json region = {{"fade", jsonDecimal(r.fade)}, {"extinction", jsonDecimal(r.extinction)}, {"albedo", jsonVec3(r.albedo)}};
         if (!r.name.empty()) region["name"] = r.name;
-        if (r.transport) region["transport"] = vec(*r.transport);
-        if (r.surface) region["surface"] = decimal(*r.surface);
-        const auto pair = [](glm::vec2 p) { return nlohmann::json::array({decimal(p.x), decimal(p.y)}); };
+        if (r.transport) region["transport"] = jsonVec3(*r.transport);
+        if (r.surface) region["surface"] = jsonDecimal(*r.surface);
+        const auto pair = [](glm::vec2 p) { return nlohmann::json::array({jsonDecimal(p.x), jsonDecimal(p.y)}); };
         if (r.triangle) {
             region["triangle"] = {pair(r.corners[0]), pair(r.corners[1]), pair(r.corners[2])};
         } else {
@@ -164,13 +163,13 @@ nlohmann::json sceneToJson(const Scene& s) {
 
     if (s.camera) {
         auto& c = j["camera"];
-        c["fov"] = decimal(s.camera->fov);
+        c["fov"] = jsonDecimal(s.camera->fov);
         if (s.camera->matrix) {
             c["matrix"] = matrixToJson(*s.camera->matrix);
         } else {
-            c["position"] = vec(s.camera->position);
-            c["look_at"] = vec(s.camera->look_at);
-            c["up"] = vec(s.camera->up);
+            c["position"] = jsonVec3(s.camera->position);
+            c["look_at"] = jsonVec3(s.camera->look_at);
+            c["up"] = jsonVec3(s.camera->up);
         }
         if (s.camera->motion)
             c["motion"] = {{"open", {{"matrix", matrixToJson((*s.camera->motion)[0])}}},
@@ -179,57 +178,39 @@ nlohmann::json sceneToJson(const Scene& s) {
 
     auto& r = j["render"];
     r["resolution"] = {s.render.width, s.render.height};
-    r["step"] = decimal(s.render.step);
-    r["shadow_step"] = decimal(s.render.shadow_step);
-    r["transmittance_cutoff"] = decimal(s.render.transmittance_cutoff);
-    r["exposure"] = decimal(s.render.exposure);
+    r["step"] = jsonDecimal(s.render.step);
+    r["shadow_step"] = jsonDecimal(s.render.shadow_step);
+    r["transmittance_cutoff"] = jsonDecimal(s.render.transmittance_cutoff);
+    r["exposure"] = jsonDecimal(s.render.exposure);
     r["filter"] = s.render.filter == Filter::Tricubic ? "tricubic" : "trilinear";
     r["backend"] = s.render.backend == Backend::Cpu ? "cpu" : s.render.backend == Backend::Gl ? "gl" : "auto";
     r["method"] = s.render.method == RenderMethod::Reference ? "reference" : "march";
     const ReferenceSettings& ref = s.render.reference;
     r["reference"] = {{"spp", ref.spp}, {"max_bounces", ref.max_bounces}, {"seed", ref.seed}, {"roulette_depth", ref.roulette_depth}};
     if (const auto& mb = s.render.motion_blur) {
-        r["motion_blur"] = {{"shutter", {decimal(mb->shutter_open), decimal(mb->shutter_close)}}, {"velocity_scale", decimal(mb->velocity_scale)},
-                            {"fps", decimal(mb->fps)}, {"samples", mb->samples}};
+        r["motion_blur"] = {{"shutter", {jsonDecimal(mb->shutter_open), jsonDecimal(mb->shutter_close)}}, {"velocity_scale", jsonDecimal(mb->velocity_scale)},
+                            {"fps", jsonDecimal(mb->fps)}, {"samples", mb->samples}};
         if (mb->velocity) r["motion_blur"]["velocity"] = gridRefToJson(*mb->velocity);
     } else {
         r["motion_blur"] = false;
     }
     // Written only when set: a scene without one hashes as it did before the key existed.
-    if (const auto& b = s.render.region) r["region"] = {decimal((*b)[0]), decimal((*b)[1]), decimal((*b)[2]), decimal((*b)[3])};
+    if (const auto& b = s.render.region) r["region"] = {jsonDecimal((*b)[0]), jsonDecimal((*b)[1]), jsonDecimal((*b)[2]), jsonDecimal((*b)[3])};
 
     auto& e = j["effects"];
     e["shadows"] = shadowMethodName(s.effects.shadows);
-    if (s.effects.ambient_occlusion)
-        e["ambient_occlusion"] = {{"shells", s.effects.ambient_occlusion->shells},
-                                  {"radius", decimal(s.effects.ambient_occlusion->radius)}};
-    else
-        e["ambient_occlusion"] = false;
-    e["color_bleeding"] = decimal(s.effects.color_bleeding);
-    e["cone"] = {{"angle", decimal(s.effects.cone.angle)}, {"samples", s.effects.cone.samples},
-                 {"growth", decimal(s.effects.cone.growth)}};
-    const Propagation& pr = s.effects.propagation;
-    e["propagation"] = {{"blend_axes", pr.blend_axes}, {"eye_pass", pr.eye_pass}, {"chroma_subsampling", pr.chroma_subsampling}, {"coherent", pr.coherent},
-                         {"filter", pr.filter == Filter::Tricubic ? "tricubic" : "trilinear"}};
-    if (const auto& in = s.effects.indirect) {
-        const bool kniss = in->model == IndirectModel::Kniss;
-        e["indirect"] = {{"model", kniss ? "kniss" : "diffusion"}, {"strength", decimal(in->strength)}, {"angle", decimal(in->angle)},
-                         {"samples", in->samples}, {"phase", in->phase == BlurPhase::Phong ? "phong" : "henyey_greenstein"},
-                         {"exponent", decimal(in->exponent)}, {"g", decimal(in->g)}};
-        if (kniss) e["indirect"]["transport_color"] = vec(in->transport_color);
-    } else
-        e["indirect"] = false;
+    writeMethodSettings(s.effects, e);
     if (const auto& sf = s.effects.surface)
-        e["surface"] = {{"gradient_low", decimal(sf->gradient_low)}, {"gradient_high", decimal(sf->gradient_high)},
-                        {"specular", decimal(sf->specular)}, {"shininess", decimal(sf->shininess)}};
+        e["surface"] = {{"gradient_low", jsonDecimal(sf->gradient_low)}, {"gradient_high", jsonDecimal(sf->gradient_high)},
+                        {"specular", jsonDecimal(sf->specular)}, {"shininess", jsonDecimal(sf->shininess)}};
     else
         e["surface"] = false;
     if (const auto& p = s.effects.perturbation)
-        e["perturbation"] = {{"seed", p->seed}, {"scale", decimal(p->scale)}, {"octaves", p->octaves},
-                             {"lacunarity", decimal(p->lacunarity)}, {"gain", decimal(p->gain)},
-                             {"density", decimal(p->density)}, {"transport", decimal(p->transport)},
-                             {"displacement", decimal(p->displacement)}, {"velocity", vec(p->velocity)},
-                             {"time", decimal(p->time)}};
+        e["perturbation"] = {{"seed", p->seed}, {"scale", jsonDecimal(p->scale)}, {"octaves", p->octaves},
+                             {"lacunarity", jsonDecimal(p->lacunarity)}, {"gain", jsonDecimal(p->gain)},
+                             {"density", jsonDecimal(p->density)}, {"transport", jsonDecimal(p->transport)},
+                             {"displacement", jsonDecimal(p->displacement)}, {"velocity", jsonVec3(p->velocity)},
+                             {"time", jsonDecimal(p->time)}};
     else
         e["perturbation"] = false;
     e["light_resolution"] = s.effects.light_resolution;

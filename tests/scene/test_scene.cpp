@@ -38,14 +38,6 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
               "shot.json: /volume/density/index: must be 0 or more");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
               "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
-    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"cone": {"samples": 0}}})"),
-              "shot.json: /effects/cone/samples: must lie in 1..1024");
-    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": {"shells": 3, "radios": 2}}})"),
-              "shot.json: /effects/ambient_occlusion/radios: unknown key (expected one of shells, radius)");
-    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"ambient_occlusion": 3}})"),
-              "shot.json: /effects/ambient_occlusion: expected true, false or an object");
-    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"color_bleeding": 2}})"),
-              "shot.json: /effects/color_bleeding: must be true, false or a strength in [0, 1]");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"light_resolution": 1}})"),
               "shot.json: /effects/light_resolution: must lie in 2..1024 cells");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "position": [0, 0, 0]}]})"),
@@ -274,30 +266,14 @@ TEST(Scene, PropagationEffectsRoundTripAndDefaults) {
     EXPECT_FALSE(d.effects.surface.has_value());
 }
 
-TEST(Scene, PropagationEffectsAreValidated) {
+TEST(Scene, SurfaceAndPerturbationAreValidated) {
     const std::string v = R"({"volume": {"path": "a.vdb"}, "effects": )";
-    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"transport_color": [1, 0, 0.5]}}})"),
-              "shot.json: /effects/indirect/transport_color: each component must lie in (0, 1]");
-    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"model": "diffusion", "transport_color": [1, 0.5, 0.5]}}})"),
-              "shot.json: /effects/indirect/transport_color: is the kniss model's; the diffusion model derives it from "
-              "material.albedo and anisotropy");
-    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"model": "dipole"}}})"),
-              "shot.json: /effects/indirect/model: 'dipole' is not one of diffusion, kniss");
-    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"samples": 33}}})"),
-              "shot.json: /effects/indirect/samples: must lie in 1..32");
-    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": {"phase": "mie"}}})"),
-              "shot.json: /effects/indirect/phase: 'mie' is not one of phong, henyey_greenstein");
-    EXPECT_EQ(sceneErrorOf(v + R"({"indirect": 3}})"), "shot.json: /effects/indirect: expected true, false or an object");
     EXPECT_EQ(sceneErrorOf(v + R"({"surface": {"gradient_low": 0.5, "gradient_high": 0.2}}})"),
               "shot.json: /effects/surface/gradient_high: needs 0 <= gradient_low < gradient_high");
     EXPECT_EQ(sceneErrorOf(v + R"({"perturbation": {"octaves": 0}}})"),
               "shot.json: /effects/perturbation/octaves: must lie in 1..8");
     EXPECT_EQ(sceneErrorOf(v + R"({"perturbation": {"displacement": -1}}})"),
               "shot.json: /effects/perturbation/displacement: must lie in [0, 64] voxels");
-    EXPECT_EQ(sceneErrorOf(v + R"({"propagation": {"eye": true}}})"),
-              "shot.json: /effects/propagation/eye: unknown key (expected one of blend_axes, eye_pass, chroma_subsampling, coherent, filter)");
-    EXPECT_EQ(sceneErrorOf(v + R"({"propagation": {"filter": "cubic"}}})"),
-              "shot.json: /effects/propagation/filter: 'cubic' is not one of trilinear, tricubic");
 }
 
 // The emission list: every kind, its defaults and the round trip.

@@ -1,5 +1,6 @@
-# Extinction-SAT lighting (Schlegel 2011): its sources, and its kernel contract
-# (cmake/kernel_contract.cmake): the light cache the march reads through its hooks in vx_cache.h.
+# Extinction-SAT lighting (Schlegel 2011): its sources, its kernel contract
+# (cmake/kernel_contract.cmake): the light cache the march reads through its hooks in vx_cache.h,
+# and its settings (cmake/method_settings.cmake).
 list(APPEND VOXLUX_LIGHTING_SOURCES
   src/lighting/extinction_sat/cpu_light_pass.cpp src/lighting/extinction_sat/extinction_sat_method.cpp
   src/lighting/extinction_sat/extinction_sat_stages.cpp src/lighting/extinction_sat/sat_passes.cpp
@@ -16,3 +17,7 @@ voxlux_kernel_method(extinction_sat
   MARCH_ARRAYS "LightCache float vx_cache cache"
   PASS_ARRAYS "Sat uint vx_sat_word sat"
   BINDINGS NEEDED CHANNEL SAT_SCAN)
+voxlux_method_settings(extinction_sat
+  HEADER lighting/extinction_sat/extinction_sat_settings.h TYPE ExtinctionSatSettings
+  SOURCE src/lighting/extinction_sat/extinction_sat_settings.cpp
+  SHADOWS sat_cone SatCone "SAT-cone shadows read from the light cache")
