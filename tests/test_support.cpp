@@ -12,11 +12,15 @@
 
 #include "backend/backend_choice.h"
 #include "core/error.h"
+#include "graph/render_graph.h"
 #include "scene/scene_json.h"
 #include "volume/velocity.h"
 
 namespace voxlux::test {
 namespace fs = std::filesystem;
+
+// The tests run the render graph with its stages' scene reads checked, as debug builds do.
+const bool kStageReadsChecked = (checkStageReads(true), true);
 
 std::string sharedData(const std::string& relative) {
     const char* root = std::getenv("VOXLUX_SHARED_DATA");  // another checkout layout

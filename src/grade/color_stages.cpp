@@ -19,8 +19,9 @@ StageActivity ColorSpaceStage::activity(const Scene& s) const {
 
 void ColorSpaceStage::run(StageRun& run) {
     working_.reset();
-    ColorPipeline p = resolveWorkingSpace(run.scene.color);
-    const bool blackbody = std::any_of(run.scene.emission.begin(), run.scene.emission.end(),
+    const Scene& scene = run.scene({"/color/config", "/color/working_space", "/emission/*/kind"});
+    ColorPipeline p = resolveWorkingSpace(scene.color);
+    const bool blackbody = std::any_of(scene.emission.begin(), scene.emission.end(),
                                        [](const EmissionSource& e) { return e.kind == EmissionKind::Blackbody; });
     if (blackbody && !p.xyz_to_working)
         throw InputError(p.config_source + ": has no linear cie_xyz_d65_interchange role into '" + p.working_space +
@@ -40,7 +41,8 @@ StageActivity ColorTransformsStage::activity(const Scene& s) const {
 
 void ColorTransformsStage::run(StageRun& run) {
     pipeline_.reset();
-    pipeline_ = buildColorTransforms(space_.working(), run.scene.color, !run.scene.output.preview.empty());
+    const Scene& scene = run.scene({"/color", "/output/preview"});
+    pipeline_ = buildColorTransforms(space_.working(), scene.color, !scene.output.preview.empty());
 }
 
 }  // namespace voxlux

@@ -1,6 +1,7 @@
 #include "graph/render_graph.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -55,7 +56,60 @@ bool covers(std::string declared, const std::string& changed) {
     return true;
 }
 
+// Whether a stage that declares `declared` may read `key`: a key below the declared one, or a
+// section holding it (a helper reads all lights; the stage declares the parts that change its
+// output), as `covers` relates them. Whether a value is set ("?") is read under a declaration of
+// the value or of that presence; the value itself, not under a presence.
+bool allows(const std::string& declared, const std::string& key) {
+    const bool declared_presence = !declared.empty() && declared.back() == '?';
+    const bool key_presence = !key.empty() && key.back() == '?';
+    if (key_presence) return declared_presence ? declared == key : covers(declared, key.substr(0, key.size() - 1));
+    if (declared_presence) return tokensOf(key).size() < tokensOf(declared).size() && covers(declared, key);
+    return covers(declared, key);
+}
+
+#ifdef NDEBUG
+std::atomic<bool> stage_reads_checked{false};
+#else
+std::atomic<bool> stage_reads_checked{true};
+#endif
+
 }  // namespace
+
+void checkStageReads(bool on) { stage_reads_checked = on; }
+bool stageReadsChecked() { return stage_reads_checked; }
+
+SceneReader::SceneReader(const Scene& scene, const nlohmann::json& document, std::string stage, std::vector<std::string> declared)
+    : scene_(scene), document_(document), stage_(std::move(stage)), declared_(std::move(declared)) {}
+
+void SceneReader::check(std::string_view key) const {
+    if (!stage_reads_checked) return;
+    const std::string k(key);
+    if (std::none_of(declared_.begin(), declared_.end(), [&](const std::string& d) { return allows(d, k); }))
+        throw std::logic_error("stage '" + stage_ + "' reads " + k + ", which it does not declare");
+}
+
+const Scene& SceneReader::operator()(std::initializer_list<std::string_view> keys) const {
+    for (std::string_view key : keys) check(key);
+    return scene_;
+}
+
+const nlohmann::json& SceneReader::value(std::string_view key) const {
+    check(key);
+    static const nlohmann::json absent;
+    const nlohmann::json::json_pointer at{std::string(key)};
+    return document_.contains(at) ? document_[at] : absent;
+}
+
+float SceneReader::frame() const {
+    const nlohmann::json& frame = value("/input/frame");
+    return frame.is_number() ? frame.get<float>() : 0.0f;
+}
+
+std::string SceneReader::text(std::string_view key) const {
+    check(key);
+    return readKey(document_, std::string(key));
+}
 
 std::string readKey(const nlohmann::json& document, const std::string& pointer) {
     std::string out;
@@ -66,11 +120,6 @@ std::string readKey(const nlohmann::json& document, const std::string& pointer) 
     }
     collect(document, tokensOf(pointer), 0, "", out);
     return out;
-}
-
-float documentFrame(const nlohmann::json& document) {
-    const nlohmann::json::json_pointer at("/input/frame");
-    return document.contains(at) && document[at].is_number() ? document[at].get<float>() : 0.0f;
 }
 
 std::string hashText(const std::string& text) {
@@ -157,6 +206,14 @@ bool RenderGraph::reads(const std::string& stage, const std::string& pointer) co
            std::any_of(s.inputs().begin(), s.inputs().end(), [&](const Stage* up) { return reads(up->name(), pointer); });
 }
 
+std::vector<std::string> RenderGraph::declaredKeys(const std::string& stage) const {
+    const Stage& s = *by_name_.at(stage);
+    std::vector<std::string> keys = s.reads().keys;
+    for (const Stage* up : s.inputs())
+        for (std::string& k : declaredKeys(up->name())) keys.push_back(std::move(k));
+    return keys;
+}
+
 std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::json& document,
                                           KernelBackend& backend, const std::vector<std::string>& targets, std::vector<std::string>& reused,
                                           std::vector<std::string>& warnings, const std::function<bool()>& cancelled,
@@ -198,7 +255,8 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
         } else {
             last_keys_.erase(s->name());
             s->output_warnings_.clear();
-            StageRun run{scene, document, backend, reports, kept_inside, s->output_warnings_, keys};
+            StageRun run{SceneReader(scene, document, s->name(), declaredKeys(s->name())), backend, reports, kept_inside,
+                         s->output_warnings_, keys};
             if (starting) starting(s->name());
             const auto start = std::chrono::steady_clock::now();
             s->run(run);

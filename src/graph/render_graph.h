@@ -12,6 +12,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -38,10 +39,47 @@ struct StageActivity {
 class KernelBackend;
 struct StageReport;
 
+// The scene as a stage's run reads it: each read names the keys it takes (JSON pointers of the
+// render document, as StageReads has them). When reads are checked (checkStageReads: tests and
+// debug builds), a key that neither the stage nor a stage upstream of it declares is refused with
+// std::logic_error ("stage 'march' reads /render/exposure, which it does not declare"), so a read
+// added to a run() without its declaration fails where it is made; the every-key sweep
+// (tests/render/test_render_graph.cpp) checks the declarations against what the outputs depend on.
+class SceneReader {
+public:
+    // `declared`: the keys of the stage `stage` and of the stages upstream of it.
+    SceneReader(const Scene& scene, const nlohmann::json& document, std::string stage, std::vector<std::string> declared);
+
+    // The typed scene, for the values at `keys`: each a key below a declared one, or a section
+    // holding declared ones (a helper that reads every light, where the stage declares the parts
+    // of a light that change its output).
+    const Scene& operator()(std::initializer_list<std::string_view> keys) const;
+    // The value at `key` (no wildcards) of the render document, null when absent: the input's
+    // file and frame, which the scene does not hold.
+    const nlohmann::json& value(std::string_view key) const;
+    // The frame number the render is for (/input/frame; 0 for a file without ####).
+    float frame() const;
+    // The values at `key` as text (readKey), for the key of a part of an output (a selective update's).
+    std::string text(std::string_view key) const;
+    // The whole render document, for a stage's own key (stageKey reads only what the stage declares).
+    const nlohmann::json& document() const { return document_; }
+
+private:
+    void check(std::string_view key) const;
+
+    const Scene& scene_;
+    const nlohmann::json& document_;
+    std::string stage_;
+    std::vector<std::string> declared_;
+};
+
+// Whether SceneReader checks its keys: on in debug builds, and in tests, which turn it on.
+void checkStageReads(bool on);
+bool stageReadsChecked();
+
 // What a stage's run sees besides its upstream stages' outputs.
 struct StageRun {
-    const Scene& scene;
-    const nlohmann::json& document;       // the render document its keys point into
+    SceneReader scene;                    // the scene and the render document its keys point into
     KernelBackend& backend;               // the scene's backend (render.backend)
     const std::vector<StageReport>& so_far;  // the stages of this frame before it
     std::vector<std::string>& reused;     // parts of its output a stage that ran kept (selective updates)
@@ -112,9 +150,6 @@ struct StageReport {
 // value, or "null" where nothing matches.
 std::string readKey(const nlohmann::json& document, const std::string& pointer);
 
-// The frame number the render document is for (its /input/frame; 0 for a file without ####).
-float documentFrame(const nlohmann::json& document);
-
 // 64-bit FNV-1a of `text`, as 16 hex digits.
 std::string hashText(const std::string& text);
 
@@ -162,6 +197,8 @@ public:
 
     // Whether `stage` or a stage upstream of it declares a key that covers `pointer`.
     bool reads(const std::string& stage, const std::string& pointer) const;
+    // The keys `stage` and the stages upstream of it declare.
+    std::vector<std::string> declaredKeys(const std::string& stage) const;
 
     // The graph for `scene`, one line a stage in order: run or skip, the name, why, and what it reads.
     std::string explain(const Scene& scene) const;

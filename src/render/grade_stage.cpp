@@ -58,9 +58,10 @@ void expose(RenderImage& image, float stops) {
 
 void GradeStage::run(StageRun& run) {
     image_ = march_.image();
-    expose(image_, run.scene.render.exposure);
+    const Scene& scene = run.scene({"/render/exposure", "/output/aovs"});
+    expose(image_, scene.render.exposure);
     std::vector<std::string> aovs;
-    for (const auto& aov : run.scene.output.aovs) aovs.push_back(aov.name);
+    for (const auto& aov : scene.output.aovs) aovs.push_back(aov.name);
     preview_ = gradeImage(image_, color_.pipeline(), aovs, transformer_.on(run.backend));
 }
 

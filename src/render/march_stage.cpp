@@ -35,7 +35,7 @@ MarchStage::MarchStage(const ColorSpaceStage& color, const BrickStage& brick, co
 
 // The march's key as if the reference's sample count were not read.
 std::string MarchStage::referenceSetupKey(const StageRun& run) const {
-    nlohmann::json document = run.document;
+    nlohmann::json document = run.scene.document();
     const nlohmann::json::json_pointer spp("/render/reference/spp");
     if (document.contains(spp)) document["render"]["reference"].erase("spp");
     return stageKey(*this, document, run.keys);
@@ -80,12 +80,12 @@ StageActivity MarchStage::activity(const Scene& s) const {
 }
 
 void MarchStage::run(StageRun& run) {
-    const Scene& scene = run.scene;
+    // The march reads every key it declares: the lights, material and effects through the kernel's inputs.
+    const Scene& scene = run.scene({"/render", "/material", "/lights", "/effects", "/emission", "/output/deep", "/output/deep_samples"});
     MarchSources sources;
     for (const MarchLightingStage* s : lighting_) s->lightTheMarch(scene, sources.lighting);
     sources.camera = &camera_.camera();
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), documentFrame(run.document),
-                                                 color_.xyzToWorking(), sources);
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame(), color_.xyzToWorking(), sources);
     if (scene.render.method != RenderMethod::Reference) {
         image_ = run.backend.march(inputs);
         return;

@@ -35,8 +35,8 @@ StageActivity WriteStage::activity(const Scene& s) const {
 }
 
 void WriteStage::run(StageRun& run) {
-    const Scene& scene = run.scene;
-    const nlohmann::json& frame = run.document["input"]["frame"];
+    const Scene& scene = run.scene({""});   // the EXR's metadata holds the whole scene's hash
+    const nlohmann::json& frame = run.scene.value("/input/frame");
     const RenderImage& image = grade_.result();
     path_ = framePath(scene.output.path, frame);
     preview_path_.clear();
@@ -53,7 +53,7 @@ void WriteStage::run(StageRun& run) {
     const ColorPipeline& cp = color_.pipeline();
     meta.color_space = cp.output_space;
     meta.color_config = cp.config_source;
-    meta.exposure = run.scene.render.exposure;
+    meta.exposure = scene.render.exposure;
     if (cp.output_chromaticities) {
         const Chromaticities& c = *cp.output_chromaticities;
         meta.chromaticities = {{c.red, c.green, c.blue, c.white}};

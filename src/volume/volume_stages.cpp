@@ -45,7 +45,9 @@ StageActivity LoadStage::activity(const Scene& s) const {
 void LoadStage::run(StageRun& run) {
     volume_ = std::make_shared<const LoadedVolume>(
         given_ ? *given_
-               : loadVolume(run.document["input"]["file"]["path"], run.scene.volume, run.scene.emission, run.scene.render.motion_blur));
+               : loadVolume(run.scene.value("/input/file/path"),
+                            run.scene({"/volume", "/emission/*/grid", "/render/motion_blur"}).volume,
+                            run.scene({"/emission/*/grid"}).emission, run.scene({"/render/motion_blur"}).render.motion_blur));
     run.warnings = volume_->warnings;
 }
 
@@ -79,7 +81,7 @@ StageActivity Transfer2dStage::activity(const Scene& s) const {
 }
 
 void Transfer2dStage::run(StageRun& run) {
-    volume_ = std::make_shared<const LoadedVolume>(applyTransfer2d(load_.volume(), run.scene.material.transfer_2d, run.warnings));
+    volume_ = std::make_shared<const LoadedVolume>(applyTransfer2d(load_.volume(), run.scene({"/material/transfer_function_2d"}).material.transfer_2d, run.warnings));
 }
 
 StageReads BrickStage::reads() const {
@@ -93,7 +95,7 @@ StageActivity BrickStage::activity(const Scene& s) const {
 
 void BrickStage::run(StageRun& run) {
     const LoadedVolume& volume = load_.volume();
-    atlas_ = std::make_shared<const BrickAtlas>(buildBrickAtlas(volume, motionReachBricks(volume, run.scene.render.motion_blur)));
+    atlas_ = std::make_shared<const BrickAtlas>(buildBrickAtlas(volume, motionReachBricks(volume, run.scene({"/render/motion_blur"}).render.motion_blur)));
     run.warnings = sanitizeReport(*atlas_, load_.volume());
 }
 
@@ -110,8 +112,9 @@ StageActivity ClassifyStage::activity(const Scene& s) const {
 
 void ClassifyStage::run(StageRun& run) {
     const BrickAtlas& atlas = brick_.atlas();
-    pages_ = classifiedPageTable(atlas, run.scene);
-    empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas, run.scene) : "";
+    const Scene& scene = run.scene({"/material", "/emission", "/render/filter", "/render/motion_blur"});
+    pages_ = classifiedPageTable(atlas, scene);
+    empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas, scene) : "";
 }
 
 StageActivity EmptyFrameStage::activity(const Scene&) const {
@@ -121,7 +124,7 @@ StageActivity EmptyFrameStage::activity(const Scene&) const {
 void EmptyFrameStage::run(StageRun& run) {
     const std::string& why = classify_.emptyReason();
     if (why.empty()) return;
-    if (!run.document["input"]["allow_empty"].get<bool>()) throw InputError(why);
+    if (!run.scene.value("/input/allow_empty").get<bool>()) throw InputError(why);
     run.warnings.push_back(why + "; rendered as an empty frame");
 }
 
@@ -132,7 +135,8 @@ StageActivity CameraStage::activity(const Scene& s) const {
 }
 
 void CameraStage::run(StageRun& run) {
-    camera_ = run.scene.camera ? *run.scene.camera : frameActiveVoxels(load_.volume(), run.scene);
+    const Scene& scene = run.scene({"/camera", "/render/resolution", "/volume/up"});
+    camera_ = scene.camera ? *scene.camera : frameActiveVoxels(load_.volume(), scene);
 }
 
 glm::mat3 viewFrameOf(const Scene& scene, const LoadedVolume& volume) {

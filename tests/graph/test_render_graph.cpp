@@ -13,7 +13,8 @@
 namespace voxlux::test {
 namespace {
 
-// A stage that counts its runs and reads what it is told to: document keys, and the stages given
+// A stage that counts its runs and reads what it is told to: document keys (declared, and read at
+// run), and the stages given
 // (or added with `after`, which can make a cycle no constructor could).
 class ToyStage final : public Stage {
 public:
@@ -28,7 +29,8 @@ public:
     void run(StageRun& run) override {
         ++runs;
         if (fail) throw InputError(name_ + ": failed");
-        output = run.document.dump();
+        for (const std::string& key : reads_at_run) run.scene({key});
+        output = run.scene.document().dump();
         if (!warning.empty()) run.warnings.push_back(warning);
     }
     void release() override { output.clear(); }
@@ -39,6 +41,7 @@ public:
     void adoptOutput(const SharedOutput& kept) override { output = *kept.as<std::string>(); }
 
     bool active = true, fail = false, shares = false;
+    std::vector<std::string> reads_at_run;   // keys its run reads through run.scene
     int runs = 0;
     std::string output, warning;
 
@@ -111,6 +114,42 @@ TEST(RenderGraph, RunsAStageOnlyWhenWhatItReadsChanged) {
     EXPECT_EQ(load.runs, 2);
     EXPECT_EQ(light.runs, 3);
     EXPECT_EQ(march.runs, 3);
+}
+
+// A stage's run reads the scene through keys it or a stage upstream of it declares; the tests
+// check reads (test_support.cpp), and any other key is refused where it is read.
+TEST(RenderGraph, ARunReadsOnlyWhatItOrItsUpstreamDeclares) {
+    ASSERT_TRUE(stageReadsChecked());
+    ToyStage load("load", {"/volume"}), light("light", {"/lights/*/position", "/effects/indirect?"}, {&load});
+    RenderGraph graph({&load, &light});
+    nlohmann::json doc = {{"volume", {{"path", "a.vdb"}}}, {"lights", {{{"position", {0, 1, 0}}}}}, {"render", 1},
+                          {"effects", {{"indirect", {{"angle", 30}}}}}};
+    // Below a declared key, a section holding one, an upstream stage's key, a declared presence
+    // and a section holding it.
+    light.reads_at_run = {"/lights/0/position", "/lights", "/volume/path", "/effects/indirect?", "/effects"};
+    EXPECT_EQ(runToy(graph, doc, {"light"}).status("light"), "ran");
+    const std::pair<const char*, const char*> refused[] = {
+        {"/render", "stage 'light' reads /render, which it does not declare"},
+        {"/lights/0/color", "stage 'light' reads /lights/0/color, which it does not declare"},
+        {"/effects/indirect/angle", "stage 'light' reads /effects/indirect/angle, which it does not declare"},
+        {"/effects/indirect", "stage 'light' reads /effects/indirect, which it does not declare"},
+    };
+    for (const auto& [key, message] : refused) {
+        light.reads_at_run = {key};
+        doc["volume"]["path"] = std::string(key) + ".vdb";   // a change both stages read: they run
+        try {
+            runToy(graph, doc, {"light"});
+            ADD_FAILURE() << key << ": no error";
+        } catch (const std::logic_error& e) {
+            EXPECT_EQ(std::string(e.what()), message);
+        }
+    }
+    // Unchecked (a release build outside the tests), the same read goes through.
+    checkStageReads(false);
+    light.reads_at_run = {"/render"};
+    doc["volume"]["path"] = "b.vdb";
+    EXPECT_EQ(runToy(graph, doc, {"light"}).status("light"), "ran");
+    checkStageReads(true);
 }
 
 // A stage that does not take part passes its inputs' keys on (as transfer_2d, when it does not

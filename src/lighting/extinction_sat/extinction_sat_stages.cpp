@@ -74,14 +74,16 @@ void SatStage::release() {
 
 void SatStage::run(StageRun& run) {
     release();
-    const float bleeding = bleedingOf(run.scene);
+    const Scene& scene = run.scene({"/effects/color_bleeding", "/effects/ambient_occlusion?", "/effects/shadows",
+                                    "/effects/light_resolution", "/effects/light_memory_mb", "/lights", "/material"});
+    const float bleeding = bleedingOf(scene);
     const glm::vec3 extent = occupiedExtent(classify_.pages());
     std::string warning;
-    resolution_ = fitLightResolution(extent, cappedLightResolution(extent, run.scene.effects.light_resolution),
-                                     bleeding > 0.0f ? 4 : 1, cacheLayout(run.scene, enabledLightCount(run.scene, false)).channels,
-                                     size_t(run.scene.effects.light_memory_mb) << 20, warning);
+    resolution_ = fitLightResolution(extent, cappedLightResolution(extent, scene.effects.light_resolution),
+                                     bleeding > 0.0f ? 4 : 1, cacheLayout(scene, enabledLightCount(scene, false)).channels,
+                                     size_t(scene.effects.light_memory_mb) << 20, warning);
     if (!warning.empty()) run.warnings.push_back(warning);
-    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages());
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages());
     if (resolution_ != shared_.resolution() || (bleeding > 0.0f && !uniformAlbedo(inputs))) {
         own_grid_ = buildLightGrid(inputs, resolution_, {true, bleeding});
         if (own_grid_.clamped_cells && resolution_ != shared_.resolution()) run.warnings.push_back(clampedCellsWarning(own_grid_));
@@ -136,10 +138,12 @@ void LightCacheStage::release() {
 }
 
 void LightCacheStage::run(StageRun& run) {
-    const Effects& fx = run.scene.effects;
+    const Scene& scene = run.scene({"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows",
+                                    "/lights", "/material"});
+    const Effects& fx = scene.effects;
     const LightGrid& grid = sat_.grid();
-    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages());
-    LightCache layout = cacheLayout(run.scene, int(inputs.lights.size()));
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages());
+    LightCache layout = cacheLayout(scene, int(inputs.lights.size()));
     // The cache is kept as it is while its layout is, so unchanged channels survive.
     const glm::mat4 light_to_world = brick_.atlas().index_to_world * grid.lightToIndex();
     layout.dims = grid.dims;
@@ -174,7 +178,7 @@ void LightCacheStage::run(StageRun& run) {
     S.cone_growth_total = std::pow(1.0f + fx.cone.growth, float(fx.cone.samples));
     const std::string cone_key = hashBytes(glm::vec4(S.cone_tan, float(S.cone_cuboids), S.cone_growth, S.cone_growth_total));
     // Every channel is computed from this SAT; what else it depends on is added per channel.
-    const std::string sat_key = std::to_string(sat_.generation()) + "|" + run.document["render"]["backend"].dump();
+    const std::string sat_key = std::to_string(sat_.generation()) + "|" + run.scene.value("/render/backend").dump();
 
     if (cache_.ambient_channel >= 0) {
         const AmbientOcclusion& ao = *fx.ambient_occlusion;

@@ -357,11 +357,13 @@ void IlluminationGridStage::run(StageRun& run) {
     release();
     generation_ = nextGridGeneration();
     const PageTable& pages = classify_.pages();
-    const Effects& fx = run.scene.effects;
+    const Scene& scene = run.scene({"/effects/indirect?", "/effects/propagation/chroma_subsampling", "/effects/light_resolution",
+                                    "/effects/light_memory_mb", "/material", "/emission"});
+    const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
     const glm::vec3 extent = occupiedExtent(pages);
-    const bool emission = emissionLightsTheMedium(run.scene);
+    const bool emission = emissionLightsTheMedium(scene);
     const bool transport = indirect && !brick_.atlas().transport.empty();
     const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport); },
                         // The kernels index the volume (3 + 3 floats per cell at most) with ints.
@@ -373,7 +375,7 @@ void IlluminationGridStage::run(StageRun& run) {
     if (!warning.empty()) run.warnings.push_back(warning);
     // The shared light grid, unless this volume's memory lowered the resolution below it; the
     // emitted radiance is this stage's own either way.
-    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), pages, 0.0f, xyz_to_working_());
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), pages, 0.0f, xyz_to_working_());
     const bool shared = resolution == shared_.resolution();
     if (!shared) {
         own_grid_ = buildLightGrid(inputs, resolution, {true, 0.0f, emission});
@@ -479,16 +481,18 @@ void PropagationStage::release() {
 void PropagationStage::run(StageRun& run) {
     const SweepGrid& fine = grid_.fine();
     const SweepGrid& coarse = grid_.coarse();
-    const Effects& fx = run.scene.effects;
+    const Scene& scene = run.scene({"/lights", "/effects/propagation", "/effects/indirect", "/effects/perturbation", "/material",
+                                    "/emission"});
+    const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
-    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
     std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
     passes_.keepFor(grid_.generation());   // copies the passes keep of another grid go
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                             "/effects/indirect", "/effects/perturbation", "/material/albedo", "/material/anisotropy",
                             "/render/backend"})
-        setup_key += "|" + readKey(run.document, key);
+        setup_key += "|" + run.scene.text(key);
     const bool coherent = fx.propagation.coherent;
     const bool blend = fx.propagation.blend_axes;
     const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
@@ -496,7 +500,7 @@ void PropagationStage::run(StageRun& run) {
     FluenceProfile profile;
     kernel::VxPropParams blurred{};
     if (indirect) {
-        profile = indirectFluence(*fx.indirect, run.scene.material);
+        profile = indirectFluence(*fx.indirect, scene.material);
         blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)), profile.attenuation);
         blurred.transport_planes = coarse.transport_planes ? 1 : 0;
     }
@@ -572,7 +576,7 @@ void PropagationStage::run(StageRun& run) {
             runPasses(all_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
             if (indirect) {
                 runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
-                addEmittedLight(coarse, run.scene.material, blurred, inputs, passes_.on(run.backend), volume_, report);
+                addEmittedLight(coarse, scene.material, blurred, inputs, passes_.on(run.backend), volume_, report);
             }
             drift_ = 0.0;
         }
@@ -600,10 +604,11 @@ void EyePassStage::run(StageRun& run) {
     passes_.keepFor(grid_.generation());   // as the propagation's, above
     const IlluminationVolume& lit = propagation_.volume();
     volume_ = lit;
-    const KernelInputs inputs = makeKernelInputs(run.scene, brick_.atlas(), classify_.pages(), documentFrame(run.document));
+    const Scene& scene = run.scene({"/effects/indirect", "/effects/perturbation", "/material", "/lights"});
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
     const std::vector<float> before(lit.values.begin() + long(lit.indirectOffset()), lit.values.end());
     const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);
-    sweepTowardsEye(*run.scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, passes_.on(run.backend), volume_);
+    sweepTowardsEye(*scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, passes_.on(run.backend), volume_);
 }
 
 }  // namespace voxlux

@@ -30,7 +30,7 @@ public:
         return {true, "every light's transmittance is exp(-0.75)"};
     }
     void run(StageRun& run) override {
-        lights_ = enabledLightCount(run.scene, false);   // the kernel's packed lights
+        lights_ = enabledLightCount(run.scene({"/lights/*/type", "/lights/*/enabled"}), false);   // the kernel's packed lights
         // 2^3 cells, the smallest grid the trilinear lookup reads, one channel a light.
         values_.assign(size_t(8 * lights_), kOpticalDepth);
         ++runs;
