@@ -1,32 +1,40 @@
-# The lighting methods' settings, declared once: each method's folder names the header of its
-# settings struct (the effects keys it owns, read, validated and written by its own
-# readSettings/writeSettings) and the effects.shadows values it provides. Generated from that:
+# The lighting methods' settings, declared once: each method's folder names its settings struct
+# (the effects keys it owns, read, validated and written by its own readSettings/writeSettings)
+# and the effects.shadows values it provides. Generated from that:
 #   method_settings.h    ShadowMethod and its names, and MethodSettings, whose bases are the
 #                        methods' settings (scene.h's Effects derives from it);
 #   method_settings.cpp  the effects keys the methods own, and reading and writing them all.
 # Uses voxlux_write_generated (cmake/kernel_contract.cmake).
 
-# A lighting method's settings: HEADER (from src/) declares TYPE, and readSettings and
-# writeSettings overloads for it; SOURCE (from the source root) defines them; SHADOWS lists the
-# effects.shadows values it provides, three words each: the JSON name, the ShadowMethod
-# enumerator and what --explain says of it.
+# A lighting method's settings: TYPE, declared in src/lighting/<name>/<name>_settings.h with
+# readSettings and writeSettings overloads for it, which <name>_settings.cpp beside it defines (the
+# layers place these names: tests/test_layers.cpp); SHADOWS lists the effects.shadows values it
+# provides, three words each: the JSON name, the ShadowMethod enumerator and what --explain says
+# of it (plain text: no quote, backslash or semicolon).
 function(voxlux_method_settings name)
-  cmake_parse_arguments(ARG "" "HEADER;TYPE;SOURCE" "SHADOWS" ${ARGN})
-  foreach(required HEADER TYPE SOURCE)
-    if(NOT ARG_${required})
-      message(FATAL_ERROR "lighting method ${name}: voxlux_method_settings needs ${required}")
-    endif()
-  endforeach()
-  list(LENGTH ARG_SHADOWS words)
+  cmake_parse_arguments(ARG "" "TYPE" "SHADOWS" ${ARGN})
+  if(NOT ARG_TYPE)
+    message(FATAL_ERROR "lighting method ${name}: voxlux_method_settings needs TYPE")
+  endif()
+  voxlux_check_shadow_values("lighting method ${name}" ${ARG_SHADOWS})
+  set_property(GLOBAL APPEND PROPERTY VOXLUX_SETTINGS_METHODS ${name})
+  set_property(GLOBAL PROPERTY VOXLUX_SETTINGS_${name}_TYPE "${ARG_TYPE}")
+  set_property(GLOBAL PROPERTY VOXLUX_SETTINGS_${name}_SHADOWS "${ARG_SHADOWS}")
+endfunction()
+
+# Fails unless `ARGN` is effects.shadows values, three words each, whose description can be pasted
+# into a C++ string literal.
+function(voxlux_check_shadow_values who)
+  list(LENGTH ARGN words)
   math(EXPR rest "${words} % 3")
   if(NOT rest EQUAL 0)
-    message(FATAL_ERROR "lighting method ${name}: SHADOWS takes three words a value (name, enumerator, description)")
+    message(FATAL_ERROR "${who}: SHADOWS takes three words a value (name, enumerator, description)")
   endif()
-  set_property(GLOBAL APPEND PROPERTY VOXLUX_SETTINGS_METHODS ${name})
-  foreach(field HEADER TYPE SHADOWS)
-    set_property(GLOBAL PROPERTY VOXLUX_SETTINGS_${name}_${field} "${ARG_${field}}")
+  foreach(word ${ARGN})
+    if(word MATCHES "\"" OR word MATCHES "\\\\")
+      message(FATAL_ERROR "${who}: SHADOWS '${word}' holds a quote or a backslash")
+    endif()
   endforeach()
-  set_property(GLOBAL APPEND PROPERTY VOXLUX_SETTINGS_SOURCES ${CMAKE_SOURCE_DIR}/${ARG_SOURCE})
 endfunction()
 
 # Writes the files above into `dir`; CORE_SHADOWS are the march's own effects.shadows values
@@ -35,14 +43,17 @@ endfunction()
 function(voxlux_generate_method_settings dir)
   cmake_parse_arguments(ARG "" "" "CORE_SHADOWS" ${ARGN})
   get_property(methods GLOBAL PROPERTY VOXLUX_SETTINGS_METHODS)
+  voxlux_check_shadow_values("voxlux_generate_method_settings" ${ARG_CORE_SHADOWS})
   set(shadows ${ARG_CORE_SHADOWS})
+  set(sources "")
   set(includes "")
   set(bases "")
   set(keys "")
   set(reads "")
   set(writes "")
   foreach(m ${methods})
-    get_property(header GLOBAL PROPERTY VOXLUX_SETTINGS_${m}_HEADER)
+    set(header lighting/${m}/${m}_settings.h)
+    list(APPEND sources ${CMAKE_SOURCE_DIR}/src/lighting/${m}/${m}_settings.cpp)
     get_property(type GLOBAL PROPERTY VOXLUX_SETTINGS_${m}_TYPE)
     get_property(method_shadows GLOBAL PROPERTY VOXLUX_SETTINGS_${m}_SHADOWS)
     list(APPEND shadows ${method_shadows})
@@ -57,6 +68,9 @@ function(voxlux_generate_method_settings dir)
   set(descriptions "")
   list(LENGTH shadows words)
   math(EXPR last "${words} - 1")
+  if(words EQUAL 0)
+    message(FATAL_ERROR "voxlux_generate_method_settings: no effects.shadows values (CORE_SHADOWS)")
+  endif()
   foreach(i RANGE 0 ${last} 3)
     math(EXPR j "${i} + 1")
     math(EXPR k "${i} + 2")
@@ -133,6 +147,5 @@ ${writes}}
 
 }  // namespace voxlux
 ")
-  get_property(sources GLOBAL PROPERTY VOXLUX_SETTINGS_SOURCES)
   set(VOXLUX_SETTINGS_SOURCES ${sources} ${dir}/method_settings.cpp PARENT_SCOPE)
 endfunction()

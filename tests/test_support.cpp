@@ -19,8 +19,9 @@
 namespace voxlux::test {
 namespace fs = std::filesystem;
 
-// The tests run the render graph with its stages' scene reads checked, as debug builds do.
-const bool kStageReadsChecked = (checkStageReads(true), true);
+// The tests run the render graph with its stages' scene reads checked, as debug builds do: set
+// as the test binary starts.
+const bool kStageReadChecksOnInTests = (setStageReadChecks(true), true);
 
 std::string sharedData(const std::string& relative) {
     const char* root = std::getenv("VOXLUX_SHARED_DATA");  // another checkout layout

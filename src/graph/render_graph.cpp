@@ -56,16 +56,23 @@ bool covers(std::string declared, const std::string& changed) {
     return true;
 }
 
-// Whether a stage that declares `declared` may read `key`: a key below the declared one, or a
-// section holding it (a helper reads all lights; the stage declares the parts that change its
-// output), as `covers` relates them. Whether a value is set ("?") is read under a declaration of
-// the value or of that presence; the value itself, not under a presence.
-bool allows(const std::string& declared, const std::string& key) {
+// Whether a stage that declares `declared` may read `key`: a key at or below the declared one,
+// or a section holding it (a helper reads every light; the stage declares the parts of a light
+// that change its output), but not the whole document unless it declares it. Unlike `covers`, a
+// "*" in `key` reads every element, so only a "*" declares it. Whether a value is set ("?") is
+// read under a declaration of the value or of that presence; the value itself, not under a
+// presence.
+bool mayRead(std::string declared, std::string key) {
     const bool declared_presence = !declared.empty() && declared.back() == '?';
     const bool key_presence = !key.empty() && key.back() == '?';
-    if (key_presence) return declared_presence ? declared == key : covers(declared, key.substr(0, key.size() - 1));
-    if (declared_presence) return tokensOf(key).size() < tokensOf(declared).size() && covers(declared, key);
-    return covers(declared, key);
+    if (declared_presence) declared.pop_back();
+    if (key_presence) key.pop_back();
+    const auto d = tokensOf(declared), k = tokensOf(key);
+    if (k.empty() && !d.empty()) return false;
+    if (declared_presence && (key_presence ? k.size() != d.size() : k.size() >= d.size())) return false;
+    for (size_t i = 0; i < std::min(d.size(), k.size()); ++i)
+        if (d[i] != "*" && d[i] != k[i]) return false;
+    return true;
 }
 
 #ifdef NDEBUG
@@ -76,7 +83,7 @@ std::atomic<bool> stage_reads_checked{true};
 
 }  // namespace
 
-void checkStageReads(bool on) { stage_reads_checked = on; }
+void setStageReadChecks(bool on) { stage_reads_checked = on; }
 bool stageReadsChecked() { return stage_reads_checked; }
 
 SceneReader::SceneReader(const Scene& scene, const nlohmann::json& document, std::string stage, std::vector<std::string> declared)
@@ -85,8 +92,8 @@ SceneReader::SceneReader(const Scene& scene, const nlohmann::json& document, std
 void SceneReader::check(std::string_view key) const {
     if (!stage_reads_checked) return;
     const std::string k(key);
-    if (std::none_of(declared_.begin(), declared_.end(), [&](const std::string& d) { return allows(d, k); }))
-        throw std::logic_error("stage '" + stage_ + "' reads " + k + ", which it does not declare");
+    if (std::none_of(declared_.begin(), declared_.end(), [&](const std::string& d) { return mayRead(d, k); }))
+        throw std::logic_error("stage '" + stage_ + "' reads " + (k.empty() ? "the whole document" : k) + ", which it does not declare");
 }
 
 const Scene& SceneReader::operator()(std::initializer_list<std::string_view> keys) const {
@@ -94,7 +101,13 @@ const Scene& SceneReader::operator()(std::initializer_list<std::string_view> key
     return scene_;
 }
 
+const Scene& SceneReader::operator()(const std::vector<std::string>& keys) const {
+    for (const std::string& key : keys) check(key);
+    return scene_;
+}
+
 const nlohmann::json& SceneReader::value(std::string_view key) const {
+    if (key.find('*') != std::string_view::npos) throw std::logic_error("SceneReader::value takes one value's key, not " + std::string(key));
     check(key);
     static const nlohmann::json absent;
     const nlohmann::json::json_pointer at{std::string(key)};
@@ -106,7 +119,7 @@ float SceneReader::frame() const {
     return frame.is_number() ? frame.get<float>() : 0.0f;
 }
 
-std::string SceneReader::text(std::string_view key) const {
+std::string SceneReader::keyText(std::string_view key) const {
     check(key);
     return readKey(document_, std::string(key));
 }
@@ -200,18 +213,18 @@ std::string stageKey(const Stage& stage, const nlohmann::json& document, const s
 }
 
 bool RenderGraph::reads(const std::string& stage, const std::string& pointer) const {
-    const Stage& s = *by_name_.at(stage);
-    const StageReads r = s.reads();
-    return std::any_of(r.keys.begin(), r.keys.end(), [&](const std::string& k) { return covers(k, pointer); }) ||
-           std::any_of(s.inputs().begin(), s.inputs().end(), [&](const Stage* up) { return reads(up->name(), pointer); });
+    const std::vector<std::string> declared = declaredKeys(stage);
+    return std::any_of(declared.begin(), declared.end(), [&](const std::string& k) { return covers(k, pointer); });
 }
 
 std::vector<std::string> RenderGraph::declaredKeys(const std::string& stage) const {
-    const Stage& s = *by_name_.at(stage);
-    std::vector<std::string> keys = s.reads().keys;
-    for (const Stage* up : s.inputs())
-        for (std::string& k : declaredKeys(up->name())) keys.push_back(std::move(k));
-    return keys;
+    std::set<std::string> keys;
+    std::function<void(const Stage&)> gather = [&](const Stage& s) {
+        for (const std::string& k : s.reads().keys) keys.insert(k);
+        for (const Stage* up : s.inputs()) gather(*up);
+    };
+    gather(*by_name_.at(stage));
+    return {keys.begin(), keys.end()};
 }
 
 std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::json& document,
@@ -255,7 +268,9 @@ std::vector<StageReport> RenderGraph::run(const Scene& scene, const nlohmann::js
         } else {
             last_keys_.erase(s->name());
             s->output_warnings_.clear();
-            StageRun run{SceneReader(scene, document, s->name(), declaredKeys(s->name())), backend, reports, kept_inside,
+            // The keys a checked read may name; unchecked, none are gathered.
+            std::vector<std::string> declared = stageReadsChecked() ? declaredKeys(s->name()) : std::vector<std::string>{};
+            StageRun run{SceneReader(scene, document, s->name(), std::move(declared)), backend, reports, kept_inside,
                          s->output_warnings_, keys};
             if (starting) starting(s->name());
             const auto start = std::chrono::steady_clock::now();

@@ -39,9 +39,11 @@ struct StageActivity {
 class KernelBackend;
 struct StageReport;
 
-// The scene as a stage's run reads it: each read names the keys it takes (JSON pointers of the
-// render document, as StageReads has them). When reads are checked (checkStageReads: tests and
-// debug builds), a key that neither the stage nor a stage upstream of it declares is refused with
+// The scene as a stage's run reads it: each read names the keys its output takes from it (JSON
+// pointers of the render document, as StageReads has them), also those a helper reads for it
+// (makeKernelInputs reads the whole scene; the stage names the parts its output depends on). When
+// reads are checked (setStageReadChecks: tests and debug builds), a key that neither the stage nor
+// a stage upstream of it declares is refused with
 // std::logic_error ("stage 'march' reads /render/exposure, which it does not declare"), so a read
 // added to a run() without its declaration fails where it is made; the every-key sweep
 // (tests/render/test_render_graph.cpp) checks the declarations against what the outputs depend on.
@@ -50,19 +52,21 @@ public:
     // `declared`: the keys of the stage `stage` and of the stages upstream of it.
     SceneReader(const Scene& scene, const nlohmann::json& document, std::string stage, std::vector<std::string> declared);
 
-    // The typed scene, for the values at `keys`: each a key below a declared one, or a section
-    // holding declared ones (a helper that reads every light, where the stage declares the parts
-    // of a light that change its output).
+    // The typed scene, for the values at `keys`: each a key at or below a declared one, or a
+    // section holding declared ones (a helper that reads every light, where the stage declares the
+    // parts of a light that change its output).
     const Scene& operator()(std::initializer_list<std::string_view> keys) const;
+    const Scene& operator()(const std::vector<std::string>& keys) const;
     // The value at `key` (no wildcards) of the render document, null when absent: the input's
     // file and frame, which the scene does not hold.
     const nlohmann::json& value(std::string_view key) const;
     // The frame number the render is for (/input/frame; 0 for a file without ####).
     float frame() const;
-    // The values at `key` as text (readKey), for the key of a part of an output (a selective update's).
-    std::string text(std::string_view key) const;
-    // The whole render document, for a stage's own key (stageKey reads only what the stage declares).
-    const nlohmann::json& document() const { return document_; }
+    // The values at `key` as readKey's text, for the key of a part of an output (a selective update's).
+    std::string keyText(std::string_view key) const;
+    // The whole render document, unchecked: for a stage's own key (stageKey hashes only what the
+    // stage declares).
+    const nlohmann::json& uncheckedDocument() const { return document_; }
 
 private:
     void check(std::string_view key) const;
@@ -73,8 +77,8 @@ private:
     std::vector<std::string> declared_;
 };
 
-// Whether SceneReader checks its keys: on in debug builds, and in tests, which turn it on.
-void checkStageReads(bool on);
+// Whether SceneReader checks its keys: on in debug builds, and in the tests, which turn it on.
+void setStageReadChecks(bool on);
 bool stageReadsChecked();
 
 // What a stage's run sees besides its upstream stages' outputs.
@@ -197,14 +201,14 @@ public:
 
     // Whether `stage` or a stage upstream of it declares a key that covers `pointer`.
     bool reads(const std::string& stage, const std::string& pointer) const;
-    // The keys `stage` and the stages upstream of it declare.
-    std::vector<std::string> declaredKeys(const std::string& stage) const;
 
     // The graph for `scene`, one line a stage in order: run or skip, the name, why, and what it reads.
     std::string explain(const Scene& scene) const;
 
 private:
     std::vector<Stage*> needed(const std::vector<std::string>& targets) const;
+    // The keys `stage` and the stages upstream of it declare, each once.
+    std::vector<std::string> declaredKeys(const std::string& stage) const;
 
     std::vector<Stage*> order_;
     std::map<std::string, Stage*> by_name_;

@@ -35,7 +35,7 @@ MarchStage::MarchStage(const ColorSpaceStage& color, const BrickStage& brick, co
 
 // The march's key as if the reference's sample count were not read.
 std::string MarchStage::referenceSetupKey(const StageRun& run) const {
-    nlohmann::json document = run.scene.document();
+    nlohmann::json document = run.scene.uncheckedDocument();
     const nlohmann::json::json_pointer spp("/render/reference/spp");
     if (document.contains(spp)) document["render"]["reference"].erase("spp");
     return stageKey(*this, document, run.keys);
@@ -80,8 +80,8 @@ StageActivity MarchStage::activity(const Scene& s) const {
 }
 
 void MarchStage::run(StageRun& run) {
-    // The march reads every key it declares: the lights, material and effects through the kernel's inputs.
-    const Scene& scene = run.scene({"/render", "/material", "/lights", "/effects", "/emission", "/output/deep", "/output/deep_samples"});
+    // The march's output takes every key it declares, most through the kernel's inputs.
+    const Scene& scene = run.scene(reads().keys);
     MarchSources sources;
     for (const MarchLightingStage* s : lighting_) s->lightTheMarch(scene, sources.lighting);
     sources.camera = &camera_.camera();

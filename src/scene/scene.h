@@ -1,5 +1,7 @@
 // The scene: everything a render needs, as parsed from JSON (docs/scene.md) or built by the quick
-// form of `voxlux render cache.vdb`. Plain data; reading, validation and writing live in scene_read.cpp and scene_write.cpp.
+// form of `voxlux render cache.vdb`. Plain data; reading, validation and writing live in
+// scene_read.cpp and scene_write.cpp, and for a lighting method's settings in its folder
+// (src/lighting/<method>/<method>_settings.cpp).
 #pragma once
 #include <array>
 #include <optional>
@@ -177,8 +179,9 @@ struct Perturbation {
     float time = 0.0f;                     // frames added to the sequence frame
 };
 
-// The effects: the march's own, and each lighting method's settings (MethodSettings, a base of
-// each registered method's, so that scene.effects.cone is effects.cone as the JSON spells it).
+// The effects: the march's own, and each lighting method's settings, which MethodSettings derives
+// from (generated from the methods' method.cmake), so that scene.effects.cone is effects.cone as
+// the JSON spells it.
 struct Effects : MethodSettings {
     ShadowMethod shadows = ShadowMethod::Raymarch;
     std::optional<SurfaceShading> surface;

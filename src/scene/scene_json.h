@@ -1,5 +1,6 @@
 // Scene <-> JSON (docs/scene.md): reading and validating (scene_read.cpp), writing
-// (scene_write.cpp) and `--set` edits of the JSON before it is read (scene_set.cpp).
+// (scene_write.cpp) and `--set` edits of the JSON before it is read (scene_set.cpp); and the
+// helpers the lighting methods' settings read and write theirs with (readOptional, jsonDecimal).
 #pragma once
 #include <optional>
 #include <string>

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/thread_limit.h"
+#include "scene/scene.h"
 
 namespace {
 
@@ -34,7 +35,9 @@ void addSceneOverrides(CLI::App& cmd, voxlux::SceneOverrides& o) {
     cmd.add_option("--density-scale", o.density_scale, "density to extinction (material.density_scale)");
     cmd.add_option("--light", o.lights,
                    "TYPE:key=value:... e.g. directional:dir=1,-1,0:intensity=3 (repeatable, replaces lights)");
-    cmd.add_option("--shadows", o.shadows, "none|raymarch|sat_cone|propagation (effects.shadows)");
+    std::string shadows;   // the march's own and the lighting methods' values
+    for (const std::string& name : voxlux::kShadowMethodNames) shadows += (shadows.empty() ? "" : "|") + name;
+    cmd.add_option("--shadows", o.shadows, shadows + " (effects.shadows)");
     cmd.add_option("--quality", o.quality,
                    "draft|preview|final: method and knobs from the measured Pareto front (docs/accuracy.md); "
                    "other options override it");

@@ -36,9 +36,9 @@ struct Methods {
 // The family a scene's lighting belongs to, named as the sweeps name them.
 std::string methodName(const Scene& s) {
     if (s.render.method == RenderMethod::Reference) return "reference";
-    const char* shadows[] = {"unshadowed", "raymarch", "sat_cone", "propagation"};
+    const std::string shadows = s.effects.shadows == ShadowMethod::None ? "unshadowed" : shadowMethodName(s.effects.shadows);
     const char* indirect = !s.effects.indirect ? "" : s.effects.indirect->model == IndirectModel::Kniss ? "+kniss" : "+indirect";
-    return std::string(shadows[int(s.effects.shadows)]) + indirect +
+    return shadows + indirect +
            (s.effects.ambient_occlusion && hasAmbientLight(s) ? "+AO" : "");
 }
 

@@ -221,7 +221,7 @@ PanelRequests drawScenePanel(ViewerState& state, float x, float width, float hei
             if (state.editor.edit("quality " + *q, [&](nlohmann::json& j) { applyQualityPreset(j, *q); })) preset = *q;
         const nlohmann::json& j = state.editor.json();
         if (auto m = combo("method", j["render"].value("method", "march"), {"march", "reference"})) setKey(state, "/render/method", *m);
-        if (auto sh = combo("shadows", j["effects"].value("shadows", "none"), {"none", "raymarch", "sat_cone", "propagation"}))
+        if (auto sh = combo("shadows", j["effects"].value("shadows", "none"), kShadowMethodNames))
             setKey(state, "/effects/shadows", *sh);
         if (auto f = combo("filter", j["render"].value("filter", "trilinear"), {"trilinear", "tricubic"})) setKey(state, "/render/filter", *f);
     }

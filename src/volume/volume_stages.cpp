@@ -43,11 +43,10 @@ StageActivity LoadStage::activity(const Scene& s) const {
 }
 
 void LoadStage::run(StageRun& run) {
+    const Scene& scene = run.scene({"/volume", "/emission/*/grid", "/render/motion_blur"});
     volume_ = std::make_shared<const LoadedVolume>(
         given_ ? *given_
-               : loadVolume(run.scene.value("/input/file/path"),
-                            run.scene({"/volume", "/emission/*/grid", "/render/motion_blur"}).volume,
-                            run.scene({"/emission/*/grid"}).emission, run.scene({"/render/motion_blur"}).render.motion_blur));
+               : loadVolume(run.scene.value("/input/file/path"), scene.volume, scene.emission, scene.render.motion_blur));
     run.warnings = volume_->warnings;
 }
 
@@ -112,7 +111,7 @@ StageActivity ClassifyStage::activity(const Scene& s) const {
 
 void ClassifyStage::run(StageRun& run) {
     const BrickAtlas& atlas = brick_.atlas();
-    const Scene& scene = run.scene({"/material", "/emission", "/render/filter", "/render/motion_blur"});
+    const Scene& scene = run.scene({"/material", "/emission", "/render/filter"});
     pages_ = classifiedPageTable(atlas, scene);
     empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas, scene) : "";
 }

@@ -14,8 +14,7 @@ namespace voxlux::test {
 namespace {
 
 // A stage that counts its runs and reads what it is told to: document keys (declared, and read at
-// run), and the stages given
-// (or added with `after`, which can make a cycle no constructor could).
+// run), and the stages given (or added with `after`, which can make a cycle no constructor could).
 class ToyStage final : public Stage {
 public:
     ToyStage(std::string name, std::vector<std::string> keys, std::vector<const Stage*> upstream = {})
@@ -30,7 +29,7 @@ public:
         ++runs;
         if (fail) throw InputError(name_ + ": failed");
         for (const std::string& key : reads_at_run) run.scene({key});
-        output = run.scene.document().dump();
+        output = run.scene.uncheckedDocument().dump();
         if (!warning.empty()) run.warnings.push_back(warning);
     }
     void release() override { output.clear(); }
@@ -116,6 +115,12 @@ TEST(RenderGraph, RunsAStageOnlyWhenWhatItReadsChanged) {
     EXPECT_EQ(march.runs, 3);
 }
 
+// Turns the check of stages' reads off while it lives.
+struct UncheckedStageReads {
+    UncheckedStageReads() { setStageReadChecks(false); }
+    ~UncheckedStageReads() { setStageReadChecks(true); }
+};
+
 // A stage's run reads the scene through keys it or a stage upstream of it declares; the tests
 // check reads (test_support.cpp), and any other key is refused where it is read.
 TEST(RenderGraph, ARunReadsOnlyWhatItOrItsUpstreamDeclares) {
@@ -126,13 +131,16 @@ TEST(RenderGraph, ARunReadsOnlyWhatItOrItsUpstreamDeclares) {
                           {"effects", {{"indirect", {{"angle", 30}}}}}};
     // Below a declared key, a section holding one, an upstream stage's key, a declared presence
     // and a section holding it.
-    light.reads_at_run = {"/lights/0/position", "/lights", "/volume/path", "/effects/indirect?", "/effects"};
+    light.reads_at_run = {"/lights/0/position", "/lights/*/position", "/lights", "/volume/path", "/effects/indirect?", "/effects"};
     EXPECT_EQ(runToy(graph, doc, {"light"}).status("light"), "ran");
     const std::pair<const char*, const char*> refused[] = {
         {"/render", "stage 'light' reads /render, which it does not declare"},
         {"/lights/0/color", "stage 'light' reads /lights/0/color, which it does not declare"},
         {"/effects/indirect/angle", "stage 'light' reads /effects/indirect/angle, which it does not declare"},
         {"/effects/indirect", "stage 'light' reads /effects/indirect, which it does not declare"},
+        {"", "stage 'light' reads the whole document, which it does not declare"},
+        {"/*", "stage 'light' reads /*, which it does not declare"},
+        {"/lights/*/color", "stage 'light' reads /lights/*/color, which it does not declare"},
     };
     for (const auto& [key, message] : refused) {
         light.reads_at_run = {key};
@@ -145,11 +153,10 @@ TEST(RenderGraph, ARunReadsOnlyWhatItOrItsUpstreamDeclares) {
         }
     }
     // Unchecked (a release build outside the tests), the same read goes through.
-    checkStageReads(false);
+    const UncheckedStageReads unchecked;
     light.reads_at_run = {"/render"};
     doc["volume"]["path"] = "b.vdb";
     EXPECT_EQ(runToy(graph, doc, {"light"}).status("light"), "ran");
-    checkStageReads(true);
 }
 
 // A stage that does not take part passes its inputs' keys on (as transfer_2d, when it does not

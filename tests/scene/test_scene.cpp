@@ -1,4 +1,7 @@
 // Scene files: validation messages name the file and the JSON pointer of the bad key.
+#include <algorithm>
+#include <sstream>
+
 #include "core/error.h"
 #include "scene/scene_json.h"
 #include "test_support.h"
@@ -205,6 +208,28 @@ TEST(Scene, OutputAovsAndCompressionAreValidated) {
               "shot.json: /output/aovs/0/type: unknown key (expected one of name, pixel_type)");
     EXPECT_EQ(sceneErrorOf(v + R"({"aovs": ["direct", "depth", {"name": "direct", "pixel_type": "float"}]}})"),
               "shot.json: /output/aovs/2: duplicate AOV 'direct' (first at /output/aovs/0)");
+}
+
+// The effects keys are the march's own and each lighting method's (MethodSettings): each has one
+// owner, the reader takes exactly the keys the writer writes, and a key no one owns is refused
+// with all of them.
+TEST(Scene, EveryEffectsKeyHasOneOwnerAndIsWritten) {
+    const std::string refusal = sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"shadow": "none"}})");
+    EXPECT_EQ(refusal, "shot.json: /effects/shadow: unknown key (expected one of shadows, surface, perturbation, light_resolution, "
+                       "light_memory_mb, ambient_occlusion, color_bleeding, cone, propagation, indirect)");
+    const std::string listed = refusal.substr(refusal.find("one of ") + 7, refusal.size() - refusal.find("one of ") - 8);
+    std::vector<std::string> read;
+    std::stringstream in(listed);
+    for (std::string key; std::getline(in, key, ',');) read.push_back(key.substr(key.find_first_not_of(' ')));
+    std::sort(read.begin(), read.end());
+    EXPECT_EQ(std::adjacent_find(read.begin(), read.end()), read.end()) << "an effects key with two owners";
+    const nlohmann::json effects = sceneToJson(parseScene(R"({"volume": {"path": "a.vdb"}})", "shot.json", ""))["effects"];
+    std::vector<std::string> written;
+    for (const auto& [key, value] : effects.items()) written.push_back(key);
+    EXPECT_EQ(read, written);   // items() are sorted
+    for (const std::string& key : methodSettingKeys()) EXPECT_TRUE(std::binary_search(read.begin(), read.end(), key)) << key;
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"shadows": "cones"}})"),
+              "shot.json: /effects/shadows: 'cones' is not one of none, raymarch, sat_cone, propagation");
 }
 
 TEST(Scene, AmbientOcclusionAndLightsDefaults) {

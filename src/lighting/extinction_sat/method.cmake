@@ -17,7 +17,5 @@ voxlux_kernel_method(extinction_sat
   MARCH_ARRAYS "LightCache float vx_cache cache"
   PASS_ARRAYS "Sat uint vx_sat_word sat"
   BINDINGS NEEDED CHANNEL SAT_SCAN)
-voxlux_method_settings(extinction_sat
-  HEADER lighting/extinction_sat/extinction_sat_settings.h TYPE ExtinctionSatSettings
-  SOURCE src/lighting/extinction_sat/extinction_sat_settings.cpp
+voxlux_method_settings(extinction_sat TYPE ExtinctionSatSettings
   SHADOWS sat_cone SatCone "SAT-cone shadows read from the light cache")

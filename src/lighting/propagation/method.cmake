@@ -17,7 +17,5 @@ voxlux_kernel_method(propagation
   MARCH_ARRAYS "Illumination float vx_illum illum"
   PASS_ARRAYS "PropSigma float vx_prop_sigma prop_sigma" "SliceIn float vx_prop_prev prop_prev" "SweepInput float vx_prop_in prop_in"
   BINDINGS VOLUME SLICE_OUT)
-voxlux_method_settings(propagation
-  HEADER lighting/propagation/propagation_settings.h TYPE PropagationSettings
-  SOURCE src/lighting/propagation/propagation_settings.cpp
+voxlux_method_settings(propagation TYPE PropagationSettings
   SHADOWS propagation Propagation "direct and indirect light read from the illumination volume")

@@ -481,7 +481,8 @@ void PropagationStage::release() {
 void PropagationStage::run(StageRun& run) {
     const SweepGrid& fine = grid_.fine();
     const SweepGrid& coarse = grid_.coarse();
-    const Scene& scene = run.scene({"/lights", "/effects/propagation", "/effects/indirect", "/effects/perturbation", "/material",
+    const Scene& scene = run.scene({"/lights", "/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
+                                    "/effects/propagation/coherent", "/effects/indirect", "/effects/perturbation", "/material",
                                     "/emission"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
@@ -492,7 +493,7 @@ void PropagationStage::run(StageRun& run) {
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                             "/effects/indirect", "/effects/perturbation", "/material/albedo", "/material/anisotropy",
                             "/render/backend"})
-        setup_key += "|" + run.scene.text(key);
+        setup_key += "|" + run.scene.keyText(key);
     const bool coherent = fx.propagation.coherent;
     const bool blend = fx.propagation.blend_axes;
     const kernel::VxPropParams direct = baseParams(fine, 1, directTaps(), 0.0f, glm::vec3(1.0f));
@@ -604,7 +605,7 @@ void EyePassStage::run(StageRun& run) {
     passes_.keepFor(grid_.generation());   // as the propagation's, above
     const IlluminationVolume& lit = propagation_.volume();
     volume_ = lit;
-    const Scene& scene = run.scene({"/effects/indirect", "/effects/perturbation", "/material", "/lights"});
+    const Scene& scene = run.scene({"/effects/indirect", "/effects/perturbation"});
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
     const std::vector<float> before(lit.values.begin() + long(lit.indirectOffset()), lit.values.end());
     const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);

@@ -1,6 +1,8 @@
 // Extinction-SAT's settings (extinction_sat_settings.h): the effects keys it owns reach the scene
-// through the generated MethodSettings, read back what writeSettings writes, and bad values are
-// named by their key.
+// through the generated MethodSettings, writeSettings writes exactly them and reads back, and bad
+// values are named by their key.
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "core/json_reader.h"
@@ -19,6 +21,11 @@ TEST(ExtinctionSatSettings, ReadBackWhatTheyWrite) {
     writeSettings(s, effects);
     EXPECT_EQ(effects, nlohmann::json::parse(R"({"ambient_occlusion": {"shells": 5, "radius": 0.25},
         "color_bleeding": 0.4, "cone": {"angle": 7.5, "samples": 33, "growth": 0.1}})"));
+    std::vector<std::string> written;
+    for (const auto& [key, value] : effects.items()) written.push_back(key);
+    std::vector<std::string> keys = ExtinctionSatSettings::keys();
+    std::sort(keys.begin(), keys.end());
+    EXPECT_EQ(written, keys);   // items() are sorted
     ExtinctionSatSettings back;
     readSettings(JsonObject(effects, "shot.json", "/effects"), back);
     ASSERT_TRUE(back.ambient_occlusion);
@@ -39,8 +46,8 @@ TEST(ExtinctionSatSettings, AreTheScenesEffectsKeysAndShadowValue) {
     EXPECT_EQ(s.effects.ambient_occlusion->shells, 3);
     EXPECT_EQ(s.effects.color_bleeding, 1.0f);
     EXPECT_EQ(s.effects.cone.samples, 12);
-    for (const std::string& key : ExtinctionSatSettings::keys())
-        EXPECT_NE(std::find(methodSettingKeys().begin(), methodSettingKeys().end(), key), methodSettingKeys().end()) << key;
+    const std::vector<std::string> keys = methodSettingKeys();
+    for (const std::string& key : ExtinctionSatSettings::keys()) EXPECT_NE(std::find(keys.begin(), keys.end(), key), keys.end()) << key;
 }
 
 TEST(ExtinctionSatSettings, BadValuesNameTheirKey) {
