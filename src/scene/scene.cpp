@@ -4,7 +4,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace voxlux {
+
+glm::mat4 volumeTransformMatrix(const VolumeTransform& t) {
+    if (t.matrix) return *t.matrix;
+    const glm::vec3 r = glm::radians(t.rotate);
+    const glm::mat4 rotation = glm::rotate(glm::mat4(1.0f), r.z, glm::vec3(0, 0, 1)) *
+                               glm::rotate(glm::mat4(1.0f), r.y, glm::vec3(0, 1, 0)) *
+                               glm::rotate(glm::mat4(1.0f), r.x, glm::vec3(1, 0, 0));
+    return glm::translate(glm::mat4(1.0f), t.translate) * rotation * glm::scale(glm::mat4(1.0f), t.scale);
+}
 
 int enabledLightCount(const Scene& scene, bool ambient) {
     return int(std::count_if(scene.lights.begin(), scene.lights.end(),

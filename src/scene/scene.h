@@ -28,6 +28,18 @@ enum class LevelSetPolicy { Reject, ConvertToFog };
 // The world axis that points up in the cache. Auto: as the file says (src/volume/up_axis.h), else Y.
 enum class UpAxis { Auto, X, Y, Z };
 
+// Where a volume sits in the world, applied on top of its file's own transform (Houdini's and
+// Blender's object transform): a 4x4 `matrix`, or translate * rotate * scale, the rotation in
+// degrees about X, then Y, then Z (R = Rz Ry Rx), as Houdini's default "Rx Ry Rz" order.
+struct VolumeTransform {
+    glm::vec3 translate{0.0f};
+    glm::vec3 rotate{0.0f};
+    glm::vec3 scale{1.0f};
+    std::optional<glm::mat4> matrix;      // given: the other three are unused
+};
+// Its matrix, from the file's world to the scene's.
+glm::mat4 volumeTransformMatrix(const VolumeTransform& t);
+
 struct VolumeSpec {
     std::string path;                      // may contain a #### frame pattern
     std::optional<FrameSet> frames;        // the frames of a #### pattern: [first, last], or "1-240x2,300"
@@ -35,6 +47,7 @@ struct VolumeSpec {
     std::optional<GridRef> color;          // Cd, vec3
     LevelSetPolicy level_set = LevelSetPolicy::Reject;
     UpAxis up = UpAxis::Auto;              // frames the default camera and orients the quick form's light
+    std::optional<VolumeTransform> transform;
 };
 
 struct TransferPoint {

@@ -37,38 +37,6 @@ std::string resolvePath(const std::string& path, const std::string& base_dir) {
     return path;
 }
 
-VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
-    o.rejectUnknown({"path", "frames", "density", "color", "level_set", "up"});
-    VolumeSpec v;
-    v.path = o.string("path");
-    v.path = resolvePath(v.path, base_dir);
-    if (o.has("frames") && o.raw("frames").is_string()) {
-        try {
-            v.frames = FrameSet::parse(o.string("frames"));
-        } catch (const std::invalid_argument& e) {
-            o.fail("frames", e.what());
-        }
-    } else if (o.has("frames")) {
-        // Read as doubles, exact for every int (floats are not past 2^24); checked before converting.
-        const nlohmann::json& range = o.raw("frames");
-        const auto frameNumber = [](const nlohmann::json& x) {
-            return x.is_number() && x.get<double>() >= -2147483648.0 && x.get<double>() < 2147483648.0 && x.get<double>() == std::floor(x.get<double>());
-        };
-        if (!range.is_array() || range.size() != 2 || !frameNumber(range[0]) || !frameNumber(range[1]) ||
-            range[0].get<double>() > range[1].get<double>())
-            o.fail("frames", "expected [first, last] integers with first <= last, or a string such as \"1-240x2,300\"");
-        v.frames = FrameSet(int(range[0].get<double>()), int(range[1].get<double>()));
-    }
-    if (o.has("density")) v.density = readGridRef(o, "density");
-    if (o.has("color")) v.color = readGridRef(o, "color");
-    v.level_set = o.choice("level_set", {"reject", "fog"}, "reject") == "fog"
-                      ? LevelSetPolicy::ConvertToFog
-                      : LevelSetPolicy::Reject;
-    const std::string up = o.choice("up", {"auto", "x", "y", "z"}, "auto");
-    v.up = up == "x" ? UpAxis::X : up == "y" ? UpAxis::Y : up == "z" ? UpAxis::Z : UpAxis::Auto;
-    return v;
-}
-
 // A region of material.transfer_function_2d: a rectangle ("value" and "gradient" ranges) or a
 // triangle ("triangle": three [value, gradient] corners).
 TransferRegion readTransferRegion(const JsonObject& o) {
@@ -222,6 +190,59 @@ Camera readCameraPose(const JsonObject& o) {
         o.fail("up", "must not be parallel to the view direction");
     return c;
 }
+
+// volume.transform: a matrix, or any of translate, rotate and scale (a number or one per axis).
+VolumeTransform readVolumeTransform(const JsonObject& o) {
+    o.rejectUnknown({"translate", "rotate", "scale", "matrix"});
+    VolumeTransform t;
+    if (o.has("matrix")) {
+        for (const char* key : {"translate", "rotate", "scale"})
+            if (o.has(key)) o.fail(key, "goes with translate, rotate and scale, not with a matrix");
+        t.matrix = readCameraPose(o).matrix;   // the same checks as a camera's: finite, invertible
+        return t;
+    }
+    if (o.has("translate")) t.translate = readPoint(o, "translate");
+    t.rotate = o.vec3("rotate", t.rotate);
+    if (!std::isfinite(t.rotate.x + t.rotate.y + t.rotate.z)) o.fail("rotate", "must be finite degrees");
+    if (o.has("scale")) t.scale = o.raw("scale").is_number() ? glm::vec3(o.number("scale")) : o.vec3("scale");
+    if (!(glm::compMin(t.scale) > 0) || !std::isfinite(glm::compMax(t.scale)))
+        o.fail("scale", "must be finite and > 0 (a number, or one per axis)");
+    return t;
+}
+
+VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
+    o.rejectUnknown({"path", "frames", "density", "color", "level_set", "up", "transform"});
+    VolumeSpec v;
+    v.path = o.string("path");
+    v.path = resolvePath(v.path, base_dir);
+    if (o.has("frames") && o.raw("frames").is_string()) {
+        try {
+            v.frames = FrameSet::parse(o.string("frames"));
+        } catch (const std::invalid_argument& e) {
+            o.fail("frames", e.what());
+        }
+    } else if (o.has("frames")) {
+        // Read as doubles, exact for every int (floats are not past 2^24); checked before converting.
+        const nlohmann::json& range = o.raw("frames");
+        const auto frameNumber = [](const nlohmann::json& x) {
+            return x.is_number() && x.get<double>() >= -2147483648.0 && x.get<double>() < 2147483648.0 && x.get<double>() == std::floor(x.get<double>());
+        };
+        if (!range.is_array() || range.size() != 2 || !frameNumber(range[0]) || !frameNumber(range[1]) ||
+            range[0].get<double>() > range[1].get<double>())
+            o.fail("frames", "expected [first, last] integers with first <= last, or a string such as \"1-240x2,300\"");
+        v.frames = FrameSet(int(range[0].get<double>()), int(range[1].get<double>()));
+    }
+    if (o.has("density")) v.density = readGridRef(o, "density");
+    if (o.has("color")) v.color = readGridRef(o, "color");
+    v.level_set = o.choice("level_set", {"reject", "fog"}, "reject") == "fog"
+                      ? LevelSetPolicy::ConvertToFog
+                      : LevelSetPolicy::Reject;
+    const std::string up = o.choice("up", {"auto", "x", "y", "z"}, "auto");
+    v.up = up == "x" ? UpAxis::X : up == "y" ? UpAxis::Y : up == "z" ? UpAxis::Z : UpAxis::Auto;
+    if (o.has("transform")) v.transform = readVolumeTransform(o.object("transform"));
+    return v;
+}
+
 
 Camera readCamera(const JsonObject& o) {
     o.rejectUnknown({"position", "look_at", "up", "matrix", "fov", "motion"});

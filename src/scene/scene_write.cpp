@@ -132,6 +132,11 @@ nlohmann::json sceneToJson(const Scene& s) {
     if (s.volume.color) v["color"] = gridRefToJson(*s.volume.color);
     v["level_set"] = s.volume.level_set == LevelSetPolicy::ConvertToFog ? "fog" : "reject";
     v["up"] = upAxisName(s.volume.up);
+    // Written only when set: a scene without one hashes as it did before the key existed.
+    if (const auto& t = s.volume.transform) {
+        if (t->matrix) v["transform"]["matrix"] = matrixToJson(*t->matrix);
+        else v["transform"] = {{"translate", jsonVec3(t->translate)}, {"rotate", jsonVec3(t->rotate)}, {"scale", jsonVec3(t->scale)}};
+    }
 
     auto& m = j["material"];
     m["density_scale"] = jsonDecimal(s.material.density_scale);

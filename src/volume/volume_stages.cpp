@@ -25,7 +25,7 @@ std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas, const
 }  // namespace
 
 StageReads LoadStage::reads() const {
-    return {{"/input/file", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/emission/*/grid",
+    return {{"/input/file", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/volume/transform", "/emission/*/grid",
              "/render/motion_blur?", "/render/motion_blur/velocity", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale",
              "/render/motion_blur/fps"}};
 }
