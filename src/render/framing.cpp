@@ -46,7 +46,7 @@ SequenceFraming frameSequence(const Scene& scene) {
         // the render names it when its turn comes.
         LoadedVolume volume;
         try {
-            volume = loadVolume(expandFramePattern(scene.volume.path, frame), densityOnly(scene.volume));
+            volume = loadVolume(expandFramePattern(scene.volume.path, frame), densityOnly(scene.volume), {}, std::nullopt, frame);
         } catch (const InputError& e) {
             if (out.unreadable.count() == 0) out.unreadable_reason = e.what();
             out.unreadable.add(frame);

@@ -109,6 +109,8 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
     const std::string file = frame ? expandFramePattern(scene_.volume.path, *frame) : scene_.volume.path;
     in["file"] = stages_->load.given() ? nlohmann::json{{"path", "grids in memory"}} : fileIdentity(file);
     in["frame"] = frame ? nlohmann::json(*frame) : nlohmann::json(nullptr);
+    if (scene_.volume.transform && !scene_.volume.transform->chan.empty())
+        in["transform_chan"] = fileIdentity(scene_.volume.transform->chan);
     const char* ocio = std::getenv("OCIO");
     in["ocio"] = ocio ? ocio : "";
     in["allow_empty"] = allow_empty;

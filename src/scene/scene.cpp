@@ -8,13 +8,35 @@
 
 namespace voxlux {
 
-glm::mat4 volumeTransformMatrix(const VolumeTransform& t) {
+namespace {
+
+glm::mat4 rotation(glm::vec3 degrees, RotateOrder order) {
+    const glm::vec3 r = glm::radians(degrees);
+    const glm::mat4 turn[3] = {glm::rotate(glm::mat4(1.0f), r.x, glm::vec3(1, 0, 0)),
+                               glm::rotate(glm::mat4(1.0f), r.y, glm::vec3(0, 1, 0)),
+                               glm::rotate(glm::mat4(1.0f), r.z, glm::vec3(0, 0, 1))};
+    const char* axes = kRotateOrderNames[int(order)];   // the first applied is the rightmost factor
+    return turn[axes[2] - 'x'] * turn[axes[1] - 'x'] * turn[axes[0] - 'x'];
+}
+
+glm::mat4 pose(glm::vec3 translate, glm::vec3 rotate, glm::vec3 scale, RotateOrder order) {
+    return glm::translate(glm::mat4(1.0f), translate) * rotation(rotate, order) * glm::scale(glm::mat4(1.0f), scale);
+}
+
+}  // namespace
+
+glm::mat4 volumeTransformMatrix(const VolumeTransform& t, std::optional<double> frame) {
     if (t.matrix) return *t.matrix;
-    const glm::vec3 r = glm::radians(t.rotate);
-    const glm::mat4 rotation = glm::rotate(glm::mat4(1.0f), r.z, glm::vec3(0, 0, 1)) *
-                               glm::rotate(glm::mat4(1.0f), r.y, glm::vec3(0, 1, 0)) *
-                               glm::rotate(glm::mat4(1.0f), r.x, glm::vec3(1, 0, 0));
-    return glm::translate(glm::mat4(1.0f), t.translate) * rotation * glm::scale(glm::mat4(1.0f), t.scale);
+    if (t.keys.empty()) return pose(t.translate, t.rotate, t.scale, t.rotate_order);
+    const auto& keys = t.keys;
+    const double f = frame.value_or(keys.front().frame);
+    if (f <= keys.front().frame) return pose(keys.front().translate, keys.front().rotate, keys.front().scale, t.rotate_order);
+    if (f >= keys.back().frame) return pose(keys.back().translate, keys.back().rotate, keys.back().scale, t.rotate_order);
+    const auto next = std::upper_bound(keys.begin(), keys.end(), f, [](double x, const TransformKey& k) { return x < k.frame; });
+    const TransformKey& a = next[-1];
+    const TransformKey& b = *next;
+    const float w = float((f - a.frame) / (b.frame - a.frame));
+    return pose(glm::mix(a.translate, b.translate, w), glm::mix(a.rotate, b.rotate, w), glm::mix(a.scale, b.scale, w), t.rotate_order);
 }
 
 int enabledLightCount(const Scene& scene, bool ambient) {

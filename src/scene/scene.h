@@ -28,17 +28,35 @@ enum class LevelSetPolicy { Reject, ConvertToFog };
 // The world axis that points up in the cache. Auto: as the file says (src/volume/up_axis.h), else Y.
 enum class UpAxis { Auto, X, Y, Z };
 
+// The order a transform's rotations are applied in: Xyz turns about X first, then Y, then Z
+// (R = Rz Ry Rx, Houdini's default); Zxy is Nuke's default for an Axis or a Camera.
+enum class RotateOrder { Xyz, Xzy, Yxz, Yzx, Zxy, Zyx };
+inline constexpr const char* kRotateOrderNames[] = {"xyz", "xzy", "yxz", "yzx", "zxy", "zyx"};
+
+// One key of an animated transform: its pose at `frame`.
+struct TransformKey {
+    double frame = 0.0;
+    glm::vec3 translate{0.0f};
+    glm::vec3 rotate{0.0f};
+    glm::vec3 scale{1.0f};
+};
+
 // Where a volume sits in the world, applied on top of its file's own transform (Houdini's and
-// Blender's object transform): a 4x4 `matrix`, or translate * rotate * scale, the rotation in
-// degrees about X, then Y, then Z (R = Rz Ry Rx), as Houdini's default "Rx Ry Rz" order.
+// Blender's object transform): a 4x4 `matrix`, or translate * rotate * scale with the rotation in
+// degrees, turned in `rotate_order`. Keyed per frame, the pose between two keys is the linear
+// blend of their translate, rotate and scale (as linear channels in Houdini and Nuke), and held
+// before the first key and after the last.
 struct VolumeTransform {
     glm::vec3 translate{0.0f};
     glm::vec3 rotate{0.0f};
     glm::vec3 scale{1.0f};
-    std::optional<glm::mat4> matrix;      // given: the other three are unused
+    RotateOrder rotate_order = RotateOrder::Xyz;
+    std::optional<glm::mat4> matrix;       // given: translate, rotate, scale and keys are unused
+    std::vector<TransformKey> keys;        // non-empty: animated, frames strictly increasing
+    std::string chan;                      // the Nuke .chan file the keys were read from ("" = written inline)
 };
-// Its matrix, from the file's world to the scene's.
-glm::mat4 volumeTransformMatrix(const VolumeTransform& t);
+// Its matrix at `frame` (unset: a still, posed at the first key), from the file's world to the scene's.
+glm::mat4 volumeTransformMatrix(const VolumeTransform& t, std::optional<double> frame = std::nullopt);
 
 struct VolumeSpec {
     std::string path;                      // may contain a #### frame pattern

@@ -12,9 +12,11 @@
 #include "optics/emission.h"
 #include "optics/transfer_presets.h"
 #include "core/error.h"
+#include "core/frame_pattern.h"
 #include "core/json_reader.h"
 #include "kernel/kernel_types.h"
 #include "scene/camera.h"
+#include "scene/chan_file.h"
 
 namespace voxlux {
 namespace fs = std::filesystem;
@@ -191,22 +193,70 @@ Camera readCameraPose(const JsonObject& o) {
     return c;
 }
 
-// volume.transform: a matrix, or any of translate, rotate and scale (a number or one per axis).
-VolumeTransform readVolumeTransform(const JsonObject& o) {
-    o.rejectUnknown({"translate", "rotate", "scale", "matrix"});
+// A pose's translate, rotate and scale (a number or one per axis), each defaulting to `fallback`'s.
+TransformKey readPose(const JsonObject& o, const TransformKey& fallback) {
+    TransformKey k = fallback;
+    if (o.has("translate")) k.translate = readPoint(o, "translate");
+    k.rotate = o.vec3("rotate", k.rotate);
+    if (!std::isfinite(k.rotate.x + k.rotate.y + k.rotate.z)) o.fail("rotate", "must be finite degrees");
+    if (o.has("scale")) k.scale = o.raw("scale").is_number() ? glm::vec3(o.number("scale")) : o.vec3("scale");
+    if (!(glm::compMin(k.scale) > 0) || !std::isfinite(glm::compMax(k.scale)))
+        o.fail("scale", "must be finite and > 0 (a number, or one per axis)");
+    return k;
+}
+
+// The keys of an animated transform, the array at `o`'s `key`: {"frame": f, translate, rotate,
+// scale}, frames increasing.
+std::vector<TransformKey> readTransformKeys(const JsonObject& o, const std::string& key) {
+    if (!o.raw(key).is_array() || o.raw(key).empty())
+        o.fail(key, "expected a list of {\"frame\": f, \"translate\": ..., \"rotate\": ..., \"scale\": ...}");
+    std::vector<TransformKey> keys;
+    for (size_t i = 0; i < o.raw(key).size(); ++i) {
+        const JsonObject entry = o.element(key, i);
+        entry.rejectUnknown({"frame", "translate", "rotate", "scale"});
+        if (!entry.has("frame")) entry.fail("frame", "is required in every key");
+        TransformKey k = readPose(entry, TransformKey{});
+        k.frame = entry.number("frame");
+        if (!std::isfinite(k.frame) || std::abs(k.frame) > 1e9) entry.fail("frame", "must be a finite frame number");
+        if (!keys.empty() && !(k.frame > keys.back().frame)) entry.fail("frame", "must follow the previous key's frame");
+        keys.push_back(k);
+    }
+    return keys;
+}
+
+// volume.transform: a matrix; or translate, rotate and scale, still, keyed per frame (`keys`) or
+// from a Nuke .chan file (`chan`, which gives translate and rotate; `scale` applies to every key).
+// An array is its keys.
+VolumeTransform readVolumeTransform(const JsonObject& volume, const std::string& base_dir) {
     VolumeTransform t;
+    if (volume.raw("transform").is_array()) {
+        t.keys = readTransformKeys(volume, "transform");
+        return t;
+    }
+    const JsonObject o = volume.object("transform");
+    o.rejectUnknown({"translate", "rotate", "scale", "rotate_order", "matrix", "keys", "chan"});
     if (o.has("matrix")) {
-        for (const char* key : {"translate", "rotate", "scale"})
+        for (const char* key : {"translate", "rotate", "scale", "rotate_order", "keys", "chan"})
             if (o.has(key)) o.fail(key, "goes with translate, rotate and scale, not with a matrix");
         t.matrix = readCameraPose(o).matrix;   // the same checks as a camera's: finite, invertible
         return t;
     }
-    if (o.has("translate")) t.translate = readPoint(o, "translate");
-    t.rotate = o.vec3("rotate", t.rotate);
-    if (!std::isfinite(t.rotate.x + t.rotate.y + t.rotate.z)) o.fail("rotate", "must be finite degrees");
-    if (o.has("scale")) t.scale = o.raw("scale").is_number() ? glm::vec3(o.number("scale")) : o.vec3("scale");
-    if (!(glm::compMin(t.scale) > 0) || !std::isfinite(glm::compMax(t.scale)))
-        o.fail("scale", "must be finite and > 0 (a number, or one per axis)");
+    const std::string order = o.choice("rotate_order", {std::begin(kRotateOrderNames), std::end(kRotateOrderNames)}, "xyz");
+    t.rotate_order = RotateOrder(std::find(std::begin(kRotateOrderNames), std::end(kRotateOrderNames), order) - std::begin(kRotateOrderNames));
+    const TransformKey still = readPose(o, TransformKey{});
+    t.translate = still.translate, t.rotate = still.rotate, t.scale = still.scale;
+    if (o.has("keys") && o.has("chan")) o.fail("chan", "goes with scale and rotate_order, not with keys");
+    if (o.has("chan")) {
+        for (const char* key : {"translate", "rotate"})
+            if (o.has(key)) o.fail(key, "comes from the .chan file, which gives translate and rotate per frame");
+        t.chan = resolvePath(o.string("chan"), base_dir);
+        t.keys = readChanFile(t.chan);
+        for (TransformKey& k : t.keys) k.scale = t.scale;
+    } else if (o.has("keys")) {
+        for (const char* key : {"translate", "rotate", "scale"})
+            if (o.has(key)) o.fail(key, "goes in each key of keys, not beside them");
+        t.keys = readTransformKeys(o, "keys");
+    }
     return t;
 }
 
@@ -239,7 +289,9 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
                       : LevelSetPolicy::Reject;
     const std::string up = o.choice("up", {"auto", "x", "y", "z"}, "auto");
     v.up = up == "x" ? UpAxis::X : up == "y" ? UpAxis::Y : up == "z" ? UpAxis::Z : UpAxis::Auto;
-    if (o.has("transform")) v.transform = readVolumeTransform(o.object("transform"));
+    if (o.has("transform")) v.transform = readVolumeTransform(o, base_dir);
+    if (v.transform && !v.transform->keys.empty() && !hasFramePattern(v.path))
+        o.fail("transform", "is keyed per frame, but path names one file, not a #### sequence");
     return v;
 }
 

@@ -120,6 +120,34 @@ nlohmann::json lightToJson(const Light& l) {
     return lj;
 }
 
+namespace {
+
+nlohmann::json poseToJson(const TransformKey& k) {
+    return {{"translate", jsonVec3(k.translate)}, {"rotate", jsonVec3(k.rotate)}, {"scale", jsonVec3(k.scale)}};
+}
+
+// As written: a .chan file stays a file name, so an edit of the file is not an edit of the scene
+// text (the render graph hashes the file's identity beside it).
+nlohmann::json volumeTransformToJson(const VolumeTransform& t) {
+    if (t.matrix) return {{"matrix", matrixToJson(*t.matrix)}};
+    nlohmann::json j = poseToJson({0.0, t.translate, t.rotate, t.scale});
+    if (t.rotate_order != RotateOrder::Xyz) j["rotate_order"] = kRotateOrderNames[int(t.rotate_order)];
+    if (!t.chan.empty()) {
+        j.erase("translate"), j.erase("rotate");
+        j["chan"] = t.chan;
+    } else if (!t.keys.empty()) {
+        j.erase("translate"), j.erase("rotate"), j.erase("scale");
+        for (const TransformKey& k : t.keys) {
+            nlohmann::json key = poseToJson(k);
+            key["frame"] = k.frame;
+            j["keys"].push_back(key);
+        }
+    }
+    return j;
+}
+
+}  // namespace
+
 nlohmann::json sceneToJson(const Scene& s) {
     nlohmann::json j;
     auto& v = j["volume"];
@@ -133,10 +161,7 @@ nlohmann::json sceneToJson(const Scene& s) {
     v["level_set"] = s.volume.level_set == LevelSetPolicy::ConvertToFog ? "fog" : "reject";
     v["up"] = upAxisName(s.volume.up);
     // Written only when set: a scene without one hashes as it did before the key existed.
-    if (const auto& t = s.volume.transform) {
-        if (t->matrix) v["transform"]["matrix"] = matrixToJson(*t->matrix);
-        else v["transform"] = {{"translate", jsonVec3(t->translate)}, {"rotate", jsonVec3(t->rotate)}, {"scale", jsonVec3(t->scale)}};
-    }
+    if (const auto& t = s.volume.transform) v["transform"] = volumeTransformToJson(*t);
 
     auto& m = j["material"];
     m["density_scale"] = jsonDecimal(s.material.density_scale);

@@ -217,7 +217,7 @@ void placeVectors(const glm::mat3& linear, openvdb::Vec3SGrid& grid) {
 }  // namespace
 
 LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::vector<EmissionSource>& emission,
-                        const std::optional<MotionBlur>& motion) {
+                        const std::optional<MotionBlur>& motion, std::optional<int> frame) {
     initOpenVdb();
     VdbFile f = openFile(file);
     LoadedVolume v;
@@ -225,7 +225,7 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const s
     auto density = asFogFloat(readGrid(f, file, spec.density, v.warnings, "--grid"), file, spec, "density");
     v.index_to_world = indexToWorld(*density, file);
     v.up = detectUpAxis(f.fileMetadata(), *density);
-    const glm::mat4 placement = spec.transform ? volumeTransformMatrix(*spec.transform) : glm::mat4(1.0f);
+    const glm::mat4 placement = spec.transform ? volumeTransformMatrix(*spec.transform, frame) : glm::mat4(1.0f);
     if (spec.transform) {
         v.index_to_world = placement * v.index_to_world;
         v.up.frame = placedFrame(glm::mat3(placement), v.up.frame);

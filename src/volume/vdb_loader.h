@@ -50,11 +50,13 @@ struct GridSummary {
 
 void initOpenVdb();
 
-// The grids `spec` names, each emission source's grid, and with motion blur the velocity grid.
+// The grids `spec` names, each emission source's grid, and with motion blur the velocity grid,
+// placed by spec.transform at `frame` (a keyed transform's pose; unset: a still, at its first key).
 // Throws InputError "<file>: <problem>".
 LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec,
                         const std::vector<EmissionSource>& emission = {},
-                        const std::optional<MotionBlur>& motion = std::nullopt);
+                        const std::optional<MotionBlur>& motion = std::nullopt,
+                        std::optional<int> frame = std::nullopt);
 std::vector<GridSummary> summarizeFile(const std::string& file);
 
 // Index-to-world of a grid as a column-major matrix; throws for non-affine transforms.

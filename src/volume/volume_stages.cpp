@@ -25,7 +25,7 @@ std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas, const
 }  // namespace
 
 StageReads LoadStage::reads() const {
-    return {{"/input/file", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/volume/transform", "/emission/*/grid",
+    return {{"/input/file", "/input/frame", "/input/transform_chan", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/volume/transform", "/emission/*/grid",
              "/render/motion_blur?", "/render/motion_blur/velocity", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale",
              "/render/motion_blur/fps"}};
 }
@@ -44,9 +44,11 @@ StageActivity LoadStage::activity(const Scene& s) const {
 
 void LoadStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/volume", "/emission/*/grid", "/render/motion_blur"});
+    const nlohmann::json& at = run.scene.value("/input/frame");
+    const std::optional<int> frame = at.is_number() ? std::optional<int>(at.get<int>()) : std::nullopt;
     volume_ = std::make_shared<const LoadedVolume>(
         given_ ? *given_
-               : loadVolume(run.scene.value("/input/file/path"), scene.volume, scene.emission, scene.render.motion_blur));
+               : loadVolume(run.scene.value("/input/file/path"), scene.volume, scene.emission, scene.render.motion_blur, frame));
     run.warnings = volume_->warnings;
 }
 

@@ -210,7 +210,7 @@ std::vector<std::pair<std::string, nlohmann::json>> sweepScenes() {
                                    {"space", "ACEScct"}},
                                   {{"look", "Warm"}}}}};
     graded["output"]["preview"] = "out/graded.png";
-    scenes[1].second["volume"]["transform"] = {{"translate", {0.1, 0.0, -0.2}}, {"rotate", {10, 20, 30}}, {"scale", {1.1, 0.9, 1.0}}};
+    scenes[1].second["volume"]["transform"] = {{"translate", {0.1, 0.0, -0.2}}, {"rotate", {10, 20, 30}}, {"scale", {1.1, 0.9, 1.0}}, {"rotate_order", "zxy"}};
     scenes.emplace_back("surface, unshadowed", none);
     scenes.emplace_back("reference", reference);
     scenes.emplace_back("eye pass, chroma subsampled, blended axes, point light", eye);
@@ -229,6 +229,7 @@ std::string otherString(const std::string& key, const std::string& value) {
         {"shadows", {"none", "raymarch", "sat_cone", "propagation"}},
         {"method", {"march", "reference"}},
         {"level_set", {"reject", "fog"}},
+        {"rotate_order", {"xyz", "zxy"}},
         {"pixel_type", {"half", "float"}},
         {"compression", {"zip", "piz"}},
         {"phase", {"phong", "henyey_greenstein"}},

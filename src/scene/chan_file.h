@@ -1,0 +1,22 @@
+// Nuke's .chan file, the text an Axis or a Camera exports: one line per frame,
+// "frame tx ty tz rx ry rz", rotations in degrees. A camera's file carries its vertical field of
+// view in an eighth column, which a volume's placement has no use for and skips. Reading is one
+// pass over the text; each key costs a line.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace voxlux {
+
+// The keys of `text` (read from `file`), frames strictly increasing, scale 1. Blank lines are
+// skipped. Throws InputError "<file>: line N: <problem>" for anything else, and for a file without
+// a key.
+std::vector<TransformKey> parseChan(const std::string& text, const std::string& file);
+
+// parseChan of the file at `path`; throws InputError "<path>: cannot open .chan file" when it
+// cannot be read.
+std::vector<TransformKey> readChanFile(const std::string& path);
+
+}  // namespace voxlux
