@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
     }
 
     Scene scene;
-    scene.volume.path = cache;
+    scene.volume().path = cache;
     scene.render.width = scene.render.height = res;
     scene.render.step = 0.5f;
     scene.lights = {defaultKeyLight()};
@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
     LoadedVolume volume;
     BrickAtlas atlas;
     PageTable pages;
-    const double tLoad = best(repeats, [&] { volume = loadVolume(cache, scene.volume); });
+    const double tLoad = best(repeats, [&] { volume = loadVolume(cache, scene.volume()); });
     const double tBrick = best(repeats, [&] { atlas = buildBrickAtlas(volume); });
     const double tClassify = best(repeats, [&] { pages = classifiedPageTable(atlas, scene); });
     const Camera camera = frameActiveVoxels(volume, scene);

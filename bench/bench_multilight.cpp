@@ -160,11 +160,11 @@ Light moved(Light l, float degrees, const Volume& vol) {
 
 Scene baseScene(const Volume& vol, int resolution, bool coherent) {
     Scene s;
-    s.volume.path = vol.file;
-    s.volume.density = GridRef{"density", 0};
+    s.volume().path = vol.file;
+    s.volume().density = GridRef{"density", 0};
     s.render.backend = Backend::Cpu;
     s.render.width = s.render.height = 16;   // no march runs: apply() prepares every stage but it
-    s.material.density_scale = 2.0f;         // the reference's direct light is ~46% of the unshadowed one
+    s.volume().material.density_scale = 2.0f;         // the reference's direct light is ~46% of the unshadowed one
     s.effects.shadows = ShadowMethod::Propagation;
     s.effects.light_resolution = resolution;
     s.effects.propagation.coherent = coherent;

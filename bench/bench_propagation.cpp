@@ -159,10 +159,10 @@ void paperComparison(bool quick) {
 
     const std::string path = writeNoiseVdb(n);
     Scene scene;
-    scene.volume.path = path;
+    scene.volume().path = path;
     scene.render.backend = Backend::Cpu;
     scene.render.width = scene.render.height = 16;   // the march is not what is timed here
-    scene.material.density_scale = kSyntheticDepth / float(n);
+    scene.volume().material.density_scale = kSyntheticDepth / float(n);
     scene.effects.shadows = ShadowMethod::Propagation;
     scene.effects.light_resolution = n;
     Light key;
@@ -413,15 +413,15 @@ void sweep(const Dataset& d, bool quick, std::vector<PlotSeries>& plot, const ch
            std::vector<BlendPair>& blends) {
     const int runs = quick ? 1 : 2;
     Scene base;
-    base.volume.path = d.file;
-    base.volume.density = GridRef{d.grid, 0};
+    base.volume().path = d.file;
+    base.volume().density = GridRef{d.grid, 0};
     base.render.width = 320;
     base.render.height = 240;
     base.render.backend = Backend::Cpu;
-    base.material.density_scale = d.density_scale;
+    base.volume().material.density_scale = d.density_scale;
 
     // A fixed camera: the default three-quarter framing, turned to Z up for the Blender cache.
-    const LoadedVolume volume = loadVolume(d.file, base.volume);
+    const LoadedVolume volume = loadVolume(d.file, base.volume());
     Camera cam = frameActiveVoxels(volume, base);
     Light key;
     key.intensity = 6.0f;

@@ -186,11 +186,11 @@ Light keyLight() {
 void sweep(const Dataset& d, bool quick, std::vector<PlotSeries>& plot, const char* color_shadow,
            const char* color_ao) {
     Scene base;
-    base.volume.path = d.file;
+    base.volume().path = d.file;
     base.render.width = d.res.x;
     base.render.height = d.res.y;
     base.render.backend = Backend::Cpu;
-    base.material.density_scale = d.density_scale;
+    base.volume().material.density_scale = d.density_scale;
 
     // Shadows: one directional key light; the reference marches a shadow ray per sample at half
     // a voxel (render.shadow_step 0.5).
@@ -231,7 +231,7 @@ void sweep(const Dataset& d, bool quick, std::vector<PlotSeries>& plot, const ch
     sky.intensity = 1.0f;
     ambient.lights = {sky};
     // A neighbourhood of 1/8 of the volume's longest side (16 cells at light res 128).
-    const LoadedVolume volume = loadVolume(d.file, base.volume);
+    const LoadedVolume volume = loadVolume(d.file, base.volume());
     const openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
     glm::vec3 lo, hi;
     worldBounds(volume.index_to_world, glm::vec3(box.min().x(), box.min().y(), box.min().z()),

@@ -16,7 +16,7 @@ namespace voxlux {
 class ColorSpaceStage final : public Stage {
 public:
     std::string name() const override { return "color_space"; }
-    StageReads reads() const override { return {{"/color/config", "/color/working_space", "/input/ocio", "/emission/*/kind"}}; }
+    StageReads reads() const override { return {{"/color/config", "/color/working_space", "/input/ocio", "/volumes/*/emission/*/kind"}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     const ColorPipeline& working() const { return *working_; }

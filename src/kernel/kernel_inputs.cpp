@@ -31,7 +31,7 @@ kernel::VxLight packLight(const Light& l) {
 void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz_to_working, KernelInputs& in) {
     auto& P = in.params;
     const auto& r = scene.render;
-    const auto& m = scene.material;
+    const auto& m = scene.volume().material;
     const float edge = voxelEdge(atlas.index_to_world);
     P.world_to_index = glm::inverse(atlas.index_to_world);
     P.step = r.step * edge;
@@ -49,7 +49,7 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     bool emits = false;
     for (size_t e = 0; e < atlas.emission_sources; ++e) {
         const float grid_max = atlas.emissionGridMax(e);
-        const EmissionTable table = bakeEmission(scene.emission.at(e), grid_max, xyz_to_working);
+        const EmissionTable table = bakeEmission(scene.volume().emission.at(e), grid_max, xyz_to_working);
         in.emission_lut.insert(in.emission_lut.end(), table.rows.begin(), table.rows.end());
         P.emission_domain[int(e)] = grid_max > 0.0f ? 1.0f / grid_max : 0.0f;
         emits |= table.threshold < std::numeric_limits<float>::infinity();

@@ -16,13 +16,14 @@ namespace {
 VolumeSpec densityOnly(const VolumeSpec& spec) {
     VolumeSpec v = spec;
     v.color.reset();
+    v.emission.clear();
     return v;
 }
 
 }  // namespace
 
 Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
-    const LoadedVolume volume = loadVolume(file, densityOnly(scene.volume));
+    const LoadedVolume volume = loadVolume(file, densityOnly(scene.volume()));
     if (volume.density->activeVoxelCount() == 0)
         throw InputError(file + ": grid '" + volume.density->getName() + "' has no active voxels");
     return frameActiveVoxels(volume, scene);
@@ -31,11 +32,11 @@ Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
 SequenceFraming frameSequence(const Scene& scene) {
     FrameSet frames;
     try {
-        frames = framesOnDisk(scene.volume.path, scene.volume.frames.value());
+        frames = framesOnDisk(scene.volume().path, scene.volume().frames.value());
     } catch (const std::invalid_argument& e) {
-        throw InputError(scene.volume.path + ": " + e.what());
+        throw InputError(scene.volume().path + ": " + e.what());
     }
-    if (frames.count() == 0) throw InputError(scene.volume.path + ": no file of this sequence exists");
+    if (frames.count() == 0) throw InputError(scene.volume().path + ": no file of this sequence exists");
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     std::optional<glm::mat3> view;
     SequenceFraming out;
@@ -46,7 +47,7 @@ SequenceFraming frameSequence(const Scene& scene) {
         // the render names it when its turn comes.
         LoadedVolume volume;
         try {
-            volume = loadVolume(expandFramePattern(scene.volume.path, frame), densityOnly(scene.volume), {}, std::nullopt, frame);
+            volume = loadVolume(expandFramePattern(scene.volume().path, frame), densityOnly(scene.volume()), std::nullopt, frame);
         } catch (const InputError& e) {
             if (out.unreadable.count() == 0) out.unreadable_reason = e.what();
             out.unreadable.add(frame);
@@ -62,8 +63,8 @@ SequenceFraming frameSequence(const Scene& scene) {
         if (!view) view = viewFrameOf(scene, volume);
     }
     if (!view)
-        throw InputError(scene.volume.path + ": frames " + frames.text() +
-                         " have no active voxels in grid '" + scene.volume.density.name + "' to frame");
+        throw InputError(scene.volume().path + ": frames " + frames.text() +
+                         " have no active voxels in grid '" + scene.volume().density.name + "' to frame");
     out.frames = frames;
     out.camera = frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), *view);
     return out;

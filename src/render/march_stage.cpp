@@ -44,9 +44,9 @@ std::string MarchStage::referenceSetupKey(const StageRun& run) const {
 StageReads MarchStage::reads() const {
     // Every render key but exposure, which only the grade applies.
     return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
-             "/render/method", "/render/reference", "/render/motion_blur", "/render/region", "/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
+             "/render/method", "/render/reference", "/render/motion_blur", "/render/region", "/volumes/*/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
-             "/emission", "/output/deep", "/output/deep_samples", "/input/frame"}};
+             "/volumes/*/emission", "/output/deep", "/output/deep_samples", "/input/frame"}};
 }
 
 StageActivity MarchStage::activity(const Scene& s) const {
@@ -75,7 +75,7 @@ StageActivity MarchStage::activity(const Scene& s) const {
         march += reference ? ", motion-blurred where the medium or camera moves (a time a path)"
                            : ", motion-blurred where the medium or camera moves (" + std::to_string(mb->samples) +
                                  (mb->samples == 1 ? " ray" : " rays") + " a pixel)";
-    for (size_t i = 0; i < s.emission.size(); ++i) march += (i ? ", " : ", emission: ") + emissionDescription(s.emission[i]);
+    for (size_t i = 0; i < s.volume().emission.size(); ++i) march += (i ? ", " : ", emission: ") + emissionDescription(s.volume().emission[i]);
     return {true, march};
 }
 

@@ -106,11 +106,11 @@ KernelBackend& Renderer::backend() {
 nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) const {
     nlohmann::json doc = sceneToJson(scene_);
     nlohmann::json& in = doc["input"];
-    const std::string file = frame ? expandFramePattern(scene_.volume.path, *frame) : scene_.volume.path;
+    const std::string file = frame ? expandFramePattern(scene_.volume().path, *frame) : scene_.volume().path;
     in["file"] = stages_->load.given() ? nlohmann::json{{"path", "grids in memory"}} : fileIdentity(file);
     in["frame"] = frame ? nlohmann::json(*frame) : nlohmann::json(nullptr);
-    if (scene_.volume.transform && !scene_.volume.transform->chan.empty())
-        in["transform_chan"] = fileIdentity(scene_.volume.transform->chan);
+    if (scene_.volume().transform && !scene_.volume().transform->chan.empty())
+        in["transform_chan"] = fileIdentity(scene_.volume().transform->chan);
     const char* ocio = std::getenv("OCIO");
     in["ocio"] = ocio ? ocio : "";
     in["allow_empty"] = allow_empty;

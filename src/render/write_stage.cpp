@@ -90,7 +90,7 @@ void WriteStage::run(StageRun& run) {
 
 std::string sceneHash(const Scene& scene) {
     nlohmann::json j = sceneToJson(scenePathsRelativeTo(scene, "/"));
-    j["volume"].erase("frames");
+    for (auto& v : j["volumes"]) v.erase("frames");
     j["output"].erase("path");
     j["output"].erase("preview");
     return hashText(jsonText(j));

@@ -58,16 +58,6 @@ struct VolumeTransform {
 // Its matrix at `frame` (unset: a still, posed at the first key), from the file's world to the scene's.
 glm::mat4 volumeTransformMatrix(const VolumeTransform& t, std::optional<double> frame = std::nullopt);
 
-struct VolumeSpec {
-    std::string path;                      // may contain a #### frame pattern
-    std::optional<FrameSet> frames;        // the frames of a #### pattern: [first, last], or "1-240x2,300"
-    GridRef density{"density", 0};
-    std::optional<GridRef> color;          // Cd, vec3
-    LevelSetPolicy level_set = LevelSetPolicy::Reject;
-    UpAxis up = UpAxis::Auto;              // frames the default camera and orients the quick form's light
-    std::optional<VolumeTransform> transform;
-};
-
 struct TransferPoint {
     float value = 0.0f;
     float extinction = 0.0f;
@@ -250,6 +240,21 @@ struct EmissionSource {
                                            // clamped beyond them; radiance = colour * intensity
 };
 
+// One volume of the scene (an entry of `volumes`): a cache or a sequence of them, where it sits,
+// its material and the light its grids emit.
+struct VolumeSpec {
+    std::string name;                      // unique in the scene (AOVs, messages); scene_read names it from the file when unset
+    std::string path;                      // may contain a #### frame pattern
+    std::optional<FrameSet> frames;        // the frames of a #### pattern: [first, last], or "1-240x2,300"
+    GridRef density{"density", 0};
+    std::optional<GridRef> color;          // Cd, vec3
+    LevelSetPolicy level_set = LevelSetPolicy::Reject;
+    UpAxis up = UpAxis::Auto;              // frames the default camera and orients the quick form's light
+    std::optional<VolumeTransform> transform;
+    Material material;
+    std::vector<EmissionSource> emission;
+};
+
 enum class PixelType { Half, Float };
 
 // One AOV layer of the EXR; pixel_type unset: the output's pixel_type (depth: always float).
@@ -300,13 +305,14 @@ struct ColorSettings {
 };
 
 struct Scene {
-    VolumeSpec volume;
-    Material material;
+    std::vector<VolumeSpec> volumes{1};    // at least one
+    // The volume a render takes: scene_read refuses a scene of several until the march composes them.
+    VolumeSpec& volume() { return volumes.front(); }
+    const VolumeSpec& volume() const { return volumes.front(); }
     std::vector<Light> lights;
     std::optional<Camera> camera;          // absent: framed from the volume's bounding box
     RenderSettings render;
     Effects effects;
-    std::vector<EmissionSource> emission;
     ColorSettings color;
     OutputSpec output;
 };

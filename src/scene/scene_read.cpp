@@ -260,8 +260,11 @@ VolumeTransform readVolumeTransform(const JsonObject& volume, const std::string&
     return t;
 }
 
+// The keys of `volume` and of an entry of `volumes` (which also holds its material and emission).
+const std::vector<std::string> kVolumeKeys{"name", "path", "frames", "density", "color", "level_set", "up", "transform"};
+
+// The cache, its frames and its placement; not its name, material or emission (readVolumes).
 VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
-    o.rejectUnknown({"path", "frames", "density", "color", "level_set", "up", "transform"});
     VolumeSpec v;
     v.path = o.string("path");
     v.path = resolvePath(v.path, base_dir);
@@ -651,33 +654,99 @@ Light readLight(const JsonObject& o) {
     return l;
 }
 
+namespace {
+
+// The emission sources at `o`'s "emission", if any.
+std::vector<EmissionSource> readEmission(const JsonObject& o) {
+    std::vector<EmissionSource> out;
+    if (!o.has("emission")) return out;
+    const auto sources = o.objects("emission");
+    if (sources.size() > VX_MAX_EMISSION)
+        o.fail("emission", "at most " + std::to_string(VX_MAX_EMISSION) + " sources (got " + std::to_string(sources.size()) + ")");
+    for (const auto& e : sources) out.push_back(readEmissionSource(e));
+    return out;
+}
+
+// A name holds letters, digits, '_' and '-': it becomes part of EXR channel names, where '.'
+// separates layers.
+bool isNameCharacter(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; }
+
+// A volume's name when it has none: its file's, without the folder, the extension and the frame
+// pattern ("fire.####.vdb" -> "fire"), other characters turned to '_'.
+std::string nameFromPath(const std::string& path) {
+    std::string stem = fs::path(path).stem().string();
+    stem.erase(std::remove(stem.begin(), stem.end(), '#'), stem.end());
+    for (char& c : stem)
+        if (!isNameCharacter(c)) c = '_';
+    while (!stem.empty() && (stem.back() == '_' || stem.back() == '-')) stem.pop_back();
+    return stem.empty() ? "volume" : stem;
+}
+
+// `volumes`, or `volume` with `material` and `emission` beside it (a list of one); each named,
+// the names unique.
+std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& base_dir) {
+    std::vector<VolumeSpec> volumes;
+    std::vector<JsonObject> entries;
+    if (root.has("volumes")) {
+        if (root.has("volume")) root.fail("volume", "goes alone, with material and emission beside it, or as an entry of volumes: not both");
+        for (const char* key : {"material", "emission"})
+            if (root.has(key)) root.fail(key, "goes in each entry of volumes");
+        entries = root.objects("volumes");
+        if (entries.empty()) root.fail("volumes", "expected at least one volume");
+        std::vector<std::string> keys = kVolumeKeys;
+        keys.insert(keys.end(), {"material", "emission"});
+        for (const JsonObject& o : entries) {
+            o.rejectUnknown(keys);
+            VolumeSpec v = readVolume(o, base_dir);
+            if (o.has("material")) v.material = readMaterial(o.object("material"));
+            v.emission = readEmission(o);
+            volumes.push_back(std::move(v));
+        }
+    } else {
+        entries.push_back(root.object("volume"));
+        entries[0].rejectUnknown(kVolumeKeys);
+        VolumeSpec v = readVolume(entries[0], base_dir);
+        if (root.has("material")) v.material = readMaterial(root.object("material"));
+        v.emission = readEmission(root);
+        volumes.push_back(std::move(v));
+    }
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const JsonObject& o = entries[i];
+        VolumeSpec& v = volumes[i];
+        if (!v.material.transfer_2d.empty() && v.color)
+            o.fail("color", "the 2D transfer function (material.transfer_function_2d) gives the albedo; remove color");
+        v.name = o.has("name") ? o.string("name") : nameFromPath(v.path);
+        if (v.name.empty() || !std::all_of(v.name.begin(), v.name.end(), isNameCharacter))
+            o.fail("name", "'" + v.name + "' must be letters, digits, '_' and '-'");
+        for (size_t k = 0; k < i; ++k)
+            if (volumes[k].name == v.name)
+                o.fail("name", "'" + v.name + "' is also volume " + std::to_string(k) + "'s name" +
+                                   (o.has("name") ? "" : " (taken from the file's; set name)"));
+    }
+    if (volumes.size() > 1)
+        root.fail("volumes", std::to_string(volumes.size()) + " volumes: a scene renders one volume so far");
+    return volumes;
+}
+
+}  // namespace
+
 Scene parseScene(const std::string& text, const std::string& file, const std::string& base_dir) {
     return sceneFromJson(parseJson(text, file), file, base_dir);
 }
 
 Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const std::string& base_dir) {
     JsonObject root(json, file, "");
-    root.rejectUnknown({"volume", "material", "lights", "camera", "render", "effects", "emission", "color", "output"});
+    root.rejectUnknown({"volume", "volumes", "material", "lights", "camera", "render", "effects", "emission", "color", "output"});
     Scene s;
-    s.volume = readVolume(root.object("volume"), base_dir);
-    if (root.has("material")) s.material = readMaterial(root.object("material"));
+    s.volumes = readVolumes(root, base_dir);
     if (root.has("lights"))
         for (const auto& l : root.objects("lights")) s.lights.push_back(readLight(l));
     if (root.has("camera")) s.camera = readCamera(root.object("camera"));
-    if (!s.material.transfer_2d.empty() && s.volume.color)
-        root.fail("volume", "color: the 2D transfer function (material.transfer_function_2d) gives the albedo; remove volume.color");
     if (root.has("render")) s.render = readRender(root.object("render"));
     if (root.has("effects")) s.effects = readEffects(root.object("effects"));
     if (s.render.method == RenderMethod::Reference && (s.effects.surface || s.effects.perturbation))
         root.fail("effects", "surface and perturbation are march-only effects (render.method is \"reference\")");
     if (root.has("color")) s.color = readColor(root.object("color"), base_dir);
-    if (root.has("emission")) {
-        const auto sources = root.objects("emission");
-        if (sources.size() > VX_MAX_EMISSION)
-            root.fail("emission", "at most " + std::to_string(VX_MAX_EMISSION) + " sources (got " +
-                                      std::to_string(sources.size()) + ")");
-        for (const auto& e : sources) s.emission.push_back(readEmissionSource(e));
-    }
     if (root.has("output")) s.output = readOutput(root.object("output"));
     if (s.render.method == RenderMethod::Reference && s.output.deep)
         root.fail("output", "deep is a march-only output (render.method is \"reference\"): the Monte Carlo reference writes no deep samples");

@@ -146,31 +146,15 @@ nlohmann::json volumeTransformToJson(const VolumeTransform& t) {
     return j;
 }
 
-}  // namespace
-
-nlohmann::json sceneToJson(const Scene& s) {
-    nlohmann::json j;
-    auto& v = j["volume"];
-    v["path"] = s.volume.path;
-    if (s.volume.frames) {
-        if (s.volume.frames->isRange()) v["frames"] = {s.volume.frames->first(), s.volume.frames->last()};
-        else v["frames"] = s.volume.frames->text();
-    }
-    v["density"] = gridRefToJson(s.volume.density);
-    if (s.volume.color) v["color"] = gridRefToJson(*s.volume.color);
-    v["level_set"] = s.volume.level_set == LevelSetPolicy::ConvertToFog ? "fog" : "reject";
-    v["up"] = upAxisName(s.volume.up);
-    // Written only when set: a scene without one hashes as it did before the key existed.
-    if (const auto& t = s.volume.transform) v["transform"] = volumeTransformToJson(*t);
-
-    auto& m = j["material"];
-    m["density_scale"] = jsonDecimal(s.material.density_scale);
-    m["density_units"] = s.material.density_units == DensityUnits::Voxel ? "voxel" : "world";
-    m["albedo"] = jsonVec3(s.material.albedo);
-    m["anisotropy"] = jsonDecimal(s.material.anisotropy);
-    for (const auto& p : s.material.transfer)
+nlohmann::json materialToJson(const Material& material) {
+    nlohmann::json m;
+    m["density_scale"] = jsonDecimal(material.density_scale);
+    m["density_units"] = material.density_units == DensityUnits::Voxel ? "voxel" : "world";
+    m["albedo"] = jsonVec3(material.albedo);
+    m["anisotropy"] = jsonDecimal(material.anisotropy);
+    for (const auto& p : material.transfer)
         m["transfer_function"].push_back({{"value", jsonDecimal(p.value)}, {"extinction", jsonDecimal(p.extinction)}, {"albedo", jsonVec3(p.albedo)}});
-    for (const auto& r : s.material.transfer_2d) {
+    for (const auto& r : material.transfer_2d) {
         nlohmann::json region = {{"fade", jsonDecimal(r.fade)}, {"extinction", jsonDecimal(r.extinction)}, {"albedo", jsonVec3(r.albedo)}};
         if (!r.name.empty()) region["name"] = r.name;
         if (r.transport) region["transport"] = jsonVec3(*r.transport);
@@ -184,12 +168,38 @@ nlohmann::json sceneToJson(const Scene& s) {
         }
         m["transfer_function_2d"].push_back(region);
     }
+    return m;
+}
+
+nlohmann::json volumeToJson(const VolumeSpec& volume) {
+    nlohmann::json v;
+    if (!volume.name.empty()) v["name"] = volume.name;   // unset in a scene built in code: the reader names it
+    v["path"] = volume.path;
+    if (volume.frames) {
+        if (volume.frames->isRange()) v["frames"] = {volume.frames->first(), volume.frames->last()};
+        else v["frames"] = volume.frames->text();
+    }
+    v["density"] = gridRefToJson(volume.density);
+    if (volume.color) v["color"] = gridRefToJson(*volume.color);
+    v["level_set"] = volume.level_set == LevelSetPolicy::ConvertToFog ? "fog" : "reject";
+    v["up"] = upAxisName(volume.up);
+    // Written only when set: a scene without one hashes as it did before the key existed.
+    if (const auto& t = volume.transform) v["transform"] = volumeTransformToJson(*t);
+    v["material"] = materialToJson(volume.material);
+    v["emission"] = nlohmann::json::array();
+    for (const auto& e : volume.emission) v["emission"].push_back(emissionToJson(e));
+    return v;
+}
+
+}  // namespace
+
+nlohmann::json sceneToJson(const Scene& s) {
+    nlohmann::json j;
+    j["volumes"] = nlohmann::json::array();
+    for (const VolumeSpec& v : s.volumes) j["volumes"].push_back(volumeToJson(v));
 
     j["lights"] = nlohmann::json::array();
     for (const auto& l : s.lights) j["lights"].push_back(lightToJson(l));
-
-    j["emission"] = nlohmann::json::array();
-    for (const auto& e : s.emission) j["emission"].push_back(emissionToJson(e));
 
     if (s.camera) {
         auto& c = j["camera"];
@@ -267,7 +277,10 @@ Scene scenePathsRelativeTo(Scene scene, const std::string& folder) {
     const auto relative = [&](std::string& path) {
         if (!path.empty()) path = std::filesystem::absolute(path).lexically_normal().lexically_relative(base).string();
     };
-    relative(scene.volume.path);
+    for (VolumeSpec& v : scene.volumes) {
+        relative(v.path);
+        if (v.transform) relative(v.transform->chan);
+    }
     relative(scene.color.config);
     for (GradeStep& g : scene.color.grade) relative(g.file);
     return scene;

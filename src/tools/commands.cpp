@@ -133,7 +133,7 @@ Scene sceneFor(const std::string& input, const SceneOverrides& overrides, std::v
                             framing.unreadable_reason + ")");
     }
     if (sequenceFrames(scene) && !scene.camera)   // --frame-on
-        scene.camera = frameVolumeCamera(expandFramePattern(scene.volume.path, *reference), scene);
+        scene.camera = frameVolumeCamera(expandFramePattern(scene.volume().path, *reference), scene);
     if (quick) scene = completeQuickScene(scene, overrides, reference, notes);
     return scene;
 }
@@ -150,17 +150,17 @@ void printNotes(const std::vector<std::string>& notes) {
 // a note, as the render's own line.
 std::vector<std::string> missingInputs(const Scene& scene, const SequenceOptions& sequence, std::vector<std::string>& notes) {
     std::vector<std::string> problems;
-    std::vector<std::string> files{scene.volume.path}, outputs;
+    std::vector<std::string> files{scene.volume().path}, outputs;
     try {
         if (const auto frames = sequenceFrames(scene)) {
-            const FrameSet disk = framesOnDisk(scene.volume.path, *frames), present = frames->among(disk), missing = frames->notAmong(disk);
+            const FrameSet disk = framesOnDisk(scene.volume().path, *frames), present = frames->among(disk), missing = frames->notAmong(disk);
             if (present.count() == 0) {
-                problems.push_back(scene.volume.path + ": no file of frames " + frames->text() + " exists" +
+                problems.push_back(scene.volume().path + ": no file of frames " + frames->text() + " exists" +
                                    (disk.count() ? " (on disk: frames " + disk.text() + ")" : ""));
                 return problems;
             }
             if (missing.count()) notes.push_back("frames " + missing.text() + " of " + frames->text() + " are not on disk: they will fail, the others render");
-            files = {expandFramePattern(scene.volume.path, present.first()), expandFramePattern(scene.volume.path, present.last())};
+            files = {expandFramePattern(scene.volume().path, present.first()), expandFramePattern(scene.volume().path, present.last())};
             outputs = frameOutputPaths(scene, present.first());
         } else {
             outputs = frameOutputPaths(scene, std::nullopt);
@@ -169,7 +169,7 @@ std::vector<std::string> missingInputs(const Scene& scene, const SequenceOptions
         problems.push_back(e.what());
         return problems;
     } catch (const std::invalid_argument& e) {   // a frame pattern in a folder's name over too many frames
-        problems.push_back(scene.volume.path + ": " + e.what());
+        problems.push_back(scene.volume().path + ": " + e.what());
         return problems;
     }
     if (const auto problem = outputPathProblem(scene)) {
@@ -180,9 +180,9 @@ std::vector<std::string> missingInputs(const Scene& scene, const SequenceOptions
     if (sequence.log_json) outputs.push_back(*sequence.log_json);
     for (const std::string& path : outputs)
         if (const auto problem = outputProblem(path)) problems.push_back(*problem);
-    std::vector<std::string> grids{scene.volume.density.name};   // the first is the density, whose flag is --grid
-    if (scene.volume.color) grids.push_back(scene.volume.color->name);
-    for (const auto& e : scene.emission) grids.push_back(e.grid.name);
+    std::vector<std::string> grids{scene.volume().density.name};   // the first is the density, whose flag is --grid
+    if (scene.volume().color) grids.push_back(scene.volume().color->name);
+    for (const auto& e : scene.volume().emission) grids.push_back(e.grid.name);
     for (size_t k = 0; k < files.size() && (k == 0 || files[k] != files[0]); ++k) {
         try {
             if (!std::filesystem::exists(files[k])) throw InputError(files[k] + ": no such file");
@@ -278,21 +278,21 @@ int runCalibrateCommand(const CalibrateCommand& cmd) {
 int runScene(const SceneCommand& cmd) {
     std::vector<std::string> notes;
     Scene scene = sceneFor(cmd.input, cmd.overrides, notes);
-    if (!scene.camera) scene.camera = frameVolumeCamera(scene.volume.path, scene);
+    if (!scene.camera) scene.camera = frameVolumeCamera(scene.volume().path, scene);
     // The image is named after the cache (#### kept), in the folder the render runs in.
     if (scene.output.path.empty()) scene.output.path = std::filesystem::path(cmd.input).stem().string() + ".exr";
     // The volume path as the scene file's reader resolves it: relative to the file's folder when
     // it was given relative, or absolute when it was given so or the scene goes to standard output
     // and may be saved anywhere.
-    const std::filesystem::path volume = std::filesystem::absolute(scene.volume.path).lexically_normal();
-    const bool given_absolute = std::filesystem::path(scene.volume.path).is_absolute();
+    const std::filesystem::path volume = std::filesystem::absolute(scene.volume().path).lexically_normal();
+    const bool given_absolute = std::filesystem::path(scene.volume().path).is_absolute();
     if (cmd.output) {
         scene = scenePathsRelativeTo(scene, std::filesystem::absolute(*cmd.output).parent_path().string());
-        if (given_absolute) scene.volume.path = volume.string();
+        if (given_absolute) scene.volume().path = volume.string();
         writeFileAtomically(*cmd.output, jsonText(sceneToJson(scene), 2) + "\n");
         std::cout << "wrote " << *cmd.output << "\n";
     } else {
-        scene.volume.path = volume.string();
+        scene.volume().path = volume.string();
         std::cout << jsonText(sceneToJson(scene), 2) << "\n";
     }
     printNotes(notes);

@@ -116,21 +116,21 @@ bool setsKey(const SceneOverrides& o, const std::string& prefix) {
 
 Scene quickScene(const std::string& vdb) {
     Scene s;
-    s.volume.path = vdb;
+    s.volume().path = vdb;
     s.lights.push_back(defaultKeyLight());
     return s;
 }
 
 Scene completeQuickScene(Scene scene, const SceneOverrides& o, std::optional<int> frame, std::vector<std::string>& notes) {
-    std::string file = scene.volume.path;
-    if (scene.volume.frames && hasFramePattern(file)) {
-        const FrameSet& frames = *scene.volume.frames;
+    std::string file = scene.volume().path;
+    if (scene.volume().frames && hasFramePattern(file)) {
+        const FrameSet& frames = *scene.volume().frames;
         file = expandFramePattern(file, frame.value_or(frames.at(frames.count() / 2)));
     }
-    const LoadedVolume volume = loadVolume(file, scene.volume, scene.emission);
+    const LoadedVolume volume = loadVolume(file, scene.volume());
     const glm::mat3 view_frame = viewFrameOf(scene, volume);
     notes.push_back("quick form: up axis " +
-                    (scene.volume.up == UpAxis::Auto ? volume.up.reason : signedAxisName(view_frame[1]) + " (volume.up)"));
+                    (scene.volume().up == UpAxis::Auto ? volume.up.reason : signedAxisName(view_frame[1]) + " (volume.up)"));
     if (o.lights.empty() && !setsKey(o, "lights")) scene.lights = {defaultKeyLight(view_frame)};
 
     const ViewAxis view = viewAxis(volume.index_to_world, view_frame);
@@ -138,9 +138,9 @@ Scene completeQuickScene(Scene scene, const SceneOverrides& o, std::optional<int
     if (!o.density_scale && !setsKey(o, "material")) {
         const double median = quantile(columnSums(*volume.density, axis, [](float v) { return double(v); }), 0.5);
         if (median > 0.0) {
-            scene.material.density_units = DensityUnits::Voxel;
-            scene.material.density_scale = float(std::min(double(kQuickOpticalDepth) / median, 3.0e38));
-            notes.push_back("quick form: density_scale " + decimalText(scene.material.density_scale) +
+            scene.volume().material.density_units = DensityUnits::Voxel;
+            scene.volume().material.density_scale = float(std::min(double(kQuickOpticalDepth) / median, 3.0e38));
+            notes.push_back("quick form: density_scale " + decimalText(scene.volume().material.density_scale) +
                             " per voxel: the median column along the view holds an optical depth of " +
                             decimalText(kQuickOpticalDepth) + " (--density-scale to change, in voxel units)");
         }
@@ -150,10 +150,10 @@ Scene completeQuickScene(Scene scene, const SceneOverrides& o, std::optional<int
     const double voxel_length = glm::length(glm::vec3(volume.index_to_world[axis]));
     double smallest_edge = voxel_length;
     for (int a = 0; a < 3; ++a) smallest_edge = std::min(smallest_edge, double(glm::length(glm::vec3(volume.index_to_world[a]))));
-    const double depth_per_density = double(scene.material.density_scale) *
-                                     (scene.material.density_units == DensityUnits::Voxel ? voxel_length / smallest_edge : voxel_length);
-    for (size_t e = 0; e < scene.emission.size() && !setsKey(o, "emission"); ++e) {
-        EmissionSource& source = scene.emission[e];
+    const double depth_per_density = double(scene.volume().material.density_scale) *
+                                     (scene.volume().material.density_units == DensityUnits::Voxel ? voxel_length / smallest_edge : voxel_length);
+    for (size_t e = 0; e < scene.volume().emission.size() && !setsKey(o, "emission"); ++e) {
+        EmissionSource& source = scene.volume().emission[e];
         if (source.kind != EmissionKind::Blackbody) continue;
         const glm::mat3 xyz(1.0f);   // luminance is Y
         const auto radiance = [&](float v) { return double(emissionRadiance(source, v, xyz).y); };

@@ -89,22 +89,22 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
         return value;
     };
     if (o.quality) apply("--quality " + *o.quality, [quality = *o.quality](nlohmann::json& s) { applyQualityPreset(s, quality); });
-    setKey("--grid", "/volume/density", o.grid);
+    setKey("--grid", "/volumes/0/density", o.grid);
     if (o.grid_index)
-        apply("--grid-index", [name = o.grid.value_or(base.volume.density.name), index = *o.grid_index](nlohmann::json& s) {
-            s["volume"]["density"] = {{"name", name}, {"index", index}};
+        apply("--grid-index", [name = o.grid.value_or(base.volume().density.name), index = *o.grid_index](nlohmann::json& s) {
+            s["volumes"][0]["density"] = {{"name", name}, {"index", index}};
         });
-    setKey("--color-grid", "/volume/color", o.color_grid);
-    setKey("--level-set", "/volume/level_set", o.level_set);
-    setKey("--up", "/volume/up", o.up);
+    setKey("--color-grid", "/volumes/0/color", o.color_grid);
+    setKey("--level-set", "/volumes/0/level_set", o.level_set);
+    setKey("--up", "/volumes/0/up", o.up);
     if (o.emission_grid || o.blackbody_grid)
         apply(o.emission_grid ? "--emission-grid" : "--blackbody-grid", [o](nlohmann::json& s) {
-            auto& sources = s["emission"] = nlohmann::json::array();
+            auto& sources = s["volumes"][0]["emission"] = nlohmann::json::array();
             if (o.emission_grid) sources.push_back({{"grid", *o.emission_grid}, {"kind", "constant"}, {"color", {1, 1, 1}}});
             if (o.blackbody_grid) sources.push_back(blackbodySource(*o.blackbody_grid));
         });
     if (o.deep) apply("--deep", [](nlohmann::json& s) { s["output"]["deep"] = true; });
-    if (o.frames) apply("--frames " + *o.frames, [&o](nlohmann::json& s) { s["volume"]["frames"] = *o.frames; });
+    if (o.frames) apply("--frames " + *o.frames, [&o](nlohmann::json& s) { s["volumes"][0]["frames"] = *o.frames; });
     if (o.resolution) {
         const std::string flag = "--res " + *o.resolution;
         auto wh = split(*o.resolution, 'x');
@@ -115,7 +115,7 @@ Scene applyOverrides(const Scene& base, const SceneOverrides& o) {
     setKey("--step", "/render/step", finite("--step", o.step));
     setKey("--filter", "/render/filter", o.filter);
     setKey("--shadow-step", "/render/shadow_step", finite("--shadow-step", o.shadow_step));
-    setKey("--density-scale", "/material/density_scale", finite("--density-scale", o.density_scale));
+    setKey("--density-scale", "/volumes/0/material/density_scale", finite("--density-scale", o.density_scale));
     setKey("--backend", "/render/backend", o.backend);
     setKey("--method", "/render/method", o.method);
     setKey("--spp", "/render/reference/spp", o.spp);

@@ -85,15 +85,15 @@ double sequenceSecondsLeft(const std::vector<double>& frame_seconds, int64_t fra
 }
 
 std::optional<FrameSet> sequenceFrames(const Scene& s) {
-    if (!hasFramePattern(s.volume.path)) return std::nullopt;
-    if (!s.volume.frames)
-        throw InputError(s.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
-    const bool several = s.volume.frames->count() > 1;
+    if (!hasFramePattern(s.volume().path)) return std::nullopt;
+    if (!s.volume().frames)
+        throw InputError(s.volume().path + ": path has a #### frame pattern; set volume.frames or pass --frames");
+    const bool several = s.volume().frames->count() > 1;
     if (several && !s.output.path.empty() && !hasFramePattern(s.output.path))
         throw InputError(s.output.path + ": several frames need a #### pattern in the output path");
     if (several && !s.output.preview.empty() && !hasFramePattern(s.output.preview))
         throw InputError(s.output.preview + ": several frames need a #### pattern in the preview path");
-    return s.volume.frames;
+    return s.volume().frames;
 }
 
 int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostream& out, std::ostream& err) {
@@ -107,14 +107,14 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
     if (requested) {
         FrameSet disk;
         try {
-            disk = framesOnDisk(scene.volume.path, *requested);
+            disk = framesOnDisk(scene.volume().path, *requested);
         } catch (const std::invalid_argument& e) {
-            throw InputError(scene.volume.path + ": " + e.what());
+            throw InputError(scene.volume().path + ": " + e.what());
         }
         frames = requested->among(disk);
         missing = requested->notAmong(disk);
         if (frames->count() == 0)
-            throw InputError(scene.volume.path + ": no file of frames " + requested->text() + " exists" +
+            throw InputError(scene.volume().path + ": no file of frames " + requested->text() + " exists" +
                              (disk.count() ? " (on disk: frames " + disk.text() + ")" : ""));
     }
     // Before any frame, every output's folder is made and takes a file: a folder that cannot is
@@ -126,7 +126,7 @@ int renderSequence(const Scene& scene, const SequenceOptions& options, std::ostr
     const std::string hash = sceneHash(scene), host = hostName();
     if (missing.count()) {
         const std::string message = "frames " + missing.text() + " of " + requested->text() + " are not on disk (" +
-                                    expandFramePattern(scene.volume.path, missing.first()) + ": no such file)";
+                                    expandFramePattern(scene.volume().path, missing.first()) + ": no such file)";
         err << "voxlux: error: " << message << (options.fail_fast ? "" : "; the others render") << "\n";
         log.write({{"frames", missing.text()}, {"status", "missing"}, {"error", message}, {"host", host}, {"pid", getpid()}, {"time", utcNow()}});
         if (options.fail_fast) {

@@ -34,10 +34,10 @@ nlohmann::json studyBase(const Scene& scene) {
 }
 
 std::optional<int> studyFrame(const Scene& scene) {
-    if (!hasFramePattern(scene.volume.path)) return std::nullopt;
-    if (!scene.volume.frames)
-        throw InputError(scene.volume.path + ": path has a #### frame pattern; set volume.frames or pass --frames");
-    return scene.volume.frames->first();
+    if (!hasFramePattern(scene.volume().path)) return std::nullopt;
+    if (!scene.volume().frames)
+        throw InputError(scene.volume().path + ": path has a #### frame pattern; set volume.frames or pass --frames");
+    return scene.volume().frames->first();
 }
 
 namespace {
@@ -193,7 +193,7 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out) {
     std::string all = studyCsvHeader(header);
     for (const auto& r : rows) all += studyCsvRow(r);
     writeFileAtomically(csv, all);
-    StudyContext context{o.title.empty() ? fs::path(scene.volume.path).filename().string() : o.title, o.command,
+    StudyContext context{o.title.empty() ? fs::path(scene.volume().path).filename().string() : o.title, o.command,
                          base_scene.render.width, base_scene.render.height, truth.info};
     const std::string chart = (fs::path(o.out_dir) / "chart.svg").string();
     writeStudyChart(chart, context, plan, rows);

@@ -48,9 +48,9 @@ extern "C" void onGlfwError(int, const char* text) { glfwProblem = text; }
 void readBounds(ViewerState& state) {
     const Scene& s = state.editor.scene();
     try {
-        const std::string file = state.frame ? expandFramePattern(s.volume.path, *state.frame) : s.volume.path;
+        const std::string file = state.frame ? expandFramePattern(s.volume().path, *state.frame) : s.volume().path;
         for (const GridSummary& g : summarizeFile(file))
-            if (g.name == s.volume.density.name && g.active_voxels > 0) {
+            if (g.name == s.volume().density.name && g.active_voxels > 0) {
                 state.bounds_lo = glm::vec3(g.world_min.x, g.world_min.y, g.world_min.z);
                 state.bounds_hi = glm::vec3(g.world_max.x, g.world_max.y, g.world_max.z);
                 return;
@@ -394,9 +394,9 @@ void ViewerApp::drawFrame(GLFWwindow* window) {
 
 int ViewerApp::run(GLFWwindow* window) {
     const Scene& scene = state_.editor.scene();
-    if (scene.volume.frames) {
-        state_.first_frame = scene.volume.frames->first();
-        state_.last_frame = scene.volume.frames->last();
+    if (scene.volume().frames) {
+        state_.first_frame = scene.volume().frames->first();
+        state_.last_frame = scene.volume().frames->last();
         state_.frame = state_.first_frame;
     }
     state_.save_path = defaultSaveName(options_.source);

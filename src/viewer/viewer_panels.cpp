@@ -147,7 +147,7 @@ const std::vector<std::string>& densityGrids(const ViewerState& state) {
     static std::string file;
     static std::vector<std::string> names;
     const Scene& s = state.editor.scene();
-    const std::string now = state.frame ? expandFramePattern(s.volume.path, *state.frame) : s.volume.path;
+    const std::string now = state.frame ? expandFramePattern(s.volume().path, *state.frame) : s.volume().path;
     if (now != file) {
         file = now;
         names.clear();
@@ -228,7 +228,7 @@ PanelRequests drawScenePanel(ViewerState& state, float x, float width, float hei
     if (ImGui::CollapsingHeader("Colour", ImGuiTreeNodeFlags_DefaultOpen)) colourControls(state);
     if (ImGui::CollapsingHeader("Volume")) {
         const Scene& s = state.editor.scene();
-        if (auto g = combo("density grid", s.volume.density.name, densityGrids(state))) setKey(state, "/volume/density", *g);
+        if (auto g = combo("density grid", s.volume().density.name, densityGrids(state))) setKey(state, "/volumes/0/density", *g);
     }
     if (ImGui::CollapsingHeader("Every key")) {
         const nlohmann::json json = state.editor.json();   // a copy: edits replace it

@@ -216,8 +216,8 @@ void placeVectors(const glm::mat3& linear, openvdb::Vec3SGrid& grid) {
 
 }  // namespace
 
-LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::vector<EmissionSource>& emission,
-                        const std::optional<MotionBlur>& motion, std::optional<int> frame) {
+LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::optional<MotionBlur>& motion,
+                        std::optional<int> frame) {
     initOpenVdb();
     VdbFile f = openFile(file);
     LoadedVolume v;
@@ -233,7 +233,7 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const s
         v.up.axis = up.x >= up.y && up.x >= up.z ? 0 : up.y >= up.z ? 1 : 2;
         v.up.reason += ", turned by volume.transform";
     }
-    for (const auto& source : emission)
+    for (const auto& source : spec.emission)
         v.emission.push_back(matchTransform<openvdb::FloatGrid>(
             asFogFloat(readGrid(f, file, source.grid, v.warnings), file, spec, "emission"), *density, file,
             v.warnings));

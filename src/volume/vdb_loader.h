@@ -50,11 +50,10 @@ struct GridSummary {
 
 void initOpenVdb();
 
-// The grids `spec` names, each emission source's grid, and with motion blur the velocity grid,
-// placed by spec.transform at `frame` (a keyed transform's pose; unset: a still, at its first key).
-// Throws InputError "<file>: <problem>".
+// The grids `spec` names, each of its emission sources' grids, and with motion blur the velocity
+// grid, placed by spec.transform at `frame` (a keyed transform's pose; unset: a still, at its first
+// key). Throws InputError "<file>: <problem>".
 LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec,
-                        const std::vector<EmissionSource>& emission = {},
                         const std::optional<MotionBlur>& motion = std::nullopt,
                         std::optional<int> frame = std::nullopt);
 std::vector<GridSummary> summarizeFile(const std::string& file);

@@ -11,7 +11,7 @@ namespace {
 
 std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas, const Scene& scene) {
     std::string grid = "grid '" + v.density->getName() + "'";
-    if (!scene.material.transfer_2d.empty() && atlas.active_voxels == 0)
+    if (!scene.volume().material.transfer_2d.empty() && atlas.active_voxels == 0)
         return v.file + ": the 2D transfer function selects none of " + grid + "'s voxels (material.transfer_function_2d)";
     if (atlas.active_voxels == 0) return v.file + ": " + grid + " has no active voxels";
     std::string why = v.file + ": " + grid + " has nothing visible: its " + std::to_string(atlas.active_voxels) +
@@ -25,30 +25,30 @@ std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas, const
 }  // namespace
 
 StageReads LoadStage::reads() const {
-    return {{"/input/file", "/input/frame", "/input/transform_chan", "/volume/path", "/volume/density", "/volume/color", "/volume/level_set", "/volume/transform", "/emission/*/grid",
+    return {{"/input/file", "/input/frame", "/input/transform_chan", "/volumes/*/path", "/volumes/*/density", "/volumes/*/color", "/volumes/*/level_set", "/volumes/*/transform", "/volumes/*/emission/*/grid",
              "/render/motion_blur?", "/render/motion_blur/velocity", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale",
              "/render/motion_blur/fps"}};
 }
 
 StageActivity LoadStage::activity(const Scene& s) const {
-    std::string grids = "density '" + s.volume.density.name + "'";
-    if (s.volume.color) grids += ", colour '" + s.volume.color->name + "'";
-    for (size_t i = 0; i < s.emission.size(); ++i) grids += (i ? ", '" : ", emission '") + s.emission[i].grid.name + "'";
+    std::string grids = "density '" + s.volume().density.name + "'";
+    if (s.volume().color) grids += ", colour '" + s.volume().color->name + "'";
+    for (size_t i = 0; i < s.volume().emission.size(); ++i) grids += (i ? ", '" : ", emission '") + s.volume().emission[i].grid.name + "'";
     if (const auto& mb = s.render.motion_blur) {
         std::string names;
         for (const auto& name : velocityGridNames()) names += (names.empty() ? "" : ", ") + name;
         grids += mb->velocity ? ", velocity '" + mb->velocity->name + "'" : ", velocity (the first of " + names + ")";
     }
-    return {true, "reads " + grids + " from " + (given_ ? "grids in memory" : s.volume.path)};
+    return {true, "reads " + grids + " from " + (given_ ? "grids in memory" : s.volume().path)};
 }
 
 void LoadStage::run(StageRun& run) {
-    const Scene& scene = run.scene({"/volume", "/emission/*/grid", "/render/motion_blur"});
+    const Scene& scene = run.scene({"/volumes", "/volumes/*/emission/*/grid", "/render/motion_blur"});
     const nlohmann::json& at = run.scene.value("/input/frame");
     const std::optional<int> frame = at.is_number() ? std::optional<int>(at.get<int>()) : std::nullopt;
     volume_ = std::make_shared<const LoadedVolume>(
         given_ ? *given_
-               : loadVolume(run.scene.value("/input/file/path"), scene.volume, scene.emission, scene.render.motion_blur, frame));
+               : loadVolume(run.scene.value("/input/file/path"), scene.volume(), scene.render.motion_blur, frame));
     run.warnings = volume_->warnings;
 }
 
@@ -74,15 +74,15 @@ size_t Transfer2dStage::outputBytes() const {
 }
 
 StageActivity Transfer2dStage::activity(const Scene& s) const {
-    if (s.material.transfer_2d.empty()) return {false, "skipped: no 2D transfer function (material.transfer_function_2d)"};
+    if (s.volume().material.transfer_2d.empty()) return {false, "skipped: no 2D transfer function (material.transfer_function_2d)"};
     return {true, std::string("classifies each voxel by value and gradient magnitude into extinction, albedo") +
-                      (regionsCarryTransport(s.material.transfer_2d) ? ", transport colour" : "") +
-                      (regionsCarrySurface(s.material.transfer_2d) ? ", surface weight" : "") + " (" +
-                      std::to_string(s.material.transfer_2d.size()) + " regions, Kniss 2002)"};
+                      (regionsCarryTransport(s.volume().material.transfer_2d) ? ", transport colour" : "") +
+                      (regionsCarrySurface(s.volume().material.transfer_2d) ? ", surface weight" : "") + " (" +
+                      std::to_string(s.volume().material.transfer_2d.size()) + " regions, Kniss 2002)"};
 }
 
 void Transfer2dStage::run(StageRun& run) {
-    volume_ = std::make_shared<const LoadedVolume>(applyTransfer2d(load_.volume(), run.scene({"/material/transfer_function_2d"}).material.transfer_2d, run.warnings));
+    volume_ = std::make_shared<const LoadedVolume>(applyTransfer2d(load_.volume(), run.scene({"/volumes/*/material/transfer_function_2d"}).volume().material.transfer_2d, run.warnings));
 }
 
 StageReads BrickStage::reads() const {
@@ -100,11 +100,11 @@ void BrickStage::run(StageRun& run) {
     run.warnings = sanitizeReport(*atlas_, load_.volume());
 }
 
-StageReads ClassifyStage::reads() const { return {{"/material", "/emission", "/render/filter"}}; }
+StageReads ClassifyStage::reads() const { return {{"/volumes/*/material", "/volumes/*/emission", "/render/filter"}}; }
 
 StageActivity ClassifyStage::activity(const Scene& s) const {
-    std::string what = !s.material.transfer.empty()    ? "drops bricks the transfer function makes transparent"
-                       : !s.material.transfer_2d.empty() ? "drops bricks the 2D transfer function selects nothing in"
+    std::string what = !s.volume().material.transfer.empty()    ? "drops bricks the transfer function makes transparent"
+                       : !s.volume().material.transfer_2d.empty() ? "drops bricks the 2D transfer function selects nothing in"
                                                           : "drops bricks with zero density and emission";
     if (s.render.motion_blur) what += "; keeps the bricks the blurred medium can reach";
     if (s.render.filter == Filter::Tricubic) what += "; keeps the neighbours of visible ones, which the tricubic filter reads";
@@ -113,7 +113,7 @@ StageActivity ClassifyStage::activity(const Scene& s) const {
 
 void ClassifyStage::run(StageRun& run) {
     const BrickAtlas& atlas = brick_.atlas();
-    const Scene& scene = run.scene({"/material", "/emission", "/render/filter"});
+    const Scene& scene = run.scene({"/volumes/*/material", "/volumes/*/emission", "/render/filter"});
     pages_ = classifiedPageTable(atlas, scene);
     empty_reason_ = pages_.empty() ? nothingVisible(load_.volume(), atlas, scene) : "";
 }
@@ -129,19 +129,19 @@ void EmptyFrameStage::run(StageRun& run) {
     run.warnings.push_back(why + "; rendered as an empty frame");
 }
 
-StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution", "/volume/up"}}; }
+StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution", "/volumes/*/up"}}; }
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera ? "the scene's camera" : "frames the density grid's active voxels (no camera in the scene)"};
 }
 
 void CameraStage::run(StageRun& run) {
-    const Scene& scene = run.scene({"/camera", "/render/resolution", "/volume/up"});
+    const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up"});
     camera_ = scene.camera ? *scene.camera : frameActiveVoxels(load_.volume(), scene);
 }
 
 glm::mat3 viewFrameOf(const Scene& scene, const LoadedVolume& volume) {
-    return scene.volume.up == UpAxis::Auto ? volume.up.frame : upFrame(int(scene.volume.up) - int(UpAxis::X));
+    return scene.volume().up == UpAxis::Auto ? volume.up.frame : upFrame(int(scene.volume().up) - int(UpAxis::X));
 }
 
 Camera frameActiveVoxels(const LoadedVolume& volume, const Scene& scene) {

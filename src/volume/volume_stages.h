@@ -45,7 +45,7 @@ class Transfer2dStage final : public Stage {
 public:
     explicit Transfer2dStage(const LoadStage& load) : load_(input(load)) {}
     std::string name() const override { return "transfer_2d"; }
-    StageReads reads() const override { return {{"/material/transfer_function_2d"}}; }
+    StageReads reads() const override { return {{"/volumes/*/material/transfer_function_2d"}}; }
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
     void release() override { volume_.reset(); }

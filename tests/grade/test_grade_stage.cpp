@@ -20,8 +20,8 @@ namespace fs = std::filesystem;
 // A small lit ball with the direct AOV, written as float so values compare exactly.
 Scene ballScene(const std::string& dir) {
     Scene s;
-    s.volume.path = writeBall(dir);
-    s.material.density_scale = 20.0f;
+    s.volume().path = writeBall(dir);
+    s.volume().material.density_scale = 20.0f;
     Light key;
     key.direction = glm::normalize(glm::vec3(-1.0f, -1.0f, -0.5f));
     key.color = {1.0f, 0.8f, 0.6f};

@@ -15,7 +15,7 @@ constexpr float kDensityScale = 2.0f;   // extinction = grid value * density sca
 
 Scene gridScene() {
     Scene s;
-    s.material.density_scale = kDensityScale;
+    s.volume().material.density_scale = kDensityScale;
     return s;
 }
 
@@ -108,12 +108,12 @@ TEST(LightGrid, NeededCellsAreTheExtinctionDilatedByOneCell) {
 // float rounding of one product.
 TEST(LightGrid, UniformBleedingPlanesAreTheBoxFilteredOnes) {
     Scene scene = gridScene();
-    scene.material.albedo = glm::vec3(0.9f, 0.6f, 0.3f);
+    scene.volume().material.albedo = glm::vec3(0.9f, 0.6f, 0.3f);
     auto prepared = prepare(volumeFromGrid(randomGrid({-5, 3, 7}, {21, 13, 9}, 11)), scene, Camera{});
     ASSERT_TRUE(uniformAlbedo(prepared->inputs));
     const float bleeding = 0.7f;
     const LightGrid walked = buildLightGrid(prepared->inputs, 7, {true, bleeding});
-    const LightGrid derived = withUniformBleeding(buildLightGrid(prepared->inputs, 7), scene.material.albedo, bleeding);
+    const LightGrid derived = withUniformBleeding(buildLightGrid(prepared->inputs, 7), scene.volume().material.albedo, bleeding);
     ASSERT_EQ(walked.planes, 4);
     ASSERT_EQ(derived.planes, 4);
     ASSERT_EQ(derived.values.size(), walked.values.size());
@@ -127,7 +127,7 @@ TEST(LightGrid, UniformBleedingPlanesAreTheBoxFilteredOnes) {
     const size_t densest = size_t(std::max_element(walked.values.begin(), walked.values.begin() + plane) - walked.values.begin());
     EXPECT_GT(walked.values[densest], 0.5f);
     for (size_t c = 0; c < 3; ++c)
-        EXPECT_NEAR(derived.values[(c + 1) * plane + densest] / derived.values[densest], 1.0f - bleeding * scene.material.albedo[int(c)], 1e-6f) << c;
+        EXPECT_NEAR(derived.values[(c + 1) * plane + densest] / derived.values[densest], 1.0f - bleeding * scene.volume().material.albedo[int(c)], 1e-6f) << c;
     EXPECT_EQ(derived.needed, walked.needed);
 }
 

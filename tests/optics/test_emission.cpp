@@ -158,9 +158,9 @@ Scene emissionScene(std::vector<EmissionSource> sources, float density_scale) {
     Scene s;
     s.render.width = 9;
     s.render.height = 9;
-    s.material.density_scale = density_scale;
+    s.volume().material.density_scale = density_scale;
     s.effects.shadows = ShadowMethod::None;
-    s.emission = std::move(sources);
+    s.volume().emission = std::move(sources);
     return s;
 }
 
@@ -270,7 +270,7 @@ TEST(EmissionRender, AllZeroTemperatureEmitsNothing) {
     key.intensity = 3.0f;
     lit.lights = {key};
     Scene plain = lit;
-    plain.emission.clear();
+    plain.volume().emission.clear();
     Camera camera;
     camera.position = glm::vec3(20.0f, 12.0f, 25.0f);
     camera.look_at = glm::vec3(6.0f);
@@ -295,7 +295,7 @@ TEST(EmissionRender, AllZeroTemperatureEmitsNothing) {
     const std::string file = tempDir("emission") + "/cold.vdb";
     openvdb::io::File(file).write({boxGrid({0, 0, 0}, {7, 7, 7}, 0.0f, kVoxel), cold});
     Scene s = lit;
-    s.volume.path = file;
+    s.volume().path = file;
     s.render.backend = Backend::Cpu;
     s.camera = camera;
     const FrameResult r = Renderer(s).render(std::nullopt, true);
@@ -339,7 +339,7 @@ TEST(EmissionFire, BlenderFireGlowsFromTemperatureAndFlame) {
     EXPECT_GT(sum.x, 2.0 * sum.z);  // a 1500-3000 K fire is red-orange
 
     // The bricks cover every brick of flame (and temperature), whatever density's topology.
-    const LoadedVolume v = loadVolume(fire, s.volume, s.emission);
+    const LoadedVolume v = loadVolume(fire, s.volume());
     const BrickAtlas atlas = buildBrickAtlas(v);
     std::set<std::array<int, 3>> bricks;
     for (const auto& c : atlas.coords) bricks.insert({c.x, c.y, c.z});
@@ -359,13 +359,13 @@ TEST(EmissionFire, BlenderFireGlowsFromTemperatureAndFlame) {
 TEST(EmissionFire, DensityAndHeatGlowsAsBlackbody) {
     VOXLUX_REQUIRE_SHARED(file, "openusd/densityAndHeat.vdb");
     Scene s;
-    s.volume.path = file;
+    s.volume().path = file;
     s.render.width = s.render.height = 48;
     s.render.backend = Backend::Cpu;
     EmissionSource heat = blackbody(4000.0f, BlackbodyNormalization::Luminance, 2.0f);  // up to ~3000 K
     heat.grid.name = "heat";
     heat.cutoff = 800.0f;
-    s.emission = {heat};
+    s.volume().emission = {heat};
     const FrameResult r = Renderer(s).render(std::nullopt, false);
     const glm::dvec3 sum = emissionSum(r.image);
     std::printf("  densityAndHeat emission sum (%.4g, %.4g, %.4g)\n", sum.x, sum.y, sum.z);

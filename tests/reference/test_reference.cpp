@@ -82,7 +82,7 @@ struct Furnace {
 Furnace whiteFurnace(float optical_depth, int size, int spp) {
     constexpr int kEdge = 32;
     Scene scene = referenceScene(size, spp);
-    scene.material.albedo = glm::vec3(1.0f);
+    scene.volume().material.albedo = glm::vec3(1.0f);
     scene.render.reference.max_bounces = 1000;  // paths in a thick albedo-1 box scatter long
     scene.lights = {ambientLight(1.0f)};
     const glm::vec3 centre((kEdge - 1) * 0.5f);
@@ -129,14 +129,14 @@ struct Ball {
 Ball ball(const std::string& folder) {
     Ball b;
     b.scene = referenceScene(12, 1024);
-    b.scene.material.density_scale = 1.5f;
-    b.scene.material.anisotropy = 0.3f;
+    b.scene.volume().material.density_scale = 1.5f;
+    b.scene.volume().material.anisotropy = 0.3f;
     Light key;
     key.direction = glm::vec3(-1.0f, -0.5f, -0.7f);
     key.intensity = 3.0f;
     b.scene.lights = {key};
     b.scene.camera = cameraAlong(glm::vec3(0.0f), {0.2f, -0.1f, -1.0f}, 8.0f, 32.0f);
-    b.volume = loadVolume(writeBall(tempDir(folder)), b.scene.volume);
+    b.volume = loadVolume(writeBall(tempDir(folder)), b.scene.volume());
     return b;
 }
 
@@ -183,10 +183,10 @@ TEST(Reference, EmissionMatchesTheMarchAndAlsoLightsTheMedium) {
     glow.grid.name = "density";
     glow.color = glm::vec3(1.0f, 0.5f, 0.2f);
     glow.intensity = 2.0f;
-    b.scene.emission = {glow};
-    b.volume = loadVolume(b.volume.file, b.scene.volume, b.scene.emission);
+    b.scene.volume().emission = {glow};
+    b.volume = loadVolume(b.volume.file, b.scene.volume());
     for (float albedo : {0.0f, 0.8f}) {
-        b.scene.material.albedo = glm::vec3(albedo);
+        b.scene.volume().material.albedo = glm::vec3(albedo);
         auto prepared = prepare(b.volume, b.scene, *b.scene.camera);
         const RenderImage ref = renderReference(prepared->inputs, b.scene.render.reference);
         const RenderImage march = makeCpuBackend()->march(prepared->inputs);
@@ -222,7 +222,7 @@ TEST(Reference, SingleScatteredAmbientLightMatchesAQuadrature) {
     constexpr int kEdge = 64;
     constexpr double kSigma = 2.0 / kEdge;  // an optical half-width of 1
     Scene scene = referenceScene(1, 16384);
-    scene.material.albedo = glm::vec3(1.0f);
+    scene.volume().material.albedo = glm::vec3(1.0f);
     scene.render.reference.max_bounces = 1;
     scene.lights = {ambientLight(1.0f)};
     const glm::vec3 centre((kEdge - 1) * 0.5f);
@@ -266,7 +266,7 @@ void expectVarianceFallsBy(const char* what, int max_bounces, double previous_rm
     Ball b = ball(std::string("variance_") + what);
     b.scene.render.width = b.scene.render.height = 16;
     b.scene.render.reference.max_bounces = max_bounces;
-    b.scene.material.albedo = glm::vec3(0.9f);
+    b.scene.volume().material.albedo = glm::vec3(0.9f);
     b.scene.lights.push_back(ambientLight(0.5f));
     auto prepared = prepare(b.volume, b.scene, *b.scene.camera);
     ReferenceSettings rs = b.scene.render.reference;
@@ -302,7 +302,7 @@ TEST(Reference, EnergyFallsWithAlbedo) {
     b.scene.lights.push_back(ambientLight(0.5f));
     double previous = INFINITY;
     for (float albedo : {1.0f, 0.8f, 0.5f, 0.2f}) {
-        b.scene.material.albedo = glm::vec3(albedo);
+        b.scene.volume().material.albedo = glm::vec3(albedo);
         auto prepared = prepare(b.volume, b.scene, *b.scene.camera);
         const double mean = meanLuminance(renderReference(prepared->inputs, b.scene.render.reference));
         std::printf("albedo %.1f: mean luminance %.5f\n", albedo, mean);

@@ -40,13 +40,13 @@ std::function<void(Scene&)> glow(float intensity) {
         EmissionSource e;
         e.grid.name = "density";
         e.intensity = intensity;
-        s.emission = {e};
+        s.volume().emission = {e};
     };
 }
 
 std::vector<Extreme> extremes() {
     const auto intensity = [](float i) { return [i](Scene& s) { for (auto& l : s.lights) l.intensity = i; }; };
-    const auto g = [](float g) { return [g](Scene& s) { s.material.anisotropy = g; }; };
+    const auto g = [](float g) { return [g](Scene& s) { s.volume().material.anisotropy = g; }; };
     return {
         {"lights 1e-30", 0.5f, intensity(1e-30f)},
         {"lights 1e30", 0.5f, intensity(1e30f)},
@@ -85,7 +85,7 @@ Scene methodScene(ShadowMethod shadows, RenderMethod method) {
     s.effects.light_resolution = 16;
     if (shadows == ShadowMethod::SatCone) s.effects.ambient_occlusion = AmbientOcclusion{};
     if (shadows == ShadowMethod::Propagation) s.effects.indirect = Indirect{};
-    s.material.albedo = glm::vec3(0.9f);
+    s.volume().material.albedo = glm::vec3(0.9f);
     Light directional = defaultKeyLight();
     Light point;
     point.type = LightType::Point;
@@ -127,7 +127,7 @@ void expectEveryExtremeFinite(KernelBackend& backend, const std::vector<Method>&
             if (e.change) e.change(scene);
             const auto box = boxGrid({0, 0, 0}, {23, 23, 23}, e.density);
             std::vector<openvdb::FloatGrid::ConstPtr> emission;
-            if (!scene.emission.empty()) emission = {box};
+            if (!scene.volume().emission.empty()) emission = {box};
             Renderer renderer(scene, volumeFromGrid(box, emission), backend);
             const FrameResult frame = renderer.render(std::nullopt, false);
             EXPECT_EQ(nonFinite(frame.image), 0u);

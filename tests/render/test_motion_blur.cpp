@@ -231,11 +231,11 @@ struct FireView {
 
 FireView fireView(const std::string& file, std::optional<MotionBlur> blur) {
     FireView f;
-    f.scene.volume.path = file;
+    f.scene.volume().path = file;
     f.scene.render.width = 48;
     f.scene.render.height = 64;
     f.scene.render.step = 0.25f;
-    f.scene.material.density_scale = 60.0f;
+    f.scene.volume().material.density_scale = 60.0f;
     f.scene.effects.shadows = ShadowMethod::None;
     Camera camera;
     camera.position = {1.0f, -4.0f, 1.5f};
@@ -244,7 +244,7 @@ FireView fireView(const std::string& file, std::optional<MotionBlur> blur) {
     camera.fov = 40.0f;
     f.scene.camera = camera;
     f.scene.render.motion_blur = blur;
-    f.volume = loadVolume(file, f.scene.volume, {}, blur);
+    f.volume = loadVolume(file, f.scene.volume(), blur);
     return f;
 }
 
@@ -261,7 +261,7 @@ double bruteForceAlpha(const FireView& f, const MotionBlur& blur, int px, int py
     const glm::vec3 origin(to_world[3]);
     const glm::vec3 dir = glm::normalize(glm::vec3(to_world * glm::vec4((2.0f * (px + 0.5f) / 48.0f - 1.0f) * tan_half * aspect,
                                                                         (1.0f - 2.0f * (py + 0.5f) / 64.0f) * tan_half, -1.0f, 0.0f)));
-    const double voxel = xf.voxelSize()[0], step = 0.05 * voxel, scale = f.scene.material.density_scale;
+    const double voxel = xf.voxelSize()[0], step = 0.05 * voxel, scale = f.scene.volume().material.density_scale;
     double sum = 0.0;
     for (int i = 0; i < times; ++i) {
         const double t = blur.shutter_open + (blur.shutter_close - blur.shutter_open) * (i + 0.5) / times;

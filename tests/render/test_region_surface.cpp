@@ -30,10 +30,10 @@ std::vector<TransferRegion> halvesRegions(std::optional<float> left, std::option
 // specular highlight) when `shaded`.
 Scene halvesScene(std::optional<float> left, std::optional<float> right, bool shaded) {
     Scene s;
-    s.volume.path = "halves";
+    s.volume().path = "halves";
     s.render.width = 48;
     s.render.height = 40;
-    s.material.transfer_2d = halvesRegions(left, right);
+    s.volume().material.transfer_2d = halvesRegions(left, right);
     Camera camera;
     camera.position = glm::vec3(60, 50, 90);
     camera.look_at = glm::vec3(16, 16, 16);
@@ -94,7 +94,7 @@ TEST(RegionSurface, WeightsOneAndZeroAreTheRampAndNoShadingOnGl) {
 TEST(RegionSurface, TheMarchReadsEachVoxelsOwnWeight) {
     const Scene scene = halvesScene(0.0f, 1.0f, true);
     std::vector<std::string> warnings;
-    const LoadedVolume classified = applyTransfer2d(volumeFromGrid(twoHalvesGrid(50.0f, 100.0f)), scene.material.transfer_2d, warnings);
+    const LoadedVolume classified = applyTransfer2d(volumeFromGrid(twoHalvesGrid(50.0f, 100.0f)), scene.volume().material.transfer_2d, warnings);
     ASSERT_TRUE(classified.surface);
     auto prepared = prepare(classified, scene, Camera{});
     ASSERT_EQ(prepared->inputs.params.use_surface_grid, 1);

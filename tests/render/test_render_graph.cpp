@@ -193,10 +193,9 @@ TEST(RenderGraph, AllowingEmptyFramesReRunsNoLighting) {
 // colour feature they lack; small, so that every key can be rendered three times.
 std::vector<std::pair<std::string, nlohmann::json>> sweepScenes() {
     std::vector<std::pair<std::string, nlohmann::json>> scenes;
-    for (const char* name : {"default", "cloud_sat", "cloud_propagation", "cloud_multilight"}) {
-        std::ifstream in(sourceDir() + "/grids/" + name + ".json");
-        scenes.emplace_back(name, nlohmann::json::parse(in));
-    }
+    // As written (volumes, every key spelled out), so the sweep edits every key a scene can hold.
+    for (const char* name : {"default", "cloud_sat", "cloud_propagation", "cloud_multilight"})
+        scenes.emplace_back(name, sceneToJson(loadSceneFile(sourceDir() + "/grids/" + name + ".json")));
     nlohmann::json none = scenes[0].second, reference = none, eye = scenes[2].second, graded = none;
     none["effects"]["shadows"] = "none";
     none["effects"]["surface"] = {{"specular", 0.4}};
@@ -210,7 +209,7 @@ std::vector<std::pair<std::string, nlohmann::json>> sweepScenes() {
                                    {"space", "ACEScct"}},
                                   {{"look", "Warm"}}}}};
     graded["output"]["preview"] = "out/graded.png";
-    scenes[1].second["volume"]["transform"] = {{"translate", {0.1, 0.0, -0.2}}, {"rotate", {10, 20, 30}}, {"scale", {1.1, 0.9, 1.0}}, {"rotate_order", "zxy"}};
+    scenes[1].second["volumes"][0]["transform"] = {{"translate", {0.1, 0.0, -0.2}}, {"rotate", {10, 20, 30}}, {"scale", {1.1, 0.9, 1.0}}, {"rotate_order", "zxy"}};
     scenes.emplace_back("surface, unshadowed", none);
     scenes.emplace_back("reference", reference);
     scenes.emplace_back("eye pass, chroma subsampled, blended axes, point light", eye);
@@ -261,9 +260,9 @@ Mutation mutate(const nlohmann::json& scene, const std::string& pointer, const s
     const bool aov = pointer.rfind("/output/aovs/", 0) == 0;
     if (pointer == "/render/backend") {
         m.skipped = "the backend: DisabledLightsWorkWithEveryMethod and the GL tests render on both";
-    } else if (pointer.rfind("/volume/density", 0) == 0) {
+    } else if (pointer.rfind("/volumes/0/density", 0) == 0) {
         m.skipped = "the grid: the bundled cloud has one";
-    } else if (pointer == "/volume/path") {
+    } else if (pointer == "/volumes/0/path") {
         m.scene[at] = copy_of_cloud;   // the same grids in another file
     } else if (key == "type" && pointer.rfind("/lights/", 0) == 0) {
         // A light of another type has other keys: the whole light changes.

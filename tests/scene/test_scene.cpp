@@ -11,8 +11,8 @@ namespace {
 
 TEST(Scene, MinimalSceneGetsDefaults) {
     Scene s = parseScene(R"({"volume": {"path": "smoke.vdb"}})", "shot.json", "/shots");
-    EXPECT_EQ(s.volume.path, "/shots/smoke.vdb");
-    EXPECT_EQ(s.volume.density, (GridRef{"density", 0}));
+    EXPECT_EQ(s.volume().path, "/shots/smoke.vdb");
+    EXPECT_EQ(s.volume().density, (GridRef{"density", 0}));
     EXPECT_FALSE(s.camera.has_value());
     EXPECT_EQ(s.render.width, 512);
     EXPECT_FLOAT_EQ(s.render.step, 0.5f);
@@ -107,10 +107,10 @@ TEST(Scene, JsonTextEscapesBytesThatAreNotUtf8) {
 // volume.frames: [first, last], or a farm's spec as a string, written back in the form read.
 TEST(Scene, FramesAreARangeOrASpec) {
     const Scene range = parseScene(R"({"volume": {"path": "f_####.vdb", "frames": [1, 60]}})", "shot.json", "");
-    EXPECT_EQ(sceneToJson(range)["volume"]["frames"], nlohmann::json::array({1, 60}));
+    EXPECT_EQ(sceneToJson(range)["volumes"][0]["frames"], nlohmann::json::array({1, 60}));
     const Scene spec = parseScene(R"({"volume": {"path": "f_####.vdb", "frames": "1-60x2,100"}})", "shot.json", "");
-    EXPECT_EQ(spec.volume.frames->count(), 31);
-    EXPECT_EQ(sceneToJson(spec)["volume"]["frames"], "1-59x2,100");
+    EXPECT_EQ(spec.volume().frames->count(), 31);
+    EXPECT_EQ(sceneToJson(spec)["volumes"][0]["frames"], "1-59x2,100");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "frames": "1-60x"}})"),
               "shot.json: /volume/frames: expected FIRST-LAST[xSTEP] or a list of them, e.g. 1-240x2,300");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "frames": [5, 1]}})"),
@@ -132,15 +132,17 @@ TEST(Scene, RoundTripThroughJson) {
         "output": {"path": "out_####.exr", "pixel_type": "float", "aovs": ["depth", "ambient"], "deep": true, "deep_samples": 8}})",
                          "shot.json", "");
     // Every key, as written by hand from the scene above and the defaults of docs/scene.md.
+    // The one volume is written as the list `volumes`, named from its file, with its material
+    // and emission inside.
     const nlohmann::json expected = nlohmann::json::parse(R"({
-        "volume": {"path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
-                   "color": "Cd", "level_set": "fog", "up": "z"},
-        "material": {"density_scale": 2.5, "density_units": "voxel", "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
-                     "transfer_function": [{"value": 0, "extinction": 0, "albedo": [1, 1, 1]},
-                                           {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
+        "volumes": [{"name": "fire", "path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
+                     "color": "Cd", "level_set": "fog", "up": "z",
+                     "material": {"density_scale": 2.5, "density_units": "voxel", "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
+                                  "transfer_function": [{"value": 0, "extinction": 0, "albedo": [1, 1, 1]},
+                                                        {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
+                     "emission": []}],
         "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "color": [1, 1, 1], "intensity": 40,
                     "cone_angle": 25, "cone_softness": 5}],
-        "emission": [],
         "camera": {"fov": 35, "position": [0, 1, 10], "look_at": [0, 1, 0], "up": [0, 1, 0]},
         "render": {"resolution": [320, 240], "step": 0.25, "shadow_step": 1, "transmittance_cutoff": 0.0001,
                    "exposure": 1.5, "filter": "tricubic", "backend": "cpu", "method": "march",
@@ -158,9 +160,9 @@ TEST(Scene, RoundTripThroughJson) {
     // And the reader takes back every key the writer writes.
     const Scene again = parseScene(expected.dump(), "again.json", "");
     EXPECT_EQ(sceneToJson(again), expected);
-    EXPECT_EQ(again.volume.density.index, 2);
+    EXPECT_EQ(again.volume().density.index, 2);
     EXPECT_EQ(again.lights[0].type, LightType::Spot);
-    EXPECT_FLOAT_EQ(again.material.transfer[1].albedo.z, 0.2f);
+    EXPECT_FLOAT_EQ(again.volume().material.transfer[1].albedo.z, 0.2f);
     EXPECT_EQ(again.render.filter, Filter::Tricubic);
     EXPECT_EQ(again.effects.shadows, ShadowMethod::SatCone);
     EXPECT_EQ(again.effects.ambient_occlusion->shells, 7);
@@ -310,11 +312,11 @@ TEST(EmissionScene, ParsesEveryKindAndRoundTrips) {
         {"grid": "heat", "kind": "blackbody"},
         {"grid": "flame", "kind": "ramp", "ramp": [{"value": 0, "color": [0, 0, 0]}, {"value": 2, "color": [4, 2, 1]}]}]})",
                                "shot.json", "");
-    ASSERT_EQ(s.emission.size(), 4u);
-    EXPECT_EQ(s.emission[0].kind, EmissionKind::Constant);   // the default kind, colour and intensity
-    EXPECT_EQ(s.emission[0].color, glm::vec3(1.0f));
-    EXPECT_EQ(s.emission[0].intensity, 1.0f);
-    const EmissionSource& b = s.emission[1];
+    ASSERT_EQ(s.volume().emission.size(), 4u);
+    EXPECT_EQ(s.volume().emission[0].kind, EmissionKind::Constant);   // the default kind, colour and intensity
+    EXPECT_EQ(s.volume().emission[0].color, glm::vec3(1.0f));
+    EXPECT_EQ(s.volume().emission[0].intensity, 1.0f);
+    const EmissionSource& b = s.volume().emission[1];
     EXPECT_EQ(b.grid, (GridRef{"temperature", 1}));
     EXPECT_EQ(b.kind, EmissionKind::Blackbody);
     EXPECT_EQ(b.normalization, BlackbodyNormalization::Physical);
@@ -322,10 +324,10 @@ TEST(EmissionScene, ParsesEveryKindAndRoundTrips) {
     EXPECT_EQ(b.temperature_offset, -100.0f);
     EXPECT_EQ(b.cutoff, 900.0f);
     EXPECT_EQ(b.reference_temperature, 1800.0f);
-    EXPECT_EQ(s.emission[2].normalization, BlackbodyNormalization::Luminance);
-    EXPECT_EQ(s.emission[2].temperature_scale, 1.0f);
-    ASSERT_EQ(s.emission[3].ramp.size(), 2u);
-    EXPECT_EQ(s.emission[3].ramp[1].color, glm::vec3(4, 2, 1));
+    EXPECT_EQ(s.volume().emission[2].normalization, BlackbodyNormalization::Luminance);
+    EXPECT_EQ(s.volume().emission[2].temperature_scale, 1.0f);
+    ASSERT_EQ(s.volume().emission[3].ramp.size(), 2u);
+    EXPECT_EQ(s.volume().emission[3].ramp[1].color, glm::vec3(4, 2, 1));
     // A luminance-normalised blackbody writes no reference temperature: it has none.
     const nlohmann::json expected = nlohmann::json::parse(R"([
         {"grid": "flame", "intensity": 1, "kind": "constant", "color": [1, 1, 1]},
@@ -335,9 +337,9 @@ TEST(EmissionScene, ParsesEveryKindAndRoundTrips) {
          "normalization": "luminance"},
         {"grid": "flame", "intensity": 1, "kind": "ramp",
          "ramp": [{"value": 0, "color": [0, 0, 0]}, {"value": 2, "color": [4, 2, 1]}]}])");
-    EXPECT_EQ(sceneToJson(s)["emission"], expected) << sceneToJson(s)["emission"].dump(2);
+    EXPECT_EQ(sceneToJson(s)["volumes"][0]["emission"], expected) << sceneToJson(s)["volumes"][0]["emission"].dump(2);
     const Scene again = parseScene(sceneToJson(s).dump(), "again.json", "");
-    EXPECT_EQ(sceneToJson(again)["emission"], expected);
+    EXPECT_EQ(sceneToJson(again)["volumes"][0]["emission"], expected);
 }
 
 // Keys of another kind, bad values, too many sources: one line naming the key.
@@ -378,7 +380,7 @@ TEST(EmissionScene, ErrorsNameTheKey) {
               "shot.json: /emission: at most 4 sources (got 5)");
     // The old single-grid keys are gone.
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "emission": "heat"}})"),
-              "shot.json: /volume/emission: unknown key (expected one of path, frames, density, color, level_set, up, transform)");
+              "shot.json: /volume/emission: unknown key (expected one of name, path, frames, density, color, level_set, up, transform)");
 }
 
 }  // namespace

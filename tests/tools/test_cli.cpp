@@ -170,7 +170,7 @@ TEST(Cli, EmissionQuickForms) {
     openvdb::io::File(file).write({density, heat});
     CliResult r = runCli("scene " + file + " --emission-grid temperature --blackbody-grid temperature");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    auto emission = nlohmann::json::parse(r.out)["emission"];
+    auto emission = nlohmann::json::parse(r.out)["volumes"][0]["emission"];
     ASSERT_EQ(emission.size(), 2u);
     EXPECT_EQ(emission[0], nlohmann::json::parse(
                                R"({"grid": "temperature", "kind": "constant", "color": [1, 1, 1], "intensity": 1})"));
@@ -228,7 +228,7 @@ TEST(Cli, ExplainShowsThePlan) {
     EXPECT_NE(r.out.find("run   march             1 light, ray-marched shadow rays per sample (reference)  [after: "
                          "color_space brick classify camera empty_check light_cache propagation eye_pass; reads: "
                          "/render/resolution /render/step /render/shadow_step /render/transmittance_cutoff /render/filter /render/backend "
-                         "/render/method /render/reference /render/motion_blur /render/region /material"),
+                         "/render/method /render/reference /render/motion_blur /render/region /volumes/*/material"),
               std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("skip  light_cache       skipped: no effect in the scene needs a precomputed light cache"),
@@ -395,7 +395,7 @@ TEST(Cli, AHugeFrameRangeNamesItsMissingFramesInOneLine) {
     // Frame numbers beyond 32 bits have no int value and are refused.
     r = runCli("render " + dir + "/cloud.####.vdb --frames 1-3000000000 -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "voxlux: error: --frames 1-3000000000: /volume/frames: expected FIRST-LAST[xSTEP] or a list of them, e.g. 1-240x2,300\n");
+    EXPECT_EQ(r.err, "voxlux: error: --frames 1-3000000000: /volumes/0/frames: expected FIRST-LAST[xSTEP] or a list of them, e.g. 1-240x2,300\n");
 }
 
 // An output folder that cannot take a file stops a sequence in one line before its first frame
@@ -559,7 +559,7 @@ TEST(Cli, NonFiniteAndOutOfRangeNumbersAreRefused) {
     expectRejected("render " + cloud + " --set render.reference.spp=4294967297",
                    "--set 'render.reference.spp=4294967297': /render/reference/spp: 4294967297 is beyond the int range");
     expectRejected("render " + cloud + " --set material.density_scale=1e39",
-                   "--set 'material.density_scale=1e39': /material/density_scale: 1e+39 is beyond the float range (+-3.4e38)");
+                   "--set 'material.density_scale=1e39': /volumes/0/material/density_scale: 1e+39 is beyond the float range (+-3.4e38)");
     // null is not a value: it never reads as the default.
     expectRejected("render " + cloud + " --set render.step=null", "--set 'render.step=null': /render/step: expected a number, got null");
     // CLI11's own conversion errors are bad input too: exit 2, one line.

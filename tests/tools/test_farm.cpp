@@ -44,7 +44,7 @@ TEST(Farm, DryRunWritesTheJobFolderAndTheBatchScript) {
     const nlohmann::json scene = nlohmann::json::parse(fileText(dir + "/job/scene.json"));
     EXPECT_TRUE(scene.contains("camera"));
     EXPECT_EQ(scene["output"]["path"], dir + "/out/cloud.####.exr");
-    EXPECT_EQ(scene["volume"]["path"], "../cloud.####.vdb");
+    EXPECT_EQ(scene["volumes"][0]["path"], "../cloud.####.vdb");
     EXPECT_FALSE(fs::exists(dir + "/job/job.json"));
 
     // --threads asks the scheduler for that many cores a task, and each task uses that many.

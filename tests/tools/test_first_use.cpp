@@ -58,8 +58,8 @@ TEST(FirstUse, QuickFormDensityComesFromTheDataInVoxelUnits) {
                                             {boxGrid({0, 0, 0}, {19, 19, 9}, 0.5f, voxel)});
         std::vector<std::string> notes;
         const Scene s = completeQuickScene(quickScene(file), SceneOverrides{}, std::nullopt, notes);
-        EXPECT_EQ(s.material.density_units, DensityUnits::Voxel);
-        EXPECT_NEAR(s.material.density_scale, 0.4f, 1e-6f) << voxel;
+        EXPECT_EQ(s.volume().material.density_units, DensityUnits::Voxel);
+        EXPECT_NEAR(s.volume().material.density_scale, 0.4f, 1e-6f) << voxel;
         ASSERT_EQ(notes.size(), 2u);
         EXPECT_EQ(notes[1], "quick form: density_scale 0.4 per voxel: the median column along the view holds an optical "
                             "depth of 2 (--density-scale to change, in voxel units)");
@@ -69,8 +69,8 @@ TEST(FirstUse, QuickFormDensityComesFromTheDataInVoxelUnits) {
     given.density_scale = 3.0f;
     std::vector<std::string> notes;
     const Scene s = completeQuickScene(applyOverrides(quickScene(dir + "/box100.vdb"), given), given, std::nullopt, notes);
-    EXPECT_EQ(s.material.density_units, DensityUnits::World);
-    EXPECT_EQ(s.material.density_scale, 3.0f);
+    EXPECT_EQ(s.volume().material.density_units, DensityUnits::World);
+    EXPECT_EQ(s.volume().material.density_scale, 3.0f);
 }
 
 // In voxel units a look carries over between caches of any scale: the same voxels at voxel size
@@ -145,7 +145,7 @@ TEST(FirstUse, SceneWritesARenderableScene) {
         << r.err;
     // The cache was given by an absolute path, and the scene keeps it so.
     const auto j = nlohmann::json::parse(slurp(dir + "/shots/a/shot.json"));
-    EXPECT_EQ(j["volume"]["path"], dir + "/caches/cloud.#.vdb");
+    EXPECT_EQ(j["volumes"][0]["path"], dir + "/caches/cloud.#.vdb");
     EXPECT_EQ(j["output"]["path"], "cloud.#.exr");
     EXPECT_TRUE(j.contains("camera"));
     // Rendered from another folder: the volume is found beside the scene, the image lands here.
@@ -155,12 +155,12 @@ TEST(FirstUse, SceneWritesARenderableScene) {
     EXPECT_TRUE(fs::exists(dir + "/cloud.2.exr"));
     // Given relative to the folder the command runs in, it is written relative to the scene's folder.
     ASSERT_EQ(std::system(("cd " + dir + " && " + voxluxBinary() + " scene caches/cloud.#.vdb --frames 1-2 -o shots/a/rel.json 2>/dev/null >/dev/null").c_str()), 0);
-    EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/shots/a/rel.json"))["volume"]["path"], "../../caches/cloud.#.vdb");
+    EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/shots/a/rel.json"))["volumes"][0]["path"], "../../caches/cloud.#.vdb");
     // To standard output the volume path is absolute, and the image is named after the cache.
     r = runCli("scene " + cloud);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto printed = nlohmann::json::parse(r.out);
-    EXPECT_EQ(printed["volume"]["path"], fs::absolute(cloud).lexically_normal().string());
+    EXPECT_EQ(printed["volumes"][0]["path"], fs::absolute(cloud).lexically_normal().string());
     EXPECT_EQ(printed["output"]["path"], "cloud.exr");
 }
 
@@ -262,12 +262,12 @@ TEST(FirstUse, BlenderFireLookIsTheSameForEveryFrameRange) {
         const CliResult r = runCli("scene " + fire + "/fluid_data_####.vdb --frames " + frames + " --blackbody-grid temperature");
         ASSERT_EQ(r.exit_code, 0) << r.err;
         nlohmann::json s = nlohmann::json::parse(r.out);
-        s["volume"].erase("frames");   // the one key that differs
+        s["volumes"][0].erase("frames");   // the one key that differs
         scenes.push_back(s);
         EXPECT_NE(r.err.find("camera framed on the frames on disk, 1-60, together"), std::string::npos) << r.err;
     }
     for (size_t k = 1; k < scenes.size(); ++k) EXPECT_EQ(scenes[k], scenes[0]) << k;
-    EXPECT_GT(scenes[0]["material"]["density_scale"].get<double>(), 0.0);
+    EXPECT_GT(scenes[0]["volumes"][0]["material"]["density_scale"].get<double>(), 0.0);
 }
 
 // Renders frames first..last of the shared Blender fire with the quick form into `dir`.

@@ -10,7 +10,7 @@ namespace {
 
 Scene referenceScene() {
     Scene s;
-    s.volume.path = "cloud.vdb";
+    s.volume().path = "cloud.vdb";
     s.render.method = RenderMethod::Reference;
     s.render.backend = Backend::Cpu;
     return s;

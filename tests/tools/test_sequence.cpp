@@ -188,7 +188,7 @@ TEST(Sequence, StepsAndListsRenderTheirFramesOnly) {
     EXPECT_TRUE(fs::exists(dir + "/out.0004.exr"));
     r = runCli(renderArgs(dir, "4,2"));
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "voxlux: error: --frames 4,2: /volume/frames: frames must increase: 2 follows 4\n");
+    EXPECT_EQ(r.err, "voxlux: error: --frames 4,2: /volumes/0/frames: frames must increase: 2 follows 4\n");
 }
 
 // On a terminal the bar names the frame and the stage running (script(1) gives the render one).

@@ -319,7 +319,7 @@ TEST(Study, MeasuresEveryConfigAndResumes) {
 
     // Another scene: measured from scratch.
     Scene denser = scene;
-    denser.material.density_scale = 12.0f;
+    denser.volume().material.density_scale = 12.0f;
     std::ostringstream other;
     runStudy(denser, o, other);
     EXPECT_EQ(other.str().find("resuming"), std::string::npos) << other.str();

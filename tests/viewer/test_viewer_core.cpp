@@ -36,12 +36,12 @@ TEST(SceneEditor, ARefusedEditKeepsTheSceneAndSaysWhy) {
     SceneEditor editor(smallCloud());
     const uint64_t version = editor.version();
     EXPECT_FALSE(editor.set("material.density_scale=-1"));
-    EXPECT_EQ(editor.error(), "set material.density_scale=-1: /material/density_scale: must be 0 or more");
+    EXPECT_EQ(editor.error(), "set material.density_scale=-1: /volumes/0/material/density_scale: must be 0 or more");
     EXPECT_EQ(editor.version(), version);
-    EXPECT_FLOAT_EQ(editor.scene().material.density_scale, 40.0f);
+    EXPECT_FLOAT_EQ(editor.scene().volume().material.density_scale, 40.0f);
     EXPECT_TRUE(editor.set("material.density_scale=20"));
     EXPECT_EQ(editor.error(), "");
-    EXPECT_FLOAT_EQ(editor.scene().material.density_scale, 20.0f);
+    EXPECT_FLOAT_EQ(editor.scene().volume().material.density_scale, 20.0f);
     EXPECT_GT(editor.version(), version);
 }
 
@@ -84,7 +84,7 @@ TEST(SceneEditor, UndoAndRedoStepThroughEditsAndLeaveTheCamera) {
     ASSERT_TRUE(editor.setCamera(moved));
     EXPECT_EQ(editor.undoSteps(), 2u);
     ASSERT_TRUE(editor.undo());
-    EXPECT_EQ(editor.scene().material.anisotropy, start.material.anisotropy);
+    EXPECT_EQ(editor.scene().volume().material.anisotropy, start.volume().material.anisotropy);
     EXPECT_EQ(editor.scene().lights[0].direction, dragged);
     EXPECT_EQ(editor.scene().camera->position, moved.position);
     ASSERT_TRUE(editor.undo());
@@ -94,7 +94,7 @@ TEST(SceneEditor, UndoAndRedoStepThroughEditsAndLeaveTheCamera) {
     ASSERT_TRUE(editor.redo());
     EXPECT_EQ(editor.scene().lights[0].direction, dragged);
     ASSERT_TRUE(editor.redo());
-    EXPECT_EQ(editor.scene().material.anisotropy, 0.5f);
+    EXPECT_EQ(editor.scene().volume().material.anisotropy, 0.5f);
     EXPECT_FALSE(editor.redo());
     ASSERT_TRUE(editor.undo());
     ASSERT_TRUE(editor.set("material.anisotropy=0.2"));   // a new edit: nothing to redo
@@ -123,10 +123,10 @@ TEST(SceneEditor, ASavedSceneReadsBackTheSameFromAnotherFolder) {
     std::filesystem::create_directories(std::filesystem::path(path).parent_path());
     editor.save(path);
     const Scene back = loadSceneFile(path);
-    EXPECT_EQ(std::filesystem::canonical(back.volume.path), std::filesystem::canonical(editor.scene().volume.path));
+    EXPECT_EQ(std::filesystem::canonical(back.volume().path), std::filesystem::canonical(editor.scene().volume().path));
     nlohmann::json a = sceneToJson(back), b = editor.json();
-    a["volume"].erase("path");
-    b["volume"].erase("path");
+    a["volumes"][0].erase("path");
+    b["volumes"][0].erase("path");
     EXPECT_EQ(a, b);
 }
 
@@ -282,7 +282,7 @@ TEST(ProgressiveRender, TheNewestOfManyEditsWins) {
     ProgressiveRender view(scene, std::nullopt);
     uint64_t last = 0;
     for (int k = 0; k < 12; ++k) {
-        scene.material.anisotropy = 0.02f * float(k);
+        scene.volume().material.anisotropy = 0.02f * float(k);
         last = view.submit(scene, std::nullopt);
     }
     ASSERT_TRUE(view.waitConverged(120.0));
@@ -302,7 +302,7 @@ TEST(ProgressiveRender, AnEditDuringAMarchCancelsItAndRendersNext) {
     ASSERT_TRUE(view.waitConverged(120.0));
     uint64_t last = 0;
     for (int k = 0; k < 3; ++k) {
-        scene.material.anisotropy = 0.1f * float(k);
+        scene.volume().material.anisotropy = 0.1f * float(k);
         last = view.submit(scene, std::nullopt);
         // As soon as this edit's coarsest image shows, the next edit lands on its finer marches.
         for (int wait = 0; wait < 20000 && view.latest()->edit != last; ++wait) std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -319,14 +319,14 @@ TEST(ProgressiveRender, AFailedEditSaysWhyAndTheLastGoodSceneShowsAgain) {
     ProgressiveRender view(good, std::nullopt);
     ASSERT_TRUE(view.waitConverged(120.0));
     Scene bad = good;
-    bad.volume.path = tempDir("viewer-missing") + "/gone.vdb";
+    bad.volume().path = tempDir("viewer-missing") + "/gone.vdb";
     const uint64_t edit = view.submit(bad, std::nullopt);
     ASSERT_TRUE(view.waitConverged(120.0));
     const auto failure = view.failure();
     ASSERT_TRUE(failure);
     EXPECT_EQ(failure->edit, edit);
-    EXPECT_EQ(failure->message, bad.volume.path + ": no such file");
-    EXPECT_EQ(failure->last_good.volume.path, good.volume.path);
+    EXPECT_EQ(failure->message, bad.volume().path + ": no such file");
+    EXPECT_EQ(failure->last_good.volume().path, good.volume().path);
     EXPECT_GT(view.latest()->edit, edit);   // the last good scene rendered again
     expectSameImage(*view.latest(), renderOnce(good));
 }
@@ -334,13 +334,13 @@ TEST(ProgressiveRender, AFailedEditSaysWhyAndTheLastGoodSceneShowsAgain) {
 TEST(ProgressiveRender, WhenTheLastGoodSceneFailsTooTheFailureStands) {
     Scene good = smallCloud();
     const std::string copy = tempDir("viewer-removed") + "/cloud.vdb";
-    std::filesystem::copy_file(good.volume.path, copy, std::filesystem::copy_options::overwrite_existing);
-    good.volume.path = copy;
+    std::filesystem::copy_file(good.volume().path, copy, std::filesystem::copy_options::overwrite_existing);
+    good.volume().path = copy;
     ProgressiveRender view(good, std::nullopt);
     ASSERT_TRUE(view.waitConverged(120.0));
     std::filesystem::remove(copy);   // gone since it rendered: the re-render of the last good scene fails too
     Scene bad = good;
-    bad.volume.path = copy + ".missing";
+    bad.volume().path = copy + ".missing";
     view.submit(bad, std::nullopt);
     ASSERT_TRUE(view.waitConverged(120.0));
     const auto failure = view.failure();
@@ -354,11 +354,11 @@ TEST(ProgressiveRender, WhenTheLastGoodSceneFailsTooTheFailureStands) {
 // Scrubbing back to a frame takes its grids and bricks from the frame cache, and the viewer says so.
 TEST(ProgressiveRender, ScrubbingBackToAFrameTakesItsBricksFromTheCache) {
     const std::string dir = tempDir("viewer-frames");
-    std::filesystem::copy_file(smallCloud().volume.path, dir + "/cloud_0001.vdb", std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(smallCloud().volume().path, dir + "/cloud_0001.vdb", std::filesystem::copy_options::overwrite_existing);
     openvdb::io::File(dir + "/cloud_0002.vdb").write({boxGrid({-20, -20, -20}, {20, 20, 20}, 1.0f, 0.02)});
     Scene scene = smallCloud();
-    scene.volume.path = dir + "/cloud_####.vdb";
-    scene.volume.frames = FrameSet(1, 2);
+    scene.volume().path = dir + "/cloud_####.vdb";
+    scene.volume().frames = FrameSet(1, 2);
     ProgressiveRender view(scene, 1, size_t(256) << 20);
     ASSERT_TRUE(view.waitConverged(120.0));
     const std::vector<glm::vec4> first = view.latest()->display;

@@ -96,7 +96,7 @@ TEST(ViewerWindow, TheConvergedViewportIsVoxluxRenderOfTheSavedScene) {
     EXPECT_EQ(readJson(dir + "/stats.json")["message"], "wrote " + dir + "/viewer.exr");
     const Exr a = readExr(dir + "/viewer.exr"), b = readExr(dir + "/r.exr");
     EXPECT_EQ(a.planes, b.planes);
-    EXPECT_FLOAT_EQ(readJson(dir + "/saved.json")["material"]["anisotropy"].get<float>(), 0.5f);
+    EXPECT_FLOAT_EQ(readJson(dir + "/saved.json")["volumes"][0]["material"]["anisotropy"].get<float>(), 0.5f);
 }
 
 TEST(ViewerWindow, MirroringTheSunMovesTheLitSide) {
@@ -144,13 +144,13 @@ TEST(ViewerWindow, BadEditsAndMissingFilesShowTheErrorAndTheViewerGoesOn) {
                                                            {{"quit", true}}});
     const CliResult r = view(kCloud + " --script " + script);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const std::string refused = "set material.albedo=[2,0]: /material/albedo: expected an array of 3 numbers";
+    const std::string refused = "set material.albedo=[2,0]: /volumes/0/material/albedo: expected an array of 3 numbers";
     EXPECT_EQ(r.err, "voxlux: warning: " + script + ": /actions/1: " + refused + "\n");
     EXPECT_EQ(readJson(dir + "/bad-edit.json")["message"], refused);
     EXPECT_EQ(readJson(dir + "/missing.json")["message"], missing + ": no such file");
     // The last good state, shown again and saved.
     EXPECT_EQ(readPng(dir + "/a.png").bytes, readPng(dir + "/b.png").bytes);
-    const std::string saved_volume = readJson(dir + "/saved.json")["volume"]["path"];
+    const std::string saved_volume = readJson(dir + "/saved.json")["volumes"][0]["path"];
     EXPECT_EQ(std::filesystem::canonical(dir + "/" + saved_volume), std::filesystem::canonical(sourceDir() + "/grids/cloud.vdb"));
 }
 

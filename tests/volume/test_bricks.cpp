@@ -47,10 +47,10 @@ void expectRoundTrip(const openvdb::FloatGrid& grid, const BrickAtlas& atlas, co
 TEST(Bricks, SmokeRoundTripIsExact) {
     VOXLUX_REQUIRE_SHARED(path, "arnold-usd/smoke.vdb");
     Scene scene;
-    scene.volume.path = path;
-    auto volume = loadVolume(path, scene.volume);
+    scene.volume().path = path;
+    auto volume = loadVolume(path, scene.volume());
     BrickAtlas atlas = buildBrickAtlas(volume);
-    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material, scene.emission));
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.volume().material, scene.volume().emission));
     expectRoundTrip(*volume.density, atlas, pages);
     EXPECT_EQ(atlas.active_voxels, 1049275u);
 }
@@ -58,10 +58,10 @@ TEST(Bricks, SmokeRoundTripIsExact) {
 TEST(Bricks, CloudTilesAreExpandedNotDropped) {
     VOXLUX_REQUIRE_SHARED(path, "disney-wdas-cloud/wdas_cloud_sixteenth.vdb");
     Scene scene;
-    auto volume = loadVolume(path, scene.volume);
+    auto volume = loadVolume(path, scene.volume());
     ASSERT_GT(volume.density->tree().activeTileCount(), 0u);
     BrickAtlas atlas = buildBrickAtlas(volume);
-    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.material, scene.emission));
+    PageTable pages = buildPageTable(atlas.coords, classifyBricks(atlas, scene.volume().material, scene.volume().emission));
     expectRoundTrip(*volume.density, atlas, pages);
 }
 
@@ -223,9 +223,10 @@ TEST(Load, EmissionOnAnotherTransformIsResampled) {
     heat->setName("heat");
     const std::string file = tempDir("load") + "/two_resolutions.vdb";
     openvdb::io::File(file).write({density, heat});
-    EmissionSource heatSource;
-    heatSource.grid = GridRef{"heat", 0};
-    LoadedVolume v = loadVolume(file, VolumeSpec{}, {heatSource});
+    VolumeSpec spec;
+    spec.emission.resize(1);
+    spec.emission[0].grid = GridRef{"heat", 0};
+    LoadedVolume v = loadVolume(file, spec);
     ASSERT_EQ(v.warnings.size(), 1u);
     EXPECT_EQ(v.warnings[0], file + ": grid 'heat' has a different transform from 'density'; resampled onto it");
     ASSERT_EQ(v.emission.size(), 1u);

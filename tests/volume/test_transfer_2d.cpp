@@ -116,15 +116,15 @@ TEST(Transfer2d, MatchesAnEquivalentOneDimensionalFunction) {
     one.lights = {Light{}};
     one.lights[0].direction = glm::normalize(glm::vec3(1.0f, -1.0f, 0.3f));
     one.lights[0].intensity = 4.0f;
-    one.material.albedo = glm::vec3(0.9f);
-    one.material.transfer = {TransferPoint{0.0f, 0.0f, glm::vec3(0.5f, 0.8f, 1.0f)}, TransferPoint{100.0f, 3.0f, glm::vec3(0.5f, 0.8f, 1.0f)}};
+    one.volume().material.albedo = glm::vec3(0.9f);
+    one.volume().material.transfer = {TransferPoint{0.0f, 0.0f, glm::vec3(0.5f, 0.8f, 1.0f)}, TransferPoint{100.0f, 3.0f, glm::vec3(0.5f, 0.8f, 1.0f)}};
     Scene two = one;
-    two.material.transfer.clear();
+    two.volume().material.transfer.clear();
     TransferRegion region;
     region.value = {50.0f, 150.0f};
     region.extinction = 3.0f;
     region.albedo = glm::vec3(0.5f, 0.8f, 1.0f);
-    two.material.transfer_2d = {region};
+    two.volume().material.transfer_2d = {region};
     for (ShadowMethod shadows : {ShadowMethod::Raymarch, ShadowMethod::Propagation}) {
         one.effects.shadows = two.effects.shadows = shadows;
         Renderer r1(one, volumeFromGrid(grid), *cpu), r2(two, volumeFromGrid(grid), *cpu);
@@ -143,25 +143,25 @@ TEST(Transfer2d, MatchesAnEquivalentOneDimensionalFunction) {
 TEST(Transfer2d, EditingTheRegionsRereadsNoFile) {
     const std::string vdb = writeBall(tempDir("transfer_2d_edit"));
     Scene s;
-    s.volume.path = vdb;
+    s.volume().path = vdb;
     s.render.width = s.render.height = 24;
     s.lights = {Light{}};
     TransferRegion region;
     region.value = {0.1f, 10.0f};
     region.extinction = 5.0f;
-    s.material.transfer_2d = {region};
+    s.volume().material.transfer_2d = {region};
     Renderer r(s);
     const auto ran = [](const FrameResult& f, const std::string& stage) {
         return std::any_of(f.stage_seconds.begin(), f.stage_seconds.end(), [&](const auto& p) { return p.first == stage; });
     };
     FrameResult f = r.render(std::nullopt, false);
     EXPECT_TRUE(ran(f, "load") && ran(f, "transfer_2d"));
-    s.material.transfer_2d[0].albedo = glm::vec3(0.5f);
+    s.volume().material.transfer_2d[0].albedo = glm::vec3(0.5f);
     r.setScene(s);
     f = r.render(std::nullopt, false);
     EXPECT_FALSE(ran(f, "load"));
     EXPECT_TRUE(ran(f, "transfer_2d") && ran(f, "brick"));
-    s.material.transfer_2d.clear();   // back to the grid as density: the stage no longer runs
+    s.volume().material.transfer_2d.clear();   // back to the grid as density: the stage no longer runs
     r.setScene(s);
     f = r.render(std::nullopt, false);
     EXPECT_FALSE(ran(f, "load") || ran(f, "transfer_2d"));
@@ -216,9 +216,9 @@ TEST(Transfer2d, CtPresetTellsBoneTissueSkinAndAirApart) {
 
 TEST(Transfer2d, PresetsAreNamedInTheScene) {
     const Scene s = parseScene(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": "ct_bone"}})", "shot.json", "");
-    ASSERT_EQ(s.material.transfer_2d.size(), 1u);
-    EXPECT_EQ(s.material.transfer_2d[0].name, "bone");
-    EXPECT_EQ(s.material.transfer_2d[0].value, glm::vec2(300.0f, 3000.0f));
+    ASSERT_EQ(s.volume().material.transfer_2d.size(), 1u);
+    EXPECT_EQ(s.volume().material.transfer_2d[0].name, "bone");
+    EXPECT_EQ(s.volume().material.transfer_2d[0].value, glm::vec2(300.0f, 3000.0f));
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "material": {"transfer_function_2d": "ct_lungs"}})"),
               "shot.json: /material/transfer_function_2d: 'ct_lungs' is not a preset (ct_tissue, ct_bone, mri_t1_head) or a list of "
               "regions");
@@ -229,15 +229,15 @@ TEST(Transfer2d, PresetsAreNamedInTheScene) {
 TEST(Transfer2d, RegionsSurviveWritingAndReadingTheScene) {
     std::vector<std::vector<TransferRegion>> lists;
     for (const TransferPreset& p : transferPresets()) lists.push_back(p.regions);
-    lists.push_back(loadSceneFile(sourceDir() + "/grids/mri_head.json").material.transfer_2d);
+    lists.push_back(loadSceneFile(sourceDir() + "/grids/mri_head.json").volume().material.transfer_2d);
     for (const auto& regions : lists) {
         Scene s;
-        s.volume.path = "a.vdb";
-        s.material.transfer_2d = regions;
+        s.volume().path = "a.vdb";
+        s.volume().material.transfer_2d = regions;
         const Scene back = sceneFromJson(sceneToJson(s), "shot.json", "");
-        ASSERT_EQ(back.material.transfer_2d.size(), regions.size());
+        ASSERT_EQ(back.volume().material.transfer_2d.size(), regions.size());
         for (size_t i = 0; i < regions.size(); ++i) {
-            const TransferRegion &a = regions[i], &b = back.material.transfer_2d[i];
+            const TransferRegion &a = regions[i], &b = back.volume().material.transfer_2d[i];
             EXPECT_EQ(a.name, b.name);
             EXPECT_EQ(a.triangle, b.triangle);
             EXPECT_EQ(a.value, b.value) << a.name;

@@ -25,7 +25,7 @@ openvdb::FloatGrid::Ptr longBox() { return boxGrid({-8, -2, -2}, {7, 1, 1}, kSig
 // The box's centre after `placement`, and a scene looking at it along -`axis` from far away.
 Scene lookingAlong(const std::string& file, const glm::mat4& placement, glm::vec3 axis) {
     Scene s;
-    s.volume.path = file;
+    s.volume().path = file;
     s.render.width = s.render.height = 33;   // odd: the centre pixel's ray is the camera's axis
     s.render.backend = Backend::Cpu;
     const glm::vec3 centre(placement * glm::vec4(-0.25f, -0.25f, -0.25f, 1.0f));   // the voxel box's centre, in file world units
@@ -53,12 +53,12 @@ TEST(VolumeTransform, TheLongAxisAfterScaleAndRotationHoldsThePlacedOpticalDepth
     const glm::mat4 m = volumeTransformMatrix(t);
     EXPECT_NEAR(glm::length(glm::vec3(m * glm::vec4(1, 0, 0, 0)) - glm::vec3(0, 2, 0)), 0.0f, 1e-6f);
     Scene along_y = lookingAlong(file, m, glm::vec3(0, 1, 0));
-    along_y.volume.transform = t;
+    along_y.volume().transform = t;
     const float expected = std::exp(-kSigma * 16.0f);   // trilinear ramps keep the box's integral
     EXPECT_NEAR(centreTransmittance(Renderer(along_y).render(std::nullopt, false).image), expected, 2e-3f);
     // Across the long axis (along z after the turn, 2 units wide): e^(-sigma 2).
     Scene along_z = lookingAlong(file, m, glm::vec3(0, 0, 1));
-    along_z.volume.transform = t;
+    along_z.volume().transform = t;
     EXPECT_NEAR(centreTransmittance(Renderer(along_z).render(std::nullopt, false).image), std::exp(-kSigma * 2.0f), 2e-3f);
     // Untransformed, the y ray crosses the box's 2-unit width.
     const Scene plain = lookingAlong(file, glm::mat4(1.0f), glm::vec3(0, 1, 0));
@@ -87,10 +87,10 @@ TEST(VolumeTransform, RendersAsThePlacementWrittenIntoTheFile) {
     openvdb::io::File(placed_file).write({placed});
 
     Scene in_scene = lookingAlong(file, m, glm::normalize(glm::vec3(0.3f, 0.4f, 1.0f)));
-    in_scene.volume.transform = t;
+    in_scene.volume().transform = t;
     Scene in_file = in_scene;
-    in_file.volume.path = placed_file;
-    in_file.volume.transform.reset();
+    in_file.volume().path = placed_file;
+    in_file.volume().transform.reset();
     const RenderImage a = Renderer(in_scene).render(std::nullopt, false).image;
     const RenderImage b = Renderer(in_file).render(std::nullopt, false).image;
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
@@ -117,7 +117,7 @@ TEST(VolumeTransform, TurnsAndScalesTheVelocitiesAndTheUpAxis) {
     spec.transform = VolumeTransform{};
     spec.transform->rotate = glm::vec3(90.0f, 0.0f, 90.0f);   // x -> y, and y -> z
     spec.transform->scale = glm::vec3(2.0f);
-    const LoadedVolume v = loadVolume(file, spec, {}, MotionBlur{});
+    const LoadedVolume v = loadVolume(file, spec, MotionBlur{});
     ASSERT_TRUE(v.velocity);
     const openvdb::Vec3s moved = v.velocity->tree().getValue(openvdb::Coord(0, 0, 0));
     EXPECT_NEAR(moved.x(), 0.0f, 1e-6f);
@@ -145,13 +145,13 @@ TEST(VolumeTransform, IsValidatedAndWrittenBack) {
               "shot.json: /volume/transform/spin: unknown key (expected one of translate, rotate, scale, rotate_order, matrix, keys, chan)");
 
     const Scene s = parseScene(R"({"volume": {"path": "a.vdb", "transform": {"rotate": [0, 90, 0], "scale": 2}}})", "shot.json", "");
-    ASSERT_TRUE(s.volume.transform);
-    EXPECT_EQ(s.volume.transform->scale, glm::vec3(2.0f));
-    EXPECT_EQ(sceneToJson(s)["volume"]["transform"],
+    ASSERT_TRUE(s.volume().transform);
+    EXPECT_EQ(s.volume().transform->scale, glm::vec3(2.0f));
+    EXPECT_EQ(sceneToJson(s)["volumes"][0]["transform"],
               nlohmann::json::parse(R"({"translate": [0, 0, 0], "rotate": [0, 90, 0], "scale": [2, 2, 2]})"));
     EXPECT_EQ(sceneToJson(parseScene(sceneToJson(s).dump(), "again.json", "")), sceneToJson(s));
     // A scene without one writes none, and hashes as before.
-    EXPECT_FALSE(sceneToJson(parseScene(R"({"volume": {"path": "a.vdb"}})", "shot.json", ""))["volume"].contains("transform"));
+    EXPECT_FALSE(sceneToJson(parseScene(R"({"volume": {"path": "a.vdb"}})", "shot.json", ""))["volumes"][0].contains("transform"));
 }
 
 glm::vec3 turnedX(const VolumeTransform& t, std::optional<double> frame = std::nullopt) {
@@ -196,7 +196,7 @@ openvdb::FloatGrid::Ptr centredBox() { return boxGrid({-8, -2, -2}, {8, 2, 2}, k
 Scene keyedSequence(const std::string& dir) {
     for (int frame = 1; frame <= 3; ++frame) openvdb::io::File(dir + "/box_000" + std::to_string(frame) + ".vdb").write({centredBox()});
     Scene s = lookingAlong(dir + "/box_####.vdb", glm::translate(glm::mat4(1.0f), glm::vec3(0.25f)), glm::vec3(1, 0, 0));
-    s.volume.frames = FrameSet(1, 3);
+    s.volume().frames = FrameSet(1, 3);
     return s;
 }
 
@@ -204,8 +204,8 @@ Scene keyedSequence(const std::string& dir) {
 // (2.5), and frame 2, halfway through the turn, crosses the 2.5-unit width at 45 degrees.
 TEST(VolumeTransform, AKeyedSequenceRendersEachFrameInItsPose) {
     Scene s = keyedSequence(tempDir("volume-transform-keyed"));
-    s.volume.transform = keyedTurn();
-    for (TransformKey& k : s.volume.transform->keys) k.translate = glm::vec3(0.0f), k.scale = glm::vec3(1.0f);
+    s.volume().transform = keyedTurn();
+    for (TransformKey& k : s.volume().transform->keys) k.translate = glm::vec3(0.0f), k.scale = glm::vec3(1.0f);
     Renderer renderer(s);
     EXPECT_NEAR(centreTransmittance(renderer.render(1, false).image), std::exp(-kSigma * 8.5f), 2e-3f);
     EXPECT_NEAR(centreTransmittance(renderer.render(2, false).image), std::exp(-kSigma * 2.5f * std::sqrt(2.0f)), 2e-3f);
@@ -219,12 +219,12 @@ TEST(VolumeTransform, AChanFileKeysTheTransformAndItsEditsRerenderIt) {
     std::ofstream(dir + "/turn.chan") << "1 0 0 0 0 0 0\n3 0 0 0 0 0 90\n";
     Scene s = keyedSequence(dir);
     nlohmann::json j = sceneToJson(s);
-    j["volume"]["transform"] = {{"chan", "turn.chan"}, {"rotate_order", "zxy"}};
+    j["volumes"][0]["transform"] = {{"chan", "turn.chan"}, {"rotate_order", "zxy"}};
     s = parseScene(j.dump(), dir + "/shot.json", dir);
-    ASSERT_TRUE(s.volume.transform);
-    ASSERT_EQ(s.volume.transform->keys.size(), 2u);
-    EXPECT_EQ(s.volume.transform->rotate_order, RotateOrder::Zxy);
-    EXPECT_EQ(sceneToJson(s)["volume"]["transform"],
+    ASSERT_TRUE(s.volume().transform);
+    ASSERT_EQ(s.volume().transform->keys.size(), 2u);
+    EXPECT_EQ(s.volume().transform->rotate_order, RotateOrder::Zxy);
+    EXPECT_EQ(sceneToJson(s)["volumes"][0]["transform"],
               nlohmann::json({{"chan", dir + "/turn.chan"}, {"rotate_order", "zxy"}, {"scale", {1, 1, 1}}}));
     EXPECT_EQ(sceneToJson(parseScene(sceneToJson(s).dump(), "again.json", "")), sceneToJson(s));
 
@@ -252,7 +252,7 @@ TEST(VolumeTransform, KeysAreValidated) {
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "transform": [{"frame": 1}]}})"),
               "shot.json: /volume/transform: is keyed per frame, but path names one file, not a #### sequence");
     const Scene s = parseScene(v + R"([{"frame": 1, "scale": 2}, {"frame": 2.5, "translate": [1, 0, 0]}]}})", "shot.json", "");
-    EXPECT_EQ(sceneToJson(s)["volume"]["transform"],
+    EXPECT_EQ(sceneToJson(s)["volumes"][0]["transform"],
               nlohmann::json::parse(R"({"keys": [{"frame": 1.0, "translate": [0, 0, 0], "rotate": [0, 0, 0], "scale": [2, 2, 2]},
                                                  {"frame": 2.5, "translate": [1, 0, 0], "rotate": [0, 0, 0], "scale": [1, 1, 1]}]})"));
     EXPECT_EQ(sceneToJson(parseScene(sceneToJson(s).dump(), "again.json", "")), sceneToJson(s));

@@ -75,7 +75,7 @@ void SatStage::release() {
 void SatStage::run(StageRun& run) {
     release();
     const Scene& scene = run.scene({"/effects/color_bleeding", "/effects/ambient_occlusion?", "/effects/shadows",
-                                    "/effects/light_resolution", "/effects/light_memory_mb", "/lights", "/material"});
+                                    "/effects/light_resolution", "/effects/light_memory_mb", "/lights", "/volumes/*/material"});
     const float bleeding = bleedingOf(scene);
     const glm::vec3 extent = occupiedExtent(classify_.pages());
     std::string warning;
@@ -139,7 +139,7 @@ void LightCacheStage::release() {
 
 void LightCacheStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows",
-                                    "/lights", "/material"});
+                                    "/lights", "/volumes/*/material"});
     const Effects& fx = scene.effects;
     const LightGrid& grid = sat_.grid();
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages());

@@ -60,7 +60,7 @@ double emittedLightCost(const SweepGrid& g) {
 }
 
 bool emissionLightsTheMedium(const Scene& s) {
-    return !s.emission.empty() && s.effects.indirect && s.effects.shadows == ShadowMethod::Propagation &&
+    return !s.volume().emission.empty() && s.effects.indirect && s.effects.shadows == ShadowMethod::Propagation &&
            s.render.method == RenderMethod::March;
 }
 

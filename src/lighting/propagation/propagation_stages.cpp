@@ -288,7 +288,7 @@ void lightTheMarchFrom(const IlluminationVolume& v, const Scene& scene, MarchLig
     if (scene.effects.shadows != ShadowMethod::Propagation) return;
     const auto& indirect = scene.effects.indirect;
     if (indirect && indirect->model == IndirectModel::Diffusion && scene.render.method == RenderMethod::March)
-        lighting.ambient_scale = diffuseSkyFactor(scene.material.albedo, scene.material.anisotropy);
+        lighting.ambient_scale = diffuseSkyFactor(scene.volume().material.albedo, scene.volume().material.anisotropy);
     if (v.values.empty()) return;
     kernel::VxPropagationMarch& b = lighting.blocks.propagation;
     b.world_to_illum = v.world_to_illum;
@@ -331,13 +331,13 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission,
 }
 
 StageReads IlluminationGridStage::reads() const {
-    return {{"/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
-             "/effects/propagation/chroma_subsampling", "/emission"}};
+    return {{"/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
+             "/effects/propagation/chroma_subsampling", "/volumes/*/emission"}};
 }
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
     const bool chroma = s.effects.indirect && s.effects.propagation.chroma_subsampling;
-    const bool transport = s.effects.indirect && regionsCarryTransport(s.material.transfer_2d);
+    const bool transport = s.effects.indirect && regionsCarryTransport(s.volume().material.transfer_2d);
     return propagationActivity(s, std::string("the light grid as the sweeps' grid") +
                                       (emissionLightsTheMedium(s) ? ", with the emission box-filtered into its cells" : "") +
                                       (chroma ? ", and its 2x coarsening" : "") +
@@ -358,7 +358,7 @@ void IlluminationGridStage::run(StageRun& run) {
     generation_ = nextGridGeneration();
     const PageTable& pages = classify_.pages();
     const Scene& scene = run.scene({"/effects/indirect?", "/effects/propagation/chroma_subsampling", "/effects/light_resolution",
-                                    "/effects/light_memory_mb", "/material", "/emission"});
+                                    "/effects/light_memory_mb", "/volumes/*/material", "/volumes/*/emission"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
@@ -438,7 +438,7 @@ StageReads PropagationStage::reads() const {
     return {{"/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/lights/*/color",
              "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects/propagation/blend_axes",
              "/effects/propagation/chroma_subsampling", "/effects/propagation/coherent", "/effects/indirect",
-             "/effects/perturbation", "/material/albedo", "/material/anisotropy", "/input/frame", "/render/backend"}};
+             "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy", "/input/frame", "/render/backend"}};
 }
 
 StageActivity PropagationStage::activity(const Scene& s) const {
@@ -452,7 +452,7 @@ StageActivity PropagationStage::activity(const Scene& s) const {
         char blur[160];
         std::snprintf(blur, sizeof blur, ", indirect RGB blurred in a %g deg cone over %d taps, ", double(in->angle), in->samples);
         out += blur;
-        if (regionsCarryTransport(s.material.transfer_2d)) {
+        if (regionsCarryTransport(s.volume().material.transfer_2d)) {
             out += "each region's transport colour";
         } else if (in->model == IndirectModel::Diffusion) {
             out += "diffusion profile";
@@ -482,8 +482,8 @@ void PropagationStage::run(StageRun& run) {
     const SweepGrid& fine = grid_.fine();
     const SweepGrid& coarse = grid_.coarse();
     const Scene& scene = run.scene({"/lights", "/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
-                                    "/effects/propagation/coherent", "/effects/indirect", "/effects/perturbation", "/material",
-                                    "/emission"});
+                                    "/effects/propagation/coherent", "/effects/indirect", "/effects/perturbation", "/volumes/*/material",
+                                    "/volumes/*/emission"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
@@ -491,7 +491,7 @@ void PropagationStage::run(StageRun& run) {
     std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
     passes_.keepFor(grid_.generation());   // copies the passes keep of another grid go
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
-                            "/effects/indirect", "/effects/perturbation", "/material/albedo", "/material/anisotropy",
+                            "/effects/indirect", "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy",
                             "/render/backend"})
         setup_key += "|" + run.scene.keyText(key);
     const bool coherent = fx.propagation.coherent;
@@ -501,7 +501,7 @@ void PropagationStage::run(StageRun& run) {
     FluenceProfile profile;
     kernel::VxPropParams blurred{};
     if (indirect) {
-        profile = indirectFluence(*fx.indirect, scene.material);
+        profile = indirectFluence(*fx.indirect, scene.volume().material);
         blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)), profile.attenuation);
         blurred.transport_planes = coarse.transport_planes ? 1 : 0;
     }
@@ -577,7 +577,7 @@ void PropagationStage::run(StageRun& run) {
             runPasses(all_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
             if (indirect) {
                 runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
-                addEmittedLight(coarse, scene.material, blurred, inputs, passes_.on(run.backend), volume_, report);
+                addEmittedLight(coarse, scene.volume().material, blurred, inputs, passes_.on(run.backend), volume_, report);
             }
             drift_ = 0.0;
         }

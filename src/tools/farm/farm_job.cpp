@@ -36,7 +36,7 @@ FarmJob createFarmJob(const Scene& scene, const std::string& dir, int64_t chunk,
     if (!job.dir.empty() && job.dir.back() == '/') job.dir.pop_back();
     if (fs::exists(job.dir + "/job.json"))
         throw InputError(job.dir + ": holds a farm job already (voxlux farm collect it, or choose another --job-dir)");
-    job.frames = scene.volume.frames.value();
+    job.frames = scene.volume().frames.value();
     job.chunk = chunk;
     job.voxlux = voxlux;
     job.partition = partition;

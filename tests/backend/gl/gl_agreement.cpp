@@ -106,8 +106,8 @@ Scene baseScene() {
     Scene s;
     s.render.width = 74;    // not a multiple of the 8x8 work group
     s.render.height = 66;   // more rows than one GL dispatch band (64)
-    s.material.density_scale = 2.0f;   // extinction per world unit: the box is ~5 optical depths deep
-    s.material.anisotropy = 0.3f;
+    s.volume().material.density_scale = 2.0f;   // extinction per world unit: the box is ~5 optical depths deep
+    s.volume().material.anisotropy = 0.3f;
     s.effects.shadows = ShadowMethod::Raymarch;
     s.lights = {directionalLight(), pointLight()};
     return s;

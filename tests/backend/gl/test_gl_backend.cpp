@@ -45,7 +45,7 @@ TEST(GlBackend, MatchesCpuWithUnshadowedDirectionalLight) {
 TEST(GlBackend, MatchesCpuWithEmissionAndColourGrids) {
     VOXLUX_REQUIRE_GL(gl);
     Scene scene = baseScene();
-    scene.emission = {emissionSource()};
+    scene.volume().emission = {emissionSource()};
     const auto stats = expectMatch(renderBoth(makeVolume(true), scene, *gl));
     EXPECT_GT(stats[kDirect].peak, 0.0);
     EXPECT_GT(stats[kEmission].peak, 0.0);
@@ -66,7 +66,7 @@ TEST(GlBackend, MatchesCpuWithTwoEmissionSources) {
     flame.kind = EmissionKind::Ramp;
     flame.ramp = {{0.0f, glm::vec3(0.0f)}, {0.5f, {1.0f, 0.3f, 0.05f}}, {1.0f, {1.0f, 0.9f, 0.6f}}};
     flame.intensity = 3.0f;
-    scene.emission = {fire, flame};
+    scene.volume().emission = {fire, flame};
     LoadedVolume volume = makeVolume(true);
     volume.emission.push_back(flameGrid());
     const auto stats = expectMatch(renderBoth(std::move(volume), scene, *gl));
@@ -78,7 +78,7 @@ TEST(GlBackend, MatchesCpuWithTransferFunction) {
     VOXLUX_REQUIRE_GL(gl);
     Scene scene = baseScene();
     scene.lights.push_back(spotLight());
-    scene.material.transfer = {{0.1f, 0.0f, glm::vec3(1.0f)},
+    scene.volume().material.transfer = {{0.1f, 0.0f, glm::vec3(1.0f)},
                                {0.5f, 1.5f, glm::vec3(1.0f, 0.6f, 0.3f)},
                                {1.2f, 0.4f, glm::vec3(0.3f, 0.5f, 1.0f)}};
     EXPECT_GT(expectMatch(renderBoth(makeVolume(false), scene, *gl))[kDirect].peak, 0.0);
@@ -88,7 +88,7 @@ TEST(GlBackend, MatchesCpuWithoutLights) {
     VOXLUX_REQUIRE_GL(gl);
     Scene scene = baseScene();
     scene.lights.clear();
-    scene.emission = {emissionSource()};
+    scene.volume().emission = {emissionSource()};
     const auto stats = expectMatch(renderBoth(makeVolume(true), scene, *gl));
     EXPECT_EQ(stats[kDirect].peak, 0.0);
     EXPECT_EQ(stats[kDirect].max_abs, 0.0);

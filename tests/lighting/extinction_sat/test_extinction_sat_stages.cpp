@@ -15,11 +15,11 @@ namespace {
 // A CPU render of `vdb` at width x height with the given density scale, no lights yet.
 Scene cpuScene(const std::string& vdb, int width, int height, float density_scale) {
     Scene s;
-    s.volume.path = vdb;
+    s.volume().path = vdb;
     s.render.width = width;
     s.render.height = height;
     s.render.backend = Backend::Cpu;
-    s.material.density_scale = density_scale;
+    s.volume().material.density_scale = density_scale;
     return s;
 }
 
@@ -89,7 +89,7 @@ TEST(LightStage, AChangeRecomputesOnlyWhatItInvalidates) {
     expectSameImage(brighter, Renderer(scene).render(std::nullopt, false));
 
     // A denser material invalidates the grid, the SAT and every channel, but not the bricks.
-    scene.material.density_scale = 6.0f;
+    scene.volume().material.density_scale = 6.0f;
     renderer.setScene(scene);
     const FrameResult denser = renderer.render(std::nullopt, false);
     EXPECT_TRUE(has(denser.reused, "brick"));
@@ -173,7 +173,7 @@ TEST(LightStage, HostileVoxelsAndEmptyFramesStayFinite) {
         << warnings;
 
     openvdb::io::File(dir + "/empty.vdb").write({boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1)});
-    scene.volume.path = dir + "/empty.vdb";
+    scene.volume().path = dir + "/empty.vdb";
     const FrameResult blank = Renderer(scene).render(std::nullopt, true);
     EXPECT_TRUE(blank.empty);
     for (const char* stage : {"light_grid", "sat", "light_cache"}) EXPECT_FALSE(ran(blank, stage)) << stage;

@@ -30,7 +30,7 @@ Scene satScene() {
     ambient.color = glm::vec3(0.5f, 0.6f, 0.8f);
     ambient.intensity = 0.4f;
     s.lights = {directionalLight(), pointLight(), spotLight(), ambient};
-    s.emission = {EmissionSource{}};   // white, for makeVolume(true)
+    s.volume().emission = {EmissionSource{}};   // white, for makeVolume(true)
     return s;
 }
 

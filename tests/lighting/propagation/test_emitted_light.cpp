@@ -41,17 +41,17 @@ std::string writeGlowingCore(const std::string& dir, float shell, float core) {
 
 Scene glowingCoreScene(const std::string& path) {
     Scene s;
-    s.volume.path = path;
+    s.volume().path = path;
     s.render.width = 48;
     s.render.height = 48;
     s.render.backend = Backend::Cpu;
     s.render.step = 0.25f;
-    s.material.albedo = glm::vec3(0.8f);
+    s.volume().material.albedo = glm::vec3(0.8f);
     EmissionSource glow;
     glow.grid = GridRef{"flame", 0};
     glow.color = glm::vec3(1.0f, 0.5f, 0.2f);
     glow.intensity = 4.0f;
-    s.emission = {glow};
+    s.volume().emission = {glow};
     s.camera = cameraAlong(glm::vec3(0.0f), {0.3f, -1.0f, -0.2f}, 8.0f, 36.0f);
     s.effects.shadows = ShadowMethod::Propagation;
     s.effects.indirect = Indirect{};
@@ -147,7 +147,7 @@ TEST(EmittedLight, RegionTransportPlanesLeaveTheEmittedLightAlone) {
     shell.extinction = 1.0f;
     core.value = {3.5f, 4.5f};
     core.extinction = 4.0f;
-    s.material.transfer_2d = {shell, core};
+    s.volume().material.transfer_2d = {shell, core};
     const glm::vec3 colour(0.9f, 0.6f, 0.4f);
     Indirect in;
     in.model = IndirectModel::Kniss;
@@ -155,7 +155,7 @@ TEST(EmittedLight, RegionTransportPlanesLeaveTheEmittedLightAlone) {
     s.effects.indirect = in;
     Renderer global(s);
     global.prepare(std::nullopt, false);
-    for (TransferRegion& r : s.material.transfer_2d) r.transport = colour;
+    for (TransferRegion& r : s.volume().material.transfer_2d) r.transport = colour;
     s.effects.indirect->transport_color = glm::vec3(0.3f);
     Renderer regions(s);
     regions.prepare(std::nullopt, false);

@@ -160,8 +160,8 @@ Kinks kinks(const std::vector<double>& fast, const std::vector<double>& a, const
 TEST(IlluminationLookup, SmoothDenseMediumShowsNoBandsAtTheLightCells) {
     Scene s;
     s.render.width = s.render.height = 96;
-    s.material.density_scale = 102.4f;
-    s.material.albedo = glm::vec3(0.94f);
+    s.volume().material.density_scale = 102.4f;
+    s.volume().material.albedo = glm::vec3(0.94f);
     Light sun;
     sun.direction = glm::normalize(glm::vec3(-0.5f, -0.85f, 0.0f));
     sun.intensity = 12.0f;

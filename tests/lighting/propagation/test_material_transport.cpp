@@ -122,10 +122,10 @@ TransferRegion valueBand(float lo, float hi, float extinction, std::optional<glm
 // material), regions carrying `left` and `right` (or none), the global colour `global`.
 Scene halvesScene(std::optional<glm::vec3> left, std::optional<glm::vec3> right, glm::vec3 global, bool chroma) {
     Scene s;
-    s.volume.path = "halves";
+    s.volume().path = "halves";
     s.render.width = 32;
     s.render.height = 32;
-    s.material.transfer_2d = {valueBand(40, 60, 0.1f, left), valueBand(90, 110, 0.2f, right)};
+    s.volume().material.transfer_2d = {valueBand(40, 60, 0.1f, left), valueBand(90, 110, 0.2f, right)};
     s.effects.shadows = ShadowMethod::Propagation;
     s.effects.light_resolution = 40;
     s.effects.propagation.chroma_subsampling = chroma;

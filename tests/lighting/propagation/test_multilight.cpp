@@ -120,7 +120,7 @@ constexpr int kCubeGrid = kCube + 8;   // the occupied bricks reach one brick be
 
 Scene cubeScene(std::vector<Light> lights, bool indirect) {
     Scene s;
-    s.volume.path = "cube";
+    s.volume().path = "cube";
     s.effects.shadows = ShadowMethod::Propagation;
     s.effects.light_resolution = kCubeGrid;
     if (indirect) s.effects.indirect = Indirect{};
@@ -332,8 +332,8 @@ TEST(MultiLight, CpuAndGlAgreeOnAMixedRig) {
 // propagation with indirect light, on `backend`, at `light_resolution` cells.
 Scene ballScene(const std::string& folder, int light_resolution, Backend backend = Backend::Cpu) {
     Scene scene;
-    scene.volume.path = writeBall(tempDir(folder));
-    scene.material.density_scale = 8.0f;
+    scene.volume().path = writeBall(tempDir(folder));
+    scene.volume().material.density_scale = 8.0f;
     scene.render.backend = backend;
     scene.effects.shadows = ShadowMethod::Propagation;
     scene.effects.light_resolution = light_resolution;

@@ -78,8 +78,8 @@ TEST(DiffusionProfile, TheMarchKeepsTheSkysShareAtTheSurface) {
             Scene s;
             s.render.width = s.render.height = 4;
             s.render.backend = Backend::Cpu;
-            s.material.albedo = glm::vec3(albedo);
-            s.material.anisotropy = 0.3f;
+            s.volume().material.albedo = glm::vec3(albedo);
+            s.volume().material.anisotropy = 0.3f;
             s.effects.shadows = ShadowMethod::Propagation;
             s.effects.light_resolution = 16;
             Indirect in;
@@ -109,13 +109,13 @@ TEST(DiffusionProfile, TheMarchKeepsTheSkysShareAtTheSurface) {
 TEST(DiffusionProfile, ComesCloserToTheReferenceThanKnissDefaults) {
     const std::string vdb = writeBall(tempDir("multiple_scattering"));
     Scene s;
-    s.volume.path = vdb;
+    s.volume().path = vdb;
     s.render.width = 48;
     s.render.height = 48;
     s.render.backend = Backend::Cpu;
-    s.material.density_scale = 8.0f;
-    s.material.albedo = glm::vec3(0.95f);
-    s.material.anisotropy = 0.3f;
+    s.volume().material.density_scale = 8.0f;
+    s.volume().material.albedo = glm::vec3(0.95f);
+    s.volume().material.anisotropy = 0.3f;
     Light sun;
     sun.direction = glm::normalize(glm::vec3(0.6f, -0.6f, -0.5f));
     sun.intensity = 4.0f;

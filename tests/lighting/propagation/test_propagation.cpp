@@ -26,7 +26,7 @@ constexpr int kSlabGrid = kSlab + 8;
 // travelling along `dir`, with propagation shadows on a light grid of one cell per voxel.
 Scene slabScene(glm::vec3 dir, bool blend) {
     Scene s;
-    s.volume.path = "slab";
+    s.volume().path = "slab";
     s.render.width = 32;
     s.render.height = 32;
     s.effects.shadows = ShadowMethod::Propagation;
@@ -347,11 +347,11 @@ TEST(Propagation, TransportColourShiftsIndirectLightWithDepth) {
 // `degrees` from -z towards +x, a little downwards; propagation shadows on a 32-cell grid.
 Scene slantLitBallScene(const std::string& vdb, float degrees) {
     Scene s;
-    s.volume.path = vdb;
+    s.volume().path = vdb;
     s.render.width = 64;
     s.render.height = 48;
     s.render.backend = Backend::Cpu;
-    s.material.density_scale = 4.0f;
+    s.volume().material.density_scale = 4.0f;
     s.effects.shadows = ShadowMethod::Propagation;
     s.effects.light_resolution = 32;
     Light l;
@@ -606,7 +606,7 @@ TEST(Propagation, EditsRecomputeOnlyWhatTheyInvalidate) {
     EXPECT_FALSE(ran(f, "propagation") || ran(f, "eye_pass"));
     EXPECT_TRUE(identical(f.image, renderScene(s).image));
     EXPECT_FALSE(identical(f.image, with_eye));
-    s.material.density_scale = 5.0f;
+    s.volume().material.density_scale = 5.0f;
     r.setScene(s);
     f = r.render(std::nullopt, false);
     EXPECT_TRUE(ran(f, "illumination_grid"));
@@ -644,7 +644,7 @@ TEST(Propagation, EyeSweepIsAConvexBlend) {
     Scene empty_air = slabScene({0.2f, -1, 0.1f}, true);
     empty_air.effects.indirect = Indirect{};
     empty_air.effects.propagation.eye_pass = true;
-    const glm::vec3 entering = collimatedFluence(empty_air.material.albedo, empty_air.material.anisotropy).amplitude;
+    const glm::vec3 entering = collimatedFluence(empty_air.volume().material.albedo, empty_air.volume().material.anisotropy).amplitude;
     auto air = illuminate(slab(1e-9f), empty_air, *cpu);
     const IlluminationVolume& u = air->volume();
     for (size_t i = u.indirectOffset(); i < u.values.size(); ++i)
@@ -725,11 +725,11 @@ double directRmse(const RenderImage& a, const RenderImage& ref) {
 TEST(Propagation, ConvergesOnRayMarchedShadowsOnSmoke) {
     VOXLUX_REQUIRE_SHARED(smoke, "arnold-usd/smoke.vdb");
     Scene s;
-    s.volume.path = smoke;
+    s.volume().path = smoke;
     s.render.width = 96;
     s.render.height = 128;
     s.render.backend = Backend::Cpu;
-    s.material.density_scale = 2.0f;
+    s.volume().material.density_scale = 2.0f;
     Light key;
     key.direction = glm::normalize(glm::vec3(-0.6f, -0.7f, -0.3f));
     key.intensity = 6.0f;
@@ -754,13 +754,13 @@ TEST(Propagation, ConvergesOnRayMarchedShadowsOnSmoke) {
 TEST(Propagation, BlenderFireWithEveryFeatureStaysFinite) {
     VOXLUX_REQUIRE_SHARED(fire, "blender/fire/fluid_data_0040.vdb");
     Scene s;
-    s.volume.path = fire;
-    s.emission = {EmissionSource{}};
-    s.emission[0].grid = GridRef{"flame", 0};
+    s.volume().path = fire;
+    s.volume().emission = {EmissionSource{}};
+    s.volume().emission[0].grid = GridRef{"flame", 0};
     s.render.width = 48;
     s.render.height = 64;
     s.render.backend = Backend::Cpu;
-    s.material.density_scale = 20.0f;
+    s.volume().material.density_scale = 20.0f;
     s.effects.shadows = ShadowMethod::Propagation;
     s.effects.light_resolution = 48;
     s.effects.indirect = Indirect{};

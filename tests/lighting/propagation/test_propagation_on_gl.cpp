@@ -21,7 +21,7 @@ TEST(GlBackend, MatchesCpuWithPropagation) {
         Indirect in;
         in.model = model;
         in.transport_color = glm::vec3(1.0f, 0.6f, 0.35f);
-        s.material.albedo = glm::vec3(0.95f, 0.8f, 0.6f);
+        s.volume().material.albedo = glm::vec3(0.95f, 0.8f, 0.6f);
         s.effects.indirect = in;
         s.effects.propagation.eye_pass = true;
         s.effects.propagation.chroma_subsampling = true;
@@ -34,7 +34,7 @@ TEST(GlBackend, MatchesCpuWithPropagation) {
         s.effects.perturbation = p;
         s.effects.surface = SurfaceShading{};
         s.lights = {directionalLight(), pointLight(), spotLight()};
-        s.emission = {EmissionSource{}};
+        s.volume().emission = {EmissionSource{}};
         const auto stats = expectMatch(renderBoth(makeVolume(true), s, *gl));
         EXPECT_GT(stats[kDirect].peak, 0.0);
         EXPECT_GT(stats[kIndirect].peak, 0.0);
@@ -50,8 +50,8 @@ TEST(GlBackend, MatchesCpuWithEmissionLightingTheMedium) {
     s.effects.shadows = ShadowMethod::Propagation;
     s.effects.light_resolution = 24;
     s.effects.indirect = Indirect{};
-    s.material.albedo = glm::vec3(0.9f, 0.7f, 0.5f);
-    s.emission = {emissionSource()};
+    s.volume().material.albedo = glm::vec3(0.9f, 0.7f, 0.5f);
+    s.volume().emission = {emissionSource()};
     const auto stats = expectMatch(renderBoth(makeVolume(true), s, *gl));
     EXPECT_GT(stats[kIndirect].peak, 0.0);
     EXPECT_EQ(stats[kDirect].peak, 0.0);

@@ -74,11 +74,11 @@ struct ToyMethodRegistered {
 
 Scene litBall(const std::string& vdb, ShadowMethod shadows) {
     Scene s;
-    s.volume.path = vdb;
+    s.volume().path = vdb;
     s.render.width = 40;
     s.render.height = 32;
     s.render.backend = Backend::Cpu;
-    s.material.density_scale = 4.0f;
+    s.volume().material.density_scale = 4.0f;
     s.effects.shadows = shadows;
     Light key;
     key.direction = glm::normalize(glm::vec3(-1, -1, -0.5f));
