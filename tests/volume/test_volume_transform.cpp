@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtx/component_wise.hpp>
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/GridTransformer.h>
 
 #include <fstream>
 
@@ -101,6 +102,76 @@ TEST(VolumeTransform, RendersAsThePlacementWrittenIntoTheFile) {
     }
     EXPECT_GT(covered, 0.3f);   // the box is in view
     EXPECT_LE(difference, 1e-5f);
+}
+
+// A smooth ellipsoid of semi-axes 12 x 6 x 4 voxels, half-unit voxels: what a resampler carries
+// into another pose without losing its shape to aliasing.
+openvdb::FloatGrid::Ptr ellipsoid() {
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setName("density");
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(kVoxel));
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    auto acc = grid->getAccessor();
+    for (int z = -5; z <= 5; ++z)
+        for (int y = -7; y <= 7; ++y)
+            for (int x = -13; x <= 13; ++x) {
+                const float r2 = float(x * x) / 144.0f + float(y * y) / 36.0f + float(z * z) / 16.0f;
+                if (r2 < 1.0f) acc.setValue(openvdb::Coord(x, y, z), 0.6f * (1.0f - r2) * (1.0f - r2));
+            }
+    return grid;
+}
+
+// The check against an independent resampler: the placed cache renders as OpenVDB's
+// tools::resampleToMatch of it into the placed pose, on an axis-aligned grid of quarter-unit
+// voxels, rendered without a transform. Their difference is the resampler's trilinear blur.
+TEST(VolumeTransform, RendersAsOpenVdbsResamplingIntoThePose) {
+    const std::string dir = tempDir("volume-transform-resampled");
+    VolumeTransform t;
+    t.translate = glm::vec3(0.5f, 0.25f, -1.0f);
+    t.rotate = glm::vec3(20.0f, -35.0f, 60.0f);
+    t.scale = glm::vec3(1.5f, 0.75f, 1.2f);
+    const glm::mat4 m = volumeTransformMatrix(t);
+    const std::string file = dir + "/ellipsoid.vdb";
+    openvdb::io::File(file).write({ellipsoid()});
+
+    auto posed = ellipsoid();   // the same voxels under the placed index-to-world
+    openvdb::math::Mat4d mat;
+    const glm::mat4 index_to_world = m * glm::mat4(glm::vec4(kVoxel, 0, 0, 0), glm::vec4(0, kVoxel, 0, 0), glm::vec4(0, 0, kVoxel, 0),
+                                                   glm::vec4(0, 0, 0, 1));
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) mat[i][j] = index_to_world[i][j];
+    posed->setTransform(openvdb::math::Transform::createLinearTransform(mat));
+    auto resampled = openvdb::FloatGrid::create(0.0f);
+    resampled->setName("density");
+    resampled->setGridClass(openvdb::GRID_FOG_VOLUME);
+    resampled->setTransform(openvdb::math::Transform::createLinearTransform(0.25));
+    openvdb::tools::resampleToMatch<openvdb::tools::BoxSampler>(*posed, *resampled);
+    const std::string resampled_file = dir + "/resampled.vdb";
+    openvdb::io::File(resampled_file).write({resampled});
+
+    Scene placed = lookingAlong(file, glm::translate(m, glm::vec3(0.25f)), glm::normalize(glm::vec3(0.2f, -0.5f, 1.0f)));
+    placed.volume().transform = t;
+    placed.render.step = 0.25f;
+    Scene in_file = placed;
+    in_file.volume().path = resampled_file;
+    in_file.volume().transform.reset();
+    const RenderImage a = Renderer(placed).render(std::nullopt, false).image;
+    const RenderImage b = Renderer(in_file).render(std::nullopt, false).image;
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    float covered = 0.0f, largest = 0.0f;
+    double total = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        covered = std::max(covered, a.pixels[i].rgba.w);
+        const float d = glm::compMax(glm::abs(a.pixels[i].rgba - b.pixels[i].rgba));
+        largest = std::max(largest, d);
+        total += d;
+    }
+    std::printf("  placed against resampled: largest difference %.4f, mean %.5f, peak alpha %.3f\n", largest, total / double(a.pixels.size()), covered);
+    EXPECT_GT(covered, 0.3f);
+    // Measured: 0.016 and 0.0003. A rotation about the wrong axes or in the wrong order moves the
+    // ellipsoid by whole pixels, differences of the order of its alpha.
+    EXPECT_LE(largest, 0.025f);
+    EXPECT_LE(total / double(a.pixels.size()), 0.001);
 }
 
 // The medium moves as it is placed: velocities turn and scale with the cache, and so does the
