@@ -20,7 +20,7 @@ VX_INLINE bool vx_moving(float time) { return P.use_velocity != 0 && time != 0.0
 // `time`: 0 where no velocity is bound, at the frame's own time, and outside stored bricks.
 VX_INLINE vec3 vx_motion_shift(int slot, ivec3 b, vec3 p, float time) {
     if (!vx_moving(time) || slot == VX_PAGE_EMPTY) return vec3(0.0f);
-    return vx_velocity_at(vx_taps_at(slot, b, p)) * (P.velocity_per_frame * time);
+    return mat3(P.velocity_to_world) * vx_velocity_at(vx_taps_at(slot, b, p)) * (P.velocity_per_frame * time);
 }
 
 // The reconstruction at index point p of stored brick (slot, b) moved back by world `shift`: where

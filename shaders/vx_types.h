@@ -24,7 +24,8 @@ struct VxLight {
 // Everything the march needs besides the data arrays.
 struct VxParams {
     mat4 camera_to_world;   // camera looks down -Z, +Y up
-    mat4 world_to_index;    // affine inverse of the grid's index-to-world transform
+    mat4 world_to_index;    // affine inverse of the grid's index-to-world transform (placed)
+    mat4 velocity_to_world; // the volume's placement: velocity grids hold the file's world units
 
     float tan_half_fov;     // tan(vertical field of view / 2)
     float aspect;           // width / height

@@ -32,8 +32,8 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     auto& P = in.params;
     const auto& r = scene.render;
     const auto& m = scene.volume().material;
-    const float edge = voxelEdge(atlas.index_to_world);
-    P.world_to_index = glm::inverse(atlas.index_to_world);
+    const float edge = voxelEdge(in.index_to_world);
+    P.world_to_index = glm::inverse(in.index_to_world);
     P.step = r.step * edge;
     P.voxel_filter = r.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
     P.deep_samples = scene.output.deep ? std::clamp(scene.output.deep_samples, 1, 64) : 0;   // a ray holds 65 (vx_deep.h)
@@ -153,7 +153,10 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     KernelInputs in;
     in.atlas = &atlas;
     in.pages = &pages;
+    const glm::mat4 placement = volumePlacement(scene.volume(), frame);
+    in.index_to_world = placement * atlas.index_to_world;
     auto& P = in.params;
+    P.velocity_to_world = placement;   // velocities are the file's world units
     if (const Camera* camera = sources.camera) {
         P.camera_to_world = cameraToWorld(*camera);
         P.tan_half_fov = std::tan(glm::radians(camera->fov) * 0.5f);
@@ -172,7 +175,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     setLights(scene, in);
     in.lighting = sources.lighting;   // the methods' blocks and arrays, as their stages set them
     P.ambient *= sources.lighting.ambient_scale;
-    setKnissEffects(scene.effects, voxelEdge(atlas.index_to_world), frame, in);
+    setKnissEffects(scene.effects, voxelEdge(in.index_to_world), frame, in);
     setMotionBlur(scene, atlas, sources.camera, in);
     return in;
 }

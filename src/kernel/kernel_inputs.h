@@ -9,6 +9,7 @@
 #include "optics/emission.h"
 #include "kernel/kernel_types.h"
 #include "volume/page_table.h"
+#include "volume/volume_stages.h"
 #include "scene/scene.h"
 
 namespace voxlux {
@@ -39,6 +40,7 @@ struct KernelInputs {
     std::vector<glm::vec4> emission_lut;    // VX_EMISSION_LUT_SIZE rows per emission source
     const BrickAtlas* atlas = nullptr;
     const PageTable* pages = nullptr;
+    glm::mat4 index_to_world{1.0f};         // the atlas's, placed by the volume's transform at the frame
     MarchLighting lighting;                 // the lighting methods' blocks and arrays
     std::vector<glm::vec4> noise;           // perturbation table, empty without perturbation
     glm::ivec4 region{0};                   // the pixels [x0, y0) to [x1, y1) to march (render.region)
@@ -50,8 +52,9 @@ struct MarchSources {
     MarchLighting lighting;
 };
 
-// `frame` (the sequence frame) animates the perturbation. `xyz_to_working` takes blackbody
-// emission from CIE XYZ (D65) to the working space.
+// `frame` (the sequence frame) animates the perturbation and poses the volume's transform (the
+// stage reads withPlacementKeys, volume_stages.h). `xyz_to_working` takes blackbody emission from CIE XYZ (D65) to the
+// working space.
 KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const PageTable& pages,
                               float frame = 0.0f, const glm::mat3& xyz_to_working = kXyzD65ToAcescg,
                               const MarchSources& sources = {});

@@ -199,7 +199,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
     const AxisCells ax{g.dims.x, voxels.x, g.cell}, ay{g.dims.y, voxels.y, g.cell}, az{g.dims.z, voxels.z, g.cell};
     const double inv_volume = 1.0 / (double(g.cell) * g.cell * g.cell);
     const size_t plane = g.cells();
-    const float cell_world = cellWorldSize(in.atlas->index_to_world * g.lightToIndex());
+    const float cell_world = cellWorldSize(in.index_to_world * g.lightToIndex());
     const double max_sigma = double(kMaxCellOpticalDepth) / cell_world;
     std::atomic<uint64_t> clamped{0};
 

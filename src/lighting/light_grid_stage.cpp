@@ -7,7 +7,7 @@
 namespace voxlux {
 
 StageReads LightGridStage::reads() const {
-    return {{"/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb"}};
+    return {withPlacementKeys({"/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb"})};
 }
 
 StageActivity LightGridStage::activity(const Scene& s) const {
@@ -29,10 +29,10 @@ void LightGridStage::run(StageRun& run) {
     const GridCost cost{[](glm::ivec3 d) { return size_t(d.x) * d.y * d.z * (sizeof(float) + 1); },
                         [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z < uint64_t(INT32_MAX); }, "light grid"};
     std::string unused_warning;
-    const Scene& scene = run.scene({"/effects/light_resolution", "/effects/light_memory_mb", "/volumes/*/material"});
+    const Scene& scene = run.scene({"/effects/light_resolution", "/effects/light_memory_mb", "/volumes/*/material", "/volumes/*/transform"});
     resolution_ = fitGridResolution(extent, cappedLightResolution(extent, scene.effects.light_resolution),
                                     size_t(scene.effects.light_memory_mb) << 20, cost, "light grid", unused_warning);
-    grid_ = buildLightGrid(makeKernelInputs(scene, brick_.atlas(), classify_.pages()), resolution_);
+    grid_ = buildLightGrid(makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame()), resolution_);
     if (grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(grid_));
 }
 

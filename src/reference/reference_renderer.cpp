@@ -293,7 +293,7 @@ ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
     const BrickAtlas& atlas = *in.atlas;
     const size_t slots = atlas.slots();
     const bool tf = k.P.use_transfer != 0;
-    const float floor_emitting = 1.0f / voxelEdge(atlas.index_to_world);
+    const float floor_emitting = 1.0f / voxelEdge(in.index_to_world);
     ExtinctionBounds b{std::vector<float>(slots, 0.0f), std::vector<float>(slots, 0.0f)};
     // The slots a sample in slot s reads: s itself, under the B-spline its 26 neighbours (absent
     // ones read 0), and under motion blur every slot the medium can move from (atlas.motion_reach

@@ -23,7 +23,7 @@ VolumeSpec densityOnly(const VolumeSpec& spec) {
 }  // namespace
 
 Camera frameVolumeCamera(const std::string& file, const Scene& scene) {
-    const LoadedVolume volume = loadVolume(file, densityOnly(scene.volume()));
+    const LoadedVolume volume = placedVolume(loadVolume(file, densityOnly(scene.volume())), volumePlacement(scene.volume(), std::nullopt));
     if (volume.density->activeVoxelCount() == 0)
         throw InputError(file + ": grid '" + volume.density->getName() + "' has no active voxels");
     return frameActiveVoxels(volume, scene);
@@ -47,7 +47,8 @@ SequenceFraming frameSequence(const Scene& scene) {
         // the render names it when its turn comes.
         LoadedVolume volume;
         try {
-            volume = loadVolume(expandFramePattern(scene.volume().path, frame), densityOnly(scene.volume()), std::nullopt, frame);
+            volume = placedVolume(loadVolume(expandFramePattern(scene.volume().path, frame), densityOnly(scene.volume())),
+                                  volumePlacement(scene.volume(), frame));
         } catch (const InputError& e) {
             if (out.unreadable.count() == 0) out.unreadable_reason = e.what();
             out.unreadable.add(frame);

@@ -43,10 +43,10 @@ std::string MarchStage::referenceSetupKey(const StageRun& run) const {
 
 StageReads MarchStage::reads() const {
     // Every render key but exposure, which only the grade applies.
-    return {{"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
+    return {withPlacementKeys({"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
              "/render/method", "/render/reference", "/render/motion_blur", "/render/region", "/volumes/*/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
-             "/volumes/*/emission", "/output/deep", "/output/deep_samples", "/input/frame"}};
+             "/volumes/*/emission", "/output/deep", "/output/deep_samples"})};
 }
 
 StageActivity MarchStage::activity(const Scene& s) const {

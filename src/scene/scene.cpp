@@ -39,6 +39,10 @@ glm::mat4 volumeTransformMatrix(const VolumeTransform& t, std::optional<double> 
     return pose(glm::mix(a.translate, b.translate, w), glm::mix(a.rotate, b.rotate, w), glm::mix(a.scale, b.scale, w), t.rotate_order);
 }
 
+glm::mat4 volumePlacement(const VolumeSpec& volume, std::optional<double> frame) {
+    return volume.transform ? volumeTransformMatrix(*volume.transform, frame) : glm::mat4(1.0f);
+}
+
 int enabledLightCount(const Scene& scene, bool ambient) {
     return int(std::count_if(scene.lights.begin(), scene.lights.end(),
                              [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; }));

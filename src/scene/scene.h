@@ -65,7 +65,8 @@ struct TransferPoint {
 };
 
 // One region of a two-dimensional transfer function (Kniss, Kindlmann and Hansen 2002): a rectangle
-// or a triangle in the plane of a voxel's value and its gradient magnitude (value per world unit).
+// or a triangle in the plane of a voxel's value and its gradient magnitude (value per world unit of
+// the file, before the volume's transform).
 // Its weight is 1 inside; `fade` (0..1) ramps it from 0 at the edges to 1 at that share of the way
 // to the centre, so that a boundary between materials is soft rather than one voxel sharp (a
 // gradient range from 0 fades at its upper end only).
@@ -254,6 +255,9 @@ struct VolumeSpec {
     Material material;
     std::vector<EmissionSource> emission;
 };
+// Where `volume` sits at `frame`: its transform's matrix, or the identity. Applied after the
+// bricks (which stay in the file's index space), so a move re-reads and re-bricks nothing.
+glm::mat4 volumePlacement(const VolumeSpec& volume, std::optional<double> frame);
 
 enum class PixelType { Half, Float };
 

@@ -127,7 +127,7 @@ Scene completeQuickScene(Scene scene, const SceneOverrides& o, std::optional<int
         const FrameSet& frames = *scene.volume().frames;
         file = expandFramePattern(file, frame.value_or(frames.at(frames.count() / 2)));
     }
-    const LoadedVolume volume = loadVolume(file, scene.volume());
+    const LoadedVolume volume = placedVolume(loadVolume(file, scene.volume()), volumePlacement(scene.volume(), frame));
     const glm::mat3 view_frame = viewFrameOf(scene, volume);
     notes.push_back("quick form: up axis " +
                     (scene.volume().up == UpAxis::Auto ? volume.up.reason : signedAxisName(view_frame[1]) + " (volume.up)"));

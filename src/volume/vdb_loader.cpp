@@ -205,19 +205,19 @@ glm::mat3 placedFrame(const glm::mat3& linear, const glm::mat3& frame) {
     return glm::mat3(glm::cross(up, back), up, back);
 }
 
-// World vectors (velocities) turned and scaled as `linear` places the volume.
-void placeVectors(const glm::mat3& linear, openvdb::Vec3SGrid& grid) {
-    for (auto it = grid.beginValueOn(); it; ++it) {
-        const openvdb::Vec3s v = *it;
-        const glm::vec3 placed = linear * glm::vec3(v.x(), v.y(), v.z());
-        it.setValue(openvdb::Vec3s(placed.x, placed.y, placed.z));
-    }
-}
-
 }  // namespace
 
-LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::optional<MotionBlur>& motion,
-                        std::optional<int> frame) {
+LoadedVolume placedVolume(LoadedVolume v, const glm::mat4& placement) {
+    if (placement == glm::mat4(1.0f)) return v;
+    v.index_to_world = placement * v.index_to_world;
+    v.up.frame = placedFrame(glm::mat3(placement), v.up.frame);
+    const glm::vec3 up = glm::abs(v.up.frame[1]);
+    v.up.axis = up.x >= up.y && up.x >= up.z ? 0 : up.y >= up.z ? 1 : 2;
+    v.up.reason += ", turned by volume.transform";
+    return v;
+}
+
+LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const std::optional<MotionBlur>& motion) {
     initOpenVdb();
     VdbFile f = openFile(file);
     LoadedVolume v;
@@ -225,14 +225,6 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const s
     auto density = asFogFloat(readGrid(f, file, spec.density, v.warnings, "--grid"), file, spec, "density");
     v.index_to_world = indexToWorld(*density, file);
     v.up = detectUpAxis(f.fileMetadata(), *density);
-    const glm::mat4 placement = spec.transform ? volumeTransformMatrix(*spec.transform, frame) : glm::mat4(1.0f);
-    if (spec.transform) {
-        v.index_to_world = placement * v.index_to_world;
-        v.up.frame = placedFrame(glm::mat3(placement), v.up.frame);
-        const glm::vec3 up = glm::abs(v.up.frame[1]);
-        v.up.axis = up.x >= up.y && up.x >= up.z ? 0 : up.y >= up.z ? 1 : 2;
-        v.up.reason += ", turned by volume.transform";
-    }
     for (const auto& source : spec.emission)
         v.emission.push_back(matchTransform<openvdb::FloatGrid>(
             asFogFloat(readGrid(f, file, source.grid, v.warnings), file, spec, "emission"), *density, file,
@@ -244,7 +236,6 @@ LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec, const s
         if (std::optional<GridRef> ref = velocityGrid(f, *motion)) {
             const auto velocity = matchTransform<openvdb::Vec3SGrid>(
                 velocityAtVoxelCentres(asVector(readGrid(f, file, *ref, v.warnings), file, "velocity")), *density, file, v.warnings);
-            if (spec.transform) placeVectors(glm::mat3(placement), *velocity);   // the medium moves as it is placed
             v.max_speed = maxSpeed(*velocity);
             const float reach = motionReachVoxels(v.max_speed, voxelEdge(v.index_to_world), *motion, file, velocity->getName());
             extendVelocity(*velocity, int(std::ceil(reach)));

@@ -51,11 +51,14 @@ struct GridSummary {
 void initOpenVdb();
 
 // The grids `spec` names, each of its emission sources' grids, and with motion blur the velocity
-// grid, placed by spec.transform at `frame` (a keyed transform's pose; unset: a still, at its first
-// key). Throws InputError "<file>: <problem>".
+// grid, in the file's own world: spec.transform is applied after the bricks (placedVolume, the
+// kernel inputs). Throws InputError "<file>: <problem>".
 LoadedVolume loadVolume(const std::string& file, const VolumeSpec& spec,
-                        const std::optional<MotionBlur>& motion = std::nullopt,
-                        std::optional<int> frame = std::nullopt);
+                        const std::optional<MotionBlur>& motion = std::nullopt);
+
+// `volume` where `placement` puts it: its index-to-world and the default view's up frame. The
+// velocity grid keeps the file's world units (the kernel turns it: VxParams::velocity_to_world).
+LoadedVolume placedVolume(LoadedVolume volume, const glm::mat4& placement);
 std::vector<GridSummary> summarizeFile(const std::string& file);
 
 // Index-to-world of a grid as a column-major matrix; throws for non-affine transforms.

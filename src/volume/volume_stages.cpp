@@ -25,7 +25,7 @@ std::string nothingVisible(const LoadedVolume& v, const BrickAtlas& atlas, const
 }  // namespace
 
 StageReads LoadStage::reads() const {
-    return {{"/input/file", "/input/frame", "/input/transform_chan", "/volumes/*/path", "/volumes/*/density", "/volumes/*/color", "/volumes/*/level_set", "/volumes/*/transform", "/volumes/*/emission/*/grid",
+    return {{"/input/file", "/volumes/*/path", "/volumes/*/density", "/volumes/*/color", "/volumes/*/level_set", "/volumes/*/emission/*/grid",
              "/render/motion_blur?", "/render/motion_blur/velocity", "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale",
              "/render/motion_blur/fps"}};
 }
@@ -43,12 +43,10 @@ StageActivity LoadStage::activity(const Scene& s) const {
 }
 
 void LoadStage::run(StageRun& run) {
-    const Scene& scene = run.scene({"/volumes", "/volumes/*/emission/*/grid", "/render/motion_blur"});
-    const nlohmann::json& at = run.scene.value("/input/frame");
-    const std::optional<int> frame = at.is_number() ? std::optional<int>(at.get<int>()) : std::nullopt;
+    const Scene& scene = run.scene({"/volumes/*/path", "/volumes/*/density", "/volumes/*/color", "/volumes/*/level_set",
+                                    "/volumes/*/emission/*/grid", "/render/motion_blur"});
     volume_ = std::make_shared<const LoadedVolume>(
-        given_ ? *given_
-               : loadVolume(run.scene.value("/input/file/path"), scene.volume(), scene.render.motion_blur, frame));
+        given_ ? *given_ : loadVolume(run.scene.value("/input/file/path"), scene.volume(), scene.render.motion_blur));
     run.warnings = volume_->warnings;
 }
 
@@ -129,15 +127,16 @@ void EmptyFrameStage::run(StageRun& run) {
     run.warnings.push_back(why + "; rendered as an empty frame");
 }
 
-StageReads CameraStage::reads() const { return {{"/camera", "/render/resolution", "/volumes/*/up"}}; }
+StageReads CameraStage::reads() const { return {withPlacementKeys({"/camera", "/render/resolution", "/volumes/*/up"})}; }
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera ? "the scene's camera" : "frames the density grid's active voxels (no camera in the scene)"};
 }
 
 void CameraStage::run(StageRun& run) {
-    const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up"});
-    camera_ = scene.camera ? *scene.camera : frameActiveVoxels(load_.volume(), scene);
+    const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up", "/volumes/*/transform"});
+    camera_ = scene.camera ? *scene.camera
+                           : frameActiveVoxels(placedVolume(load_.volume(), volumePlacement(scene.volume(), run.scene.frame())), scene);
 }
 
 glm::mat3 viewFrameOf(const Scene& scene, const LoadedVolume& volume) {

@@ -15,6 +15,14 @@
 
 namespace voxlux {
 
+// `keys` and those of the volume's placement at the frame, for a stage whose output follows where
+// the volume sits: the camera's framing and every stage that makes kernel inputs. The bricks do
+// not: they stay in the file's index space, so a move re-reads and re-bricks nothing.
+inline std::vector<std::string> withPlacementKeys(std::vector<std::string> keys) {
+    keys.insert(keys.end(), {"/volumes/*/transform", "/input/frame", "/input/transform_chan"});
+    return keys;
+}
+
 class LoadStage final : public Stage {
 public:
     LoadStage() = default;

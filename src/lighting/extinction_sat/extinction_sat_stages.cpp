@@ -58,8 +58,8 @@ bool lightCacheRuns(const Scene& scene) { return satActivity(scene, "").runs; }
 StageReads SatStage::reads() const {
     // What its grid holds beyond the shared extinction (bleeding) and what the SAT and cache cost
     // (planes, and a channel per light), which may lower its resolution below the shared grid's.
-    return {{"/effects/color_bleeding", "/effects/ambient_occlusion?", "/effects/shadows", "/lights/*/type",
-             "/lights/*/enabled", "/render/backend"}};
+    return {withPlacementKeys({"/effects/color_bleeding", "/effects/ambient_occlusion?", "/effects/shadows", "/lights/*/type",
+                               "/lights/*/enabled", "/render/backend"})};
 }
 
 StageActivity SatStage::activity(const Scene& s) const {
@@ -75,7 +75,8 @@ void SatStage::release() {
 void SatStage::run(StageRun& run) {
     release();
     const Scene& scene = run.scene({"/effects/color_bleeding", "/effects/ambient_occlusion?", "/effects/shadows",
-                                    "/effects/light_resolution", "/effects/light_memory_mb", "/lights", "/volumes/*/material"});
+                                    "/effects/light_resolution", "/effects/light_memory_mb", "/lights", "/volumes/*/material",
+                                    "/volumes/*/transform"});
     const float bleeding = bleedingOf(scene);
     const glm::vec3 extent = occupiedExtent(classify_.pages());
     std::string warning;
@@ -83,7 +84,7 @@ void SatStage::run(StageRun& run) {
                                      bleeding > 0.0f ? 4 : 1, cacheLayout(scene, enabledLightCount(scene, false)).channels,
                                      size_t(scene.effects.light_memory_mb) << 20, warning);
     if (!warning.empty()) run.warnings.push_back(warning);
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages());
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
     if (resolution_ != shared_.resolution() || (bleeding > 0.0f && !uniformAlbedo(inputs))) {
         own_grid_ = buildLightGrid(inputs, resolution_, {true, bleeding});
         if (own_grid_.clamped_cells && resolution_ != shared_.resolution()) run.warnings.push_back(clampedCellsWarning(own_grid_));
@@ -95,8 +96,8 @@ void SatStage::run(StageRun& run) {
 }
 
 StageReads LightCacheStage::reads() const {
-    return {{"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows", "/lights/*/type",
-             "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/render/backend"}};
+    return {withPlacementKeys({"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows",
+                               "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/render/backend"})};
 }
 
 StageActivity LightCacheStage::activity(const Scene& s) const {
@@ -139,13 +140,13 @@ void LightCacheStage::release() {
 
 void LightCacheStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows",
-                                    "/lights", "/volumes/*/material"});
+                                    "/lights", "/volumes/*/material", "/volumes/*/transform"});
     const Effects& fx = scene.effects;
     const LightGrid& grid = sat_.grid();
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages());
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
     LightCache layout = cacheLayout(scene, int(inputs.lights.size()));
     // The cache is kept as it is while its layout is, so unchanged channels survive.
-    const glm::mat4 light_to_world = brick_.atlas().index_to_world * grid.lightToIndex();
+    const glm::mat4 light_to_world = inputs.index_to_world * grid.lightToIndex();
     layout.dims = grid.dims;
     const bool same_layout = cache_.channels == layout.channels && cache_.ambient_channel == layout.ambient_channel &&
                              cache_.ambient_width == layout.ambient_width && cache_.shadow_channel == layout.shadow_channel &&

@@ -331,8 +331,8 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission,
 }
 
 StageReads IlluminationGridStage::reads() const {
-    return {{"/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
-             "/effects/propagation/chroma_subsampling", "/volumes/*/emission"}};
+    return {withPlacementKeys({"/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
+                               "/effects/propagation/chroma_subsampling", "/volumes/*/emission"})};
 }
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
@@ -358,7 +358,7 @@ void IlluminationGridStage::run(StageRun& run) {
     generation_ = nextGridGeneration();
     const PageTable& pages = classify_.pages();
     const Scene& scene = run.scene({"/effects/indirect?", "/effects/propagation/chroma_subsampling", "/effects/light_resolution",
-                                    "/effects/light_memory_mb", "/volumes/*/material", "/volumes/*/emission"});
+                                    "/effects/light_memory_mb", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/transform"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
@@ -375,7 +375,7 @@ void IlluminationGridStage::run(StageRun& run) {
     if (!warning.empty()) run.warnings.push_back(warning);
     // The shared light grid, unless this volume's memory lowered the resolution below it; the
     // emitted radiance is this stage's own either way.
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), pages, 0.0f, xyz_to_working_());
+    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), pages, run.scene.frame(), xyz_to_working_());
     const bool shared = resolution == shared_.resolution();
     if (!shared) {
         own_grid_ = buildLightGrid(inputs, resolution, {true, 0.0f, emission});
@@ -386,7 +386,7 @@ void IlluminationGridStage::run(StageRun& run) {
     }
     const LightGrid& grid = shared ? shared_.grid() : own_grid_;
 
-    fine_.grid_to_world = brick_.atlas().index_to_world * grid.lightToIndex();
+    fine_.grid_to_world = inputs.index_to_world * grid.lightToIndex();
     fine_.world_to_grid = glm::inverse(fine_.grid_to_world);
     fine_.dims = grid.dims;
     fine_.cells_per_voxel = 1.0f / grid.cell;
@@ -435,10 +435,10 @@ void IlluminationGridStage::run(StageRun& run) {
 }
 
 StageReads PropagationStage::reads() const {
-    return {{"/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/lights/*/color",
+    return {withPlacementKeys({"/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/lights/*/color",
              "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects/propagation/blend_axes",
              "/effects/propagation/chroma_subsampling", "/effects/propagation/coherent", "/effects/indirect",
-             "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy", "/input/frame", "/render/backend"}};
+             "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy", "/render/backend"})};
 }
 
 StageActivity PropagationStage::activity(const Scene& s) const {
@@ -483,7 +483,7 @@ void PropagationStage::run(StageRun& run) {
     const SweepGrid& coarse = grid_.coarse();
     const Scene& scene = run.scene({"/lights", "/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                                     "/effects/propagation/coherent", "/effects/indirect", "/effects/perturbation", "/volumes/*/material",
-                                    "/volumes/*/emission"});
+                                    "/volumes/*/emission", "/volumes/*/transform"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
@@ -588,7 +588,7 @@ void PropagationStage::run(StageRun& run) {
 }
 
 StageReads EyePassStage::reads() const {
-    return {{"/effects/indirect", "/effects/perturbation", "/input/frame", "/render/backend"}};
+    return {withPlacementKeys({"/effects/indirect", "/effects/perturbation", "/render/backend"})};
 }
 
 StageActivity EyePassStage::activity(const Scene& s) const {
@@ -605,7 +605,7 @@ void EyePassStage::run(StageRun& run) {
     passes_.keepFor(grid_.generation());   // as the propagation's, above
     const IlluminationVolume& lit = propagation_.volume();
     volume_ = lit;
-    const Scene& scene = run.scene({"/effects/indirect", "/effects/perturbation"});
+    const Scene& scene = run.scene({"/effects/indirect", "/effects/perturbation", "/volumes/*/transform"});
     const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
     const std::vector<float> before(lit.values.begin() + long(lit.indirectOffset()), lit.values.end());
     const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);
