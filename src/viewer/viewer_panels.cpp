@@ -4,9 +4,11 @@
 #include <cmath>
 #include <map>
 #include <cstdio>
+#include <filesystem>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
+#include <glm/gtx/component_wise.hpp>
 
 #include "core/frame_pattern.h"
 #include "grade/color_pipeline.h"
@@ -188,6 +190,40 @@ void colourControls(ViewerState& state) {
     if (ImGui::DragFloat("exposure", &exposure, kStopsPerPixel, -20.0f, 20.0f, "%.2f stops")) setKey(state, "/render/exposure", exposure);
 }
 
+// Each volume by name, with its placement: translate, rotate and scale dragged (a move re-runs the
+// framing, lighting and march, not the load: docs/scene.md), or what places it when that is a
+// matrix or keys.
+void volumeList(ViewerState& state) {
+    const std::vector<VolumeSpec> volumes = state.editor.scene().volumes;   // a copy: an edit replaces the scene
+    const float extent = std::max(glm::length(state.bounds_hi - state.bounds_lo), 1e-3f);
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const VolumeSpec& v = volumes[i];
+        ImGui::PushID(int(i));
+        ImGui::TextUnformatted((v.name + "  " + std::filesystem::path(v.path).filename().string()).c_str());
+        if (i == 0)
+            if (auto g = combo("density grid", v.density.name, densityGrids(state))) setKey(state, "/volumes/0/density", *g);
+        const VolumeTransform t = v.transform.value_or(VolumeTransform{});
+        const std::string pointer = "/volumes/" + std::to_string(i) + "/transform";
+        if (t.matrix) {
+            ImGui::TextDisabled("placed by a matrix (Every key)");
+        } else if (!t.keys.empty()) {
+            ImGui::TextDisabled("%s", (std::to_string(t.keys.size()) + " keys" + (t.chan.empty() ? "" : " from " + t.chan)).c_str());
+        } else {
+            glm::vec3 translate = t.translate, rotate = t.rotate, scale = t.scale;
+            bool changed = ImGui::DragFloat3("translate", &translate.x, 0.005f * extent);
+            changed |= ImGui::DragFloat3("rotate", &rotate.x, 0.5f, 0.0f, 0.0f, "%.1f deg");
+            remember(state, "volume/" + std::to_string(i) + "/rotate");
+            changed |= ImGui::DragFloat3("scale", &scale.x, 0.005f, 1e-3f, 1e3f);
+            int order = int(t.rotate_order);
+            changed |= ImGui::Combo("rotate order", &order, kRotateOrderNames, IM_ARRAYSIZE(kRotateOrderNames));
+            if (changed && glm::compMin(scale) > 0.0f)
+                setKey(state, pointer, {{"translate", {translate.x, translate.y, translate.z}}, {"rotate", {rotate.x, rotate.y, rotate.z}},
+                                        {"scale", {scale.x, scale.y, scale.z}}, {"rotate_order", kRotateOrderNames[order]}});
+        }
+        ImGui::PopID();
+    }
+}
+
 }  // namespace
 
 PanelRequests drawScenePanel(ViewerState& state, float x, float width, float height) {
@@ -226,10 +262,7 @@ PanelRequests drawScenePanel(ViewerState& state, float x, float width, float hei
         if (auto f = combo("filter", j["render"].value("filter", "trilinear"), {"trilinear", "tricubic"})) setKey(state, "/render/filter", *f);
     }
     if (ImGui::CollapsingHeader("Colour", ImGuiTreeNodeFlags_DefaultOpen)) colourControls(state);
-    if (ImGui::CollapsingHeader("Volume")) {
-        const Scene& s = state.editor.scene();
-        if (auto g = combo("density grid", s.volume().density.name, densityGrids(state))) setKey(state, "/volumes/0/density", *g);
-    }
+    if (ImGui::CollapsingHeader("Volumes", ImGuiTreeNodeFlags_DefaultOpen)) volumeList(state);
     if (ImGui::CollapsingHeader("Every key")) {
         const nlohmann::json json = state.editor.json();   // a copy: edits replace it
         for (const auto& [key, value] : json.items()) jsonWidget(state, key, value, "/" + key);

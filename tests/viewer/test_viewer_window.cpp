@@ -301,6 +301,33 @@ TEST(ViewerWindow, TypedPathsKeepEveryKeyAndTheExposureDragIsFine) {
     EXPECT_LT(stops, 0.9);
 }
 
+// The Volumes panel places a volume: a 60-pixel drag of the rotate field's middle (Y) turns it
+// 30 degrees about Y, and the edit re-runs the lighting and the march but neither loads nor
+// re-bricks the cache.
+TEST(ViewerWindow, TheVolumesPanelTurnsAVolumeWithoutReloadingIt) {
+    const std::string dir = tempDir("viewer-volumes");
+    for (const char* f : {"layout.json", "go"}) std::filesystem::remove(dir + "/" + f);
+    const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}},
+                                                           {{"wait_file", dir + "/go"}, {"timeout", 120}}, {{"wait", "converged"}},
+                                                           {{"save", dir + "/turned.json"}}, {{"stats", dir + "/stats.json"}},
+                                                           {{"quit", true}}});
+    const CliResult r = runEvents(dir, R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        set -- ROTATE; xdotool mousemove --window $wid $1 $2; sleep 0.3
+        xdotool mousedown 1; sleep 0.2; for i in $(seq 12); do xdotool mousemove_relative 5 0; sleep 0.05; done; xdotool mouseup 1; sleep 0.3
+        touch DIR/go; wait $pid)sh",
+                                  {{"VIEWER", voxluxBinary() + " view " + kCloud}, {"SCRIPT", script}, {"ROTATE", centreOf("volume/0/rotate")}});
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const nlohmann::json transform = readJson(dir + "/turned.json")["volumes"][0]["transform"];
+    EXPECT_NEAR(transform["rotate"][1].get<double>(), 30.0, 3.0) << transform;
+    EXPECT_EQ(transform["rotate"][0], 0.0);
+    EXPECT_EQ(transform["translate"], nlohmann::json({0.0, 0.0, 0.0}));
+    const nlohmann::json stats = readJson(dir + "/stats.json");
+    ASSERT_TRUE(stats.contains("edit_stages")) << stats;
+    for (const auto& stage : stats["edit_stages"]) EXPECT_TRUE(stage != "load" && stage != "brick" && stage != "classify") << stats;
+    EXPECT_NE(std::find(stats["edit_stages"].begin(), stats["edit_stages"].end(), "march"), stats["edit_stages"].end()) << stats;
+}
+
 // The timeline takes a typed frame (Enter shows it) and the arrow keys step it.
 TEST(ViewerWindow, TheTimelineTakesATypedFrameAndTheArrowKeys) {
     const std::string dir = tempDir("viewer-timeline-keys");
