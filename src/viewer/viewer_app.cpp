@@ -114,6 +114,8 @@ std::vector<ViewAction> benchActions(const Scene& scene) {
         add("bench_record", "camera orbit");
         add("set", "material.anisotropy=" + std::to_string(k % 2 ? 0.3 : 0.35));
         add("bench_record", "material change");
+        add("set", std::string("volume.transform.rotate=[0,") + (k % 2 ? "0" : "2") + ",0]");
+        add("bench_record", "volume move");
     }
     add("bench_report", true);
     add("quit", true);

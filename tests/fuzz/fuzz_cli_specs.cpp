@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (std::getline(lines, line)) overrides.resolution = line;
     while (std::getline(lines, line)) overrides.lights.push_back(line);
     voxlux::Scene scene;
-    scene.volume.path = "cache.####.vdb";
+    scene.volume().path = "cache.####.vdb";
     scene.output.path = "out.####.exr";
     try {
         voxlux::applyOverrides(scene, overrides);
