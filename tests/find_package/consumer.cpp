@@ -7,8 +7,8 @@
 int main(int argc, char** argv) {
     if (argc != 2) return 2;
     voxlux::Scene scene;
-    scene.volume.path = argv[1];
-    scene.material.density_scale = 40.0f;
+    scene.volume().path = argv[1];
+    scene.volume().material.density_scale = 40.0f;
     scene.render.width = 32;
     scene.render.height = 24;
     scene.render.backend = voxlux::Backend::Cpu;
