@@ -9,7 +9,6 @@
 #include "optics/emission.h"
 #include "kernel/kernel_types.h"
 #include "volume/page_table.h"
-#include "volume/volume_stages.h"
 #include "scene/scene.h"
 
 namespace voxlux {

@@ -3,6 +3,7 @@
 #include <climits>
 
 #include "kernel/kernel_inputs.h"
+#include "volume/volume_stages.h"
 
 namespace voxlux {
 

@@ -130,19 +130,19 @@ nlohmann::json poseToJson(const TransformKey& k) {
 // text (the render graph hashes the file's identity beside it).
 nlohmann::json volumeTransformToJson(const VolumeTransform& t) {
     if (t.matrix) return {{"matrix", matrixToJson(*t.matrix)}};
-    nlohmann::json j = poseToJson({0.0, t.translate, t.rotate, t.scale});
-    if (t.rotate_order != RotateOrder::Xyz) j["rotate_order"] = kRotateOrderNames[int(t.rotate_order)];
-    if (!t.chan.empty()) {
-        j.erase("translate"), j.erase("rotate");
-        j["chan"] = t.chan;
+    nlohmann::json j;
+    if (!t.chan.empty()) {   // the file gives translate and rotate per frame; scale applies to all
+        j = {{"chan", t.chan}, {"scale", jsonVec3(t.scale)}};
     } else if (!t.keys.empty()) {
-        j.erase("translate"), j.erase("rotate"), j.erase("scale");
         for (const TransformKey& k : t.keys) {
             nlohmann::json key = poseToJson(k);
             key["frame"] = k.frame;
             j["keys"].push_back(key);
         }
+    } else {
+        j = poseToJson({0.0, t.translate, t.rotate, t.scale});
     }
+    if (t.rotate_order != RotateOrder::Xyz) j["rotate_order"] = kRotateOrderNames[int(t.rotate_order)];
     return j;
 }
 

@@ -8,6 +8,7 @@
 #include "core/huge_pages.h"
 #include "kernel/kernel_backend.h"
 #include "kernel/kernel_inputs.h"
+#include "volume/volume_stages.h"
 
 namespace voxlux {
 namespace {

@@ -18,6 +18,7 @@
 #include "lighting/propagation/light_sweeps.h"
 #include "optics/diffusion_profile.h"
 #include "optics/transfer_function_2d.h"
+#include "volume/volume_stages.h"
 
 namespace voxlux {
 namespace {
