@@ -11,13 +11,15 @@
 # method"); the march (shaders/vx_march.h) calls only the vx_lighting_* hooks.
 
 # The kernel's own data. UNIFORMS: "Block Type instance"; ARRAYS: "Block ElementType accessor
-# member" (the accessor is vx_<name>(int index), the C++ member a KernelArray); BINDINGS: binding
-# points that an entry point declares itself (its output, a shared block).
+# member" (the accessor is vx_<name>(int index), the C++ member a KernelArray); BINDINGS and
+# UNIFORM_BINDINGS: storage and uniform binding points that the kernel text declares itself (an
+# output, a shared block; vx_gl_bindings.glsl).
 function(voxlux_kernel_data)
-  cmake_parse_arguments(ARG "" "" "UNIFORMS;ARRAYS;BINDINGS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "UNIFORMS;ARRAYS;BINDINGS;UNIFORM_BINDINGS" ${ARGN})
   set_property(GLOBAL APPEND PROPERTY VOXLUX_KERNEL_UNIFORMS ${ARG_UNIFORMS})
   set_property(GLOBAL APPEND PROPERTY VOXLUX_KERNEL_ARRAYS ${ARG_ARRAYS})
   set_property(GLOBAL APPEND PROPERTY VOXLUX_KERNEL_BINDINGS ${ARG_BINDINGS})
+  set_property(GLOBAL APPEND PROPERTY VOXLUX_KERNEL_UNIFORM_BINDINGS ${ARG_UNIFORM_BINDINGS})
 endfunction()
 
 # A lighting method's kernel (paths from src/):
@@ -85,9 +87,11 @@ function(voxlux_generate_kernel_contract dir)
   get_property(uniforms GLOBAL PROPERTY VOXLUX_KERNEL_UNIFORMS)
   get_property(arrays GLOBAL PROPERTY VOXLUX_KERNEL_ARRAYS)
   get_property(bindings GLOBAL PROPERTY VOXLUX_KERNEL_BINDINGS)
+  get_property(uniform_bindings GLOBAL PROPERTY VOXLUX_KERNEL_UNIFORM_BINDINGS)
 
   # Binding points: uniform blocks from 0, storage buffers from 0, in declaration order.
   voxlux_block_macros(uniform_blocks ${uniforms})
+  list(APPEND uniform_blocks ${uniform_bindings})
   voxlux_block_macros(array_blocks ${arrays})
   list(APPEND array_blocks ${bindings})
   set(numbers "#pragma once\n")

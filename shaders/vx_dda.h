@@ -120,12 +120,9 @@ void vx_dda_next(VX_INOUT(VxDda) s, VX_INOUT(ivec3) region, bool skips) {
     vx_dda_skip_empty(s, region, skips);
 }
 
-// Clips [t0, t1] against the box of occupied bricks (grown by the perturbation's displacement,
-// which can pull density outwards). Returns false when nothing is left.
-bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
-    float grow = vx_displaced() ? P.displacement : 0.0f;
-    vec3 lo = vec3(P.bricks_min) * float(VX_BRICK) - vec3(grow);
-    vec3 hi = vec3(P.bricks_max + ivec3(1)) * float(VX_BRICK) + vec3(grow);
+// Clips [t0, t1] of the ray o + t * d against the index-space box [lo, hi]. Returns false when
+// nothing is left.
+bool vx_clip_to_box(vec3 o, vec3 d, vec3 lo, vec3 hi, VX_INOUT(float) t0, VX_INOUT(float) t1) {
     vec3 inv = vec3(vx_safe_inv(d.x), vx_safe_inv(d.y), vx_safe_inv(d.z));
     vec3 ta = (lo - o) * inv;
     vec3 tb = (hi - o) * inv;
@@ -134,6 +131,21 @@ bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
     t0 = max(t0, max(tmin.x, max(tmin.y, tmin.z)));
     t1 = min(t1, min(tmax.x, min(tmax.y, tmax.z)));
     return t0 < t1;
+}
+
+// Clips [t0, t1] against the box of occupied bricks (grown by the perturbation's displacement,
+// which can pull density outwards). Returns false when nothing is left.
+bool vx_clip_to_bricks(vec3 o, vec3 d, VX_INOUT(float) t0, VX_INOUT(float) t1) {
+    float grow = vx_displaced() ? P.displacement : 0.0f;
+    vec3 lo = vec3(P.bricks_min) * float(VX_BRICK) - vec3(grow);
+    vec3 hi = vec3(P.bricks_max + ivec3(1)) * float(VX_BRICK) + vec3(grow);
+    return vx_clip_to_box(o, d, lo, hi, t0, t1);
+}
+
+// Index of the first sample t_k = (k + 0.5f) * dt with t_k >= t (inv_dt = 1 / dt). The same t
+// ends one brick and starts the next, so every sample belongs to exactly one brick.
+int vx_first_sample(float t, float inv_dt) {
+    return max(int(ceil(t * inv_dt - 0.5f)), 0);
 }
 
 // Whether the march must visit a brick: occupied, or anywhere when displacement can pull

@@ -10,12 +10,7 @@
 #include "vx_noise.h"
 #include "vx_pixel.h"
 #include "vx_surface.h"
-
-// Index of the first sample t_k = (k + 0.5f) * dt with t_k >= t (inv_dt = 1 / dt). The same t
-// ends one brick and starts the next, so every sample belongs to exactly one brick.
-int vx_first_sample(float t, float inv_dt) {
-    return max(int(ceil(t * inv_dt - 0.5f)), 0);
-}
+#include "vx_volumes.h"
 
 // Extinction at index point p (world point x) under the perturbation (Kniss 2003 Sec. III.D):
 // the lookup displaced by the noise vector, the result scaled by the noise.
@@ -126,6 +121,11 @@ VX_INLINE float vx_brick_optical_depth(int slot, ivec3 b, vec3 o, vec3 d, vec3 x
 // Transmittance from world point x towards a light at distance `dist` along unit direction wi.
 // Reference quality: fixed step P.shadow_step, stops only below the transmittance cutoff.
 float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
+    if (P.volume_count > 1) {
+        float tau_cut = -log(P.transmittance_cutoff);
+        float tau = vx_volumes_optical_depth(x, wi, dist, P.shadow_step, tau_cut);
+        return tau > tau_cut ? 0.0f : vx_exp(-tau);
+    }
     vec3 o = vx_to_index_point(x);
     vec3 d = vx_to_index_dir(wi);
     float t0 = 0.0f;
@@ -153,8 +153,9 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
 // Single-scattered light at world point x for a camera ray travelling along unit direction dir,
 // from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
-// `lit` is what the lighting methods looked up at x; `surface` is vx_surface.
-vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VX_IN(VxLightingSample) lit, VxSurface surface) {
+// `lit` is what the lighting methods looked up at x; `surface` is vx_surface; g the medium's
+// Henyey-Greenstein anisotropy there.
+vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VX_IN(VxLightingSample) lit, VxSurface surface, float g) {
     vec3 sum = vec3(0.0f);
     vec3 unshadowed = vec3(0.0f);   // what the lights would bring unshadowed
     for (int i = 0; i < P.light_count; ++i) {
@@ -168,7 +169,7 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VX_IN(VxLightingSample) lit, V
         float shadow = P.shadow_rays != 0 ? vx_shadow_transmittance(x, wi, dist) : 1.0f;
         shadow *= vx_lighting_shadow(lit, i);
         unshadowed = vx_radiance_add(unshadowed, e);
-        sum = vx_radiance_add(sum, e * (shadow * vx_phase_hg(dot(wi, dir), P.anisotropy) * vx_surface_factor(surface, wi, dir)));
+        sum = vx_radiance_add(sum, e * (shadow * vx_phase_hg(dot(wi, dir), g) * vx_surface_factor(surface, wi, dir)));
     }
     return vx_lighting_direct(lit, sum, unshadowed);
 }
@@ -197,12 +198,69 @@ VX_INLINE float vx_chunk_depth(float T_before, int k, int n, int lanes, float dt
     return sum;
 }
 
+// A marched ray's pixel from its AOV sums, its transmittance T and its opacity-weighted depth sum.
+VxPixel vx_finish_ray(VxPixel px, float T, float depth_weighted, VX_INOUT(VxDeepRay) deep) {
+    float alpha = 1.0f - T;
+    px.rgba = vec4(vx_pixel_radiance(px), alpha);
+    if (P.deep_samples > 0) vx_deep_close(deep, T, vec3(px.rgba));
+    px.transmittance = T;
+    px.depth = alpha > 0.0f ? depth_weighted / alpha : 0.0f;
+    return px;
+}
+
+// March one camera ray through several volumes (vx_volumes.h): at the samples t_k = (k + 0.5) * dt
+// the one volume's march takes, each the volumes' summed medium, shaded with its mixed albedo and
+// g; the space between the volumes' boxes is jumped. Sample by sample, without the one volume's
+// SIMD batches.
+VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) deep) {
+    VxPixel px = vx_empty_pixel();
+    vx_deep_begin(deep);
+    float t0 = 0.0f;
+    float t1 = 1e30f;
+    if (!vx_volumes_clip(origin, dir, t0, t1)) return px;
+    float dt = P.step;
+    bool deep_on = P.deep_samples > 0;
+    bool lit_indirect = vx_lighting_indirect_on();
+    float tau = 0.0f;
+    float T = 1.0f;
+    float depth_weighted = 0.0f;
+    float cos_forward = dot(dir, forward);
+    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff; ++k) {
+        float t = (float(k) + 0.5f) * dt;
+        if (t > t1) break;
+        vec3 x = origin + dir * t;
+        bool inside;
+        VxMedium m = vx_volumes_medium(x, inside);
+        if (!inside) {
+            k = vx_volumes_skip(origin, dir, k, dt, t1);
+            if (k < 0) break;
+            continue;
+        }
+        px.samples += 1.0f;
+        if (m.sigma <= 0.0f) continue;
+        if (deep_on) vx_deep_span(deep, float(k) * dt * cos_forward, float(k + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
+        tau += m.sigma * dt;
+        float T_next = vx_exp(-tau);
+        float absorbed = T - T_next;
+        vec3 albedo = vx_medium_albedo(m);
+        VxLightingSample lit = vx_lighting_sample(x);
+        vec3 incident = vx_in_scattered(x, dir, VX_LIGHTS_ALL, lit, vx_no_surface(), vx_medium_g(m));
+        px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
+        if (lit_indirect) px.indirect = vx_radiance_add(px.indirect, albedo * vx_lighting_indirect(lit) * absorbed);
+        px.ambient = vx_radiance_add(px.ambient, albedo * P.ambient * vx_lighting_ambient(lit) * absorbed);
+        depth_weighted += absorbed * t * cos_forward;
+        T = T_next;
+    }
+    return vx_finish_ray(px, T, depth_weighted, deep);
+}
+
 // March one camera ray (world origin, unit world direction, camera forward for depth) at `time`
 // (frames from the frame's own, vx_motion.h). With P.deep_samples > 0 the ray's deep samples go
 // to `deep` (vx_deep.h). Under motion blur every lookup of a sample (medium, lights, the light
 // stages' volumes) is made where the medium was at `time`: the light stages are the frame's own,
 // carried along with the medium.
 VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
+    if (P.volume_count > 1) return vx_march_volumes(origin, dir, forward, deep);
     VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
     bool deep_on = P.deep_samples > 0;
@@ -217,7 +275,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     float cutoff = P.transmittance_cutoff;
     bool shaded_surface = P.surface_inv_range > 0.0f;
     bool per_ray_directional = P.shadow_rays == 0 && !vx_lighting_shadows() && !shaded_surface;
-    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, vx_lighting_sample(origin), vx_no_surface())
+    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, vx_lighting_sample(origin), vx_no_surface(), P.anisotropy)
                                            : vec3(0.0f);
     bool lit_varies = vx_lighting_varies();
     bool lit_indirect = vx_lighting_indirect_on();
@@ -299,7 +357,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                     VxLightingSample lit = vx_lighting_sample(x);
                     VxSurface surface = shaded_surface ? vx_surface(moving ? p - vx_to_index_dir(shift) : p) : vx_no_surface();
                     if (surface_grid && here) surface.weight *= vx_surface_weight_at(taps);
-                    vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, lit, surface));
+                    vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, lit, surface, P.anisotropy));
                     px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
                     if (lit_indirect) px.indirect = vx_radiance_add(px.indirect, albedo * vx_lighting_indirect(lit) * absorbed);
                     px.ambient = vx_radiance_add(px.ambient, albedo * ambient * vx_lighting_ambient(lit) * absorbed);
@@ -311,12 +369,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
         }
         vx_dda_next(s, region, skips);
     }
-    float alpha = 1.0f - T;
-    px.rgba = vec4(vx_pixel_radiance(px), alpha);
-    if (deep_on) vx_deep_close(deep, T, vec3(px.rgba));
-    px.transmittance = T;
-    px.depth = alpha > 0.0f ? depth_weighted / alpha : 0.0f;
-    return px;
+    return vx_finish_ray(px, T, depth_weighted, deep);
 }
 
 // Ray i of pixel (x, y)'s P.time_samples (without motion blur, its one ray at the frame's time).

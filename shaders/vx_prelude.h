@@ -53,6 +53,7 @@
 #define VX_REGION_BRICKS (1 << VX_REGION_SHIFT)
 #define VX_TF_LUT_SIZE 256
 #define VX_MAX_EMISSION 4          // emission sources (grids) per scene
+#define VX_MAX_VOLUMES 256         // volumes and instances a scene places (a GL uniform block of them)
 #define VX_EMISSION_LUT_SIZE 256   // rows of one source's table: radiance over grid values [0, max]
 #define VX_CHUNK 16                // samples whose extinction is evaluated together (one SIMD batch)
 #define VX_NOISE_SIZE 32           // perturbation noise table edge (power of two); the table repeats

@@ -18,14 +18,31 @@ VX_INLINE int vx_table_find(ivec3 key, int first, int capacity, int max_probe) {
     return VX_PAGE_EMPTY;
 }
 
-// Atlas slot of brick `b`, or VX_PAGE_EMPTY.
-VX_INLINE int vx_page_lookup(ivec3 b) {
+// The one volume's pages: the whole table, after which come the regions'.
+VX_INLINE VxPageRange vx_own_pages() {
+    VxPageRange r;
+    r.lo = P.bricks_min;
+    r.first = 0;
+    r.hi = P.bricks_max;
+    r.capacity = P.page_capacity;
+    r.max_probe = P.page_max_probe;
+    r.pad0 = 0;
+    r.pad1 = 0;
+    r.pad2 = 0;
+    return r;
+}
+
+// Atlas slot of brick `b` among pages `r`, or VX_PAGE_EMPTY.
+VX_INLINE int vx_page_lookup_in(VxPageRange r, ivec3 b) {
     // Compared axis by axis: GLM's any(lessThan()) stays an out-of-line call in the CPU's long
     // per-sample functions (a twentieth of a tricubic shadow ray's time).
-    if (b.x < P.bricks_min.x || b.y < P.bricks_min.y || b.z < P.bricks_min.z || b.x > P.bricks_max.x || b.y > P.bricks_max.y ||
-        b.z > P.bricks_max.z)
-        return VX_PAGE_EMPTY;
-    return vx_table_find(b, 0, P.page_capacity, P.page_max_probe);
+    if (b.x < r.lo.x || b.y < r.lo.y || b.z < r.lo.z || b.x > r.hi.x || b.y > r.hi.y || b.z > r.hi.z) return VX_PAGE_EMPTY;
+    return vx_table_find(b, r.first, r.capacity, r.max_probe);
+}
+
+// Atlas slot of brick `b` of the one volume, or VX_PAGE_EMPTY.
+VX_INLINE int vx_page_lookup(ivec3 b) {
+    return vx_page_lookup_in(vx_own_pages(), b);
 }
 
 // Whether region `r` (VX_REGION_BRICKS^3 bricks, vx_region_of) holds any brick of the
@@ -141,8 +158,9 @@ VX_INLINE VxSplineWeights vx_spline_weights(vec3 t) {
     return w;
 }
 
-// Reconstruction of the atlas at index point p inside stored brick b (atlas slot `slot`).
-VX_INLINE VxTaps vx_taps_at(int slot, ivec3 b, vec3 p) {
+// Reconstruction of the atlas at index point p inside stored brick b (atlas slot `slot`) of the
+// volume whose pages are `pages`.
+VX_INLINE VxTaps vx_taps_in(VxPageRange pages, int slot, ivec3 b, vec3 p) {
     if (VX_VOXEL_FILTER == VX_FILTER_TRILINEAR) return vx_single_tap(vx_corners_at(slot, b, p));
     vec3 i = floor(p);
     VxSplineWeights w = vx_spline_weights(p - i);
@@ -157,11 +175,16 @@ VX_INLINE VxTaps vx_taps_at(int slot, ivec3 b, vec3 p) {
     for (int j = 0; j < 8; ++j) {
         vec3 q = vec3((j & 1) != 0 ? h1.x : h0.x, (j & 2) != 0 ? h1.y : h0.y, (j & 4) != 0 ? h1.z : h0.z);
         ivec3 qb = ivec3(floor(q / float(VX_BRICK)));
-        int qs = all(equal(qb, b)) ? slot : vx_page_lookup(qb);
+        int qs = all(equal(qb, b)) ? slot : vx_page_lookup_in(pages, qb);
         r.present[j] = qs == VX_PAGE_EMPTY ? 0.0f : 1.0f;
         r.tap[j] = vx_corners_at(qs == VX_PAGE_EMPTY ? slot : qs, qb, q);    // absent: any stored cell, weighted 0
     }
     return r;
+}
+
+// The same in the one volume.
+VX_INLINE VxTaps vx_taps_at(int slot, ivec3 b, vec3 p) {
+    return vx_taps_in(vx_own_pages(), slot, b, p);
 }
 
 // The same reconstruction shifted to another channel block of the atlas (emission sources).

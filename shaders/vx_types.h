@@ -79,7 +79,7 @@ struct VxParams {
     int deep_samples;       // deep samples per ray (output.deep_samples), 0 = no deep output
     int motion_blur;        // 1: camera rays take times within the shutter (vx_motion.h)
     int time_samples;       // rays a pixel spreads over the shutter (the march; 1 without motion blur)
-    int pad5;
+    int volume_count;       // 0: one volume, the arrays' own; 2 or more: the volumes of vx_placed_volume (vx_volumes.h)
 
     int use_velocity;       // 1 if a velocity grid is bound (atlas channel vx_atlas_velocity)
     float velocity_per_frame;  // velocity_scale / fps: world units a frame per unit of the velocity grid
@@ -97,6 +97,34 @@ struct VxParams {
     int pad4;
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
+};
+
+// Where one volume's bricks sit in the page entries: its table of capacity entries from `first`
+// (vx_brick_hash, linear probing), and the box of its bricks. The one volume of a scene has the
+// whole table (vx_own_pages); the volumes of a scene of several share one atlas and one entries
+// array, each its own range (src/volume/scene_bricks.h).
+struct VxPageRange {
+    ivec3 lo;               // lowest stored brick coordinate
+    int first;              // its first page entry
+    ivec3 hi;               // highest stored brick coordinate
+    int capacity;           // its entries (a power of two)
+    int max_probe;          // its longest probe sequence
+    int pad0;
+    int pad1;
+    int pad2;
+};
+
+// One volume of a scene of several (P.volume_count > 1, shaders/vx_volumes.h): where it sits and
+// what it is made of. An instance is a volume of its own whose pages are another's.
+struct VxVolume {
+    mat4 world_to_index;    // inverse of its placed index-to-world transform
+    VxPageRange pages;
+    vec3 albedo;
+    float density_scale;    // extinction per world unit per unit of its density grid
+    float anisotropy;       // Henyey-Greenstein g
+    int pad0;
+    int pad1;
+    int pad2;
 };
 
 // What one camera ray returns; the AOVs are kept separate so the EXR writer can lay them out.

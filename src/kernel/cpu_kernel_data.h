@@ -44,6 +44,9 @@ struct CpuKernelData {
     KernelArray<float> color;              // 3 floats per voxel
     KernelArray<float> surface;            // 1 float per voxel
     KernelArray<float> velocity;           // 3 floats per voxel
+    // The volumes of a scene of several: a uniform block on GL (vx_gl_bindings.glsl).
+    KernelArray<VxVolume> volumes;
+    VxVolume vx_placed_volume(int i) const { return volumes.at(i, "volume"); }
     vec3 vx_atlas_color(int i) const {
         return vec3(color.at(3 * i, "atlas colour"), color.at(3 * i + 1, "atlas colour"), color.at(3 * i + 2, "atlas colour"));
     }
@@ -58,6 +61,7 @@ struct CpuKernelData {
 #include "vx_optics.h"
 #include "vx_pixel.h"
 #include "vx_surface.h"
+#include "vx_volumes.h"
 };
 // The march (cpu_kernel.h) and the lighting methods' own kernel text (CpuSatKernel,
 // CpuPropagationKernel in their kernel/ folders) compile into structs derived from this one.

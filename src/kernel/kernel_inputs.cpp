@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
 #include "scene/camera.h"
 #include "optics/noise_table.h"
 #include "optics/transfer_function.h"
@@ -27,12 +30,64 @@ kernel::VxLight packLight(const Light& l) {
     return k;
 }
 
+// Extinction per world unit per unit of density under material `m` in a grid of voxel edge `edge`:
+// per voxel length, the same look on a cache saved at any scale (at most the float maximum).
+float densityScale(const Material& m, float edge) {
+    return m.density_units == DensityUnits::Voxel ? std::min(m.density_scale / edge, std::numeric_limits<float>::max()) : m.density_scale;
+}
+
+// Of several volumes, the index space the light grids and the lighting methods' lookups work in
+// (in.index_to_world, P.world_to_index): aligned with the world axes, its voxel the finest
+// volume's edge, its bricks (P.bricks_min to P.bricks_max) covering the box of all placed volumes.
+void setSharedFrame(KernelInputs& in) {
+    float edge = std::numeric_limits<float>::max();
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const kernel::VxVolume& v : in.volumes) {
+        const glm::mat4 to_world = glm::inverse(v.world_to_index);
+        edge = std::min(edge, voxelEdge(to_world));
+        growByPageRange(v.pages, to_world, lo, hi);
+    }
+    if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);
+    in.index_to_world = glm::scale(glm::translate(glm::mat4(1.0f), lo), glm::vec3(edge));
+    in.params.bricks_min = glm::ivec3(0);
+    in.params.bricks_max = glm::max(glm::ivec3(glm::ceil((hi - lo) / (edge * float(VX_BRICK)))) - 1, glm::ivec3(0));
+}
+
+// The volumes of a scene of several, each instance placed at `frame` over its volume's range of
+// the joined bricks.
+void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, KernelInputs& in) {
+    for (size_t v = 0; v < scene.volumes.size(); ++v) {
+        const VolumeSpec& spec = scene.volumes[v];
+        for (const glm::mat4& placement : instancePlacements(spec, frame)) {
+            const glm::mat4 index_to_world = placement * bricks.index_to_world[v];
+            kernel::VxVolume k{};
+            k.world_to_index = glm::inverse(index_to_world);
+            k.pages = bricks.ranges[v];
+            k.albedo = spec.material.albedo;
+            k.density_scale = densityScale(spec.material, voxelEdge(index_to_world));
+            k.anisotropy = spec.material.anisotropy;
+            in.volumes.push_back(k);
+        }
+    }
+    setSharedFrame(in);
+    if (in.volumes.size() > VX_MAX_VOLUMES)
+        throw InputError(std::to_string(in.volumes.size()) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
+    in.params.volume_count = int(in.volumes.size());
+}
+
+// The length the march's steps are counted in: the voxel edge, of several volumes the finest.
+float stepUnit(const KernelInputs& in) {
+    float edge = voxelEdge(in.index_to_world);
+    for (const kernel::VxVolume& v : in.volumes) edge = std::min(edge, voxelEdge(glm::inverse(v.world_to_index)));
+    return edge;
+}
+
 // The medium: the march step, the material, the transfer function and the emission tables.
 void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz_to_working, KernelInputs& in) {
     auto& P = in.params;
     const auto& r = scene.render;
     const auto& m = scene.volume().material;
-    const float edge = voxelEdge(in.index_to_world);
+    const float edge = stepUnit(in);
     P.world_to_index = glm::inverse(in.index_to_world);
     P.step = r.step * edge;
     P.voxel_filter = r.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
@@ -41,9 +96,7 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     P.transmittance_cutoff = r.transmittance_cutoff;
     P.anisotropy = m.anisotropy;
     P.albedo = m.albedo;
-    // Per voxel length: the same look on a cache saved at any scale (at most the float maximum).
-    P.density_scale = m.density_units == DensityUnits::Voxel ? std::min(m.density_scale / edge, std::numeric_limits<float>::max())
-                                                             : m.density_scale;
+    P.density_scale = densityScale(m, voxelEdge(in.index_to_world));
     // Each source's table spans its grid's values in this frame's atlas. When none emits anywhere
     // (all-zero grids) the march runs as without emission, to the bit.
     bool emits = false;
@@ -171,6 +224,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     P.page_max_probe = pages.max_probe;
     P.region_capacity = pages.region_capacity;
     P.region_max_probe = pages.region_max_probe;
+    if (sources.volumes) setVolumes(scene, *sources.volumes, frame, in);   // and the shared frame
     setMedium(scene, atlas, xyz_to_working, in);
     setLights(scene, in);
     in.lighting = sources.lighting;   // the methods' blocks and arrays, as their stages set them

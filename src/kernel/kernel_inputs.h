@@ -9,6 +9,7 @@
 #include "optics/emission.h"
 #include "kernel/kernel_types.h"
 #include "volume/page_table.h"
+#include "volume/scene_bricks.h"
 #include "scene/scene.h"
 
 namespace voxlux {
@@ -40,6 +41,9 @@ struct KernelInputs {
     const BrickAtlas* atlas = nullptr;
     const PageTable* pages = nullptr;
     glm::mat4 index_to_world{1.0f};         // the atlas's, placed by the volume's transform at the frame
+                                            // (of several volumes: the first's)
+    std::vector<kernel::VxVolume> volumes;  // of several (params.volume_count): each one's pages,
+                                            // placement and material; empty for one
     MarchLighting lighting;                 // the lighting methods' blocks and arrays
     std::vector<glm::vec4> noise;           // perturbation table, empty without perturbation
     glm::ivec4 region{0};                   // the pixels [x0, y0) to [x1, y1) to march (render.region)
@@ -49,6 +53,8 @@ struct KernelInputs {
 struct MarchSources {
     const Camera* camera = nullptr;                      // resolved: the scene's, or the framing
     MarchLighting lighting;
+    const SceneBricks* volumes = nullptr;                // of several volumes: their joined bricks,
+                                                         // whose atlas and pages are the ones given
 };
 
 // `frame` (the sequence frame) animates the perturbation and poses the volume's transform (the

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 #include <tbb/parallel_for.h>
@@ -128,6 +129,11 @@ std::string clampedCellsWarning(const LightGrid& g) {
 
 glm::vec3 occupiedExtent(const PageTable& pages) { return glm::vec3((pages.medium_max - pages.medium_min + 1) * VX_BRICK); }
 
+glm::vec3 lightGridExtent(const KernelInputs& in) {
+    if (in.params.volume_count < 2) return occupiedExtent(*in.pages);
+    return glm::vec3((in.params.bricks_max - in.params.bricks_min + 1) * VX_BRICK);
+}
+
 int cappedLightResolution(glm::vec3 extent, int requested) {
     return std::min(requested, 4 * int(std::max({extent.x, extent.y, extent.z})));
 }
@@ -180,7 +186,67 @@ glm::vec3 meanEmission(kernel::CpuKernelData& k, glm::ivec3 voxel) {
 
 }  // namespace
 
+namespace {
+
+// Several volumes (shaders/vx_volumes.h): the grid over the shared frame's box of them all, each
+// cell's mean by the midpoint rule over 2^3 points of the cell (1 where cells are no larger than
+// the finest voxel), each point the volumes' summed medium through their own reconstruction. So
+// every volume is resampled by its own filter, whatever its voxel size or rotation, and the grid
+// need not align with any of them. Cells outside every volume's box cost one box test per volume.
+LightGrid buildVolumesLightGrid(const KernelInputs& in, int resolution, LightGridContents contents) {
+    kernel::CpuKernelData k = bindKernelData(in);
+    const float bleeding = contents.bleeding;
+    const glm::ivec3 voxels = (k.P.bricks_max - k.P.bricks_min + 1) * VX_BRICK;
+    LightGrid g;
+    g.planes = !contents.extinction ? 0 : bleeding > 0.0f ? 4 : 1;
+    g.dims = lightGridDims(glm::vec3(voxels), resolution);
+    g.cell = float(std::max({voxels.x, voxels.y, voxels.z})) / float(resolution);
+    g.origin = glm::vec3(k.P.bricks_min * VX_BRICK);
+    assignInHugePages(g.values, g.cells() * g.planes, 0.0f);
+    // Each volume's box in the shared frame.
+    std::vector<std::pair<glm::vec3, glm::vec3>> boxes;
+    const glm::mat4 world_to_shared = glm::inverse(in.index_to_world);
+    for (const kernel::VxVolume& v : in.volumes) {
+        const glm::mat4 to_shared = world_to_shared * glm::inverse(v.world_to_index);
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        if (growByPageRange(v.pages, to_shared, lo, hi)) boxes.emplace_back(lo, hi);
+    }
+    const int n = g.cell > 1.0f ? 2 : 1;
+    const double max_sigma = double(kMaxCellOpticalDepth) / cellWorldSize(in.index_to_world * g.lightToIndex());
+    const size_t plane = g.cells();
+    std::atomic<uint64_t> clamped{0};
+    tbb::parallel_for(0, g.dims.z, [&](int cz) {
+        for (int cy = 0; cy < g.dims.y; ++cy)
+            for (int cx = 0; cx < g.dims.x; ++cx) {
+                const glm::vec3 lo = g.origin + glm::vec3(cx, cy, cz) * g.cell, hi = lo + g.cell;
+                if (std::none_of(boxes.begin(), boxes.end(), [&](const auto& b) {
+                        return glm::all(glm::lessThan(lo, b.second)) && glm::all(glm::greaterThan(hi, b.first));
+                    }))
+                    continue;
+                double sum[4] = {0.0, 0.0, 0.0, 0.0};
+                for (int q = 0; q < n * n * n; ++q) {
+                    const glm::vec3 at = lo + (glm::vec3(q % n, q / n % n, q / (n * n)) + 0.5f) * (g.cell / float(n));
+                    bool inside = false;
+                    const auto m = k.vx_volumes_medium(glm::vec3(in.index_to_world * glm::vec4(at, 1.0f)), inside);
+                    sum[0] += m.sigma;
+                    for (int c = 0; c < 3; ++c) sum[c + 1] += double(m.sigma) - double(bleeding) * m.scattering[c];
+                }
+                const double mean = sum[0] / double(n * n * n);
+                const double scale = mean > max_sigma ? max_sigma / mean : 1.0;   // as buildLightGrid clamps
+                clamped += mean > max_sigma;
+                const size_t i = (size_t(cz) * g.dims.y + cy) * g.dims.x + cx;
+                for (int p = 0; p < g.planes; ++p) g.values[p * plane + i] = float(sum[p] / double(n * n * n) * scale);
+            }
+    });
+    g.clamped_cells = clamped;
+    if (contents.extinction) g.needed = neededCells(g);
+    return g;
+}
+
+}  // namespace
+
 LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridContents contents) {
+    if (in.params.volume_count > 1) return buildVolumesLightGrid(in, resolution, contents);
     kernel::CpuKernelData k = bindKernelData(in);
     const float bleeding = contents.bleeding;
     const glm::ivec3 bmin = in.pages->medium_min, bmax = in.pages->medium_max;
@@ -281,7 +347,9 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
     return g;
 }
 
-bool uniformAlbedo(const KernelInputs& in) { return in.params.use_transfer == 0 && in.params.use_color_grid == 0; }
+bool uniformAlbedo(const KernelInputs& in) {
+    return in.params.use_transfer == 0 && in.params.use_color_grid == 0 && in.params.volume_count < 2;
+}
 
 LightGrid withUniformBleeding(const LightGrid& extinction, glm::vec3 albedo, float bleeding) {
     assert(extinction.planes == 1);

@@ -55,6 +55,8 @@ std::string clampedCellsWarning(const LightGrid& grid);
 
 // Index-space size of the medium's box (PageTable::medium_min), which light grids cover.
 glm::vec3 occupiedExtent(const PageTable& pages);
+// The same for the medium of kernel inputs: of several volumes, the shared frame's box of them all.
+glm::vec3 lightGridExtent(const KernelInputs& in);
 
 // `requested` cells along the longest side, but no finer than a quarter voxel: finer cells would
 // only repeat voxels (a tiny volume at the default 128).
@@ -87,10 +89,11 @@ struct LightGridContents {
     bool transport = false;   // the transport depth, when the atlas has a transport colour
 };
 
-// Box-filters the visible bricks into a light grid of `resolution` over the occupied bricks' box.
+// Box-filters the visible bricks into a light grid of `resolution` over the occupied bricks' box;
+// of several volumes, the mean of their summed medium over each cell of their shared frame's box.
 LightGrid buildLightGrid(const KernelInputs& inputs, int resolution, LightGridContents contents = {});
 
-// Whether every voxel has the material's albedo (no transfer function or colour grid scales it).
+// Whether every voxel has the material's albedo (one volume, no transfer function or colour grid).
 bool uniformAlbedo(const KernelInputs& inputs);
 
 // `extinction` (one plane) with the three colour-bleeding planes of a uniform `albedo` added:

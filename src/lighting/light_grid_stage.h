@@ -29,7 +29,8 @@ struct LightGridReader {
 
 class LightGridStage final : public Stage {
 public:
-    LightGridStage(const BrickStage& brick, const ClassifyStage& classify) : brick_(input(brick)), classify_(input(classify)) {}
+    LightGridStage(const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes)
+        : brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)) {}
     // A lighting method that sums or sweeps the grid says so as its stages are made: the grid is
     // built when one of its readers runs.
     void addReader(LightGridReader reader) { readers_.push_back(std::move(reader)); }
@@ -48,6 +49,7 @@ public:
 private:
     const BrickStage& brick_;
     const ClassifyStage& classify_;
+    const VolumesStage& volumes_;
     std::vector<LightGridReader> readers_;
     LightGrid grid_;
     int resolution_ = 0;

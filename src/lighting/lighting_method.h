@@ -23,6 +23,7 @@ class BrickStage;
 class CameraStage;
 class ClassifyStage;
 class LightGridStage;
+class VolumesStage;
 class MarchLightingStage;
 
 // The stages before the lighting that a method's stages may read.
@@ -31,6 +32,7 @@ struct SharedStages {
     std::function<glm::mat3()> xyz_to_working;   // its CIE XYZ -> working-space matrix
     const BrickStage& brick;
     const ClassifyStage& classify;
+    const VolumesStage& volumes;                 // of several volumes, their joined bricks
     const CameraStage& camera;
     LightGridStage& light_grid;                  // a method that reads it adds itself as a reader
 };

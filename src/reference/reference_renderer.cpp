@@ -29,15 +29,52 @@ struct Tracker {
     std::atomic<uint64_t>& opaque_segments;
     float time = 0.0f;    // the path's, frames from the frame's own (vx_motion.h)
 
-    // The medium at index point p of stored brick (slot, b) at the path's time; nothing where it
-    // came from no stored brick (all its values are 0).
-    std::optional<CpuKernelData::VxTaps> medium(int slot, glm::ivec3 b, glm::vec3 p) const {
+    bool several() const { return k.P.volume_count > 1; }
+
+    // One stretch of a walk, of constant majorant and minorant: a stored brick's (slot, brick),
+    // whose points o + d * t are in index space; or, of several volumes, a stretch inside the same
+    // volumes' boxes (slot -1), whose points o + d * t are in world space.
+    struct Segment {
+        int slot;
+        glm::ivec3 brick;
+        glm::vec3 o, d;
+        float t, t_end, majorant, minorant;
+    };
+
+    // The medium at a tentative collision: the one volume's reconstruction at the path's time
+    // (nothing where it came from no stored brick: all its values are 0), or the several volumes'
+    // summed medium.
+    struct Collision {
+        std::optional<CpuKernelData::VxTaps> taps;
+        CpuKernelData::VxMedium mixed{};
+    };
+
+    Collision medium(const Segment& s, float t) const {
+        Collision c;
+        const glm::vec3 p = s.o + s.d * t;
+        if (s.slot < 0) {
+            bool inside = false;
+            c.mixed = k.vx_volumes_medium(p, inside);
+            return c;
+        }
         bool found = false;
-        const CpuKernelData::VxTaps taps = k.vx_moved_taps(slot, b, p, k.vx_motion_shift(slot, b, p, time), found);
-        return found ? std::optional<CpuKernelData::VxTaps>(taps) : std::nullopt;
+        const CpuKernelData::VxTaps taps = k.vx_moved_taps(s.slot, s.brick, p, k.vx_motion_shift(s.slot, s.brick, p, time), found);
+        if (found) c.taps = taps;
+        return c;
     }
-    float extinction(const std::optional<CpuKernelData::VxTaps>& c) const { return c ? k.vx_extinction(*c) : 0.0f; }
-    glm::vec3 emission(const std::optional<CpuKernelData::VxTaps>& c) const { return c ? k.vx_emission(*c) : glm::vec3(0.0f); }
+    // The collision a path scatters at: where a segment taken as opaque has no medium of the one
+    // volume, any stored cell's (its albedo).
+    Collision scattering(const Segment& s, float t, Collision c) const {
+        if (s.slot >= 0 && !c.taps) c.taps = k.vx_taps_at(s.slot, s.brick, s.o + s.d * t);
+        return c;
+    }
+    float extinction(const Collision& c) const { return several() ? c.mixed.sigma : c.taps ? k.vx_extinction(*c.taps) : 0.0f; }
+    glm::vec3 emission(const Collision& c) const { return c.taps ? k.vx_emission(*c.taps) : glm::vec3(0.0f); }
+    glm::vec3 albedo(const Collision& c) const {
+        if (!several()) return k.vx_albedo(*c.taps);
+        return c.mixed.sigma > 0.0f ? k.vx_medium_albedo(c.mixed) : glm::vec3(0.0f);
+    }
+    float anisotropy(const Collision& c) const { return several() ? k.vx_medium_g(c.mixed) : k.P.anisotropy; }
 
     // Tentative collisions one brick's segment may take: m * length of them are expected, a
     // handful where the majorant is tight, 65536 at an optical-depth bound of 65536 in one brick
@@ -57,10 +94,11 @@ struct Tracker {
         return std::max(t - std::log(1.0f - rng.next()) / m, std::nextafter(t, INFINITY));
     }
 
-    // Calls visit(slot, brick, o, d, t_begin, t_end, majorant) for each brick of non-zero majorant
-    // the ray crosses within [0, t_max), in order, until visit returns false.
+    // Calls visit(segment) for each segment of non-zero majorant the ray crosses within [0, t_max),
+    // in order, until visit returns false: the one volume's bricks, or several volumes' stretches.
     template <class Visit>
     void walk(glm::vec3 x, glm::vec3 w, float t_max, Visit&& visit) const {
+        if (several()) return walkVolumes(x, w, t_max, visit);
         const glm::vec3 o = k.vx_to_index_point(x), d = k.vx_to_index_dir(w);
         float t0 = 0.0f, t1 = t_max;
         if (!k.vx_clip_to_bricks(o, d, t0, t1)) return;
@@ -71,19 +109,47 @@ struct Tracker {
         while (s.t < s.t_end) {
             const int slot = k.vx_page_lookup(s.brick);
             if (slot != VX_PAGE_EMPTY && bounds.majorant[slot] > 0.0f &&
-                !visit(slot, s.brick, o, d, s.t, k.vx_dda_exit(s), bounds.majorant[slot]))
+                !visit(Segment{slot, s.brick, o, d, s.t, k.vx_dda_exit(s), bounds.majorant[slot], bounds.minorant[slot]}))
                 return;
             k.vx_dda_next(s, region, skips);
         }
     }
 
-    // Steps through the tentative collisions at `rate` in one brick segment [t, t_end) of a walk,
-    // calling at(t, index_point, opaque) for each until it returns false; returns whether the
-    // segment's end was reached. `opaque`: the segment is taken as opaque at t (nextCollision says
-    // why), with no collision there, and `at` must stop the walk.
+    // Several volumes: the stretches between the points where the ray enters or leaves a volume's
+    // box, each at the sum of the majorants of the volumes whose boxes hold it (a volume's majorant
+    // is its largest extinction, ExtinctionBounds::volume_majorant), with no minorant.
+    template <class Visit>
+    void walkVolumes(glm::vec3 x, glm::vec3 w, float t_max, Visit&& visit) const {
+        thread_local std::vector<std::pair<float, int>> ends;   // t, and volume + 1 entering or -(volume + 1) leaving
+        ends.clear();
+        for (int v = 0; v < k.P.volume_count; ++v) {
+            const kernel::VxVolume V = k.vx_placed_volume(v);
+            float a = 0.0f, b = t_max;
+            if (bounds.volume_majorant[size_t(v)] > 0.0f &&
+                k.vx_clip_to_box(glm::vec3(V.world_to_index * glm::vec4(x, 1.0f)), glm::vec3(V.world_to_index * glm::vec4(w, 0.0f)),
+                                 k.vx_volume_lo(V), k.vx_volume_hi(V), a, b)) {
+                ends.emplace_back(a, v + 1);
+                ends.emplace_back(b, -(v + 1));
+            }
+        }
+        std::sort(ends.begin(), ends.end());
+        double majorant = 0.0;
+        int inside = 0;
+        for (size_t i = 0; i + 1 < ends.size(); ++i) {
+            const int v = std::abs(ends[i].second) - 1;
+            inside += ends[i].second > 0 ? 1 : -1;
+            majorant = inside == 0 ? 0.0 : majorant + (ends[i].second > 0 ? 1.0 : -1.0) * bounds.volume_majorant[size_t(v)];
+            const float t = ends[i].first, t_end = ends[i + 1].first;
+            if (t_end > t && majorant > 0.0 && !visit(Segment{-1, glm::ivec3(0), x, w, t, t_end, float(majorant), 0.0f})) return;
+        }
+    }
+
+    // Steps through the tentative collisions at `rate` in a segment's [t, t_end), calling at(t,
+    // opaque) for each until it returns false; returns whether the segment's end was reached.
+    // `opaque`: the segment is taken as opaque at t (nextCollision says why), with no collision
+    // there, and `at` must stop the walk.
     template <class At>
-    bool collisions(glm::vec3 o, glm::vec3 d, float t, float t_end, float rate, ReferenceRng& rng, int& events,
-                    At&& at) const {
+    bool collisions(float t, float t_end, float rate, ReferenceRng& rng, int& events, At&& at) const {
         for (int here = 0;; ++here) {
             const std::optional<float> next = nextCollision(t, rate, here, rng);
             if (next && *next >= t_end) return true;
@@ -91,7 +157,7 @@ struct Tracker {
                 t = *next;
                 ++events;
             }
-            if (!at(t, o + d * t, !next)) return false;
+            if (!at(t, !next)) return false;
         }
     }
 
@@ -102,13 +168,13 @@ struct Tracker {
     // noise (a dense cloud's core); where c is 0 it is plain ratio tracking.
     float transmittance(glm::vec3 x, glm::vec3 w, float dist, ReferenceRng& rng, int& events) const {
         float T = 1.0f;
-        walk(x, w, dist, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
-            const float c = bounds.minorant[slot], residual = m - c;
-            if (t_end > t) T *= std::exp(-c * (t_end - t));
+        walk(x, w, dist, [&](const Segment& s) {
+            const float c = s.minorant, residual = s.majorant - c;
+            if (s.t_end > s.t) T *= std::exp(-c * (s.t_end - s.t));
             if (T <= 0.0f) return false;
             if (!(residual > 0.0f)) return true;  // uniform here: exact
-            return collisions(o, d, t, t_end, residual, rng, events, [&](float, glm::vec3 p, bool opaque) {
-                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (extinction(medium(slot, brick, p)) - c) / residual);
+            return collisions(s.t, s.t_end, residual, rng, events, [&](float t, bool opaque) {
+                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (extinction(medium(s, t)) - c) / residual);
                 return T > 0.0f;
             });
         });
@@ -118,7 +184,7 @@ struct Tracker {
     struct Flight {
         bool collided = false;
         float t = 0.0f;
-        CpuKernelData::VxTaps cell{};
+        Collision cell{};
         glm::vec3 emitted{0.0f};  // emission collected up to the collision or the exit
     };
 
@@ -127,16 +193,17 @@ struct Tracker {
     Flight flight(glm::vec3 x, glm::vec3 w, ReferenceRng& rng, int& events) const {
         Flight f;
         const bool emits = k.P.emission_sources > 0;
-        walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
-            return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 p, bool opaque) {
-                const std::optional<CpuKernelData::VxTaps> c = medium(slot, brick, p);
+        walk(x, w, 1e30f, [&](const Segment& s) {
+            const float m = s.majorant;
+            return collisions(s.t, s.t_end, m, rng, events, [&](float at, bool opaque) {
+                const Collision c = medium(s, at);
                 if (!opaque) {  // else the flight ends here
                     if (emits) f.emitted += emission(c) / m;
                     if (rng.next() * m >= extinction(c)) return true;  // a null collision
                 }
                 f.collided = true;
                 f.t = at;
-                f.cell = c ? *c : k.vx_taps_at(slot, brick, p);   // opaque where nothing came from: any albedo
+                f.cell = scattering(s, at, c);
                 return false;
             });
         });
@@ -169,9 +236,7 @@ struct Tracker {
     struct Candidate {
         float cumulative;
         float t;
-        int slot;
-        glm::ivec3 brick;
-        glm::vec3 index_point;
+        Segment segment;
     };
 
     RatioFlight ratioFlight(glm::vec3 x, glm::vec3 w, bool choose, ReferenceRng& rng, int& events) const {
@@ -180,16 +245,17 @@ struct Tracker {
         RatioFlight p;
         float& T = p.transmittance;
         const bool emits = k.P.emission_sources > 0;
-        walk(x, w, 1e30f, [&](int slot, glm::ivec3 brick, glm::vec3 o, glm::vec3 d, float t, float t_end, float m) {
-            return collisions(o, d, t, t_end, m, rng, events, [&](float at, glm::vec3 point, bool opaque) {
+        walk(x, w, 1e30f, [&](const Segment& s) {
+            const float m = s.majorant;
+            return collisions(s.t, s.t_end, m, rng, events, [&](float at, bool opaque) {
                 // A segment taken as opaque (nextCollision): all of T scatters here.
-                const std::optional<CpuKernelData::VxTaps> c = medium(slot, brick, point);
+                const Collision c = medium(s, at);
                 const float sigma = opaque ? m : extinction(c);
                 const float term = opaque ? T : T * std::min(1.0f, sigma / m);
                 if (emits && !opaque) p.emitted += T * emission(c) / m;
                 if (term > 0.0f) {
                     p.weight += term;
-                    if (choose) candidates.push_back({p.weight, at, slot, brick, point});
+                    if (choose) candidates.push_back({p.weight, at, s});
                 }
                 T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - sigma / m);
                 if (T < kRouletteT) T = rng.next() * kRouletteT < T ? kRouletteT : 0.0f;
@@ -201,8 +267,7 @@ struct Tracker {
         const auto chosen = std::min(std::upper_bound(candidates.begin(), candidates.end(), target,
                                                       [](float v, const Candidate& c) { return v < c.cumulative; }),
                                      candidates.end() - 1);
-        const std::optional<CpuKernelData::VxTaps> cell = medium(chosen->slot, chosen->brick, chosen->index_point);
-        p.scatter = {true, chosen->t, cell ? *cell : k.vx_taps_at(chosen->slot, chosen->brick, chosen->index_point), glm::vec3(0.0f)};
+        p.scatter = {true, chosen->t, scattering(chosen->segment, chosen->t, medium(chosen->segment, chosen->t)), glm::vec3(0.0f)};
         return p;
     }
 };
@@ -233,13 +298,13 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
     if (rs.max_bounces == 0) return ps;
     const glm::vec3 ambient = k.P.ambient;
     const bool escapes_count = k.P.has_ambient != 0 || k.P.emission_sources > 0;
-    const float g = k.P.anisotropy;
     glm::vec3 beta(camera.weight), x = origin + dir * camera.scatter.t, w = dir;
-    CpuKernelData::VxTaps cell = camera.scatter.cell;
+    Tracker::Collision cell = camera.scatter.cell;
     // Each turn scatters at x: next-event estimation to the lights, then a flight by delta tracking
     // (by ratio tracking when it is the last the path may take).
     for (int bounce = 0;; ++bounce) {
-        beta *= k.vx_albedo(cell);
+        beta *= tr.albedo(cell);
+        const float g = tr.anisotropy(cell);
         for (int i = 0; i < k.P.light_count; ++i) {
             glm::vec3 wi;
             float dist;
@@ -294,7 +359,18 @@ ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
     const size_t slots = atlas.slots();
     const bool tf = k.P.use_transfer != 0;
     const float floor_emitting = 1.0f / voxelEdge(in.index_to_world);
-    ExtinctionBounds b{std::vector<float>(slots, 0.0f), std::vector<float>(slots, 0.0f)};
+    ExtinctionBounds b{std::vector<float>(slots, 0.0f), std::vector<float>(slots, 0.0f), {}};
+    if (k.P.volume_count > 1) {
+        // Several volumes: each volume's largest extinction (either filter stays within its
+        // voxels' range), over the slots of its pages.
+        for (const kernel::VxVolume& v : in.volumes) {
+            float hi = 0.0f;
+            for (int e = v.pages.first; e < v.pages.first + v.pages.capacity; ++e)
+                if (const int slot = in.pages->entries[size_t(e)].w; slot != VX_PAGE_EMPTY) hi = std::max(hi, atlas.density_range[size_t(slot)].y);
+            b.volume_majorant.push_back(hi * v.density_scale);
+        }
+        return b;
+    }
     // The slots a sample in slot s reads: s itself, under the B-spline its 26 neighbours (absent
     // ones read 0), and under motion blur every slot the medium can move from (atlas.motion_reach
     // bricks around; the velocity is only read in stored bricks). Past 2 bricks of reach, every

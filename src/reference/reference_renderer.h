@@ -25,8 +25,11 @@ namespace voxlux {
 // majorant sets the rate of tentative collisions; the minorant is residual ratio tracking's
 // control extinction. Emitting slots get a majorant of at least one event per voxel, so their
 // emission is sampled even where they do not attenuate.
+// Of several volumes (shaders/vx_volumes.h), a majorant per volume instead: its largest
+// extinction, summed where their boxes overlap.
 struct ExtinctionBounds {
     std::vector<float> majorant, minorant;  // per slot
+    std::vector<float> volume_majorant;     // per volume, of several
 };
 ExtinctionBounds brickExtinctionBounds(const KernelInputs& inputs);
 

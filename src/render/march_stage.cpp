@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "grade/color_stages.h"
+#include "kernel/medium_inputs.h"
 #include "lighting/march_lighting.h"
 #include "lighting/propagation/emitted_light.h"
 #include "lighting/propagation/propagation_stages.h"
@@ -25,9 +26,9 @@ void MarchStage::release() {
 }
 
 MarchStage::MarchStage(const ColorSpaceStage& color, const BrickStage& brick, const ClassifyStage& classify,
-                       const EmptyFrameStage& empty_check, const CameraStage& camera,
+                       const VolumesStage& volumes, const EmptyFrameStage& empty_check, const CameraStage& camera,
                        std::vector<const MarchLightingStage*> lighting)
-    : color_(input(color)), brick_(input(brick)), classify_(input(classify)), camera_(input(camera)),
+    : color_(input(color)), brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)), camera_(input(camera)),
       lighting_(std::move(lighting)) {
     input(empty_check);   // read for its order alone: an empty frame stops before the march
     for (const MarchLightingStage* s : lighting_) input(*s);
@@ -85,7 +86,7 @@ void MarchStage::run(StageRun& run) {
     MarchSources sources;
     for (const MarchLightingStage* s : lighting_) s->lightTheMarch(scene, sources.lighting);
     sources.camera = &camera_.camera();
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame(), color_.xyzToWorking(), sources);
+    const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame(), color_.xyzToWorking(), sources);
     if (scene.render.method != RenderMethod::Reference) {
         image_ = run.backend.march(inputs);
         return;

@@ -14,6 +14,7 @@ namespace voxlux {
 class BrickStage;
 class CameraStage;
 class ClassifyStage;
+class VolumesStage;
 class EmptyFrameStage;
 class ColorSpaceStage;
 class MarchLightingStage;
@@ -22,7 +23,7 @@ class MarchStage final : public Stage {
 public:
     // `lighting`: the lighting methods' stages the march reads (MarchLightingStage), in the order
     // they set its sources.
-    MarchStage(const ColorSpaceStage& color, const BrickStage& brick, const ClassifyStage& classify,
+    MarchStage(const ColorSpaceStage& color, const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes,
                const EmptyFrameStage& empty_check, const CameraStage& camera, std::vector<const MarchLightingStage*> lighting);
     std::string name() const override { return "march"; }
     StageReads reads() const override;
@@ -41,6 +42,7 @@ private:
     const ColorSpaceStage& color_;
     const BrickStage& brick_;
     const ClassifyStage& classify_;
+    const VolumesStage& volumes_;
     const CameraStage& camera_;
     std::vector<const MarchLightingStage*> lighting_;
     RenderImage image_;

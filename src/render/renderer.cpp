@@ -25,14 +25,14 @@ namespace voxlux {
 struct Renderer::Stages {
     explicit Stages(std::optional<LoadedVolume> given) : load(given ? LoadStage(std::move(*given)) : LoadStage()) {}
     std::vector<Stage*> all() {
-        std::vector<Stage*> out{&color_space, &color_transforms, &load, &transfer_2d, &brick, &classify, &empty_check, &camera, &light_grid};
+        std::vector<Stage*> out{&color_space, &color_transforms, &load, &transfer_2d, &brick, &classify, &volumes, &empty_check, &camera, &light_grid};
         for (const auto& m : methods)
             for (Stage* s : m->stages()) out.push_back(s);
         out.insert(out.end(), {&march, &grade, &write});
         return out;
     }
     std::vector<std::unique_ptr<LightingMethod>> makeMethods() {
-        const SharedStages shared{color_space, [this] { return color_space.xyzToWorking(); }, brick, classify, camera, light_grid};
+        const SharedStages shared{color_space, [this] { return color_space.xyzToWorking(); }, brick, classify, volumes, camera, light_grid};
         std::vector<std::unique_ptr<LightingMethod>> out;
         for (const LightingMethodEntry& entry : lightingMethods()) out.push_back(entry.make(shared));
         return out;
@@ -50,11 +50,12 @@ struct Renderer::Stages {
     Transfer2dStage transfer_2d{load};
     BrickStage brick{transfer_2d};
     ClassifyStage classify{transfer_2d, brick};
+    VolumesStage volumes{brick, classify};
     EmptyFrameStage empty_check{classify};
-    CameraStage camera{transfer_2d};
-    LightGridStage light_grid{brick, classify};
+    CameraStage camera{transfer_2d, volumes};
+    LightGridStage light_grid{brick, classify, volumes};
     std::vector<std::unique_ptr<LightingMethod>> methods = makeMethods();
-    MarchStage march{color_space, brick, classify, empty_check, camera, marchInputs()};
+    MarchStage march{color_space, brick, classify, volumes, empty_check, camera, marchInputs()};
     GradeStage grade{march, color_transforms};
     WriteStage write{grade, camera, color_transforms};
 };
@@ -109,6 +110,10 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
     const std::string file = frame ? expandFramePattern(scene_.volume().path, *frame) : scene_.volume().path;
     in["file"] = stages_->load.given() ? nlohmann::json{{"path", "grids in memory"}} : fileIdentity(file);
     in["frame"] = frame ? nlohmann::json(*frame) : nlohmann::json(nullptr);
+    if (scene_.volumes.size() > 1) {   // of several, each one's (the first's is also `file`)
+        nlohmann::json& files = in["volume_files"] = nlohmann::json::array();
+        for (const VolumeSpec& v : scene_.volumes) files.push_back(fileIdentity(frame ? expandFramePattern(v.path, *frame) : v.path));
+    }
     if (scene_.volume().transform && !scene_.volume().transform->chan.empty())
         in["transform_chan"] = fileIdentity(scene_.volume().transform->chan);
     const char* ocio = std::getenv("OCIO");
@@ -125,9 +130,11 @@ FrameResult Renderer::runGraph(std::optional<int> frame, bool allow_empty, const
     for (const auto& m : stages_->methods)
         if (auto update = m->lightUpdate(r.stages)) r.light_update = update;
     r.camera = stages_->camera.camera();
-    r.bricks = stages_->classify.pages().occupied;
+    // Of several volumes, the joined atlas the march reads (instances share their volume's bricks).
+    const bool several = placedVolumeCount(scene_) > 1;
+    r.bricks = several ? stages_->volumes.bricks().pages.occupied : stages_->classify.pages().occupied;
     r.empty = stages_->classify.pages().empty();
-    r.atlas_bytes = stages_->brick.atlas().bytes();
+    r.atlas_bytes = several ? stages_->volumes.bricks().atlas.bytes() : stages_->brick.atlas().bytes();
     return r;
 }
 

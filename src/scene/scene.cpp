@@ -43,6 +43,20 @@ glm::mat4 volumePlacement(const VolumeSpec& volume, std::optional<double> frame)
     return volume.transform ? volumeTransformMatrix(*volume.transform, frame) : glm::mat4(1.0f);
 }
 
+std::vector<glm::mat4> instancePlacements(const VolumeSpec& volume, std::optional<double> frame) {
+    const glm::mat4 placement = volumePlacement(volume, frame);
+    if (volume.instances.empty()) return {placement};
+    std::vector<glm::mat4> out;
+    for (const VolumeTransform& instance : volume.instances) out.push_back(volumeTransformMatrix(instance) * placement);
+    return out;
+}
+
+size_t placedVolumeCount(const Scene& scene) {
+    size_t n = 0;
+    for (const VolumeSpec& v : scene.volumes) n += std::max<size_t>(1, v.instances.size());
+    return n;
+}
+
 int enabledLightCount(const Scene& scene, bool ambient) {
     return int(std::count_if(scene.lights.begin(), scene.lights.end(),
                              [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; }));

@@ -252,12 +252,22 @@ struct VolumeSpec {
     LevelSetPolicy level_set = LevelSetPolicy::Reject;
     UpAxis up = UpAxis::Auto;              // frames the default camera and orients the quick form's light
     std::optional<VolumeTransform> transform;
+    // Copies placed again on top of `transform`, each still (no keys): the volume renders once per
+    // instance, all reading the same bricks; empty: once, at `transform`.
+    std::vector<VolumeTransform> instances;
     Material material;
     std::vector<EmissionSource> emission;
 };
 // Where `volume` sits at `frame`: its transform's matrix, or the identity. Applied after the
 // bricks (which stay in the file's index space), so a move re-reads and re-bricks nothing.
 glm::mat4 volumePlacement(const VolumeSpec& volume, std::optional<double> frame);
+// Where each copy of `volume` sits at `frame`: each instance's pose after the placement, or the
+// placement alone.
+std::vector<glm::mat4> instancePlacements(const VolumeSpec& volume, std::optional<double> frame);
+// The volumes the march places, instances counted: more than one is a scene of several volumes
+// (shaders/vx_volumes.h).
+struct Scene;
+size_t placedVolumeCount(const Scene& scene);
 
 enum class PixelType { Half, Float };
 

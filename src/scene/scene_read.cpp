@@ -224,16 +224,11 @@ std::vector<TransformKey> readTransformKeys(const JsonObject& o, const std::stri
     return keys;
 }
 
-// volume.transform: a matrix; or translate, rotate and scale, still, keyed per frame (`keys`) or
-// from a Nuke .chan file (`chan`, which gives translate and rotate; `scale` applies to every key).
-// An array is its keys.
-VolumeTransform readVolumeTransform(const JsonObject& volume, const std::string& base_dir) {
+// A transform object: a matrix; or translate, rotate and scale, still, keyed per frame (`keys`)
+// or from a Nuke .chan file (`chan`, which gives translate and rotate; `scale` applies to every
+// key).
+VolumeTransform readTransformObject(const JsonObject& o, const std::string& base_dir) {
     VolumeTransform t;
-    if (volume.raw("transform").is_array()) {
-        t.keys = readTransformKeys(volume, "transform");
-        return t;
-    }
-    const JsonObject o = volume.object("transform");
     o.rejectUnknown({"translate", "rotate", "scale", "rotate_order", "matrix", "keys", "chan"});
     if (o.has("matrix")) {
         for (const char* key : {"translate", "rotate", "scale", "rotate_order", "keys", "chan"})
@@ -260,8 +255,25 @@ VolumeTransform readVolumeTransform(const JsonObject& volume, const std::string&
     return t;
 }
 
+// volume.transform: a transform object, or an array of its keys.
+VolumeTransform readVolumeTransform(const JsonObject& volume, const std::string& base_dir) {
+    if (volume.raw("transform").is_array()) {
+        VolumeTransform t;
+        t.keys = readTransformKeys(volume, "transform");
+        return t;
+    }
+    return readTransformObject(volume.object("transform"), base_dir);
+}
+
+// An instance: a still pose (translate, rotate and scale, or a matrix).
+VolumeTransform readInstance(const JsonObject& o, const std::string& base_dir) {
+    for (const char* key : {"keys", "chan"})
+        if (o.has(key)) o.fail(key, "an instance is still: translate, rotate and scale, or a matrix");
+    return readTransformObject(o, base_dir);
+}
+
 // The keys of `volume` and of an entry of `volumes` (which also holds its material and emission).
-const std::vector<std::string> kVolumeKeys{"name", "path", "frames", "density", "color", "level_set", "up", "transform"};
+const std::vector<std::string> kVolumeKeys{"name", "path", "frames", "density", "color", "level_set", "up", "transform", "instances"};
 
 // The cache, its frames and its placement; not its name, material or emission (readVolumes).
 VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
@@ -295,6 +307,11 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
     if (o.has("transform")) v.transform = readVolumeTransform(o, base_dir);
     if (v.transform && !v.transform->keys.empty() && !hasFramePattern(v.path))
         o.fail("transform", "is keyed per frame, but path names one file, not a #### sequence");
+    if (o.has("instances")) {
+        if (!o.raw("instances").is_array() || o.raw("instances").empty())
+            o.fail("instances", "expected a list of transforms ({\"translate\", \"rotate\", \"scale\"} or {\"matrix\"})");
+        for (size_t i = 0; i < o.raw("instances").size(); ++i) v.instances.push_back(readInstance(o.element("instances", i), base_dir));
+    }
     return v;
 }
 
@@ -723,8 +740,23 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
                 o.fail("name", "'" + v.name + "' is also volume " + std::to_string(k) + "'s name" +
                                    (o.has("name") ? "" : " (taken from the file's; set name)"));
     }
-    if (volumes.size() > 1)
-        root.fail("volumes", std::to_string(volumes.size()) + " volumes: a scene renders one volume so far");
+    // What the march through several volumes (shaders/vx_volumes.h) does not read yet: each
+    // volume is its density grid under its material's scale, albedo and anisotropy.
+    size_t placed = 0;
+    for (const VolumeSpec& v : volumes) placed += std::max<size_t>(1, v.instances.size());
+    if (placed > VX_MAX_VOLUMES)
+        root.fail(root.has("volumes") ? "volumes" : "volume",
+                  std::to_string(placed) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
+    if (placed > 1)
+        for (size_t i = 0; i < volumes.size(); ++i) {
+            const JsonObject& o = entries[i];
+            const VolumeSpec& v = volumes[i];
+            const std::string why = ": a volume of several takes its density grid, density_scale, albedo and anisotropy only, so far";
+            if (!v.material.transfer.empty()) o.object("material").fail("transfer_function", "set" + why);
+            if (!v.material.transfer_2d.empty()) o.object("material").fail("transfer_function_2d", "set" + why);
+            if (v.color) o.fail("color", "set" + why);
+            if (!v.emission.empty()) o.fail("emission", "set" + why);
+        }
     return volumes;
 }
 
@@ -750,6 +782,13 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     if (root.has("output")) s.output = readOutput(root.object("output"));
     if (s.render.method == RenderMethod::Reference && s.output.deep)
         root.fail("output", "deep is a march-only output (render.method is \"reference\"): the Monte Carlo reference writes no deep samples");
+    if (const size_t placed = placedVolumeCount(s); placed > 1) {
+        const std::string why = " with " + std::to_string(placed) + " volumes: several volumes render without it, so far";
+        if (s.render.motion_blur) root.object("render").fail("motion_blur", "set" + why);
+        if (s.effects.surface) root.object("effects").fail("surface", "set" + why);
+        if (s.effects.perturbation) root.object("effects").fail("perturbation", "set" + why);
+        if (s.effects.indirect) root.object("effects").fail("indirect", "set" + why);
+    }
     if (s.render.motion_blur && s.output.deep)
         root.fail("output", "deep output is made at one time and render.motion_blur spreads a pixel over the shutter: turn one of them off");
     return s;

@@ -124,9 +124,13 @@ PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vecto
 }
 
 PageTable classifiedPageTable(const BrickAtlas& atlas, const Scene& scene) {
-    const bool tricubic = scene.render.filter == Filter::Tricubic;
+    return classifiedPageTable(atlas, scene.volume(), scene.render.filter);
+}
+
+PageTable classifiedPageTable(const BrickAtlas& atlas, const VolumeSpec& volume, Filter filter) {
+    const bool tricubic = filter == Filter::Tricubic;
     const auto withFilterReads = [&](const std::vector<char>& flags) { return tricubic ? withNeighbours(atlas.coords, flags) : flags; };
-    const std::vector<char> visible = classifyBricks(atlas, scene.volume().material, scene.volume().emission);
+    const std::vector<char> visible = classifyBricks(atlas, volume.material, volume.emission);
     const std::vector<char> medium = withFilterReads(visible);
     if (atlas.motion_reach == 0) return buildPageTable(atlas.coords, medium);
     PageTable pages = buildPageTable(atlas.coords, withFilterReads(withinMotionReach(atlas.coords, visible, atlas.motion_reach)));

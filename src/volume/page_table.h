@@ -43,6 +43,8 @@ std::vector<char> classifyBricks(const BrickAtlas& atlas, const Material& materi
 // of a brick missing from the page table. Its medium box (PageTable::medium_min) leaves out the
 // motion reach.
 PageTable classifiedPageTable(const BrickAtlas& atlas, const Scene& scene);
+// The same for `volume` of a scene rendered with `filter`.
+PageTable classifiedPageTable(const BrickAtlas& atlas, const VolumeSpec& volume, Filter filter);
 
 PageTable buildPageTable(const std::vector<glm::ivec3>& coords, const std::vector<char>& visible);
 

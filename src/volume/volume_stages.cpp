@@ -1,5 +1,7 @@
 #include "volume/volume_stages.h"
 
+#include <limits>
+
 #include "optics/transfer_function_2d.h"
 #include "scene/camera.h"
 #include "volume/transfer_2d.h"
@@ -127,16 +129,80 @@ void EmptyFrameStage::run(StageRun& run) {
     run.warnings.push_back(why + "; rendered as an empty frame");
 }
 
+StageReads VolumesStage::reads() const {
+    return {{"/volumes/*/path", "/volumes/*/density", "/volumes/*/level_set", "/volumes/*/material", "/volumes/*/instances?",
+             "/input/volume_files", "/render/filter"}};
+}
+
+StageActivity VolumesStage::activity(const Scene& s) const {
+    if (placedVolumeCount(s) < 2) return {false, "skipped: one volume"};
+    if (s.volumes.size() == 1) return {true, "places the volume's " + std::to_string(s.volume().instances.size()) + " instances over its bricks"};
+    return {true, "loads, bricks and classifies volumes 2 to " + std::to_string(s.volumes.size()) +
+                      " (each only when its own keys changed) and joins all into one atlas"};
+}
+
+void VolumesStage::run(StageRun& run) {
+    const Scene& scene = run.scene(reads().keys);
+    kept_.resize(scene.volumes.size() - 1);
+    for (size_t v = 1; v < scene.volumes.size(); ++v) {
+        const std::string at = "/volumes/" + std::to_string(v);
+        nlohmann::json entry = run.scene.value(at);
+        for (const char* placement_or_name : {"transform", "instances", "name"}) entry.erase(placement_or_name);
+        const nlohmann::json& file = run.scene.value("/input/volume_files/" + std::to_string(v));
+        const std::string key = entry.dump() + file.dump() + run.scene.value("/render/filter").dump();
+        Kept& k = kept_[v - 1];
+        if (k.key == key) {
+            run.reused.push_back("volumes: " + scene.volumes[v].name);
+            continue;
+        }
+        const VolumeSpec& spec = scene.volumes[v];
+        const LoadedVolume loaded = loadVolume(file.at("path").get<std::string>(), spec, std::nullopt);
+        run.warnings.insert(run.warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
+        k.atlas = buildBrickAtlas(loaded);
+        for (const std::string& w : sanitizeReport(k.atlas, loaded)) run.warnings.push_back(w);
+        k.pages = classifiedPageTable(k.atlas, spec, scene.render.filter);
+        k.key = key;
+    }
+    std::vector<const BrickAtlas*> atlases{&brick_.atlas()};
+    std::vector<const PageTable*> pages{&classify_.pages()};
+    for (const Kept& k : kept_) {
+        atlases.push_back(&k.atlas);
+        pages.push_back(&k.pages);
+    }
+    joined_ = joinVolumeBricks(atlases, pages);
+}
+
 StageReads CameraStage::reads() const { return {withPlacementKeys({"/camera", "/render/resolution", "/volumes/*/up"})}; }
 
 StageActivity CameraStage::activity(const Scene& s) const {
-    return {true, s.camera ? "the scene's camera" : "frames the density grid's active voxels (no camera in the scene)"};
+    return {true, s.camera                      ? "the scene's camera"
+                  : placedVolumeCount(s) > 1 ? "frames all volumes' bricks (no camera in the scene)"
+                                         : "frames the density grid's active voxels (no camera in the scene)"};
 }
+
+namespace {
+
+// The default camera of several volumes: framing the world box of all their placed bricks.
+Camera frameVolumes(const SceneBricks& bricks, const Scene& scene, float frame, const LoadedVolume& first) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (size_t v = 0; v < scene.volumes.size(); ++v) {
+        for (const glm::mat4& placement : instancePlacements(scene.volumes[v], frame))
+            growByPageRange(bricks.ranges[v], placement * bricks.index_to_world[v], lo, hi);
+    }
+    if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);
+    return frameBox(lo, hi, Camera{}.fov, float(scene.render.width) / float(scene.render.height), viewFrameOf(scene, first));
+}
+
+}  // namespace
 
 void CameraStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up", "/volumes/*/transform"});
-    camera_ = scene.camera ? *scene.camera
-                           : frameActiveVoxels(placedVolume(load_.volume(), volumePlacement(scene.volume(), run.scene.frame())), scene);
+    if (scene.camera)
+        camera_ = *scene.camera;
+    else if (placedVolumeCount(scene) > 1)
+        camera_ = frameVolumes(volumes_.bricks(), scene, run.scene.frame(), load_.volume());
+    else
+        camera_ = frameActiveVoxels(placedVolume(load_.volume(), volumePlacement(scene.volume(), run.scene.frame())), scene);
 }
 
 glm::mat3 viewFrameOf(const Scene& scene, const LoadedVolume& volume) {

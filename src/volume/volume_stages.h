@@ -10,6 +10,7 @@
 
 #include "volume/brick_atlas.h"
 #include "volume/page_table.h"
+#include "volume/scene_bricks.h"
 #include "graph/render_graph.h"
 #include "volume/vdb_loader.h"
 
@@ -19,7 +20,7 @@ namespace voxlux {
 // the volume sits: the camera's framing and every stage that makes kernel inputs. The bricks do
 // not: they stay in the file's index space, so a move re-reads and re-bricks nothing.
 inline std::vector<std::string> withPlacementKeys(std::vector<std::string> keys) {
-    keys.insert(keys.end(), {"/volumes/*/transform", "/input/frame", "/input/transform_chan"});
+    keys.insert(keys.end(), {"/volumes/*/transform", "/volumes/*/instances", "/input/frame", "/input/transform_chan"});
     return keys;
 }
 
@@ -118,9 +119,36 @@ private:
     const ClassifyStage& classify_;
 };
 
+// The volumes of a scene of several after the first (whose stages are load, brick and classify):
+// each loaded, bricked and classified as those do, and kept while its own keys (its entry but the
+// transform, its file, the filter) stay the same, so an edit of one volume reloads no other; then
+// all joined into one atlas (volume/scene_bricks.h). It does not run for one volume.
+// Cost: the changed volumes' load, brick and classify, and one copy of every volume's bricks.
+class VolumesStage final : public Stage {
+public:
+    VolumesStage(const BrickStage& brick, const ClassifyStage& classify) : brick_(input(brick)), classify_(input(classify)) {}
+    std::string name() const override { return "volumes"; }
+    StageReads reads() const override;
+    StageActivity activity(const Scene& scene) const override;
+    void run(StageRun& run) override;
+    void release() override { joined_ = SceneBricks{}; }
+    const SceneBricks& bricks() const { return joined_; }
+
+private:
+    struct Kept {
+        std::string key;
+        BrickAtlas atlas;
+        PageTable pages;
+    };
+    const BrickStage& brick_;
+    const ClassifyStage& classify_;
+    std::vector<Kept> kept_;   // volumes 1, 2, ...
+    SceneBricks joined_;
+};
+
 class CameraStage final : public Stage {
 public:
-    explicit CameraStage(const Transfer2dStage& load) : load_(input(load)) {}
+    CameraStage(const Transfer2dStage& load, const VolumesStage& volumes) : load_(input(load)), volumes_(input(volumes)) {}
     std::string name() const override { return "camera"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -129,6 +157,7 @@ public:
 
 private:
     const Transfer2dStage& load_;
+    const VolumesStage& volumes_;
     Camera camera_;
 };
 

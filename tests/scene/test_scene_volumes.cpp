@@ -55,13 +55,11 @@ TEST(SceneVolumes, ConflictsAndDuplicatesAreRefused) {
               "shot.json: /material: goes in each entry of volumes");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": []})"), "shot.json: /volumes: expected at least one volume");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "role": "matte"}]})"),
-              "shot.json: /volumes/0/role: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, material, emission)");
+              "shot.json: /volumes/0/role: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances, material, emission)");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a/smoke.vdb"}, {"path": "b/smoke.vdb"}]})"),
               "shot.json: /volumes/1/name: 'smoke' is also volume 0's name (taken from the file's; set name)");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "name": "x"}, {"path": "b.vdb", "name": "x"}]})"),
               "shot.json: /volumes/1/name: 'x' is also volume 0's name");
-    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb"}]})"),
-              "shot.json: /volumes: 2 volumes: a scene renders one volume so far");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "color": "Cd", "material": {"transfer_function_2d": "ct_tissue"}}]})"),
               "shot.json: /volumes/0/color: the 2D transfer function (material.transfer_function_2d) gives the albedo; remove color");
 }

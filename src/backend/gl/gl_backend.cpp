@@ -55,6 +55,11 @@ public:
         params_.bind(program, GL_UNIFORM_BLOCK, "Params");
         lighting_.upload(&in.lighting.blocks, sizeof in.lighting.blocks, GL_STREAM_DRAW, "lighting parameter");
         lighting_.bind(program, GL_UNIFORM_BLOCK, "Lighting");
+        // The block holds VX_MAX_VOLUMES whatever the count: the rest stays zero.
+        std::vector<kernel::VxVolume> volumes(VX_MAX_VOLUMES);
+        std::copy(in.volumes.begin(), in.volumes.end(), volumes.begin());
+        volumes_.upload(volumes.data(), volumes.size() * sizeof(kernel::VxVolume), GL_STREAM_DRAW, "volume");
+        volumes_.bind(program, GL_UNIFORM_BLOCK, "Volumes");
         const BrickAtlas& atlas = *in.atlas;
         const struct {
             GlBuffer& buffer;
@@ -173,7 +178,7 @@ private:
     }
 
     const GlContextInfo& context_;
-    GlBuffer params_, lighting_, density_, emission_, vectors_, pages_, lights_, tf_lut_, emission_lut_, noise_, band_, deep_band_;
+    GlBuffer params_, lighting_, density_, emission_, vectors_, pages_, lights_, tf_lut_, emission_lut_, noise_, volumes_, band_, deep_band_;
     std::array<GlBuffer, kernel::CpuKernelData::kLightingArrays.size()> lighting_arrays_;
 };
 

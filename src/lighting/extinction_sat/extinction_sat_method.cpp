@@ -11,7 +11,8 @@ namespace {
 class ExtinctionSatMethod final : public LightingMethod {
 public:
     explicit ExtinctionSatMethod(const SharedStages& shared)
-        : sat_(shared.brick, shared.classify, shared.light_grid), light_cache_(shared.brick, shared.classify, sat_) {
+        : sat_(shared.brick, shared.classify, shared.volumes, shared.light_grid),
+          light_cache_(shared.brick, shared.classify, shared.volumes, sat_) {
         shared.light_grid.addReader({"the SAT", lightCacheRuns});
     }
     std::vector<Stage*> stages() override { return {&sat_, &light_cache_}; }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "kernel/medium_inputs.h"
 #include "core/huge_pages.h"
 #include "kernel/kernel_backend.h"
 #include "kernel/kernel_inputs.h"
@@ -79,13 +80,13 @@ void SatStage::run(StageRun& run) {
                                     "/effects/light_resolution", "/effects/light_memory_mb", "/lights", "/volumes/*/material",
                                     "/volumes/*/transform"});
     const float bleeding = bleedingOf(scene);
-    const glm::vec3 extent = occupiedExtent(classify_.pages());
+    const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
+    const glm::vec3 extent = lightGridExtent(inputs);
     std::string warning;
     resolution_ = fitLightResolution(extent, cappedLightResolution(extent, scene.effects.light_resolution),
                                      bleeding > 0.0f ? 4 : 1, cacheLayout(scene, enabledLightCount(scene, false)).channels,
                                      size_t(scene.effects.light_memory_mb) << 20, warning);
     if (!warning.empty()) run.warnings.push_back(warning);
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
     if (resolution_ != shared_.resolution() || (bleeding > 0.0f && !uniformAlbedo(inputs))) {
         own_grid_ = buildLightGrid(inputs, resolution_, {true, bleeding});
         if (own_grid_.clamped_cells && resolution_ != shared_.resolution()) run.warnings.push_back(clampedCellsWarning(own_grid_));
@@ -144,7 +145,7 @@ void LightCacheStage::run(StageRun& run) {
                                     "/lights", "/volumes/*/material", "/volumes/*/transform"});
     const Effects& fx = scene.effects;
     const LightGrid& grid = sat_.grid();
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
+    const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
     LightCache layout = cacheLayout(scene, int(inputs.lights.size()));
     // The cache is kept as it is while its layout is, so unchanged channels survive.
     const glm::mat4 light_to_world = inputs.index_to_world * grid.lightToIndex();

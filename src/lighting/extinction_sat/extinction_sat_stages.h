@@ -28,8 +28,8 @@ bool lightCacheRuns(const Scene& scene);
 
 class SatStage final : public Stage {
 public:
-    SatStage(const BrickStage& brick, const ClassifyStage& classify, const LightGridStage& shared)
-        : brick_(input(brick)), classify_(input(classify)), shared_(input(shared)) {}
+    SatStage(const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes, const LightGridStage& shared)
+        : brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)), shared_(input(shared)) {}
     std::string name() const override { return "sat"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -46,6 +46,7 @@ public:
 private:
     const BrickStage& brick_;
     const ClassifyStage& classify_;
+    const VolumesStage& volumes_;
     const LightGridStage& shared_;
     OnDevice<SatPasses> passes_{makeSatPasses};
     LightGrid own_grid_;   // no cells when the shared grid is summed as it is
@@ -56,8 +57,8 @@ private:
 
 class LightCacheStage final : public MarchLightingStageOf<LightCache> {
 public:
-    LightCacheStage(const BrickStage& brick, const ClassifyStage& classify, const SatStage& sat)
-        : brick_(input(brick)), classify_(input(classify)), sat_(input(sat)) {}
+    LightCacheStage(const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes, const SatStage& sat)
+        : brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)), sat_(input(sat)) {}
     std::string name() const override { return "light_cache"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -74,6 +75,7 @@ private:
 
     const BrickStage& brick_;
     const ClassifyStage& classify_;
+    const VolumesStage& volumes_;
     const SatStage& sat_;
     OnDevice<SatPasses> passes_{makeSatPasses};
     LightCache cache_;

@@ -15,8 +15,8 @@ namespace {
 class PropagationMethod final : public LightingMethod {
 public:
     explicit PropagationMethod(const SharedStages& shared)
-        : grid_(shared.color_space, shared.xyz_to_working, shared.brick, shared.classify, shared.light_grid),
-          propagation_(shared.brick, shared.classify, grid_),
+        : grid_(shared.color_space, shared.xyz_to_working, shared.brick, shared.classify, shared.volumes, shared.light_grid),
+          propagation_(shared.brick, shared.classify, shared.volumes, grid_),
           eye_pass_(shared.brick, shared.classify, shared.camera, grid_, propagation_) {
         shared.light_grid.addReader({"the illumination volume", illuminationVolumeRuns});
     }

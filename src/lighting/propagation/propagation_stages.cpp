@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/parallel_for.h>
 
+#include "kernel/medium_inputs.h"
 #include "core/huge_pages.h"
 #include "scene/camera.h"
 #include "kernel/cpu_kernel_data.h"
@@ -357,13 +358,13 @@ void IlluminationGridStage::release() {
 void IlluminationGridStage::run(StageRun& run) {
     release();
     generation_ = nextGridGeneration();
-    const PageTable& pages = classify_.pages();
     const Scene& scene = run.scene({"/effects/indirect?", "/effects/propagation/chroma_subsampling", "/effects/light_resolution",
                                     "/effects/light_memory_mb", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/transform"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
-    const glm::vec3 extent = occupiedExtent(pages);
+    const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame(), xyz_to_working_());
+    const glm::vec3 extent = lightGridExtent(inputs);
     const bool emission = emissionLightsTheMedium(scene);
     const bool transport = indirect && !brick_.atlas().transport.empty();
     const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport); },
@@ -376,7 +377,6 @@ void IlluminationGridStage::run(StageRun& run) {
     if (!warning.empty()) run.warnings.push_back(warning);
     // The shared light grid, unless this volume's memory lowered the resolution below it; the
     // emitted radiance is this stage's own either way.
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), pages, run.scene.frame(), xyz_to_working_());
     const bool shared = resolution == shared_.resolution();
     if (!shared) {
         own_grid_ = buildLightGrid(inputs, resolution, {true, 0.0f, emission});
@@ -487,7 +487,7 @@ void PropagationStage::run(StageRun& run) {
                                     "/volumes/*/emission", "/volumes/*/transform"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
+    const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
     std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
     passes_.keepFor(grid_.generation());   // copies the passes keep of another grid go

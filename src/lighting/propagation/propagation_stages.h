@@ -75,8 +75,9 @@ public:
     // `xyz_to_working`: the matrix of `color_space` (a stage of a higher layer, grade), which
     // emission colours are converted by.
     IlluminationGridStage(const Stage& color_space, std::function<glm::mat3()> xyz_to_working, const BrickStage& brick,
-                          const ClassifyStage& classify, const LightGridStage& shared)
-        : xyz_to_working_(std::move(xyz_to_working)), brick_(input(brick)), classify_(input(classify)), shared_(input(shared)) {
+                          const ClassifyStage& classify, const VolumesStage& volumes, const LightGridStage& shared)
+        : xyz_to_working_(std::move(xyz_to_working)), brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)),
+          shared_(input(shared)) {
         input(color_space);
     }
     std::string name() const override { return "illumination_grid"; }
@@ -95,6 +96,7 @@ private:
     std::function<glm::mat3()> xyz_to_working_;
     const BrickStage& brick_;
     const ClassifyStage& classify_;
+    const VolumesStage& volumes_;
     const LightGridStage& shared_;
     LightGrid own_grid_;   // empty unless this volume's memory lowered its resolution below the shared grid's
     std::vector<float> emission_;   // RGB emitted radiance per cell, when it lights the medium
@@ -108,8 +110,8 @@ private:
 
 class PropagationStage final : public MarchLightingStageOf<IlluminationVolume> {
 public:
-    PropagationStage(const BrickStage& brick, const ClassifyStage& classify, const IlluminationGridStage& grid)
-        : brick_(input(brick)), classify_(input(classify)), grid_(input(grid)) {}
+    PropagationStage(const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes, const IlluminationGridStage& grid)
+        : brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)), grid_(input(grid)) {}
     std::string name() const override { return "propagation"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -124,6 +126,7 @@ public:
 private:
     const BrickStage& brick_;
     const ClassifyStage& classify_;
+    const VolumesStage& volumes_;
     const IlluminationGridStage& grid_;
     OnDevice<PropagationPasses> passes_{makePropagationPasses};
     std::string setup_key_;             // the grid and knobs the light sweeps were computed with

@@ -1,0 +1,121 @@
+// Several volumes in one scene (P.volume_count > 1): the medium where they overlap, and a ray's way
+// through them. Each volume has its own placement, pages and material (VxVolume); all share the
+// atlas. Overlap is physical: extinction adds; the albedo is the scattering-weighted mean of the
+// volumes' (exactly the mixture's single-scattering albedo), and so is the Henyey-Greenstein g
+// (the mixture's mean cosine, which one lobe of that g stands in for). Cost: per sample, a box test
+// per volume and a hashed page lookup per volume whose box holds the sample; the space between
+// the volumes' boxes is crossed in one jump per gap, not sample by sample.
+#pragma once
+#include "vx_dda.h"
+
+// The volumes' medium at a point: the summed extinction, scattering (extinction times albedo)
+// and the scattering-weighted sum of g (weighted by the albedo's mean).
+struct VxMedium {
+    vec3 scattering;
+    float sigma;
+    float g_sum;
+    float g_weight;
+};
+
+// The scattering-weighted albedo and g of a medium with extinction.
+VX_INLINE vec3 vx_medium_albedo(VxMedium m) { return m.scattering / m.sigma; }
+VX_INLINE float vx_medium_g(VxMedium m) { return m.g_weight > 0.0f ? m.g_sum / m.g_weight : 0.0f; }
+
+// The box of volume V's bricks in its index space.
+VX_INLINE vec3 vx_volume_lo(VxVolume V) { return vec3(V.pages.lo) * float(VX_BRICK); }
+VX_INLINE vec3 vx_volume_hi(VxVolume V) { return vec3(V.pages.hi + ivec3(1)) * float(VX_BRICK); }
+
+// The medium at world point x; `inside` tells whether x lies in any volume's box of bricks (when
+// not, the ray may jump to vx_volumes_next_entry).
+VxMedium vx_volumes_medium(vec3 x, VX_OUT(bool) inside) {
+    VxMedium m;
+    m.scattering = vec3(0.0f);
+    m.sigma = 0.0f;
+    m.g_sum = 0.0f;
+    m.g_weight = 0.0f;
+    inside = false;
+    for (int v = 0; v < P.volume_count; ++v) {
+        VxVolume V = vx_placed_volume(v);
+        vec3 p = vec3(V.world_to_index * vec4(x, 1.0f));
+        ivec3 b = ivec3(floor(p / float(VX_BRICK)));
+        if (b.x < V.pages.lo.x || b.y < V.pages.lo.y || b.z < V.pages.lo.z || b.x > V.pages.hi.x || b.y > V.pages.hi.y ||
+            b.z > V.pages.hi.z)
+            continue;
+        inside = true;
+        int slot = vx_table_find(b, V.pages.first, V.pages.capacity, V.pages.max_probe);
+        if (slot == VX_PAGE_EMPTY) continue;
+        float sigma = V.density_scale * vx_density_at(vx_taps_in(V.pages, slot, b, p));
+        if (sigma <= 0.0f) continue;
+        m.sigma += sigma;
+        m.scattering += sigma * V.albedo;
+        float weight = sigma * (V.albedo.x + V.albedo.y + V.albedo.z);
+        m.g_sum += weight * V.anisotropy;
+        m.g_weight += weight;
+    }
+    return m;
+}
+
+// The part [t0, t1] of the ray from world point x along unit direction w that crosses any
+// volume's box (their hull along the ray); false when it crosses none.
+bool vx_volumes_clip(vec3 x, vec3 w, VX_INOUT(float) t0, VX_INOUT(float) t1) {
+    float lo = 1e30f;
+    float hi = -1e30f;
+    for (int v = 0; v < P.volume_count; ++v) {
+        VxVolume V = vx_placed_volume(v);
+        float a = t0;
+        float b = t1;
+        if (!vx_clip_to_box(vec3(V.world_to_index * vec4(x, 1.0f)), vec3(V.world_to_index * vec4(w, 0.0f)), vx_volume_lo(V),
+                            vx_volume_hi(V), a, b))
+            continue;
+        lo = min(lo, a);
+        hi = max(hi, b);
+    }
+    t0 = lo;
+    t1 = hi;
+    return t0 < t1;
+}
+
+// The first t in [t, t_end] at which the ray enters a volume's box; 1e30 when it enters none.
+float vx_volumes_next_entry(vec3 x, vec3 w, float t, float t_end) {
+    float next = 1e30f;
+    for (int v = 0; v < P.volume_count; ++v) {
+        VxVolume V = vx_placed_volume(v);
+        float a = t;
+        float b = t_end;
+        if (vx_clip_to_box(vec3(V.world_to_index * vec4(x, 1.0f)), vec3(V.world_to_index * vec4(w, 0.0f)), vx_volume_lo(V),
+                           vx_volume_hi(V), a, b))
+            next = min(next, a);
+    }
+    return next;
+}
+
+// The sample after k to take on a ray at t_k = (k + 0.5) * dt that lies in no volume's box: the
+// one before the next entry (the caller's loop steps to it), or -1 when the ray enters no box
+// before t_end.
+int vx_volumes_skip(vec3 x, vec3 w, int k, float dt, float t_end) {
+    float next = vx_volumes_next_entry(x, w, (float(k) + 0.5f) * dt, t_end);
+    if (next > t_end) return -1;
+    return max(k, vx_first_sample(next, 1.0f / dt) - 1);
+}
+
+// Optical depth of the volumes from world point x along unit direction w over [0, dist], summed
+// at samples t_k = (k + 0.5) * dt; it stops once past tau_cut.
+float vx_volumes_optical_depth(vec3 x, vec3 w, float dist, float dt, float tau_cut) {
+    float t0 = 0.0f;
+    float t1 = dist;
+    if (!vx_volumes_clip(x, w, t0, t1)) return 0.0f;
+    float tau = 0.0f;
+    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut; ++k) {
+        float t = (float(k) + 0.5f) * dt;
+        if (t > t1) break;
+        bool inside;
+        VxMedium m = vx_volumes_medium(x + w * t, inside);
+        if (!inside) {
+            k = vx_volumes_skip(x, w, k, dt, t1);
+            if (k < 0) break;
+            continue;
+        }
+        tau += m.sigma * dt;
+    }
+    return tau;
+}

@@ -1,0 +1,51 @@
+#include "volume/scene_bricks.h"
+
+#include <cassert>
+
+namespace voxlux {
+
+bool growByPageRange(const kernel::VxPageRange& r, const glm::mat4& index_to_space, glm::vec3& lo, glm::vec3& hi) {
+    if (r.capacity == 0 || glm::any(glm::greaterThan(r.lo, r.hi))) return false;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::ivec3 b(corner & 1 ? r.hi.x + 1 : r.lo.x, corner & 2 ? r.hi.y + 1 : r.lo.y, corner & 4 ? r.hi.z + 1 : r.lo.z);
+        const glm::vec3 p(index_to_space * glm::vec4(glm::vec3(b * VX_BRICK), 1.0f));
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    return true;
+}
+
+SceneBricks joinVolumeBricks(const std::vector<const BrickAtlas*>& atlases, const std::vector<const PageTable*>& pages) {
+    assert(atlases.size() == pages.size() && !atlases.empty());
+    SceneBricks out;
+    out.atlas.index_to_world = atlases.front()->index_to_world;
+    for (size_t v = 0; v < atlases.size(); ++v) {
+        const BrickAtlas& a = *atlases[v];
+        const PageTable& p = *pages[v];
+        const int slot_offset = int(out.atlas.slots());
+        kernel::VxPageRange r{};
+        r.lo = p.bricks_min;
+        r.first = int(out.pages.entries.size());
+        r.hi = p.bricks_max;
+        r.capacity = p.brick_capacity;
+        r.max_probe = p.max_probe;
+        out.ranges.push_back(r);
+        out.index_to_world.push_back(a.index_to_world);
+        out.atlas.coords.insert(out.atlas.coords.end(), a.coords.begin(), a.coords.end());
+        out.atlas.density.insert(out.atlas.density.end(), a.density.begin(), a.density.end());
+        out.atlas.density_range.insert(out.atlas.density_range.end(), a.density_range.begin(), a.density_range.end());
+        out.atlas.active_voxels += a.active_voxels;
+        // The bricks' entries only, their slots moved past the volumes before.
+        for (int i = 0; i < p.brick_capacity; ++i) {
+            glm::ivec4 e = p.entries[size_t(i)];
+            if (e.w != VX_PAGE_EMPTY) e.w += slot_offset;
+            out.pages.entries.push_back(e);
+        }
+        out.pages.occupied += p.occupied;
+        out.pages.max_probe = std::max(out.pages.max_probe, p.max_probe);
+    }
+    out.pages.brick_capacity = int(out.pages.entries.size());
+    return out;
+}
+
+}  // namespace voxlux

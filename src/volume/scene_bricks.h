@@ -1,0 +1,31 @@
+// Several volumes in one atlas (shaders/vx_volumes.h): every volume's bricks appended to one
+// atlas and its page table to one array of page entries, each volume keeping its own range of
+// both (kernel::VxPageRange), so the march reaches any volume's bricks through one set of arrays.
+// An instance reuses its volume's range. Cost: one copy of the volumes' density bricks and page
+// entries; no dense array over their union's box.
+#pragma once
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "kernel/kernel_types.h"
+#include "volume/brick_atlas.h"
+#include "volume/page_table.h"
+
+namespace voxlux {
+
+struct SceneBricks {
+    BrickAtlas atlas;                            // the volumes' density bricks, slot ranges one after another
+    PageTable pages;                             // their brick tables one after another (no regions' table)
+    std::vector<kernel::VxPageRange> ranges;     // each volume's pages
+    std::vector<glm::mat4> index_to_world;       // each volume's file's
+};
+
+// Grows [lo, hi] by the box of range `r`'s bricks mapped by `index_to_space` (its 8 corners); an
+// empty range adds nothing and gives false.
+bool growByPageRange(const kernel::VxPageRange& r, const glm::mat4& index_to_space, glm::vec3& lo, glm::vec3& hi);
+
+// The volumes of `atlases` (each with its page table in `pages`) in one atlas and entries array.
+SceneBricks joinVolumeBricks(const std::vector<const BrickAtlas*>& atlases, const std::vector<const PageTable*>& pages);
+
+}  // namespace voxlux

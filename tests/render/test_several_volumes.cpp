@@ -1,0 +1,293 @@
+// Several volumes in one scene (shaders/vx_volumes.h): extinction adds where they overlap, so two
+// copies at half the density render as one at the whole, in the march (to float rounding) and in
+// the reference (within its noise); far-apart volumes render as each alone; a mix of albedos and
+// anisotropies matches the reference; a volume's stages re-run only for its own edits; what
+// several volumes do not take yet is refused by name.
+#include <glm/gtx/component_wise.hpp>
+
+#include "core/error.h"
+#include "render/renderer.h"
+#include "scene/scene_json.h"
+#include "test_support.h"
+
+namespace voxlux::test {
+namespace {
+
+constexpr int kSize = 24;
+
+// A volume of the ball file (radius 2 world units at the origin) named `name`, at `density_scale`,
+// moved by `translate`.
+VolumeSpec ball(const std::string& file, const std::string& name, float density_scale, glm::vec3 translate = glm::vec3(0.0f)) {
+    VolumeSpec v;
+    v.path = file;
+    v.name = name;
+    v.material.density_scale = density_scale;
+    if (translate != glm::vec3(0.0f)) {
+        VolumeTransform t;
+        t.translate = translate;
+        v.transform = t;
+    }
+    return v;
+}
+
+// `volumes` seen along -z from the camera side of a directional light and an ambient light, with
+// ray-marched shadows.
+Scene sceneOf(std::vector<VolumeSpec> volumes, glm::vec3 look_at = glm::vec3(0.0f), float fov = 40.0f) {
+    Scene s;
+    s.volumes = std::move(volumes);
+    s.render.width = s.render.height = kSize;
+    s.render.backend = Backend::Cpu;
+    s.render.step = 0.5f;
+    s.camera = cameraAlong(look_at, glm::vec3(0, 0, -1), 12.0f, fov);
+    Light key;
+    key.direction = glm::normalize(glm::vec3(0.3f, -0.4f, -1.0f));
+    key.intensity = 3.0f;
+    Light sky;
+    sky.type = LightType::Ambient;
+    sky.intensity = 0.5f;
+    sky.color = glm::vec3(0.6f, 0.8f, 1.0f);
+    s.lights = {key, sky};
+    return s;
+}
+
+RenderImage render(const Scene& scene) { return Renderer(scene).render(std::nullopt, false).image; }
+
+// The largest difference of any channel of any pixel, relative to the brightest channel of `a`.
+float largestRelativeDifference(const RenderImage& a, const RenderImage& b) {
+    float largest = 0.0f, peak = 0.0f;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        largest = std::max(largest, glm::compMax(glm::abs(a.pixels[i].rgba - b.pixels[i].rgba)));
+        peak = std::max(peak, glm::compMax(a.pixels[i].rgba));
+    }
+    EXPECT_GT(peak, 0.1f);   // something is in view
+    return largest / peak;
+}
+
+// The image's mean luminance and its standard error (from the reference's per-pixel variances).
+std::pair<double, double> meanAndError(const RenderImage& img) {
+    double sum = 0.0, variance = 0.0;
+    for (const auto& p : img.pixels) {
+        sum += luminance(glm::vec3(p.rgba));
+        variance += p.variance;
+    }
+    const double n = double(img.pixels.size());
+    return {sum / n, std::sqrt(variance) / n};
+}
+
+TEST(SeveralVolumes, TwoCopiesAtHalfTheDensityMarchAsOneAtTheWhole) {
+    const std::string file = writeBall(tempDir("several-additive"));
+    for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
+        Scene one = sceneOf({ball(file, "ball", 1.2f)});
+        Scene two = sceneOf({ball(file, "a", 0.6f), ball(file, "b", 0.6f)});
+        one.render.filter = two.render.filter = filter;
+        const RenderImage a = render(one), b = render(two);
+        // The same samples, the extinction summed in another order: float rounding only.
+        EXPECT_LE(largestRelativeDifference(a, b), 2e-5f) << "filter " << int(filter);
+    }
+}
+
+TEST(SeveralVolumes, TwoCopiesAtHalfTheDensityTraceAsOneAtTheWholeInTheReference) {
+    const std::string file = writeBall(tempDir("several-additive-reference"));
+    Scene one = sceneOf({ball(file, "ball", 1.2f)});
+    Scene two = sceneOf({ball(file, "a", 0.6f), ball(file, "b", 0.6f)});
+    for (Scene* s : {&one, &two}) {
+        s->render.width = s->render.height = 12;
+        s->render.method = RenderMethod::Reference;
+        s->render.reference.spp = 64;
+    }
+    const auto [mean_one, error_one] = meanAndError(render(one));
+    const auto [mean_two, error_two] = meanAndError(render(two));
+    std::printf("  reference, one at s: %.5f +- %.5f; two at s/2: %.5f +- %.5f\n", mean_one, error_one, mean_two, error_two);
+    EXPECT_GT(mean_one, 0.02);
+    EXPECT_LE(std::abs(mean_one - mean_two), 3.0 * std::hypot(error_one, error_two));
+}
+
+TEST(SeveralVolumes, FarApartTheyRenderAsEachAlone) {
+    const std::string file = writeBall(tempDir("several-apart"));
+    const glm::vec3 left(-3.0f, 0.0f, 0.0f), right(3.0f, 0.5f, -1.0f);
+    const auto scene = [&](std::vector<VolumeSpec> v) {
+        Scene s = sceneOf(std::move(v), glm::vec3(0.0f), 60.0f);
+        s.lights[0].direction = glm::vec3(0, 0, -1);   // from the camera: neither shadows the other
+        return s;
+    };
+    const RenderImage both = render(scene({ball(file, "left", 1.0f, left), ball(file, "right", 0.5f, right)}));
+    const RenderImage only_left = render(scene({ball(file, "left", 1.0f, left)}));
+    const RenderImage only_right = render(scene({ball(file, "right", 0.5f, right)}));
+    float largest = 0.0f;
+    int covered_left = 0, covered_right = 0;
+    for (size_t i = 0; i < both.pixels.size(); ++i) {
+        const glm::vec4 sum = only_left.pixels[i].rgba + only_right.pixels[i].rgba;
+        largest = std::max(largest, glm::compMax(glm::abs(both.pixels[i].rgba - sum)));
+        covered_left += only_left.pixels[i].rgba.w > 0.1f;
+        covered_right += only_right.pixels[i].rgba.w > 0.1f;
+    }
+    EXPECT_GT(covered_left, 20);
+    EXPECT_GT(covered_right, 20);
+    EXPECT_LE(largest, 1e-5f);
+}
+
+// Where a white forward-scattering volume overlaps a blue isotropic one, the march's single
+// scattering (fine steps) matches the reference's first bounce: the mix of albedo and g is the same.
+TEST(SeveralVolumes, OverlappingMaterialsMixAsTheReferenceDoes) {
+    const std::string file = writeBall(tempDir("several-mix"));
+    VolumeSpec white = ball(file, "white", 0.8f, glm::vec3(-0.8f, 0.0f, 0.0f));
+    white.material.albedo = glm::vec3(0.95f);
+    white.material.anisotropy = 0.7f;
+    VolumeSpec blue = ball(file, "blue", 0.8f, glm::vec3(0.8f, 0.3f, 0.5f));
+    blue.material.albedo = glm::vec3(0.2f, 0.4f, 0.9f);
+    blue.material.anisotropy = -0.2f;
+    Scene march = sceneOf({white, blue});
+    march.lights.pop_back();   // the directional light alone: single scattering is all the march adds
+    march.render.width = march.render.height = 12;
+    march.render.step = 0.1f;
+    march.render.shadow_step = 0.1f;
+    Scene reference = march;
+    reference.render.method = RenderMethod::Reference;
+    reference.render.reference.spp = 256;
+    reference.render.reference.max_bounces = 1;
+    const auto [mean_march, unused] = meanAndError(render(march));
+    const auto [mean_reference, error] = meanAndError(render(reference));
+    std::printf("  single scattering: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_reference, error);
+    EXPECT_GT(mean_reference, 0.005);
+    EXPECT_LE(std::abs(mean_march - mean_reference), 3.0 * error + 0.01 * mean_reference);
+}
+
+TEST(SeveralVolumes, AnEditOfOneVolumeReloadsNoOther) {
+    const std::string file = writeBall(tempDir("several-edit"));
+    Scene scene = sceneOf({ball(file, "a", 0.6f), ball(file, "b", 0.6f, glm::vec3(1.0f, 0, 0)), ball(file, "c", 0.6f, glm::vec3(-1.0f, 0, 0))});
+    Renderer renderer(scene);
+    renderer.render(std::nullopt, false);
+    scene.volumes[2].material.density_scale = 0.3f;
+    renderer.setScene(scene);
+    const FrameResult edited = renderer.render(std::nullopt, false);
+    EXPECT_NE(std::find(edited.reused.begin(), edited.reused.end(), "volumes: b"), edited.reused.end());
+    EXPECT_EQ(std::find(edited.reused.begin(), edited.reused.end(), "volumes: c"), edited.reused.end());
+}
+
+// An instance is its volume placed again, reading the same bricks: a volume with two instances
+// renders as two volumes of the same file at those poses, to the bit, and 100 instances take the
+// atlas of one.
+TEST(SeveralVolumes, InstancesRenderAsCopiesAndShareTheBricks) {
+    const std::string file = writeBall(tempDir("several-instances"));
+    VolumeTransform left, right;
+    left.translate = glm::vec3(-2.5f, 0.0f, 0.0f);
+    right.translate = glm::vec3(2.0f, 0.5f, -1.0f);
+    right.rotate = glm::vec3(30.0f, 0.0f, 45.0f);
+    right.scale = glm::vec3(0.75f);
+    VolumeSpec instanced = ball(file, "ball", 1.0f);
+    instanced.instances = {left, right};
+    VolumeSpec a = ball(file, "a", 1.0f), b = ball(file, "b", 1.0f);
+    a.transform = left;
+    b.transform = right;
+    const RenderImage copies = render(sceneOf({a, b}, glm::vec3(0.0f), 60.0f));
+    const RenderImage instances = render(sceneOf({instanced}, glm::vec3(0.0f), 60.0f));
+    float largest = 0.0f, covered = 0.0f;
+    for (size_t i = 0; i < copies.pixels.size(); ++i) {
+        largest = std::max(largest, glm::compMax(glm::abs(copies.pixels[i].rgba - instances.pixels[i].rgba)));
+        covered = std::max(covered, copies.pixels[i].rgba.w);
+    }
+    EXPECT_GT(covered, 0.5f);
+    EXPECT_EQ(largest, 0.0f);
+
+    const size_t one = Renderer(sceneOf({ball(file, "ball", 1.0f)})).render(std::nullopt, false).atlas_bytes;
+    VolumeSpec hundred = ball(file, "ball", 1.0f);
+    for (int i = 0; i < 100; ++i) {
+        VolumeTransform t;
+        t.translate = glm::vec3(float(i % 10) * 5.0f, float(i / 10) * 5.0f, 0.0f);
+        hundred.instances.push_back(t);
+    }
+    Scene crowd = sceneOf({hundred});
+    crowd.render.width = crowd.render.height = 8;
+    const size_t many = Renderer(crowd).render(std::nullopt, false).atlas_bytes;
+    std::printf("  atlas: one volume %zu bytes, 100 instances %zu bytes\n", one, many);
+    EXPECT_LE(double(many), 1.1 * double(one));
+}
+
+TEST(SeveralVolumes, InstancesAreReadAndWrittenBack) {
+    const Scene s = parseScene(R"({"volumes": [{"path": "smoke.vdb", "instances": [{"translate": [1, 2, 3]}, {"rotate": [0, 90, 0], "scale": 2}]}]})",
+                               "shot.json", "");
+    ASSERT_EQ(s.volume().instances.size(), 2u);
+    EXPECT_EQ(s.volume().instances[0].translate, glm::vec3(1, 2, 3));
+    EXPECT_EQ(placedVolumeCount(s), 2u);
+    const Scene back = sceneFromJson(sceneToJson(s), "back.json", "");
+    ASSERT_EQ(back.volume().instances.size(), 2u);
+    EXPECT_EQ(back.volume().instances[1].scale, glm::vec3(2.0f));
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "instances": [{"keys": []}]}]})"),
+              "shot.json: /volumes/0/instances/0/keys: an instance is still: translate, rotate and scale, or a matrix");
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "instances": []}]})"),
+              "shot.json: /volumes/0/instances: expected a list of transforms ({\"translate\", \"rotate\", \"scale\"} or {\"matrix\"})");
+}
+
+TEST(SeveralVolumes, WhatSeveralVolumesDoNotTakeYetIsRefusedByName) {
+    const std::string two = R"("volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "material": {"transfer_function": [{"value": 0, "extinction": 0}, {"value": 1, "extinction": 1}]}}])";
+    EXPECT_EQ(sceneErrorOf("{" + two + "}"),
+              "shot.json: /volumes/1/material/transfer_function: set: a volume of several takes its density grid, density_scale, "
+              "albedo and anisotropy only, so far");
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb"}], "effects": {"perturbation": {}}})"),
+              "shot.json: /effects/perturbation: set with 2 volumes: several volumes render without it, so far");
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "instances": [{}, {}]}], "effects": {"indirect": {}}})"),
+              "shot.json: /effects/indirect: set with 2 volumes: several volumes render without it, so far");
+}
+
+// Every method's light grid holds every volume: a volume between the light and another shadows
+// it, in the march's shadow rays, the SAT's cones and the propagation's sweeps alike.
+TEST(SeveralVolumes, AVolumeShadowsAnotherInEveryMethod) {
+    const std::string file = writeBall(tempDir("several-shadow"));
+    const auto scene = [&](std::vector<VolumeSpec> v, ShadowMethod shadows) {
+        Scene s = sceneOf(std::move(v), glm::vec3(2.0f, 0.0f, 0.0f), 60.0f);
+        s.lights = {s.lights[0]};
+        s.lights[0].direction = glm::vec3(-1.0f, 0.0f, 0.0f);   // from +x: through the blocker onto the lit one
+        s.effects.shadows = shadows;
+        return s;
+    };
+    // The lit volume's half of the image (x < 2 in the world: the left columns).
+    const auto leftLuminance = [](const RenderImage& img) {
+        double sum = 0.0;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize / 2; ++x) sum += luminance(glm::vec3(img.pixels[size_t(y * kSize + x)].rgba));
+        return sum;
+    };
+    for (ShadowMethod method : {ShadowMethod::Raymarch, ShadowMethod::SatCone, ShadowMethod::Propagation}) {
+        const double alone = leftLuminance(render(scene({ball(file, "lit", 1.0f)}, method)));
+        const double shadowed = leftLuminance(render(scene({ball(file, "lit", 1.0f), ball(file, "blocker", 1.0f, glm::vec3(4.0f, 0, 0))}, method)));
+        std::printf("  %s: the lit volume's light %.3f alone, %.3f behind the blocker\n", shadowMethodName(method).c_str(), alone, shadowed);
+        EXPECT_GT(alone, 1.0);
+        EXPECT_LT(shadowed, 0.5 * alone) << shadowMethodName(method);
+    }
+}
+
+// The light grid methods see two copies at half the density as one at the whole: the same medium
+// on a grid resampled from the volumes (shaders/vx_volumes.h) rather than box-filtered from one.
+TEST(SeveralVolumes, TheLightGridMethodsSeeTwoHalvesAsTheWhole) {
+    const std::string file = writeBall(tempDir("several-grid-additive"));
+    for (ShadowMethod method : {ShadowMethod::SatCone, ShadowMethod::Propagation}) {
+        Scene one = sceneOf({ball(file, "ball", 1.2f)});
+        Scene two = sceneOf({ball(file, "a", 0.6f), ball(file, "b", 0.6f)});
+        for (Scene* s : {&one, &two}) {
+            s->effects.shadows = method;
+            s->effects.ambient_occlusion = AmbientOcclusion{};
+        }
+        const RenderImage a = render(one), b = render(two);
+        double difference = 0.0, total = 0.0;
+        for (size_t i = 0; i < a.pixels.size(); ++i) {
+            difference += std::abs(luminance(glm::vec3(a.pixels[i].rgba)) - luminance(glm::vec3(b.pixels[i].rgba)));
+            total += luminance(glm::vec3(a.pixels[i].rgba));
+        }
+        std::printf("  %s: mean relative difference %.4f\n", shadowMethodName(method).c_str(), difference / total);
+        EXPECT_GT(total, 1.0);
+        EXPECT_LE(difference / total, 0.03) << shadowMethodName(method);
+    }
+}
+
+TEST(SeveralVolumes, TheGlBackendMarchesThemAsTheCpuDoes) {
+    VOXLUX_REQUIRE_GL(gl);
+    const std::string file = writeBall(tempDir("several-gl"));
+    Scene cpu = sceneOf({ball(file, "a", 0.8f, glm::vec3(-0.8f, 0, 0)), ball(file, "b", 0.5f, glm::vec3(0.8f, 0.3f, 0.5f))});
+    cpu.volumes[1].material.albedo = glm::vec3(0.2f, 0.4f, 0.9f);
+    Scene on_gl = cpu;
+    on_gl.render.backend = Backend::Gl;
+    EXPECT_LE(largestRelativeDifference(render(cpu), render(on_gl)), 1e-3f);
+}
+
+}  // namespace
+}  // namespace voxlux::test
