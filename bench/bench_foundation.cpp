@@ -1,6 +1,7 @@
 // Stage timings of the foundation pipeline on one cache (default: the shared Houdini smoke),
 // for both backends: load, brick, classify, march without and with ray-marched shadows (and on the
-// CPU with the tricubic filter, against the step, and across empty space), write.
+// CPU with the tricubic filter, against the step, across empty space, and through several
+// volumes), write.
 // Prints figures; it asserts nothing. docs/performance.md quotes its output.
 //
 //   build/voxlux_bench [cache.vdb] [--res 512] [--backends cpu,gl] [--repeats 3]
@@ -90,6 +91,39 @@ void emptySpaceRows(const LoadedVolume& volume, const Scene& scene, const Camera
         std::snprintf(label, sizeof label, gap_diagonals == 0.0f ? "alone" : "copy %.0f diagonals behind", 1.0f + gap_diagonals);
         std::printf("    %-26s %9.4f s  %5.2fx alone  %6zu bricks  %9.0f empty bricks in their box  %7.1f M samples\n",
                     label, t, t / alone, pages.occupied, box_bricks - double(pages.occupied), totalSamples(image) / 1e6);
+    }
+}
+
+// The march through several volumes (shaders/vx_volumes.h): the cache as one volume, then as 2 and
+// 10 instances side by side (the default camera framing them all), the march's time and the atlas
+// it reads. The instances take the several-volumes march, sample by sample; the one volume takes
+// its own, in SIMD batches.
+void severalVolumesRows(const std::string& cache, const Scene& base, int repeats) {
+    std::printf("  cpu march without shadows through several volumes (instances of the cache in a row):\n");
+    const LoadedVolume volume = loadVolume(cache, base.volume());
+    const openvdb::CoordBBox box = volume.density->evalActiveVoxelBoundingBox();
+    glm::vec3 lo, hi;
+    voxelBoxWorldBounds(volume.index_to_world, box, lo, hi);
+    for (int instances : {0, 2, 10}) {
+        Scene scene = base;
+        scene.render.backend = Backend::Cpu;
+        scene.effects.shadows = ShadowMethod::None;
+        for (int i = 0; i < instances; ++i) {
+            VolumeTransform t;
+            t.translate = glm::vec3(float(i) * 1.1f * (hi.x - lo.x), 0.0f, 0.0f);
+            scene.volume().instances.push_back(t);
+        }
+        FrameResult result;
+        double march = 1e30;
+        for (int r = 0; r < repeats; ++r) {
+            result = Renderer(scene).render(std::nullopt, false);
+            for (const auto& [stage, seconds] : result.stage_seconds)
+                if (stage == "march") march = std::min(march, seconds);
+        }
+        char label[64];
+        std::snprintf(label, sizeof label, instances == 0 ? "one volume" : "%d instances", instances);
+        std::printf("    %-26s %9.4f s  atlas %7.1f MB  %7.1f M samples\n", label, march, double(result.atlas_bytes) / 1e6,
+                    totalSamples(result.image) / 1e6);
     }
 }
 
@@ -195,6 +229,7 @@ int main(int argc, char** argv) {
 
     scene.render.step = 0.5f;
     emptySpaceRows(volume, scene, camera, repeats);
+    severalVolumesRows(cache, scene, repeats);
 
     const std::string out = (std::filesystem::temp_directory_path() / "voxlux_bench.exr").string();
     OutputSpec spec;
