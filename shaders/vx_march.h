@@ -118,10 +118,19 @@ VX_INLINE float vx_brick_optical_depth(int slot, ivec3 b, vec3 o, vec3 d, vec3 x
     return sum * dt;
 }
 
+// Whether the march is through several volumes (vx_volumes.h). GL compiles that march only into the
+// programs of scenes of several (VX_MARCH_VOLUMES, src/backend/gl), as it compiles one filter a
+// program: llvmpipe's compile time follows the code a program holds.
+#if defined(VX_GLSL) && !defined(VX_MARCH_VOLUMES)
+#define VX_SEVERAL_VOLUMES false
+#else
+#define VX_SEVERAL_VOLUMES (P.volume_count > 0)
+#endif
+
 // Transmittance from world point x towards a light at distance `dist` along unit direction wi.
 // Reference quality: fixed step P.shadow_step, stops only below the transmittance cutoff.
 float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
-    if (P.volume_count > 1) {
+    if (VX_SEVERAL_VOLUMES) {
         float tau_cut = -log(P.transmittance_cutoff);
         float tau = vx_volumes_optical_depth(x, wi, dist, P.shadow_step, tau_cut);
         return tau > tau_cut ? 0.0f : vx_exp(-tau);
@@ -198,9 +207,9 @@ VX_INLINE float vx_chunk_depth(float T_before, int k, int n, int lanes, float dt
     return sum;
 }
 
-// A marched ray's pixel from its AOV sums, its transmittance T and its opacity-weighted depth sum.
-VxPixel vx_finish_ray(VxPixel px, float T, float depth_weighted, VX_INOUT(VxDeepRay) deep) {
-    float alpha = 1.0f - T;
+// A marched ray's pixel from its AOV sums, its transmittance T, its alpha (1 - T, or with mattes
+// the visible volumes' coverage) and its opacity-weighted depth sum.
+VxPixel vx_finish_ray(VxPixel px, float T, float alpha, float depth_weighted, VX_INOUT(VxDeepRay) deep) {
     px.rgba = vec4(vx_pixel_radiance(px), alpha);
     if (P.deep_samples > 0) vx_deep_close(deep, T, vec3(px.rgba));
     px.transmittance = T;
@@ -211,7 +220,9 @@ VxPixel vx_finish_ray(VxPixel px, float T, float depth_weighted, VX_INOUT(VxDeep
 // March one camera ray through several volumes (vx_volumes.h): at the samples t_k = (k + 0.5) * dt
 // the one volume's march takes, each the volumes' summed medium, shaded with its mixed albedo and
 // g; the space between the volumes' boxes is jumped. Sample by sample, without the one volume's
-// SIMD batches.
+// SIMD batches. The ray is attenuated by the visible volumes and the mattes; the light the
+// visible ones absorb is the pixel's alpha (1 - T without mattes), so a matte cuts what is behind
+// it and adds nothing.
 VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) deep) {
     VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
@@ -223,35 +234,32 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay
     bool lit_indirect = vx_lighting_indirect_on();
     float tau = 0.0f;
     float T = 1.0f;
+    float coverage = 0.0f;
     float depth_weighted = 0.0f;
     float cos_forward = dot(dir, forward);
-    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff; ++k) {
+    VxMedium m;
+    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && vx_volumes_sample(origin, dir, dt, t1, k, m); ++k) {
         float t = (float(k) + 0.5f) * dt;
-        if (t > t1) break;
         vec3 x = origin + dir * t;
-        bool inside;
-        VxMedium m = vx_volumes_medium(x, inside);
-        if (!inside) {
-            k = vx_volumes_skip(origin, dir, k, dt, t1);
-            if (k < 0) break;
-            continue;
-        }
         px.samples += 1.0f;
-        if (m.sigma <= 0.0f) continue;
+        if (m.sigma_camera <= 0.0f) continue;
         if (deep_on) vx_deep_span(deep, float(k) * dt * cos_forward, float(k + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
-        tau += m.sigma * dt;
+        tau += m.sigma_camera * dt;
         float T_next = vx_exp(-tau);
         float absorbed = T - T_next;
-        vec3 albedo = vx_medium_albedo(m);
+        T = T_next;
+        if (m.sigma_visible <= 0.0f) continue;   // a matte's stretch: it cuts, and adds nothing
+        vec3 albedo = vx_medium_albedo(m, m.sigma_camera);
+        float seen = absorbed * (m.sigma_visible / m.sigma_camera);
+        coverage += seen;
         VxLightingSample lit = vx_lighting_sample(x);
         vec3 incident = vx_in_scattered(x, dir, VX_LIGHTS_ALL, lit, vx_no_surface(), vx_medium_g(m));
         px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
         if (lit_indirect) px.indirect = vx_radiance_add(px.indirect, albedo * vx_lighting_indirect(lit) * absorbed);
         px.ambient = vx_radiance_add(px.ambient, albedo * P.ambient * vx_lighting_ambient(lit) * absorbed);
-        depth_weighted += absorbed * t * cos_forward;
-        T = T_next;
+        depth_weighted += seen * t * cos_forward;
     }
-    return vx_finish_ray(px, T, depth_weighted, deep);
+    return vx_finish_ray(px, T, P.volume_roles != 0 ? coverage : 1.0f - T, depth_weighted, deep);
 }
 
 // March one camera ray (world origin, unit world direction, camera forward for depth) at `time`
@@ -260,7 +268,7 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay
 // stages' volumes) is made where the medium was at `time`: the light stages are the frame's own,
 // carried along with the medium.
 VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
-    if (P.volume_count > 1) return vx_march_volumes(origin, dir, forward, deep);
+    if (VX_SEVERAL_VOLUMES) return vx_march_volumes(origin, dir, forward, deep);
     VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
     bool deep_on = P.deep_samples > 0;
@@ -369,7 +377,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
         }
         vx_dda_next(s, region, skips);
     }
-    return vx_finish_ray(px, T, depth_weighted, deep);
+    return vx_finish_ray(px, T, 1.0f - T, depth_weighted, deep);
 }
 
 // Ray i of pixel (x, y)'s P.time_samples (without motion blur, its one ray at the frame's time).

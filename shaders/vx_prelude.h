@@ -54,6 +54,9 @@
 #define VX_TF_LUT_SIZE 256
 #define VX_MAX_EMISSION 4          // emission sources (grids) per scene
 #define VX_MAX_VOLUMES 256         // volumes and instances a scene places (a GL uniform block of them)
+#define VX_ROLE_VISIBLE 0          // VxVolume::role: seen by the camera
+#define VX_ROLE_MATTE 1            // occludes camera and light rays, no colour or alpha of its own
+#define VX_ROLE_SHADOW_ONLY 2      // occludes light rays only
 #define VX_EMISSION_LUT_SIZE 256   // rows of one source's table: radiance over grid values [0, max]
 #define VX_CHUNK 16                // samples whose extinction is evaluated together (one SIMD batch)
 #define VX_NOISE_SIZE 32           // perturbation noise table edge (power of two); the table repeats

@@ -79,7 +79,7 @@ struct VxParams {
     int deep_samples;       // deep samples per ray (output.deep_samples), 0 = no deep output
     int motion_blur;        // 1: camera rays take times within the shutter (vx_motion.h)
     int time_samples;       // rays a pixel spreads over the shutter (the march; 1 without motion blur)
-    int volume_count;       // 0: one volume, the arrays' own; 2 or more: the volumes of vx_placed_volume (vx_volumes.h)
+    int volume_count;       // 0: one volume, the arrays' own; else the volumes of vx_placed_volume (vx_volumes.h)
 
     int use_velocity;       // 1 if a velocity grid is bound (atlas channel vx_atlas_velocity)
     float velocity_per_frame;  // velocity_scale / fps: world units a frame per unit of the velocity grid
@@ -93,7 +93,7 @@ struct VxParams {
     int use_surface_grid;   // 1: a per-voxel surface weight (vx_atlas_surface, Kniss Eq. 11)
                             // scales the gradient ramp's
     int surface_offset;     // GL: its first float in the vectors' block (vx_gl_bindings.glsl)
-    int pad3;
+    int volume_roles;       // 1 if a volume of vx_placed_volume is not visible: alpha is the visible volumes' coverage
     int pad4;
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
@@ -114,15 +114,16 @@ struct VxPageRange {
     int pad2;
 };
 
-// One volume of a scene of several (P.volume_count > 1, shaders/vx_volumes.h): where it sits and
-// what it is made of. An instance is a volume of its own whose pages are another's.
+// One volume of a scene of several (P.volume_count > 0, shaders/vx_volumes.h): where it sits, what
+// it is made of and what it is to the camera. An instance is a volume of its own whose pages are
+// another's.
 struct VxVolume {
     mat4 world_to_index;    // inverse of its placed index-to-world transform
     VxPageRange pages;
     vec3 albedo;
     float density_scale;    // extinction per world unit per unit of its density grid
     float anisotropy;       // Henyey-Greenstein g
-    int pad0;
+    int role;               // VX_ROLE_*
     int pad1;
     int pad2;
 };

@@ -1,29 +1,50 @@
-// Several volumes in one scene (P.volume_count > 1): the medium where they overlap, and a ray's way
-// through them. Each volume has its own placement, pages and material (VxVolume); all share the
-// atlas. Overlap is physical: extinction adds; the albedo is the scattering-weighted mean of the
-// volumes' (exactly the mixture's single-scattering albedo), and so is the Henyey-Greenstein g
-// (the mixture's mean cosine, which one lobe of that g stands in for). Cost: per sample, a box test
+// Several volumes in one scene (P.volume_count > 0): the medium where they overlap, and a ray's way
+// through them. Each volume has its own placement, pages, material and role (VxVolume); all share
+// the atlas. Overlap is physical: extinction adds; the albedo is the scattering-weighted mean of
+// the volumes' (exactly the mixture's single-scattering albedo), and so is the Henyey-Greenstein g
+// (the mixture's mean cosine, which one lobe of that g stands in for). Roles: every volume's
+// extinction stops light; a camera ray meets the visible volumes and the mattes; only the visible
+// ones scatter colour (a matte or a shadow-only volume absorbs what it stops). Cost: per sample, a box test
 // per volume and a hashed page lookup per volume whose box holds the sample; the space between
 // the volumes' boxes is crossed in one jump per gap, not sample by sample.
 #pragma once
 #include "vx_dda.h"
 
-// The volumes' medium at a point: the summed extinction, scattering (extinction times albedo)
-// and the scattering-weighted sum of g (weighted by the albedo's mean).
+// The volumes' medium at a point: the summed extinction (of every volume, as light meets it; of
+// those a camera ray meets; of the visible ones), the visible ones' scattering (extinction times
+// albedo) and their scattering-weighted sum of g (weighted by the albedo's mean).
 struct VxMedium {
     vec3 scattering;
     float sigma;
+    float sigma_camera;
+    float sigma_visible;
     float g_sum;
     float g_weight;
+    float pad0;
+    float pad1;
 };
 
-// The scattering-weighted albedo and g of a medium with extinction.
-VX_INLINE vec3 vx_medium_albedo(VxMedium m) { return m.scattering / m.sigma; }
+// The scattering-weighted albedo of extinction `sigma` (a light ray's, or a camera ray's), and the
+// g of the medium's scattering.
+VX_INLINE vec3 vx_medium_albedo(VxMedium m, float sigma) { return sigma > 0.0f ? m.scattering / sigma : vec3(0.0f); }
 VX_INLINE float vx_medium_g(VxMedium m) { return m.g_weight > 0.0f ? m.g_sum / m.g_weight : 0.0f; }
 
 // The box of volume V's bricks in its index space.
 VX_INLINE vec3 vx_volume_lo(VxVolume V) { return vec3(V.pages.lo) * float(VX_BRICK); }
 VX_INLINE vec3 vx_volume_hi(VxVolume V) { return vec3(V.pages.hi + ivec3(1)) * float(VX_BRICK); }
+
+// The extinction of volume V at world point x (0 outside its stored bricks); `inside` tells
+// whether x lies in its box of bricks.
+float vx_volume_extinction(VxVolume V, vec3 x, VX_OUT(bool) inside) {
+    vec3 p = vec3(V.world_to_index * vec4(x, 1.0f));
+    ivec3 b = ivec3(floor(p / float(VX_BRICK)));
+    inside = !(b.x < V.pages.lo.x || b.y < V.pages.lo.y || b.z < V.pages.lo.z || b.x > V.pages.hi.x || b.y > V.pages.hi.y ||
+               b.z > V.pages.hi.z);
+    if (!inside) return 0.0f;
+    int slot = vx_table_find(b, V.pages.first, V.pages.capacity, V.pages.max_probe);
+    if (slot == VX_PAGE_EMPTY) return 0.0f;
+    return V.density_scale * vx_density_at(vx_taps_in(V.pages, slot, b, p));
+}
 
 // The medium at world point x; `inside` tells whether x lies in any volume's box of bricks (when
 // not, the ray may jump to vx_volumes_next_entry).
@@ -31,22 +52,24 @@ VxMedium vx_volumes_medium(vec3 x, VX_OUT(bool) inside) {
     VxMedium m;
     m.scattering = vec3(0.0f);
     m.sigma = 0.0f;
+    m.sigma_camera = 0.0f;
+    m.sigma_visible = 0.0f;
     m.g_sum = 0.0f;
     m.g_weight = 0.0f;
+    m.pad0 = 0.0f;
+    m.pad1 = 0.0f;
     inside = false;
     for (int v = 0; v < P.volume_count; ++v) {
         VxVolume V = vx_placed_volume(v);
-        vec3 p = vec3(V.world_to_index * vec4(x, 1.0f));
-        ivec3 b = ivec3(floor(p / float(VX_BRICK)));
-        if (b.x < V.pages.lo.x || b.y < V.pages.lo.y || b.z < V.pages.lo.z || b.x > V.pages.hi.x || b.y > V.pages.hi.y ||
-            b.z > V.pages.hi.z)
-            continue;
-        inside = true;
-        int slot = vx_table_find(b, V.pages.first, V.pages.capacity, V.pages.max_probe);
-        if (slot == VX_PAGE_EMPTY) continue;
-        float sigma = V.density_scale * vx_density_at(vx_taps_in(V.pages, slot, b, p));
+        bool in_box;
+        float sigma = vx_volume_extinction(V, x, in_box);
+        inside = inside || in_box;
         if (sigma <= 0.0f) continue;
         m.sigma += sigma;
+        if (V.role == VX_ROLE_SHADOW_ONLY) continue;
+        m.sigma_camera += sigma;
+        if (V.role == VX_ROLE_MATTE) continue;
+        m.sigma_visible += sigma;
         m.scattering += sigma * V.albedo;
         float weight = sigma * (V.albedo.x + V.albedo.y + V.albedo.z);
         m.g_sum += weight * V.anisotropy;
@@ -98,6 +121,20 @@ int vx_volumes_skip(vec3 x, vec3 w, int k, float dt, float t_end) {
     return max(k, vx_first_sample(next, 1.0f / dt) - 1);
 }
 
+// The ray's sample t_k = (k + 0.5) * dt inside a volume's box, from k on: k moves past the space
+// between boxes, and m is the medium there; false once the samples pass t_end.
+bool vx_volumes_sample(vec3 x, vec3 w, float dt, float t_end, VX_INOUT(int) k, VX_OUT(VxMedium) m) {
+    for (;; ++k) {
+        float t = (float(k) + 0.5f) * dt;
+        if (t > t_end) return false;
+        bool inside;
+        m = vx_volumes_medium(x + w * t, inside);
+        if (inside) return true;
+        k = vx_volumes_skip(x, w, k, dt, t_end);
+        if (k < 0) return false;
+    }
+}
+
 // Optical depth of the volumes from world point x along unit direction w over [0, dist], summed
 // at samples t_k = (k + 0.5) * dt; it stops once past tau_cut.
 float vx_volumes_optical_depth(vec3 x, vec3 w, float dist, float dt, float tau_cut) {
@@ -105,17 +142,7 @@ float vx_volumes_optical_depth(vec3 x, vec3 w, float dist, float dt, float tau_c
     float t1 = dist;
     if (!vx_volumes_clip(x, w, t0, t1)) return 0.0f;
     float tau = 0.0f;
-    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut; ++k) {
-        float t = (float(k) + 0.5f) * dt;
-        if (t > t1) break;
-        bool inside;
-        VxMedium m = vx_volumes_medium(x + w * t, inside);
-        if (!inside) {
-            k = vx_volumes_skip(x, w, k, dt, t1);
-            if (k < 0) break;
-            continue;
-        }
-        tau += m.sigma * dt;
-    }
+    VxMedium m;
+    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut && vx_volumes_sample(x, w, dt, t1, k, m); ++k) tau += m.sigma * dt;
     return tau;
 }

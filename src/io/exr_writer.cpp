@@ -157,7 +157,7 @@ void writeFileAtomically(const std::string& path, const std::string& bytes) {
 }
 
 ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const OutputSpec& spec,
-                        const ExrMetadata& meta) {
+                        const ExrMetadata& meta, const std::vector<ExrPlane>& coverage) {
     const size_t n = img.pixels.size();
     std::vector<Channel> channels;
     auto add = [&](const std::string& name, Imf::PixelType type, auto get) {
@@ -182,6 +182,8 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         if (aov.name == "transmittance") add("transmittance.Y", type, [](const kernel::VxPixel& p) { return p.transmittance; });
         if (aov.name == "depth") add("depth.Z", type, [](const kernel::VxPixel& p) { return p.depth; });
         if (aov.name == "variance") add("variance.Y", type, [](const kernel::VxPixel& p) { return p.variance; });
+        if (aov.name == "coverage")
+            for (const ExrPlane& plane : coverage) channels.push_back({"coverage." + plane.name, type, *plane.values, {}});
     }
 
     ExrWriteReport report;

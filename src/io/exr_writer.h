@@ -34,9 +34,16 @@ struct ExrWriteReport {
     size_t half_overflow = 0;  // samples above the half-float range, written as 65504
 };
 
+// A plane of a layer that is not part of the pixels: the coverage AOV's, one per volume.
+struct ExrPlane {
+    std::string name;                      // its channel in the layer ("smoke" in coverage.smoke)
+    const std::vector<float>* values;      // one per pixel, as RenderImage::pixels
+};
+
 // Throws InputError "<path>: ..." when the file cannot be written; nothing is left at `path` then.
+// `coverage`: the planes of the "coverage" AOV, when spec.aovs has it.
 ExrWriteReport writeExr(const std::string& path, const RenderImage& image, const OutputSpec& spec,
-                        const ExrMetadata& meta);
+                        const ExrMetadata& meta, const std::vector<ExrPlane>& coverage = {});
 
 // Calls `write` with a temporary path in the same folder, then renames it to `path`. On any
 // failure the temporary file is removed and InputError "<path>: cannot write in folder F: <cause>"

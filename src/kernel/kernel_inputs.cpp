@@ -66,6 +66,8 @@ void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, Kern
             k.albedo = spec.material.albedo;
             k.density_scale = densityScale(spec.material, voxelEdge(index_to_world));
             k.anisotropy = spec.material.anisotropy;
+            k.role = spec.role == VolumeRole::Matte ? VX_ROLE_MATTE : spec.role == VolumeRole::ShadowOnly ? VX_ROLE_SHADOW_ONLY : VX_ROLE_VISIBLE;
+            in.params.volume_roles |= k.role != VX_ROLE_VISIBLE ? 1 : 0;
             in.volumes.push_back(k);
         }
     }

@@ -130,7 +130,7 @@ std::string clampedCellsWarning(const LightGrid& g) {
 glm::vec3 occupiedExtent(const PageTable& pages) { return glm::vec3((pages.medium_max - pages.medium_min + 1) * VX_BRICK); }
 
 glm::vec3 lightGridExtent(const KernelInputs& in) {
-    if (in.params.volume_count < 2) return occupiedExtent(*in.pages);
+    if (in.params.volume_count == 0) return occupiedExtent(*in.pages);
     return glm::vec3((in.params.bricks_max - in.params.bricks_min + 1) * VX_BRICK);
 }
 
@@ -246,7 +246,7 @@ LightGrid buildVolumesLightGrid(const KernelInputs& in, int resolution, LightGri
 }  // namespace
 
 LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridContents contents) {
-    if (in.params.volume_count > 1) return buildVolumesLightGrid(in, resolution, contents);
+    if (in.params.volume_count > 0) return buildVolumesLightGrid(in, resolution, contents);
     kernel::CpuKernelData k = bindKernelData(in);
     const float bleeding = contents.bleeding;
     const glm::ivec3 bmin = in.pages->medium_min, bmax = in.pages->medium_max;
@@ -348,7 +348,7 @@ LightGrid buildLightGrid(const KernelInputs& in, int resolution, LightGridConten
 }
 
 bool uniformAlbedo(const KernelInputs& in) {
-    return in.params.use_transfer == 0 && in.params.use_color_grid == 0 && in.params.volume_count < 2;
+    return in.params.use_transfer == 0 && in.params.use_color_grid == 0 && in.params.volume_count == 0;
 }
 
 LightGrid withUniformBleeding(const LightGrid& extinction, glm::vec3 albedo, float bleeding) {

@@ -29,7 +29,7 @@ struct Tracker {
     std::atomic<uint64_t>& opaque_segments;
     float time = 0.0f;    // the path's, frames from the frame's own (vx_motion.h)
 
-    bool several() const { return k.P.volume_count > 1; }
+    bool several() const { return k.P.volume_count > 0; }
 
     // One stretch of a walk, of constant majorant and minorant: a stored brick's (slot, brick),
     // whose points o + d * t are in index space; or, of several volumes, a stretch inside the same
@@ -68,12 +68,16 @@ struct Tracker {
         if (s.slot >= 0 && !c.taps) c.taps = k.vx_taps_at(s.slot, s.brick, s.o + s.d * t);
         return c;
     }
+    // The extinction light meets (of several volumes, every volume's), and the share of it a
+    // camera ray meets and the share that scatters colour (of several volumes, the visible ones';
+    // a matte or a shadow-only volume only absorbs).
     float extinction(const Collision& c) const { return several() ? c.mixed.sigma : c.taps ? k.vx_extinction(*c.taps) : 0.0f; }
+    float cameraExtinction(const Collision& c) const { return several() ? c.mixed.sigma_camera : extinction(c); }
+    float visibleExtinction(const Collision& c) const { return several() ? c.mixed.sigma_visible : extinction(c); }
     glm::vec3 emission(const Collision& c) const { return c.taps ? k.vx_emission(*c.taps) : glm::vec3(0.0f); }
-    glm::vec3 albedo(const Collision& c) const {
-        if (!several()) return k.vx_albedo(*c.taps);
-        return c.mixed.sigma > 0.0f ? k.vx_medium_albedo(c.mixed) : glm::vec3(0.0f);
-    }
+    // The albedo at a collision with extinction `sigma` (extinction(c) for a path's flights,
+    // cameraExtinction(c) for the camera ray's).
+    glm::vec3 albedo(const Collision& c, float sigma) const { return several() ? k.vx_medium_albedo(c.mixed, sigma) : k.vx_albedo(*c.taps); }
     float anisotropy(const Collision& c) const { return several() ? k.vx_medium_g(c.mixed) : k.P.anisotropy; }
 
     // Tentative collisions one brick's segment may take: m * length of them are expected, a
@@ -239,7 +243,9 @@ struct Tracker {
         Segment segment;
     };
 
-    RatioFlight ratioFlight(glm::vec3 x, glm::vec3 w, bool choose, ReferenceRng& rng, int& events) const {
+    // `camera`: the camera ray's flight (the flight chooses its scattering then).
+    RatioFlight ratioFlight(glm::vec3 x, glm::vec3 w, bool camera, ReferenceRng& rng, int& events) const {
+        const bool choose = camera;
         thread_local std::vector<Candidate> candidates;
         candidates.clear();
         RatioFlight p;
@@ -248,10 +254,12 @@ struct Tracker {
         walk(x, w, 1e30f, [&](const Segment& s) {
             const float m = s.majorant;
             return collisions(s.t, s.t_end, m, rng, events, [&](float at, bool opaque) {
-                // A segment taken as opaque (nextCollision): all of T scatters here.
+                // A segment taken as opaque (nextCollision): all of T scatters here. The camera's
+                // flight meets what the camera sees, and scatters only off the visible volumes.
                 const Collision c = medium(s, at);
-                const float sigma = opaque ? m : extinction(c);
-                const float term = opaque ? T : T * std::min(1.0f, sigma / m);
+                const float sigma = opaque ? m : camera ? cameraExtinction(c) : extinction(c);
+                const float scattering = opaque ? m : camera ? visibleExtinction(c) : sigma;
+                const float term = opaque ? T : T * std::min(1.0f, scattering / m);
                 if (emits && !opaque) p.emitted += T * emission(c) / m;
                 if (term > 0.0f) {
                     p.weight += term;
@@ -300,10 +308,12 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
     const bool escapes_count = k.P.has_ambient != 0 || k.P.emission_sources > 0;
     glm::vec3 beta(camera.weight), x = origin + dir * camera.scatter.t, w = dir;
     Tracker::Collision cell = camera.scatter.cell;
+    // The camera ray chose its collision among the visible extinction: its albedo is theirs.
+    float cell_sigma = tr.visibleExtinction(cell);
     // Each turn scatters at x: next-event estimation to the lights, then a flight by delta tracking
     // (by ratio tracking when it is the last the path may take).
     for (int bounce = 0;; ++bounce) {
-        beta *= tr.albedo(cell);
+        beta *= tr.albedo(cell, cell_sigma);
         const float g = tr.anisotropy(cell);
         for (int i = 0; i < k.P.light_count; ++i) {
             glm::vec3 wi;
@@ -347,6 +357,7 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
         }
         x += w * f.t;
         cell = f.cell;
+        cell_sigma = tr.extinction(cell);
     }
     return ps;
 }
@@ -360,7 +371,7 @@ ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
     const bool tf = k.P.use_transfer != 0;
     const float floor_emitting = 1.0f / voxelEdge(in.index_to_world);
     ExtinctionBounds b{std::vector<float>(slots, 0.0f), std::vector<float>(slots, 0.0f), {}};
-    if (k.P.volume_count > 1) {
+    if (k.P.volume_count > 0) {
         // Several volumes: each volume's largest extinction (either filter stays within its
         // voxels' range), over the slots of its pages.
         for (const kernel::VxVolume& v : in.volumes) {
@@ -486,7 +497,10 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 px.ambient = toFloat(acc.ambient / n);
                 px.emission = toFloat(acc.emission / n);
                 px.transmittance = float(acc.transmittance / n);
-                px.rgba = glm::vec4(toFloat((acc.direct + acc.indirect + acc.ambient + acc.emission) / n), 1.0f - px.transmittance);
+                // With mattes, alpha is the visible volumes' coverage: the camera pass's probability
+                // of scattering off them.
+                const float alpha = k.P.volume_roles != 0 ? float(std::min(acc.scatter_weight / n, 1.0)) : 1.0f - px.transmittance;
+                px.rgba = glm::vec4(toFloat((acc.direct + acc.indirect + acc.ambient + acc.emission) / n), alpha);
                 px.depth = acc.scatter_weight > 0.0 ? float(acc.depth / acc.scatter_weight) : 0.0f;
                 px.samples = float(double(acc.events) / n);
                 const double mean = acc.lum / rs.spp;

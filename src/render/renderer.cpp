@@ -28,7 +28,7 @@ struct Renderer::Stages {
         std::vector<Stage*> out{&color_space, &color_transforms, &load, &transfer_2d, &brick, &classify, &volumes, &empty_check, &camera, &light_grid};
         for (const auto& m : methods)
             for (Stage* s : m->stages()) out.push_back(s);
-        out.insert(out.end(), {&march, &grade, &write});
+        out.insert(out.end(), {&march, &coverage, &grade, &write});
         return out;
     }
     std::vector<std::unique_ptr<LightingMethod>> makeMethods() {
@@ -56,8 +56,9 @@ struct Renderer::Stages {
     LightGridStage light_grid{brick, classify, volumes};
     std::vector<std::unique_ptr<LightingMethod>> methods = makeMethods();
     MarchStage march{color_space, brick, classify, volumes, empty_check, camera, marchInputs()};
+    CoverageStage coverage{brick, classify, volumes, camera};
     GradeStage grade{march, color_transforms};
-    WriteStage write{grade, camera, color_transforms};
+    WriteStage write{grade, camera, color_transforms, coverage};
 };
 
 namespace {
@@ -131,7 +132,7 @@ FrameResult Renderer::runGraph(std::optional<int> frame, bool allow_empty, const
         if (auto update = m->lightUpdate(r.stages)) r.light_update = update;
     r.camera = stages_->camera.camera();
     // Of several volumes, the joined atlas the march reads (instances share their volume's bricks).
-    const bool several = placedVolumeCount(scene_) > 1;
+    const bool several = rendersAsSeveral(scene_);
     r.bricks = several ? stages_->volumes.bricks().pages.occupied : stages_->classify.pages().occupied;
     r.empty = stages_->classify.pages().empty();
     r.atlas_bytes = several ? stages_->volumes.bricks().atlas.bytes() : stages_->brick.atlas().bytes();

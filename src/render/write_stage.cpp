@@ -72,7 +72,16 @@ void WriteStage::run(StageRun& run) {
     deep_path_ = scene.output.deep ? voxlux::deepPath(path_) : "";
     try {
         if (!deep_path_.empty()) written = writeDeepExr(deep_path_, image, scene.output, meta);
-        const ExrWriteReport flat = writeExr(path_, image, scene.output, meta);
+        // Each volume's coverage: the coverage stage's planes, or one visible volume's alpha.
+        std::vector<float> alpha;
+        std::vector<ExrPlane> coverage;
+        if (wantsCoverage(scene) && rendersAsSeveral(scene)) {
+            for (size_t v = 0; v < coverage_.planes().names.size(); ++v) coverage.push_back({coverage_.planes().names[v], &coverage_.planes().planes[v]});
+        } else if (wantsCoverage(scene)) {
+            for (const kernel::VxPixel& p : image.pixels) alpha.push_back(p.rgba.w);
+            coverage.push_back({scene.volume().name.empty() ? "volume" : scene.volume().name, &alpha});
+        }
+        const ExrWriteReport flat = writeExr(path_, image, scene.output, meta, coverage);
         written.non_finite += flat.non_finite;
         written.half_overflow += flat.half_overflow;
     } catch (const InputError&) {

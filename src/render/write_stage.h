@@ -10,6 +10,7 @@
 #include "grade/color_stages.h"
 #include "render/grade_stage.h"
 #include "render/march_stage.h"
+#include "render/volume_coverage.h"
 #include "graph/render_graph.h"
 #include "volume/volume_stages.h"
 
@@ -17,8 +18,8 @@ namespace voxlux {
 
 class WriteStage final : public Stage {
 public:
-    WriteStage(const GradeStage& grade, const CameraStage& camera, const ColorTransformsStage& color)
-        : grade_(input(grade)), camera_(input(camera)), color_(input(color)) {}
+    WriteStage(const GradeStage& grade, const CameraStage& camera, const ColorTransformsStage& color, const CoverageStage& coverage)
+        : grade_(input(grade)), camera_(input(camera)), color_(input(color)), coverage_(input(coverage)) {}
     std::string name() const override { return "write"; }
     StageReads reads() const override { return {{""}}; }
     StageActivity activity(const Scene& scene) const override;
@@ -31,6 +32,7 @@ private:
     const GradeStage& grade_;
     const CameraStage& camera_;
     const ColorTransformsStage& color_;
+    const CoverageStage& coverage_;
     std::string path_, preview_path_, deep_path_;
 };
 

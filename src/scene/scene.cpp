@@ -57,13 +57,18 @@ size_t placedVolumeCount(const Scene& scene) {
     return n;
 }
 
+bool rendersAsSeveral(const Scene& scene) {
+    return placedVolumeCount(scene) > 1 ||
+           std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) { return v.role != VolumeRole::Visible; });
+}
+
 int enabledLightCount(const Scene& scene, bool ambient) {
     return int(std::count_if(scene.lights.begin(), scene.lights.end(),
                              [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; }));
 }
 
 const std::vector<std::string>& knownAovs() {
-    static const std::vector<std::string> aovs{"direct", "ambient", "indirect", "emission", "transmittance", "depth", "variance"};
+    static const std::vector<std::string> aovs{"direct", "ambient", "indirect", "emission", "transmittance", "depth", "variance", "coverage"};
     return aovs;
 }
 

@@ -241,6 +241,11 @@ struct EmissionSource {
                                            // clamped beyond them; radiance = colour * intensity
 };
 
+// What a volume is to the camera (docs/scene.md, "Roles"): seen; a holdout (it occludes camera and
+// light rays, and contributes no colour and no alpha of its own); or unseen, casting shadows only.
+enum class VolumeRole { Visible, Matte, ShadowOnly };
+inline const std::vector<std::string> kVolumeRoleNames{"visible", "matte", "shadow_only"};
+
 // One volume of the scene (an entry of `volumes`): a cache or a sequence of them, where it sits,
 // its material and the light its grids emit.
 struct VolumeSpec {
@@ -255,6 +260,7 @@ struct VolumeSpec {
     // Copies placed again on top of `transform`, each still (no keys): the volume renders once per
     // instance, all reading the same bricks; empty: once, at `transform`.
     std::vector<VolumeTransform> instances;
+    VolumeRole role = VolumeRole::Visible;
     Material material;
     std::vector<EmissionSource> emission;
 };
@@ -264,10 +270,12 @@ glm::mat4 volumePlacement(const VolumeSpec& volume, std::optional<double> frame)
 // Where each copy of `volume` sits at `frame`: each instance's pose after the placement, or the
 // placement alone.
 std::vector<glm::mat4> instancePlacements(const VolumeSpec& volume, std::optional<double> frame);
-// The volumes the march places, instances counted: more than one is a scene of several volumes
-// (shaders/vx_volumes.h).
+// The volumes the march places, instances counted.
 struct Scene;
 size_t placedVolumeCount(const Scene& scene);
+// Whether the scene renders through the march of several volumes (shaders/vx_volumes.h): more than
+// one placed volume, or a volume that is not visible (a matte, or shadows only).
+bool rendersAsSeveral(const Scene& scene);
 
 enum class PixelType { Half, Float };
 

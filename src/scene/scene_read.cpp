@@ -273,7 +273,7 @@ VolumeTransform readInstance(const JsonObject& o, const std::string& base_dir) {
 }
 
 // The keys of `volume` and of an entry of `volumes` (which also holds its material and emission).
-const std::vector<std::string> kVolumeKeys{"name", "path", "frames", "density", "color", "level_set", "up", "transform", "instances"};
+const std::vector<std::string> kVolumeKeys{"name", "path", "frames", "density", "color", "level_set", "up", "transform", "instances", "role"};
 
 // The cache, its frames and its placement; not its name, material or emission (readVolumes).
 VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
@@ -307,6 +307,8 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
     if (o.has("transform")) v.transform = readVolumeTransform(o, base_dir);
     if (v.transform && !v.transform->keys.empty() && !hasFramePattern(v.path))
         o.fail("transform", "is keyed per frame, but path names one file, not a #### sequence");
+    const std::string role = o.choice("role", kVolumeRoleNames, "visible");
+    v.role = VolumeRole(std::find(kVolumeRoleNames.begin(), kVolumeRoleNames.end(), role) - kVolumeRoleNames.begin());
     if (o.has("instances")) {
         if (!o.raw("instances").is_array() || o.raw("instances").empty())
             o.fail("instances", "expected a list of transforms ({\"translate\", \"rotate\", \"scale\"} or {\"matrix\"})");
@@ -743,11 +745,15 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
     // What the march through several volumes (shaders/vx_volumes.h) does not read yet: each
     // volume is its density grid under its material's scale, albedo and anisotropy.
     size_t placed = 0;
-    for (const VolumeSpec& v : volumes) placed += std::max<size_t>(1, v.instances.size());
+    bool roles = false;
+    for (const VolumeSpec& v : volumes) {
+        placed += std::max<size_t>(1, v.instances.size());
+        roles |= v.role != VolumeRole::Visible;
+    }
     if (placed > VX_MAX_VOLUMES)
         root.fail(root.has("volumes") ? "volumes" : "volume",
                   std::to_string(placed) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
-    if (placed > 1)
+    if (placed > 1 || roles)
         for (size_t i = 0; i < volumes.size(); ++i) {
             const JsonObject& o = entries[i];
             const VolumeSpec& v = volumes[i];
@@ -782,13 +788,18 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     if (root.has("output")) s.output = readOutput(root.object("output"));
     if (s.render.method == RenderMethod::Reference && s.output.deep)
         root.fail("output", "deep is a march-only output (render.method is \"reference\"): the Monte Carlo reference writes no deep samples");
-    if (const size_t placed = placedVolumeCount(s); placed > 1) {
-        const std::string why = " with " + std::to_string(placed) + " volumes: several volumes render without it, so far";
+    if (rendersAsSeveral(s)) {
+        const size_t placed = placedVolumeCount(s);
+        const std::string why = placed > 1 ? " with " + std::to_string(placed) + " volumes: several volumes render without it, so far"
+                                           : " with a volume of role \"" + kVolumeRoleNames[size_t(s.volume().role)] +
+                                                 "\": it renders as one of several volumes, which render without it, so far";
         if (s.render.motion_blur) root.object("render").fail("motion_blur", "set" + why);
         if (s.effects.surface) root.object("effects").fail("surface", "set" + why);
         if (s.effects.perturbation) root.object("effects").fail("perturbation", "set" + why);
         if (s.effects.indirect) root.object("effects").fail("indirect", "set" + why);
     }
+    if (s.output.deep && std::any_of(s.volumes.begin(), s.volumes.end(), [](const VolumeSpec& v) { return v.role != VolumeRole::Visible; }))
+        root.fail("output", "deep output with a volume of role matte or shadow_only: its deep samples would carry every volume's opacity, so far");
     if (s.render.motion_blur && s.output.deep)
         root.fail("output", "deep output is made at one time and render.motion_blur spreads a pixel over the shutter: turn one of them off");
     return s;

@@ -186,6 +186,7 @@ nlohmann::json volumeToJson(const VolumeSpec& volume) {
     // Written only when set: a scene without one hashes as it did before the key existed.
     if (const auto& t = volume.transform) v["transform"] = volumeTransformToJson(*t);
     for (const VolumeTransform& t : volume.instances) v["instances"].push_back(volumeTransformToJson(t));
+    v["role"] = kVolumeRoleNames[size_t(volume.role)];
     v["material"] = materialToJson(volume.material);
     v["emission"] = nlohmann::json::array();
     for (const auto& e : volume.emission) v["emission"].push_back(emissionToJson(e));

@@ -202,6 +202,8 @@ void volumeList(ViewerState& state) {
         ImGui::TextUnformatted((v.name + "  " + std::filesystem::path(v.path).filename().string()).c_str());
         if (i == 0)
             if (auto g = combo("density grid", v.density.name, densityGrids(state))) setKey(state, "/volumes/0/density", *g);
+        if (auto role = combo("role", kVolumeRoleNames[size_t(v.role)], kVolumeRoleNames))
+            setKey(state, "/volumes/" + std::to_string(i) + "/role", *role);
         const VolumeTransform t = v.transform.value_or(VolumeTransform{});
         const std::string pointer = "/volumes/" + std::to_string(i) + "/transform";
         if (t.matrix) {

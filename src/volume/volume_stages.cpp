@@ -130,13 +130,13 @@ void EmptyFrameStage::run(StageRun& run) {
 }
 
 StageReads VolumesStage::reads() const {
-    return {{"/volumes/*/path", "/volumes/*/density", "/volumes/*/level_set", "/volumes/*/material", "/volumes/*/instances?",
+    return {{"/volumes/*/path", "/volumes/*/density", "/volumes/*/level_set", "/volumes/*/material", "/volumes/*/instances?", "/volumes/*/role",
              "/input/volume_files", "/render/filter"}};
 }
 
 StageActivity VolumesStage::activity(const Scene& s) const {
-    if (placedVolumeCount(s) < 2) return {false, "skipped: one volume"};
-    if (s.volumes.size() == 1) return {true, "places the volume's " + std::to_string(s.volume().instances.size()) + " instances over its bricks"};
+    if (!rendersAsSeveral(s)) return {false, "skipped: one volume"};
+    if (s.volumes.size() == 1) return {true, "places the volume over its bricks (" + std::to_string(placedVolumeCount(s)) + " placed)"};
     return {true, "loads, bricks and classifies volumes 2 to " + std::to_string(s.volumes.size()) +
                       " (each only when its own keys changed) and joins all into one atlas"};
 }
@@ -147,7 +147,7 @@ void VolumesStage::run(StageRun& run) {
     for (size_t v = 1; v < scene.volumes.size(); ++v) {
         const std::string at = "/volumes/" + std::to_string(v);
         nlohmann::json entry = run.scene.value(at);
-        for (const char* placement_or_name : {"transform", "instances", "name"}) entry.erase(placement_or_name);
+        for (const char* placement_or_name : {"transform", "instances", "name", "role"}) entry.erase(placement_or_name);
         const nlohmann::json& file = run.scene.value("/input/volume_files/" + std::to_string(v));
         const std::string key = entry.dump() + file.dump() + run.scene.value("/render/filter").dump();
         Kept& k = kept_[v - 1];
@@ -176,7 +176,7 @@ StageReads CameraStage::reads() const { return {withPlacementKeys({"/camera", "/
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera                      ? "the scene's camera"
-                  : placedVolumeCount(s) > 1 ? "frames all volumes' bricks (no camera in the scene)"
+                  : rendersAsSeveral(s)      ? "frames all volumes' bricks (no camera in the scene)"
                                          : "frames the density grid's active voxels (no camera in the scene)"};
 }
 
@@ -199,7 +199,7 @@ void CameraStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up", "/volumes/*/transform"});
     if (scene.camera)
         camera_ = *scene.camera;
-    else if (placedVolumeCount(scene) > 1)
+    else if (rendersAsSeveral(scene))
         camera_ = frameVolumes(volumes_.bricks(), scene, run.scene.frame(), load_.volume());
     else
         camera_ = frameActiveVoxels(placedVolume(load_.volume(), volumePlacement(scene.volume(), run.scene.frame())), scene);

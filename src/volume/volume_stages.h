@@ -16,11 +16,12 @@
 
 namespace voxlux {
 
-// `keys` and those of the volume's placement at the frame, for a stage whose output follows where
-// the volume sits: the camera's framing and every stage that makes kernel inputs. The bricks do
-// not: they stay in the file's index space, so a move re-reads and re-bricks nothing.
+// `keys` and those of the volumes' placement at the frame and their roles, for a stage whose
+// output follows where the volumes sit and whether they march as several (rendersAsSeveral): the
+// camera's framing and every stage that makes kernel inputs. The bricks do not: they stay in the
+// file's index space, so a move re-reads and re-bricks nothing.
 inline std::vector<std::string> withPlacementKeys(std::vector<std::string> keys) {
-    keys.insert(keys.end(), {"/volumes/*/transform", "/volumes/*/instances", "/input/frame", "/input/transform_chan"});
+    keys.insert(keys.end(), {"/volumes/*/transform", "/volumes/*/instances", "/volumes/*/role", "/input/frame", "/input/transform_chan"});
     return keys;
 }
 

@@ -228,6 +228,7 @@ std::string otherString(const std::string& key, const std::string& value) {
         {"shadows", {"none", "raymarch", "sat_cone", "propagation"}},
         {"method", {"march", "reference"}},
         {"level_set", {"reject", "fog"}},
+        {"role", {"visible", "matte"}},
         {"rotate_order", {"xyz", "zxy"}},
         {"pixel_type", {"half", "float"}},
         {"compression", {"zip", "piz"}},
@@ -332,8 +333,10 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
             try {
                 changed = parseScene(m.scene.dump(), label + ".json", grids);
             } catch (const InputError& e) {
-                // The reference refuses perturbation, surface shading and deep output: not a pair the sweep can make.
-                const bool refused = std::string(e.what()).find("march-only") != std::string::npos;
+                // The reference refuses perturbation, surface shading and deep output, and several
+                // volumes (a matte's role) the effects they do not take yet: not pairs the sweep can make.
+                const std::string why = e.what();
+                const bool refused = why.find("march-only") != std::string::npos || why.find("render without it, so far") != std::string::npos;
                 if (!refused) ADD_FAILURE() << "the changed scene does not parse: " << e.what();
                 skipped.insert(pointer + " in " + label + ": " + e.what());
                 continue;

@@ -1,8 +1,11 @@
 // Several volumes in one scene (shaders/vx_volumes.h): extinction adds where they overlap, so two
 // copies at half the density render as one at the whole, in the march (to float rounding) and in
 // the reference (within its noise); far-apart volumes render as each alone; a mix of albedos and
-// anisotropies matches the reference; a volume's stages re-run only for its own edits; what
-// several volumes do not take yet is refused by name.
+// anisotropies matches the reference; a matte holds out what is behind it and a shadow-only volume
+// only shadows; a volume's stages re-run only for its own edits; what several volumes do not take
+// yet is refused by name.
+#include <fstream>
+
 #include <glm/gtx/component_wise.hpp>
 
 #include "core/error.h"
@@ -279,10 +282,169 @@ TEST(SeveralVolumes, TheLightGridMethodsSeeTwoHalvesAsTheWhole) {
     }
 }
 
+// A slab of uniform extinction in front of the ball (between it and the camera), beside the light's
+// way to the ball, which comes from above.
+VolumeSpec slabInFront(const std::string& dir, VolumeRole role) {
+    VolumeSpec v;
+    v.path = dir + "/slab.vdb";
+    openvdb::io::File(v.path).write({boxGrid({-40, -40, 40}, {39, 39, 49}, 1.0f, 0.1)});   // z 4 to 5 world units
+    v.name = "slab";
+    v.material.density_scale = 0.4f;
+    v.role = role;
+    return v;
+}
+
+// A matte cuts what is behind it by its transmittance and adds no colour and no alpha of its own:
+// the compositor's holdout.
+TEST(SeveralVolumes, AMatteCutsTheVolumeBehindItByItsTransmittance) {
+    const std::string dir = tempDir("several-matte");
+    const std::string file = writeBall(dir);
+    const auto lit = [](std::vector<VolumeSpec> v) {
+        Scene s = sceneOf(std::move(v));
+        s.lights = {s.lights[0]};
+        s.lights[0].direction = glm::vec3(0.0f, -1.0f, 0.0f);   // from above: the slab does not shadow the ball
+        return s;
+    };
+    const RenderImage ball_alone = render(lit({ball(file, "ball", 1.0f)}));
+    const RenderImage slab_seen = render(lit({slabInFront(dir, VolumeRole::Visible)}));
+    const RenderImage held_out = render(lit({ball(file, "ball", 1.0f), slabInFront(dir, VolumeRole::Matte)}));
+    const RenderImage matte_alone = render(lit({slabInFront(dir, VolumeRole::Matte)}));
+    float largest = 0.0f, peak = 0.0f, matte_largest = 0.0f, slab_opacity = 0.0f;
+    for (size_t i = 0; i < held_out.pixels.size(); ++i) {
+        const float T = slab_seen.pixels[i].transmittance;
+        slab_opacity = std::max(slab_opacity, 1.0f - T);
+        largest = std::max(largest, glm::compMax(glm::abs(held_out.pixels[i].rgba - ball_alone.pixels[i].rgba * T)));
+        peak = std::max(peak, glm::compMax(ball_alone.pixels[i].rgba));
+        matte_largest = std::max(matte_largest, glm::compMax(glm::abs(matte_alone.pixels[i].rgba)));
+    }
+    EXPECT_GT(slab_opacity, 0.25f);   // e^(-0.4) over its 1-unit depth
+    EXPECT_LE(largest, 1e-4f * peak);
+    EXPECT_EQ(matte_largest, 0.0f);
+}
+
+// A shadow-only volume darkens the volume it shadows and is not seen: where only it lies on the
+// camera's rays, the image is empty.
+TEST(SeveralVolumes, AShadowOnlyVolumeShadowsAndIsNotSeen) {
+    const std::string file = writeBall(tempDir("several-shadow-only"));
+    const auto scene = [&](std::vector<VolumeSpec> v) {
+        Scene s = sceneOf(std::move(v), glm::vec3(2.0f, 0.0f, 0.0f), 60.0f);
+        s.lights = {s.lights[0]};
+        s.lights[0].direction = glm::vec3(-1.0f, 0.0f, 0.0f);
+        return s;
+    };
+    VolumeSpec blocker = ball(file, "blocker", 1.0f, glm::vec3(4.0f, 0, 0));
+    const RenderImage alone = render(scene({ball(file, "lit", 1.0f)}));
+    const RenderImage blocker_seen = render(scene({blocker}));
+    blocker.role = VolumeRole::ShadowOnly;
+    const RenderImage shadowed = render(scene({ball(file, "lit", 1.0f), blocker}));
+    double lit_alone = 0.0, lit_shadowed = 0.0;
+    float unseen = 0.0f;
+    int blocker_pixels = 0;
+    for (size_t i = 0; i < alone.pixels.size(); ++i) {
+        if (alone.pixels[i].rgba.w > 0.0f) {
+            lit_alone += luminance(glm::vec3(alone.pixels[i].rgba));
+            lit_shadowed += luminance(glm::vec3(shadowed.pixels[i].rgba));
+        } else if (blocker_seen.pixels[i].rgba.w > 0.1f) {
+            ++blocker_pixels;
+            unseen = std::max(unseen, glm::compMax(glm::abs(shadowed.pixels[i].rgba)));
+        }
+    }
+    EXPECT_GT(blocker_pixels, 20);
+    EXPECT_EQ(unseen, 0.0f);
+    EXPECT_LT(lit_shadowed, 0.5 * lit_alone);
+    // Where the lit volume is seen, its alpha is its own: the blocker adds none.
+    for (size_t i = 0; i < alone.pixels.size(); ++i) EXPECT_NEAR(shadowed.pixels[i].rgba.w, alone.pixels[i].rgba.w, 1e-5f);
+}
+
+// The reference holds a matte out as the march does: its alpha is the visible volume's coverage,
+// and a matte alone traces to nothing.
+TEST(SeveralVolumes, TheReferenceHoldsOutAMatteAsTheMarchDoes) {
+    const std::string dir = tempDir("several-matte-reference");
+    const std::string file = writeBall(dir);
+    Scene march = sceneOf({ball(file, "ball", 1.0f), slabInFront(dir, VolumeRole::Matte)});
+    march.lights = {march.lights[0]};
+    march.lights[0].direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    march.render.width = march.render.height = 12;
+    march.render.step = march.render.shadow_step = 0.1f;
+    Scene reference = march;
+    reference.render.method = RenderMethod::Reference;
+    reference.render.reference.spp = 256;
+    reference.render.reference.max_bounces = 1;
+    const RenderImage a = render(march), b = render(reference);
+    double alpha_march = 0.0, alpha_reference = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        alpha_march += a.pixels[i].rgba.w;
+        alpha_reference += b.pixels[i].rgba.w;
+    }
+    const auto [mean_march, unused] = meanAndError(a);
+    const auto [mean_reference, error] = meanAndError(b);
+    std::printf("  held out: march %.5f, reference %.5f +- %.5f; alpha sums %.3f, %.3f\n", mean_march, mean_reference, error, alpha_march,
+                alpha_reference);
+    EXPECT_GT(mean_reference, 0.002);
+    EXPECT_LE(std::abs(mean_march - mean_reference), 3.0 * error + 0.01 * mean_reference);
+    EXPECT_NEAR(alpha_reference, alpha_march, 0.02 * alpha_march);
+    Scene matte_only = reference;
+    matte_only.volumes = {slabInFront(dir, VolumeRole::Matte)};
+    for (const auto& p : render(matte_only).pixels) EXPECT_EQ(p.rgba, glm::vec4(0.0f));
+}
+
+// output.aovs "coverage": a channel per volume, named by it, which sum to the alpha; a matte's is 0;
+// one visible volume's is the alpha.
+TEST(SeveralVolumes, EachVolumesCoverageSumsToTheAlpha) {
+    const std::string dir = tempDir("several-coverage");
+    const std::string file = writeBall(dir);
+    const std::string scene = dir + "/coverage.json";
+    std::ofstream(scene) << R"({"volumes": [
+        {"name": "smoke", "path": ")" << file << R"("},
+        {"name": "dust", "path": ")" << file << R"(", "transform": {"translate": [1.5, 0.5, 1]}, "material": {"density_scale": 0.5}},
+        {"name": "holdout", "path": ")" << file << R"(", "transform": {"translate": [-1, -1, 3], "scale": 0.5}, "role": "matte"}],
+      "camera": {"position": [0, 0, 12], "look_at": [0, 0, 0], "fov": 40},
+      "render": {"resolution": [32, 32]},
+      "output": {"path": ")" << dir << R"(/coverage.exr", "pixel_type": "float", "aovs": ["coverage"]}})";
+    const CliResult r = runCli("render " + scene);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Exr exr = readExr(dir + "/coverage.exr");
+    ASSERT_TRUE(exr.planes.count("coverage.smoke") && exr.planes.count("coverage.dust") && exr.planes.count("coverage.holdout"));
+    float largest = 0.0f, matte = 0.0f, smoke = 0.0f, dust = 0.0f;
+    for (size_t i = 0; i < exr.planes.at("A").size(); ++i) {
+        const float sum = exr.planes.at("coverage.smoke")[i] + exr.planes.at("coverage.dust")[i] + exr.planes.at("coverage.holdout")[i];
+        largest = std::max(largest, std::abs(sum - exr.planes.at("A")[i]));
+        matte = std::max(matte, exr.planes.at("coverage.holdout")[i]);
+        smoke = std::max(smoke, exr.planes.at("coverage.smoke")[i]);
+        dust = std::max(dust, exr.planes.at("coverage.dust")[i]);
+    }
+    EXPECT_GT(smoke, 0.5f);
+    EXPECT_GT(dust, 0.2f);
+    EXPECT_EQ(matte, 0.0f);
+    EXPECT_LE(largest, 1e-5f);
+
+    const CliResult one = runCli("render " + file + " --res 16x16 --set 'output.aovs=[\"coverage\"]' --pixel-type float -o " + dir + "/one.exr");
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    const Exr single = readExr(dir + "/one.exr");
+    ASSERT_TRUE(single.planes.count("coverage.ball"));
+    EXPECT_EQ(single.planes.at("coverage.ball"), single.planes.at("A"));
+}
+
+TEST(SeveralVolumes, RolesAreReadAndWrittenBack) {
+    const Scene s = parseScene(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "role": "matte"}, {"path": "c.vdb", "role": "shadow_only"}]})",
+                               "shot.json", "");
+    EXPECT_EQ(s.volumes[0].role, VolumeRole::Visible);
+    EXPECT_EQ(s.volumes[1].role, VolumeRole::Matte);
+    EXPECT_EQ(s.volumes[2].role, VolumeRole::ShadowOnly);
+    EXPECT_EQ(sceneFromJson(sceneToJson(s), "back.json", "").volumes[2].role, VolumeRole::ShadowOnly);
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "role": "holdout"}]})"),
+              "shot.json: /volumes/0/role: 'holdout' is not one of visible, matte, shadow_only");
+    EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "role": "matte"}, "output": {"path": "a.exr", "deep": true}})"),
+              "shot.json: /output: deep output with a volume of role matte or shadow_only: its deep samples would carry every "
+              "volume's opacity, so far");
+}
+
 TEST(SeveralVolumes, TheGlBackendMarchesThemAsTheCpuDoes) {
     VOXLUX_REQUIRE_GL(gl);
     const std::string file = writeBall(tempDir("several-gl"));
-    Scene cpu = sceneOf({ball(file, "a", 0.8f, glm::vec3(-0.8f, 0, 0)), ball(file, "b", 0.5f, glm::vec3(0.8f, 0.3f, 0.5f))});
+    VolumeSpec matte = ball(file, "matte", 0.5f, glm::vec3(0.0f, -1.5f, 3.0f));
+    matte.role = VolumeRole::Matte;
+    Scene cpu = sceneOf({ball(file, "a", 0.8f, glm::vec3(-0.8f, 0, 0)), ball(file, "b", 0.5f, glm::vec3(0.8f, 0.3f, 0.5f)), matte});
     cpu.volumes[1].material.albedo = glm::vec3(0.2f, 0.4f, 0.9f);
     Scene on_gl = cpu;
     on_gl.render.backend = Backend::Gl;

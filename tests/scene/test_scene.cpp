@@ -136,7 +136,7 @@ TEST(Scene, RoundTripThroughJson) {
     // and emission inside.
     const nlohmann::json expected = nlohmann::json::parse(R"({
         "volumes": [{"name": "fire", "path": "fire_####.vdb", "frames": [1, 60], "density": {"name": "density", "index": 2},
-                     "color": "Cd", "level_set": "fog", "up": "z",
+                     "color": "Cd", "level_set": "fog", "up": "z", "role": "visible",
                      "material": {"density_scale": 2.5, "density_units": "voxel", "albedo": [0.5, 0.6, 0.7], "anisotropy": 0.3,
                                   "transfer_function": [{"value": 0, "extinction": 0, "albedo": [1, 1, 1]},
                                                         {"value": 100, "extinction": 1, "albedo": [1, 0.5, 0.2]}]},
@@ -380,7 +380,7 @@ TEST(EmissionScene, ErrorsNameTheKey) {
               "shot.json: /emission: at most 4 sources (got 5)");
     // The old single-grid keys are gone.
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "emission": "heat"}})"),
-              "shot.json: /volume/emission: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances)");
+              "shot.json: /volume/emission: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances, role)");
 }
 
 }  // namespace

@@ -54,8 +54,8 @@ TEST(SceneVolumes, ConflictsAndDuplicatesAreRefused) {
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "b.vdb"}], "material": {"density_scale": 2}})"),
               "shot.json: /material: goes in each entry of volumes");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": []})"), "shot.json: /volumes: expected at least one volume");
-    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "role": "matte"}]})"),
-              "shot.json: /volumes/0/role: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances, material, emission)");
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "shadow": "matte"}]})"),
+              "shot.json: /volumes/0/shadow: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances, role, material, emission)");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a/smoke.vdb"}, {"path": "b/smoke.vdb"}]})"),
               "shot.json: /volumes/1/name: 'smoke' is also volume 0's name (taken from the file's; set name)");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "name": "x"}, {"path": "b.vdb", "name": "x"}]})"),

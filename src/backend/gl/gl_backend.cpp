@@ -34,7 +34,7 @@ constexpr size_t kDeepBandBytes = size_t(128) << 20;
 class GlBackend final : public KernelBackend {
 public:
     // Compiles the trilinear program up front, so a GL that cannot run the kernel fails here.
-    GlBackend() : context_(ensureGlContext()) { marchProgram(VX_FILTER_TRILINEAR, 0); }
+    GlBackend() : context_(ensureGlContext()) { marchProgram(VX_FILTER_TRILINEAR, 0, false); }
 
     std::string name() const override { return "gl (" + context_.renderer + ")"; }
     Device device() const override { return Device::Gl; }
@@ -48,7 +48,7 @@ public:
         if (img.pixels.empty()) return img;
 
         const int deep_samples = in.params.deep_samples;
-        const GLuint program = marchProgram(in.params.voxel_filter, deep_samples);
+        const GLuint program = marchProgram(in.params.voxel_filter, deep_samples, in.params.volume_count > 0);
         const GLint row_offset = glGetUniformLocation(program, "vx_row_offset");
         const GLint ray_uniform = glGetUniformLocation(program, "vx_ray");
         params_.upload(&in.params, sizeof in.params, GL_STREAM_DRAW, "parameter");
@@ -170,11 +170,13 @@ public:
 
 private:
     // The march program of a filter: one each, as the filter is a compile-time constant in GLSL
-    // (shaders/vx_sample.h); and with room in each ray for exactly the deep samples asked for
-    // (vx_deep.h), as the array's size sets the program's cost.
-    static GLuint marchProgram(int filter, int deep_samples) {
+    // (shaders/vx_sample.h); with room in each ray for exactly the deep samples asked for
+    // (vx_deep.h), as the array's size sets the program's cost; and with the march through several
+    // volumes only for scenes of several (vx_march.h).
+    static GLuint marchProgram(int filter, int deep_samples, bool several) {
         return kernelProgram("march.comp", std::string(filter == VX_FILTER_TRICUBIC ? "#define VX_ATLAS_FILTER VX_FILTER_TRICUBIC\n" : "") +
-                                               "#define VX_DEEP_CAPACITY " + std::to_string(deep_samples + 1) + "\n");
+                                               "#define VX_DEEP_CAPACITY " + std::to_string(deep_samples + 1) + "\n" +
+                                               (several ? "#define VX_MARCH_VOLUMES 1\n" : ""));
     }
 
     const GlContextInfo& context_;
