@@ -124,6 +124,7 @@ void runStudy(const Scene& scene, const StudyOptions& o, std::ostream& out) {
     const Scene base_scene = parseScene(base.dump(), "study scene", "");
     const std::optional<int> frame = studyFrame(base_scene);
     const StudyPlan plan = planStudy(base, o.spps, base_scene.render.reference.seed);
+    for (const std::string& why : plan.skipped) out << "skipped, as the scene refuses it: " << why << "\n";
     // The scene's hash leaves the frames out (a frame's outputs carry one hash wherever it
     // renders); the study's truth and rows are of one frame, so its key names it.
     const std::string hash = frame ? hashText(sceneHash(base_scene) + ":frame " + std::to_string(*frame)) : sceneHash(base_scene);

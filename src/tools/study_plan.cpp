@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
+#include "core/error.h"
 #include "scene/quality_presets.h"
 #include "render/renderer.h"
 #include "render/write_stage.h"
@@ -73,6 +75,23 @@ std::string StudyConfig::id() const {
     return s;
 }
 
+namespace {
+
+// The config's scene, or nothing when the scene refuses its settings; `skipped` gets the reason once.
+std::optional<Scene> plannedScene(const nlohmann::json& base, const StudyConfig& config, std::vector<std::string>& skipped) {
+    try {
+        return studyScene(base, config);
+    } catch (const InputError& e) {
+        // The reason without the config's name ("study config '...': "), so that each is said once.
+        std::string why = e.what();
+        if (const size_t end = why.find("': "); why.rfind("study config '", 0) == 0 && end != std::string::npos) why.erase(0, end + 3);
+        if (std::find(skipped.begin(), skipped.end(), why) == skipped.end()) skipped.push_back(why);
+        return std::nullopt;
+    }
+}
+
+}  // namespace
+
 StudyPlan planStudy(const nlohmann::json& base, const std::vector<int>& spps, int seed) {
     const Scene scene = parseScene(base.dump(), "study scene", "");
     const Methods m{effectOnSet(base, "effects.indirect"), effectOnSet(base, "effects.ambient_occlusion")};
@@ -115,32 +134,36 @@ StudyPlan planStudy(const nlohmann::json& base, const std::vector<int>& spps, in
     }
     sweeps.push_back(reference);
     // The presets last: where one is a config measured above, it is that row.
+    StudyPlan plan;
     Sweep presets{kPresetSweep, "--quality", {}, {}};
     for (const std::string& name : qualityPresetNames()) {
         StudyConfig c{"", qualityPresetSets(base, name), 0};
-        const Scene s = studyScene(base, c);
-        c.method = methodName(s);
-        c.spp = s.render.method == RenderMethod::Reference ? s.render.reference.spp : 0;
+        const std::optional<Scene> s = plannedScene(base, c, plan.skipped);
+        if (!s) continue;
+        c.method = methodName(*s);
+        c.spp = s->render.method == RenderMethod::Reference ? s->render.reference.spp : 0;
         presets.points.push_back(c);
         presets.labels.push_back(name);
     }
     sweeps.push_back(presets);
 
-    StudyPlan plan;
     std::map<std::string, size_t> by_scene;   // scene hash -> config
     for (const Sweep& s : sweeps) {
-        StudySweep out{s.method, s.knob, {}, s.labels};
-        for (StudyConfig c : s.points) {
+        StudySweep out{s.method, s.knob, {}, {}};
+        for (size_t i = 0; i < s.points.size(); ++i) {
+            StudyConfig c = s.points[i];
             // The family is the scene's own: a scene with Kniss's indirect light keeps it throughout.
-            const Scene scene = studyScene(base, c);
-            c.method = methodName(scene);
+            const std::optional<Scene> scene = plannedScene(base, c, plan.skipped);
+            if (!scene) continue;
+            c.method = methodName(*scene);
             if (s.method != kPresetSweep) out.method = c.method;
-            const std::string hash = sceneHash(scene);
+            const std::string hash = sceneHash(*scene);
             auto [it, fresh] = by_scene.emplace(hash, plan.configs.size());
             if (fresh) plan.configs.push_back(c);
             out.configs.push_back(it->second);
+            out.labels.push_back(s.labels[i]);
         }
-        plan.sweeps.push_back(std::move(out));
+        if (!out.configs.empty()) plan.sweeps.push_back(std::move(out));
     }
     return plan;
 }

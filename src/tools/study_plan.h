@@ -32,11 +32,13 @@ struct StudySweep {
 struct StudyPlan {
     std::vector<StudySweep> sweeps;
     std::vector<StudyConfig> configs;    // every distinct render of the sweeps once, the reference last
+    std::vector<std::string> skipped;    // why configs the scene refuses are left out, each reason once
 };
 
 // The plan for the scene whose JSON is `base`, with the reference at each of `spps` samples per
 // pixel, seeded with `seed`. Configs that render the same scene (a knob at the value another
-// sweep's default already has) are one config.
+// sweep's default already has) are one config. Configs the scene refuses (several volumes refuse
+// indirect light so far) are left out, and StudyPlan::skipped says why.
 StudyPlan planStudy(const nlohmann::json& base, const std::vector<int>& spps, int seed);
 
 // `base` (a scene's JSON) with `config`'s sets applied, parsed and validated.

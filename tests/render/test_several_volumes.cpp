@@ -4,6 +4,7 @@
 // anisotropies matches the reference; a matte holds out what is behind it and a shadow-only volume
 // only shadows; a volume's stages re-run only for its own edits; what several volumes do not take
 // yet is refused by name.
+#include <filesystem>
 #include <fstream>
 
 #include <glm/gtx/component_wise.hpp>
@@ -423,6 +424,21 @@ TEST(SeveralVolumes, EachVolumesCoverageSumsToTheAlpha) {
     const Exr single = readExr(dir + "/one.exr");
     ASSERT_TRUE(single.planes.count("coverage.ball"));
     EXPECT_EQ(single.planes.at("coverage.ball"), single.planes.at("A"));
+}
+
+// A volume after the first whose file is missing or damaged is named, and nothing is written.
+TEST(SeveralVolumes, ABadSecondFileIsNamedAndNothingIsWritten) {
+    const std::string dir = tempDir("several-bad-file");
+    const std::string file = writeBall(dir);
+    std::ofstream(dir + "/truncated.vdb") << "OpenVDB";
+    for (const std::string& second : {dir + "/missing.vdb", dir + "/truncated.vdb"}) {
+        std::ofstream(dir + "/bad.json") << R"({"volumes": [{"name": "a", "path": ")" << file << R"("}, {"name": "b", "path": ")" << second
+                                         << R"("}], "render": {"resolution": [16, 16]}, "output": {"path": ")" << dir << R"(/bad.exr"}})";
+        const CliResult r = runCli("render " + dir + "/bad.json");
+        EXPECT_EQ(r.exit_code, 2);
+        EXPECT_EQ(linesStartingWith(r.err, "voxlux: error: ").rfind("voxlux: error: " + second + ": ", 0), 0u) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/bad.exr"));
+    }
 }
 
 TEST(SeveralVolumes, RolesAreReadAndWrittenBack) {
