@@ -38,7 +38,7 @@ public:
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
-    bool idle() const override { return classify_.pages().empty(); }
+    bool idle() const override { return noVisibleBricks(classify_, volumes_); }
     void release() override { grid_ = LightGrid{}; }
     const LightGrid& grid() const { return grid_; }
     // Cells along the longest side: effects.light_resolution, lowered only where the grid alone

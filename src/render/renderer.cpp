@@ -51,7 +51,7 @@ struct Renderer::Stages {
     BrickStage brick{transfer_2d};
     ClassifyStage classify{transfer_2d, brick};
     VolumesStage volumes{brick, classify};
-    EmptyFrameStage empty_check{classify};
+    EmptyFrameStage empty_check{classify, volumes};
     CameraStage camera{transfer_2d, volumes};
     LightGridStage light_grid{brick, classify, volumes};
     std::vector<std::unique_ptr<LightingMethod>> methods = makeMethods();
@@ -80,10 +80,10 @@ nlohmann::json fileIdentity(const std::string& file) {
 }  // namespace
 
 Renderer::Renderer(Scene scene)
-    : scene_(std::move(scene)), stages_(std::make_unique<Stages>(std::nullopt)), graph_(stages_->all()) {}
+    : scene_(withEnabledVolumes(std::move(scene))), stages_(std::make_unique<Stages>(std::nullopt)), graph_(stages_->all()) {}
 
 Renderer::Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend)
-    : scene_(std::move(scene)), backend_(&backend), stages_(std::make_unique<Stages>(std::move(volume))), graph_(stages_->all()) {}
+    : scene_(withEnabledVolumes(std::move(scene))), backend_(&backend), stages_(std::make_unique<Stages>(std::move(volume))), graph_(stages_->all()) {}
 
 Renderer::~Renderer() = default;
 
@@ -94,7 +94,7 @@ void Renderer::setScene(Scene scene) {
         owned_backend_.reset();
         backend_ = nullptr;
     }
-    scene_ = std::move(scene);
+    scene_ = withEnabledVolumes(std::move(scene));
 }
 
 KernelBackend& Renderer::backend() {

@@ -54,12 +54,14 @@ std::optional<std::string> outputPathProblem(const Scene& scene);
 
 class Renderer {
 public:
+    // The scene's disabled volumes are left out (withEnabledVolumes): scene() is the scene as it renders.
     explicit Renderer(Scene scene);
     ~Renderer();
     // The stages hold references to each other: a Renderer stays where it was made.
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
-    // Renders `volume` (grids made in memory) instead of reading files, on `backend` (not owned).
+    // Renders `volume` (grids made in memory: the first enabled volume's) instead of reading files,
+    // on `backend` (not owned).
     Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend);
     // Replaces the scene; the next render recomputes only what the change invalidates.
     void setScene(Scene scene);

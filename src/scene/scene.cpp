@@ -10,20 +10,20 @@ namespace voxlux {
 
 namespace {
 
-glm::mat4 rotation(glm::vec3 degrees, RotateOrder order) {
-    const glm::vec3 r = glm::radians(degrees);
-    const glm::mat4 turn[3] = {glm::rotate(glm::mat4(1.0f), r.x, glm::vec3(1, 0, 0)),
-                               glm::rotate(glm::mat4(1.0f), r.y, glm::vec3(0, 1, 0)),
-                               glm::rotate(glm::mat4(1.0f), r.z, glm::vec3(0, 0, 1))};
-    const char* axes = kRotateOrderNames[int(order)];   // the first applied is the rightmost factor
-    return turn[axes[2] - 'x'] * turn[axes[1] - 'x'] * turn[axes[0] - 'x'];
-}
-
 glm::mat4 pose(glm::vec3 translate, glm::vec3 rotate, glm::vec3 scale, RotateOrder order) {
-    return glm::translate(glm::mat4(1.0f), translate) * rotation(rotate, order) * glm::scale(glm::mat4(1.0f), scale);
+    return glm::translate(glm::mat4(1.0f), translate) * glm::mat4(rotationMatrix(rotate, order)) * glm::scale(glm::mat4(1.0f), scale);
 }
 
 }  // namespace
+
+glm::mat3 rotationMatrix(glm::vec3 degrees, RotateOrder order) {
+    const glm::vec3 r = glm::radians(degrees);
+    const glm::mat3 turn[3] = {glm::mat3(glm::rotate(glm::mat4(1.0f), r.x, glm::vec3(1, 0, 0))),
+                               glm::mat3(glm::rotate(glm::mat4(1.0f), r.y, glm::vec3(0, 1, 0))),
+                               glm::mat3(glm::rotate(glm::mat4(1.0f), r.z, glm::vec3(0, 0, 1)))};
+    const char* axes = kRotateOrderNames[int(order)];   // the first applied is the rightmost factor
+    return turn[axes[2] - 'x'] * turn[axes[1] - 'x'] * turn[axes[0] - 'x'];
+}
 
 glm::mat4 volumeTransformMatrix(const VolumeTransform& t, std::optional<double> frame) {
     if (t.matrix) return *t.matrix;
@@ -60,6 +60,11 @@ size_t placedVolumeCount(const Scene& scene) {
 bool rendersAsSeveral(const Scene& scene) {
     return placedVolumeCount(scene) > 1 ||
            std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) { return v.role != VolumeRole::Visible; });
+}
+
+Scene withEnabledVolumes(Scene scene) {
+    std::erase_if(scene.volumes, [](const VolumeSpec& v) { return !v.enabled; });
+    return scene;
 }
 
 int enabledLightCount(const Scene& scene, bool ambient) {

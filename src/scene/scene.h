@@ -32,6 +32,8 @@ enum class UpAxis { Auto, X, Y, Z };
 // (R = Rz Ry Rx, Houdini's default); Zxy is Nuke's default for an Axis or a Camera.
 enum class RotateOrder { Xyz, Xzy, Yxz, Yzx, Zxy, Zyx };
 inline constexpr const char* kRotateOrderNames[] = {"xyz", "xzy", "yxz", "yzx", "zxy", "zyx"};
+// The rotation of `degrees` about X, Y and Z, turned in `order`.
+glm::mat3 rotationMatrix(glm::vec3 degrees, RotateOrder order);
 
 // One key of an animated transform: its pose at `frame`.
 struct TransformKey {
@@ -261,6 +263,7 @@ struct VolumeSpec {
     // instance, all reading the same bricks; empty: once, at `transform`.
     std::vector<VolumeTransform> instances;
     VolumeRole role = VolumeRole::Visible;
+    bool enabled = true;                   // a disabled volume stays in the scene but is neither loaded nor rendered
     Material material;
     std::vector<EmissionSource> emission;
 };
@@ -276,6 +279,8 @@ size_t placedVolumeCount(const Scene& scene);
 // Whether the scene renders through the march of several volumes (shaders/vx_volumes.h): more than
 // one placed volume, or a volume that is not visible (a matte, or shadows only).
 bool rendersAsSeveral(const Scene& scene);
+// The scene as it renders: its disabled volumes left out (scene_read keeps one enabled at least).
+Scene withEnabledVolumes(Scene scene);
 
 enum class PixelType { Half, Float };
 
@@ -327,8 +332,9 @@ struct ColorSettings {
 };
 
 struct Scene {
-    std::vector<VolumeSpec> volumes{1};    // at least one
-    // The volume a render takes: scene_read refuses a scene of several until the march composes them.
+    std::vector<VolumeSpec> volumes{1};    // at least one, and at least one enabled
+    // The first volume: the one whose frames, grids and up axis the quick form and the viewer's
+    // sequence controls take.
     VolumeSpec& volume() { return volumes.front(); }
     const VolumeSpec& volume() const { return volumes.front(); }
     std::vector<Light> lights;

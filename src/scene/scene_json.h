@@ -36,6 +36,8 @@ nlohmann::json jsonVec3(glm::vec3 v);
 // One light of a scene's "lights" array, and back.
 Light readLight(const JsonObject& o);
 nlohmann::json lightToJson(const Light& light);
+// A volume's transform as `transform` writes it (a .chan file as its name).
+nlohmann::json volumeTransformToJson(const VolumeTransform& t);
 
 // "auto", "x", "y" or "z", as volume.up spells it.
 const char* upAxisName(UpAxis up);

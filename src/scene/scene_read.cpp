@@ -273,7 +273,7 @@ VolumeTransform readInstance(const JsonObject& o, const std::string& base_dir) {
 }
 
 // The keys of `volume` and of an entry of `volumes` (which also holds its material and emission).
-const std::vector<std::string> kVolumeKeys{"name", "path", "frames", "density", "color", "level_set", "up", "transform", "instances", "role"};
+const std::vector<std::string> kVolumeKeys{"name", "path", "frames", "density", "color", "level_set", "up", "transform", "instances", "role", "enabled"};
 
 // The cache, its frames and its placement; not its name, material or emission (readVolumes).
 VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
@@ -309,6 +309,7 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
         o.fail("transform", "is keyed per frame, but path names one file, not a #### sequence");
     const std::string role = o.choice("role", kVolumeRoleNames, "visible");
     v.role = VolumeRole(std::find(kVolumeRoleNames.begin(), kVolumeRoleNames.end(), role) - kVolumeRoleNames.begin());
+    v.enabled = o.boolean("enabled", true);
     if (o.has("instances")) {
         if (!o.raw("instances").is_array() || o.raw("instances").empty())
             o.fail("instances", "expected a list of transforms ({\"translate\", \"rotate\", \"scale\"} or {\"matrix\"})");
@@ -742,11 +743,15 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
                 o.fail("name", "'" + v.name + "' is also volume " + std::to_string(k) + "'s name" +
                                    (o.has("name") ? "" : " (taken from the file's; set name)"));
     }
+    if (std::none_of(volumes.begin(), volumes.end(), [](const VolumeSpec& v) { return v.enabled; }))
+        root.fail(root.has("volumes") ? "volumes" : "volume", "every volume is disabled (enabled: false): a scene renders one at least");
     // What the march through several volumes (shaders/vx_volumes.h) does not read yet: each
-    // volume is its density grid under its material's scale, albedo and anisotropy.
+    // volume is its density grid under its material's scale, albedo and anisotropy. Disabled
+    // volumes are not rendered, so they take anything.
     size_t placed = 0;
     bool roles = false;
     for (const VolumeSpec& v : volumes) {
+        if (!v.enabled) continue;
         placed += std::max<size_t>(1, v.instances.size());
         roles |= v.role != VolumeRole::Visible;
     }
@@ -757,6 +762,7 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
         for (size_t i = 0; i < volumes.size(); ++i) {
             const JsonObject& o = entries[i];
             const VolumeSpec& v = volumes[i];
+            if (!v.enabled) continue;
             const std::string why = ": a volume of several takes its density grid, density_scale, albedo and anisotropy only, so far";
             if (!v.material.transfer.empty()) o.object("material").fail("transfer_function", "set" + why);
             if (!v.material.transfer_2d.empty()) o.object("material").fail("transfer_function_2d", "set" + why);
@@ -788,17 +794,23 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     if (root.has("output")) s.output = readOutput(root.object("output"));
     if (s.render.method == RenderMethod::Reference && s.output.deep)
         root.fail("output", "deep is a march-only output (render.method is \"reference\"): the Monte Carlo reference writes no deep samples");
-    if (rendersAsSeveral(s)) {
-        const size_t placed = placedVolumeCount(s);
+    if (const Scene rendered = withEnabledVolumes(s); rendersAsSeveral(rendered)) {
+        const size_t placed = placedVolumeCount(rendered);
         const std::string why = placed > 1 ? " with " + std::to_string(placed) + " volumes: several volumes render without it, so far"
-                                           : " with a volume of role \"" + kVolumeRoleNames[size_t(s.volume().role)] +
+                                           : " with a volume of role \"" + kVolumeRoleNames[size_t(rendered.volume().role)] +
                                                  "\": it renders as one of several volumes, which render without it, so far";
         if (s.render.motion_blur) root.object("render").fail("motion_blur", "set" + why);
         if (s.effects.surface) root.object("effects").fail("surface", "set" + why);
         if (s.effects.perturbation) root.object("effects").fail("perturbation", "set" + why);
-        if (s.effects.indirect) root.object("effects").fail("indirect", "set" + why);
+        // Kniss's transport colour holds for any medium; the diffusion profile is one material's.
+        if (s.effects.indirect && s.effects.indirect->model == IndirectModel::Diffusion)
+            for (const VolumeSpec& v : rendered.volumes)
+                if (v.material.albedo != rendered.volume().material.albedo || v.material.anisotropy != rendered.volume().material.anisotropy)
+                    root.object("effects").fail("indirect", "the diffusion model takes its profile from one material, and volume '" + v.name +
+                                                                "' has another albedo or anisotropy than '" + rendered.volume().name +
+                                                                "': give them one, or take the kniss model (transport_color)");
     }
-    if (s.output.deep && std::any_of(s.volumes.begin(), s.volumes.end(), [](const VolumeSpec& v) { return v.role != VolumeRole::Visible; }))
+    if (s.output.deep && std::any_of(s.volumes.begin(), s.volumes.end(), [](const VolumeSpec& v) { return v.enabled && v.role != VolumeRole::Visible; }))
         root.fail("output", "deep output with a volume of role matte or shadow_only: its deep samples would carry every volume's opacity, so far");
     if (s.render.motion_blur && s.output.deep)
         root.fail("output", "deep output is made at one time and render.motion_blur spreads a pixel over the shutter: turn one of them off");

@@ -126,6 +126,8 @@ nlohmann::json poseToJson(const TransformKey& k) {
     return {{"translate", jsonVec3(k.translate)}, {"rotate", jsonVec3(k.rotate)}, {"scale", jsonVec3(k.scale)}};
 }
 
+}  // namespace
+
 // As written: a .chan file stays a file name, so an edit of the file is not an edit of the scene
 // text (the render graph hashes the file's identity beside it).
 nlohmann::json volumeTransformToJson(const VolumeTransform& t) {
@@ -145,6 +147,8 @@ nlohmann::json volumeTransformToJson(const VolumeTransform& t) {
     if (t.rotate_order != RotateOrder::Xyz) j["rotate_order"] = kRotateOrderNames[int(t.rotate_order)];
     return j;
 }
+
+namespace {
 
 nlohmann::json materialToJson(const Material& material) {
     nlohmann::json m;
@@ -187,6 +191,7 @@ nlohmann::json volumeToJson(const VolumeSpec& volume) {
     if (const auto& t = volume.transform) v["transform"] = volumeTransformToJson(*t);
     for (const VolumeTransform& t : volume.instances) v["instances"].push_back(volumeTransformToJson(t));
     v["role"] = kVolumeRoleNames[size_t(volume.role)];
+    if (!volume.enabled) v["enabled"] = false;   // written only when off, as a render's scene has none off
     v["material"] = materialToJson(volume.material);
     v["emission"] = nlohmann::json::array();
     for (const auto& e : volume.emission) v["emission"].push_back(emissionToJson(e));

@@ -212,7 +212,8 @@ int explainRender(const RenderCommand& cmd) {
     }
     for (const auto& p : missingInputs(scene, cmd.sequence, notes))
         if (std::find(problems.begin(), problems.end(), p) == problems.end()) problems.push_back(p);
-    std::cout << Renderer(scene).graph().explain(scene);
+    const Renderer renderer(scene);
+    std::cout << renderer.graph().explain(renderer.scene());
     if (problems.empty()) {
         printNotes(notes);
         return 0;

@@ -8,6 +8,25 @@
 #include "scene/scene_json.h"
 
 namespace voxlux {
+namespace {
+
+// The index of the item of `items` (lights, volumes) named `name_or_index`, or of the index it
+// spells; `kind` names them in the error.
+template <class Item>
+int indexByName(const std::vector<Item>& items, const nlohmann::json& name_or_index, const std::string& kind) {
+    const int count = int(items.size());
+    if (name_or_index.is_number_integer()) {
+        const int i = name_or_index.get<int>();
+        if (i < 0 || i >= count) throw InputError("no " + kind + " " + std::to_string(i) + " (the scene has " + std::to_string(count) + ")");
+        return i;
+    }
+    if (!name_or_index.is_string()) throw InputError("a " + kind + " is named by its name or its index");
+    for (int i = 0; i < count; ++i)
+        if (items[size_t(i)].name == name_or_index.get<std::string>()) return i;
+    throw InputError("no " + kind + " named \"" + name_or_index.get<std::string>() + "\"");
+}
+
+}  // namespace
 
 SceneEditor::SceneEditor(Scene scene) : scene_(std::move(scene)), json_(sceneToJson(scene_)) {}
 
@@ -72,18 +91,7 @@ void SceneEditor::adopt(const Scene& scene) {
     ++version_;
 }
 
-int SceneEditor::lightIndex(const nlohmann::json& name_or_index) const {
-    const int count = int(scene_.lights.size());
-    if (name_or_index.is_number_integer()) {
-        const int i = name_or_index.get<int>();
-        if (i < 0 || i >= count) throw InputError("no light " + std::to_string(i) + " (the scene has " + std::to_string(count) + ")");
-        return i;
-    }
-    if (!name_or_index.is_string()) throw InputError("a light is named by its name or its index");
-    for (int i = 0; i < count; ++i)
-        if (scene_.lights[i].name == name_or_index.get<std::string>()) return i;
-    throw InputError("no light named \"" + name_or_index.get<std::string>() + "\"");
-}
+int SceneEditor::lightIndex(const nlohmann::json& name_or_index) const { return indexByName(scene_.lights, name_or_index, "light"); }
 
 bool SceneEditor::addLight(const nlohmann::json& light) {
     solo_.reset();
@@ -124,6 +132,19 @@ bool SceneEditor::setLight(int index, const Light& light) {
     keys["enabled"] = light.enabled;
     return edit("light " + std::to_string(index), [&](nlohmann::json& j) { j.at("lights").at(size_t(index)) = keys; });
 }
+
+bool SceneEditor::enableVolume(int index, bool on) {
+    const std::string pointer = "/volumes/" + std::to_string(index) + "/enabled";
+    return edit(pointer, [&](nlohmann::json& j) { j[nlohmann::json::json_pointer(pointer)] = on; });
+}
+
+bool SceneEditor::setVolumeTransform(int index, const VolumeTransform& transform) {
+    // Named as the panel's drags name it, so a held drag of either merges into one undo step.
+    const std::string pointer = "/volumes/" + std::to_string(index) + "/transform";
+    return edit(pointer, [&](nlohmann::json& j) { j[nlohmann::json::json_pointer(pointer)] = volumeTransformToJson(transform); });
+}
+
+int SceneEditor::volumeIndex(const nlohmann::json& name_or_index) const { return indexByName(scene_.volumes, name_or_index, "volume"); }
 
 bool SceneEditor::soloLight(int index) {
     const size_t count = scene_.lights.size();

@@ -46,6 +46,13 @@ public:
     // The index of the light named `name`, or of the index `name` spells; throws InputError.
     int lightIndex(const nlohmann::json& name_or_index) const;
 
+    // Volumes, by index in the scene's list: shown or not (a disabled volume is neither loaded
+    // nor rendered), and placed by a transform (a gizmo drag).
+    bool enableVolume(int index, bool on);
+    bool setVolumeTransform(int index, const VolumeTransform& transform);
+    // The index of the volume named `name`, or of the index `name` spells; throws InputError.
+    int volumeIndex(const nlohmann::json& name_or_index) const;
+
     bool setCamera(const Camera& camera);
 
     // Undo and redo (Ctrl+Z, Ctrl+Shift+Z). The camera is not an undo step and stays where it is,

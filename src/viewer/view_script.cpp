@@ -5,11 +5,12 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "viewer/viewer_state.h"
 
 namespace voxlux {
 namespace {
 
-enum class Shape { Text, Number, Bool, Light, Object, Pair, Wait, Region };
+enum class Shape { Text, Number, Bool, Light, Volume, Object, Pair, Wait, Region };
 
 // Each kind, the shape of its value, and the other keys it takes.
 const std::map<std::string, std::pair<Shape, std::vector<std::string>>>& kinds() {
@@ -22,7 +23,7 @@ const std::map<std::string, std::pair<Shape, std::vector<std::string>>>& kinds()
         {"screenshot", {Shape::Text, {}}},   {"window_screenshot", {Shape::Text, {}}}, {"layout", {Shape::Text, {}}},
         {"save", {Shape::Text, {}}},         {"render", {Shape::Bool, {}}},           {"stats", {Shape::Text, {}}},
         {"quit", {Shape::Bool, {}}},         {"undo", {Shape::Bool, {}}},             {"redo", {Shape::Bool, {}}},
-        {"region", {Shape::Region, {}}},
+        {"region", {Shape::Region, {}}},     {"drag_volume", {Shape::Volume, {"by", "mode"}}},
     };
     return k;
 }
@@ -60,7 +61,7 @@ std::vector<ViewAction> parseViewScript(const std::string& text, const std::stri
         const bool ok = shape == Shape::Text     ? v.is_string()
                         : shape == Shape::Number ? v.is_number()
                         : shape == Shape::Bool   ? v.is_boolean()
-                        : shape == Shape::Light  ? v.is_string() || v.is_number_integer()
+                        : shape == Shape::Light || shape == Shape::Volume ? v.is_string() || v.is_number_integer()
                         : shape == Shape::Object ? v.is_object()
                         : shape == Shape::Pair   ? isPair(v)
                         : shape == Shape::Region ? isRegion(v)
@@ -70,6 +71,7 @@ std::vector<ViewAction> parseViewScript(const std::string& text, const std::stri
                                    : shape == Shape::Number ? "a number"
                                    : shape == Shape::Bool   ? "true or false"
                                    : shape == Shape::Light  ? "a light's name or index"
+                                   : shape == Shape::Volume ? "a volume's name or index"
                                    : shape == Shape::Object ? "an object"
                                    : shape == Shape::Pair   ? "two numbers"
                                    : shape == Shape::Region ? "four numbers, or false"
@@ -82,8 +84,11 @@ std::vector<ViewAction> parseViewScript(const std::string& text, const std::stri
             throw InputError(where + ": an enable action needs \"on\": true or false");
         if (kind == "wait_file" && a.contains("timeout") && !(a["timeout"].is_number() && a["timeout"].get<double>() >= 0))
             throw InputError(where + "/timeout: must be seconds");
-        if (kind == "drag_light" && !(a.contains("by") && isPair(a["by"])))
-            throw InputError(where + ": a drag_light action needs \"by\": [dx, dy] in pixels");
+        if ((kind == "drag_light" || kind == "drag_volume") && !(a.contains("by") && isPair(a["by"])))
+            throw InputError(where + ": a " + kind + " action needs \"by\": [dx, dy] in pixels");
+        if (kind == "drag_volume" && a.contains("mode") &&
+            std::find(kVolumeGizmoNames.begin(), kVolumeGizmoNames.end(), a["mode"]) == kVolumeGizmoNames.end())
+            throw InputError(where + "/mode: must be move, rotate or scale");
         actions.push_back({kind, a, where});
     }
     return actions;

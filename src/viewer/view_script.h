@@ -4,6 +4,8 @@
 //   {"light": "sun", "set": {"intensity": 4}}        a light's keys, by name or index
 //   {"enable": "sun", "on": false}   {"solo": "sun"}   {"remove_light": 0}   {"add_light": {...}}
 //   {"drag_light": "key", "by": [dx, dy]}            a gizmo drag, in viewport pixels
+//   {"drag_volume": "smoke", "by": [dx, dy], "mode": "move" | "rotate" | "scale"}
+//                                                    a volume's gizmo drag (mode: the gizmo's, unset)
 //   {"orbit": [yaw, pitch]}  {"pan": [x, y]}  {"dolly": 0.8}  {"frame": true}   (degrees, view heights)
 //   {"frame_number": 12}  {"aov": "direct"}
 //   {"wait": "converged"}  {"wait": 0.5} (seconds of running UI)  {"wait_file": "go.flag"}

@@ -44,19 +44,23 @@ constexpr int kSettleFrames = 3;             // frames drawn after an event befo
 std::string glfwProblem;
 extern "C" void onGlfwError(int, const char* text) { glfwProblem = text; }
 
-// The volume's world box from the density grid's active voxels, for framing and gizmo sizes.
+// Each volume's box from its density grid's active voxels, and the box of them all as placed, for
+// framing, the gizmos and their sizes.
 void readBounds(ViewerState& state) {
-    const Scene& s = state.editor.scene();
-    try {
-        const std::string file = state.frame ? expandFramePattern(s.volume().path, *state.frame) : s.volume().path;
-        for (const GridSummary& g : summarizeFile(file))
-            if (g.name == s.volume().density.name && g.active_voxels > 0) {
-                state.bounds_lo = glm::vec3(g.world_min.x, g.world_min.y, g.world_min.z);
-                state.bounds_hi = glm::vec3(g.world_max.x, g.world_max.y, g.world_max.z);
-                return;
-            }
-    } catch (const std::exception&) {   // the render names the problem
+    const std::vector<VolumeSpec>& volumes = state.editor.scene().volumes;
+    state.volume_boxes.assign(volumes.size(), std::nullopt);
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const VolumeSpec& v = volumes[i];
+        try {
+            const std::string file = state.frame ? expandFramePattern(v.path, *state.frame) : v.path;
+            for (const GridSummary& g : summarizeFile(file))
+                if (g.name == v.density.name && g.active_voxels > 0)
+                    state.volume_boxes[i] = {glm::vec3(g.world_min.x, g.world_min.y, g.world_min.z),
+                                             glm::vec3(g.world_max.x, g.world_max.y, g.world_max.z)};
+        } catch (const std::exception&) {   // the render names the problem
+        }
     }
+    state.updateBounds();
 }
 
 // Writes display-referred RGBA8 read back from the window (rows bottom-up) as a PNG.
@@ -237,10 +241,21 @@ bool ViewerApp::runAction(const ViewAction& a) {
         const glm::vec2 size = viewport_.imageHi() - viewport_.imageLo();
         check(Viewport::dragLight(state_, light(), glm::vec2(a.value["by"][0].get<float>(), a.value["by"][1].get<float>()), size));
     }
+    if (a.kind == "drag_volume") {
+        const int index = state_.editor.volumeIndex(v);
+        if (a.value.contains("mode"))
+            state_.volume_gizmo = VolumeGizmo(std::find(kVolumeGizmoNames.begin(), kVolumeGizmoNames.end(), a.value["mode"]) - kVolumeGizmoNames.begin());
+        state_.selected_volume = index;
+        const glm::vec2 size = viewport_.imageHi() - viewport_.imageLo();
+        check(Viewport::dragVolume(state_, index, glm::vec2(a.value["by"][0].get<float>(), a.value["by"][1].get<float>()), size));
+    }
     if (a.kind == "orbit") check(state_.editor.setCamera(orbit(state_.camera(), v[0].get<float>(), v[1].get<float>())));
     if (a.kind == "pan") check(state_.editor.setCamera(pan(state_.camera(), glm::vec2(v[0].get<float>(), v[1].get<float>()))));
     if (a.kind == "dolly") check(state_.editor.setCamera(dolly(state_.camera(), v.get<float>())));
-    if (a.kind == "frame") check(state_.editor.setCamera(frameAlong(state_.camera(), state_.bounds_lo, state_.bounds_hi)));
+    if (a.kind == "frame") {
+        state_.updateBounds();
+        check(state_.editor.setCamera(frameAlong(state_.camera(), state_.bounds_lo, state_.bounds_hi)));
+    }
     if (a.kind == "frame_number") {
         if (!state_.frame) throw InputError(a.where + ": the scene is not a sequence");
         state_.showFrame(v.get<int>());

@@ -190,37 +190,45 @@ void colourControls(ViewerState& state) {
     if (ImGui::DragFloat("exposure", &exposure, kStopsPerPixel, -20.0f, 20.0f, "%.2f stops")) setKey(state, "/render/exposure", exposure);
 }
 
-// Each volume by name, with its placement: translate, rotate and scale dragged (a move re-runs the
-// framing, lighting and march, not the load: docs/scene.md), or what places it when that is a
-// matrix or keys.
+// Each volume by name: shown or not, its role, and its placement: translate, rotate and scale
+// dragged here or with the viewport's gizmo (a move re-runs the framing, lighting and march, not
+// the load: docs/scene.md), or what places it when that is a matrix or keys.
 void volumeList(ViewerState& state) {
     const std::vector<VolumeSpec> volumes = state.editor.scene().volumes;   // a copy: an edit replaces the scene
     const float extent = std::max(glm::length(state.bounds_hi - state.bounds_lo), 1e-3f);
+    ImGui::TextUnformatted("gizmo (W E R):");
+    for (size_t m = 0; m < kVolumeGizmoNames.size(); ++m) {
+        ImGui::SameLine();
+        if (ImGui::RadioButton(kVolumeGizmoNames[m].c_str(), state.volume_gizmo == VolumeGizmo(m))) state.volume_gizmo = VolumeGizmo(m);
+    }
     for (size_t i = 0; i < volumes.size(); ++i) {
         const VolumeSpec& v = volumes[i];
         ImGui::PushID(int(i));
-        ImGui::TextUnformatted((v.name + "  " + std::filesystem::path(v.path).filename().string()).c_str());
+        bool on = v.enabled;
+        if (ImGui::Checkbox("##on", &on)) state.editor.enableVolume(int(i), on);
+        remember(state, "volume/" + std::to_string(i) + "/enable");
+        ImGui::SameLine();
+        const std::string label = v.name + "  " + std::filesystem::path(v.path).filename().string();
+        if (ImGui::Selectable(label.c_str(), state.selected_volume == int(i))) state.selected_volume = state.selected_volume == int(i) ? -1 : int(i);
         if (i == 0)
             if (auto g = combo("density grid", v.density.name, densityGrids(state))) setKey(state, "/volumes/0/density", *g);
         if (auto role = combo("role", kVolumeRoleNames[size_t(v.role)], kVolumeRoleNames))
             setKey(state, "/volumes/" + std::to_string(i) + "/role", *role);
         const VolumeTransform t = v.transform.value_or(VolumeTransform{});
-        const std::string pointer = "/volumes/" + std::to_string(i) + "/transform";
         if (t.matrix) {
             ImGui::TextDisabled("placed by a matrix (Every key)");
         } else if (!t.keys.empty()) {
             ImGui::TextDisabled("%s", (std::to_string(t.keys.size()) + " keys" + (t.chan.empty() ? "" : " from " + t.chan)).c_str());
         } else {
-            glm::vec3 translate = t.translate, rotate = t.rotate, scale = t.scale;
-            bool changed = ImGui::DragFloat3("translate", &translate.x, 0.005f * extent);
-            changed |= ImGui::DragFloat3("rotate", &rotate.x, 0.5f, 0.0f, 0.0f, "%.1f deg");
+            VolumeTransform edited = t;
+            bool changed = ImGui::DragFloat3("translate", &edited.translate.x, 0.005f * extent);
+            changed |= ImGui::DragFloat3("rotate", &edited.rotate.x, 0.5f, 0.0f, 0.0f, "%.1f deg");
             remember(state, "volume/" + std::to_string(i) + "/rotate");
-            changed |= ImGui::DragFloat3("scale", &scale.x, 0.005f, 1e-3f, 1e3f);
+            changed |= ImGui::DragFloat3("scale", &edited.scale.x, 0.005f, 1e-3f, 1e3f);
             int order = int(t.rotate_order);
             changed |= ImGui::Combo("rotate order", &order, kRotateOrderNames, IM_ARRAYSIZE(kRotateOrderNames));
-            if (changed && glm::compMin(scale) > 0.0f)
-                setKey(state, pointer, {{"translate", {translate.x, translate.y, translate.z}}, {"rotate", {rotate.x, rotate.y, rotate.z}},
-                                        {"scale", {scale.x, scale.y, scale.z}}, {"rotate_order", kRotateOrderNames[order]}});
+            edited.rotate_order = RotateOrder(order);
+            if (changed && glm::compMin(edited.scale) > 0.0f) state.editor.setVolumeTransform(int(i), edited);
         }
         ImGui::PopID();
     }

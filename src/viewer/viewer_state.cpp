@@ -1,6 +1,7 @@
 #include "viewer/viewer_state.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "viewer/orbit_camera.h"
 
@@ -45,6 +46,29 @@ Scene ViewerState::renderedScene() const {
 double ViewerState::fps() const {
     const auto& blur = editor.scene().render.motion_blur;
     return double(blur ? blur->fps : MotionBlur{}.fps);
+}
+
+std::optional<glm::vec3> ViewerState::volumePivot(size_t index) const {
+    if (index >= volume_boxes.size() || !volume_boxes[index] || index >= editor.scene().volumes.size()) return std::nullopt;
+    const auto& [lo, hi] = *volume_boxes[index];
+    return glm::vec3(volumePlacement(editor.scene().volumes[index], frame) * glm::vec4(0.5f * (lo + hi), 1.0f));
+}
+
+void ViewerState::updateBounds() {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    const std::vector<VolumeSpec>& volumes = editor.scene().volumes;
+    for (size_t i = 0; i < volumes.size() && i < volume_boxes.size(); ++i) {
+        if (!volumes[i].enabled || !volume_boxes[i]) continue;
+        const auto& box = *volume_boxes[i];
+        for (const glm::mat4& placement : instancePlacements(volumes[i], frame))
+            for (int corner = 0; corner < 8; ++corner) {
+                const glm::vec3 p(box[corner & 1].x, box[(corner >> 1) & 1].y, box[(corner >> 2) & 1].z);
+                const glm::vec3 placed(placement * glm::vec4(p, 1.0f));
+                lo = glm::min(lo, placed);
+                hi = glm::max(hi, placed);
+            }
+    }
+    if (lo.x <= hi.x) bounds_lo = lo, bounds_hi = hi;
 }
 
 Camera ViewerState::camera() const {

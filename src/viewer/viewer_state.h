@@ -1,6 +1,6 @@
-// What the viewer's parts share: the edited scene, the progressive render, the volume's bounds,
+// What the viewer's parts share: the edited scene, the progressive render, the volumes' boxes,
 // and the display choices that are the viewer's own (not the scene's): the AOV shown, the wipe,
-// the selected light, the frame of a sequence.
+// the selected light and volume, the volume gizmo's mode, the frame of a sequence.
 #pragma once
 #include <array>
 #include <map>
@@ -19,6 +19,11 @@ namespace voxlux {
 // The AOVs the viewport can show; "beauty" is the graded image through the scene's display and view.
 inline const std::vector<std::string> kViewAovs = {"beauty", "direct", "indirect", "ambient", "emission", "transmittance", "depth"};
 
+// What a drag of a volume's gizmo does (W, E and R, as in Maya): move it in the plane facing the
+// camera, turn it about the camera's up and right axes, or scale it, all about its box's centre.
+enum class VolumeGizmo { Move, Rotate, Scale };
+inline const std::vector<std::string> kVolumeGizmoNames{"move", "rotate", "scale"};
+
 struct ViewerState {
     explicit ViewerState(Scene scene) : editor(std::move(scene)) {}
 
@@ -31,7 +36,10 @@ struct ViewerState {
     std::string message;                         // the line under the viewport: an error, or what was written
     bool message_is_error = false;
 
-    glm::vec3 bounds_lo{-1.0f}, bounds_hi{1.0f};   // the volume's world box (framing, gizmo sizes)
+    glm::vec3 bounds_lo{-1.0f}, bounds_hi{1.0f};   // the enabled volumes' world box (framing, gizmo sizes)
+    // Each volume's box in its file's world (its density grid's active voxels), by index; unset
+    // when its file could not be read (the render names the problem).
+    std::vector<std::optional<std::array<glm::vec3, 2>>> volume_boxes;
     std::optional<int> frame;                      // the frame of a #### sequence shown
     int first_frame = 0, last_frame = 0;
     bool playing = false;
@@ -54,6 +62,8 @@ struct ViewerState {
     std::string aov = "beauty";
     bool show_guides = true;           // the bounding box and the axis triad
     int selected_light = 0;
+    int selected_volume = -1;          // its box is drawn and its gizmo handle highlighted
+    VolumeGizmo volume_gizmo = VolumeGizmo::Move;
     bool wipe = false;                 // show the held image left of the wipe line
     float wipe_at = 0.5f;              // fraction of the viewport's width
     std::shared_ptr<const ViewFrame> held;   // the "before" image of the wipe
@@ -80,6 +90,11 @@ struct ViewerState {
     double fps() const;
     // The scene's camera, or the framing the render chose when it has none yet.
     Camera camera() const;
+    // Volume `index`'s box centre as its transform places it (its instances are placed on top):
+    // where its gizmo handle sits and what the gizmo turns and scales about. Unset without a box.
+    std::optional<glm::vec3> volumePivot(size_t index) const;
+    // The world box of every enabled volume as placed (instances too), from volume_boxes.
+    void updateBounds();
     void showError(const std::string& line) { message = line, message_is_error = true; }
     void showNote(const std::string& line) { message = line, message_is_error = false; }
 };

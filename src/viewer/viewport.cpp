@@ -10,6 +10,7 @@
 #include <imgui.h>
 
 #include "scene/camera.h"
+#include "scene/transform_edit.h"
 #include "viewer/orbit_camera.h"
 
 namespace voxlux {
@@ -30,8 +31,37 @@ void fit(glm::vec2 size, glm::vec2 lo, glm::vec2 hi, glm::vec2& out_lo, glm::vec
 float radius(const ViewerState& s) { return 0.5f * glm::length(s.bounds_hi - s.bounds_lo); }
 glm::vec3 centre(const ViewerState& s) { return 0.5f * (s.bounds_lo + s.bounds_hi); }
 
+constexpr float kDegreesPerPixel = 0.4f;   // a gizmo's turn: 90 degrees over 225 pixels
+
 glm::vec3 rotate(glm::vec3 v, float degrees, glm::vec3 axis) {
     return glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(degrees), axis) * glm::vec4(v, 0.0f));
+}
+
+// A pixel's size in world units at `point`'s depth: the view's height there over the image's.
+float pixelSizeAt(const Camera& camera, glm::vec3 point, float image_height) {
+    const float depth = std::max(glm::dot(point - camera.position, -glm::vec3(cameraToWorld(camera)[2])), 1e-3f);
+    return 2.0f * depth * std::tan(glm::radians(camera.fov) * 0.5f) / image_height;
+}
+
+// The 12 edges of the box [lo, hi] placed by `placement`, each drawn when both ends are in front
+// of the camera; `image_lo` is where the image sits on screen.
+void drawBox(const Camera& camera, glm::vec2 image_lo, glm::vec2 size, glm::vec3 lo, glm::vec3 hi, const glm::mat4& placement, ImU32 colour) {
+    const glm::vec3 c[2] = {lo, hi};
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 4; ++k) {
+            // The edge along axis a: the other two axes take the bits of k.
+            const int u = (a + 1) % 3, v = (a + 2) % 3;
+            glm::vec3 p;
+            p[a] = c[0][a];
+            p[u] = c[k & 1][u];
+            p[v] = c[(k >> 1) & 1][v];
+            glm::vec3 q = p;
+            q[a] = c[1][a];
+            glm::vec2 sp, sq;
+            if (projectToImage(camera, size, glm::vec3(placement * glm::vec4(p, 1.0f)), sp) &&
+                projectToImage(camera, size, glm::vec3(placement * glm::vec4(q, 1.0f)), sq))
+                ImGui::GetBackgroundDrawList()->AddLine(im(image_lo + sp), im(image_lo + sq), colour, 1.0f);
+        }
 }
 
 }  // namespace
@@ -131,22 +161,7 @@ void Viewport::guides(const ViewerState& state) {
     ImDrawList* back = ImGui::GetBackgroundDrawList();
     const Camera camera = state.camera();
     const glm::vec2 size = image_hi_ - image_lo_;
-    // The bounding box: its 12 edges, each drawn when both ends are in front of the camera.
-    const glm::vec3 c[2] = {state.bounds_lo, state.bounds_hi};
-    for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < 4; ++k) {
-            // The edge along axis a: the other two axes take the bits of k.
-            const int u = (a + 1) % 3, v = (a + 2) % 3;
-            glm::vec3 p;
-            p[a] = c[0][a];
-            p[u] = c[k & 1][u];
-            p[v] = c[(k >> 1) & 1][v];
-            glm::vec3 q = p;
-            q[a] = c[1][a];
-            glm::vec2 sp, sq;
-            if (projectToImage(camera, size, p, sp) && projectToImage(camera, size, q, sq))
-                back->AddLine(im(image_lo_ + sp), im(image_lo_ + sq), IM_COL32(150, 150, 160, 160), 1.0f);
-        }
+    drawBox(camera, image_lo_, size, state.bounds_lo, state.bounds_hi, glm::mat4(1.0f), IM_COL32(150, 150, 160, 160));
     // The axis triad in the lower left corner: the world axes as the camera sees them.
     const glm::mat4 world_to_camera = glm::inverse(cameraToWorld(camera));
     const glm::vec2 origin(image_lo_.x + 36.0f, image_hi_.y - 36.0f);
@@ -169,16 +184,37 @@ bool Viewport::dragLight(ViewerState& state, int index, glm::vec2 by, glm::vec2 
     const glm::vec3 right(frame[0]), up(frame[1]);
     Light moved = light;
     if (light.type == LightType::Point || (light.type == LightType::Spot && !ImGui::GetIO().KeyShift)) {
-        // Move in the plane facing the camera through the light: a pixel is the view's height at
-        // the light's depth over the image's height.
-        const float depth = std::max(glm::dot(light.position - camera.position, -glm::vec3(frame[2])), 1e-3f);
-        const float per_pixel = 2.0f * depth * std::tan(glm::radians(camera.fov) * 0.5f) / image_size.y;
-        moved.position += (right * by.x - up * by.y) * per_pixel;
+        // Move in the plane facing the camera through the light.
+        moved.position += (right * by.x - up * by.y) * pixelSizeAt(camera, light.position, image_size.y);
     } else if (light.type != LightType::Ambient) {
         // Turn the direction: across the screen about the camera's up, up and down about its right.
-        moved.direction = glm::normalize(rotate(rotate(light.direction, by.x * 0.4f, up), by.y * 0.4f, right));
+        moved.direction = glm::normalize(rotate(rotate(light.direction, by.x * kDegreesPerPixel, up), by.y * kDegreesPerPixel, right));
     }
     return state.editor.setLight(index, moved);
+}
+
+bool Viewport::dragVolume(ViewerState& state, int index, glm::vec2 by, glm::vec2 image_size) {
+    const std::vector<VolumeSpec>& volumes = state.editor.scene().volumes;
+    if (index < 0 || index >= int(volumes.size())) return false;
+    const VolumeTransform t = volumes[size_t(index)].transform.value_or(VolumeTransform{});
+    const std::optional<glm::vec3> pivot = state.volumePivot(size_t(index));
+    if (!pivot || t.matrix || !t.keys.empty()) return false;   // the panel says what places it
+    const Camera camera = state.camera();
+    const glm::mat4 frame = cameraToWorld(camera);
+    const glm::vec3 right(frame[0]), up(frame[1]);
+    switch (state.volume_gizmo) {
+    case VolumeGizmo::Move:
+        return state.editor.setVolumeTransform(index, movedBy(t, (right * by.x - up * by.y) * pixelSizeAt(camera, *pivot, image_size.y)));
+    case VolumeGizmo::Rotate: {
+        // As a light's direction turns: across the screen about the camera's up, up and down about its right.
+        const glm::mat4 turn = glm::rotate(glm::rotate(glm::mat4(1.0f), glm::radians(by.y * kDegreesPerPixel), right),
+                                           glm::radians(by.x * kDegreesPerPixel), up);
+        return state.editor.setVolumeTransform(index, turnedAbout(t, glm::mat3(turn), *pivot));
+    }
+    case VolumeGizmo::Scale:   // right or up grows it, 1% a pixel
+        return state.editor.setVolumeTransform(index, scaledAbout(t, std::exp((by.x - by.y) * 0.01f), *pivot));
+    }
+    return false;
 }
 
 void Viewport::gizmos(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
@@ -245,6 +281,39 @@ void Viewport::gizmos(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
             if (d.x != 0.0f || d.y != 0.0f) dragLight(state, dragging_light_, gl2(d), size);
         }
     }
+    // Each enabled volume's handle at its box's centre, named with the gizmo's mode under the
+    // mouse; the selected volume's box drawn as placed.
+    const std::vector<VolumeSpec>& volumes = state.editor.scene().volumes;
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const std::optional<glm::vec3> pivot = state.volumePivot(i);
+        glm::vec2 h;
+        if (!volumes[i].enabled || !pivot || !toScreen(*pivot, h)) continue;
+        const bool selected = int(i) == state.selected_volume;
+        const ImU32 colour = selected ? IM_COL32(255, 200, 60, 255) : IM_COL32(90, 200, 230, 220);
+        if (selected) {
+            const auto& [box_lo, box_hi] = *state.volume_boxes[i];
+            drawBox(camera, image_lo_, size, box_lo, box_hi, volumePlacement(volumes[i], state.frame), colour);
+        }
+        const bool over = glm::length(gl2(mouse) - h) < 9.0f;
+        fg->AddRectFilled(im(h - glm::vec2(6.0f)), im(h + glm::vec2(6.0f)), colour);
+        if (over || dragging_volume_ == int(i)) {
+            fg->AddRect(im(h - glm::vec2(9.0f)), im(h + glm::vec2(9.0f)), IM_COL32(255, 255, 255, 255), 0.0f, 0, 2.0f);
+            fg->AddText(im(h + glm::vec2(12.0f, -7.0f)), colour, (volumes[i].name + ": " + kVolumeGizmoNames[size_t(state.volume_gizmo)]).c_str());
+        }
+        state.widgets["volume/" + std::to_string(i) + "/handle"] = glm::vec4(h - glm::vec2(6.0f), h + glm::vec2(6.0f));
+        if (over && free && dragging_light_ < 0 && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+            dragging_volume_ = int(i);
+            state.selected_volume = int(i);
+        }
+    }
+    if (dragging_volume_ >= 0) {
+        if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+            dragging_volume_ = -1;
+        } else {
+            const ImVec2 d = ImGui::GetIO().MouseDelta;
+            if (d.x != 0.0f || d.y != 0.0f) dragVolume(state, dragging_volume_, gl2(d), size);
+        }
+    }
 }
 
 // Ctrl + left drag draws the render region over the image; Ctrl + click clears it.
@@ -275,10 +344,18 @@ void Viewport::mouse(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     for (int b = 0; b < 3; ++b)
         if (ImGui::IsMouseClicked(b)) {
             const glm::vec2 m = gl2(io.MousePos);
-            navigating_[b] = !io.WantCaptureMouse && dragging_light_ < 0 && m.x >= lo.x && m.y >= lo.y && m.x < hi.x && m.y < hi.y;
+            navigating_[b] = !io.WantCaptureMouse && dragging_light_ < 0 && dragging_volume_ < 0 && m.x >= lo.x && m.y >= lo.y && m.x < hi.x && m.y < hi.y;
         }
-    if (!io.WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_F, false)) state.editor.setCamera(frameAlong(state.camera(), state.bounds_lo, state.bounds_hi));
-    if (io.WantCaptureMouse || dragging_light_ >= 0) return;
+    if (!io.WantCaptureKeyboard) {
+        if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) {
+            state.updateBounds();   // the volumes as they are placed now
+            state.editor.setCamera(frameAlong(state.camera(), state.bounds_lo, state.bounds_hi));
+        }
+        const int gizmo_keys[3] = {GLFW_KEY_W, GLFW_KEY_E, GLFW_KEY_R};
+        for (int m = 0; m < 3; ++m)
+            if (ImGui::IsKeyPressed(gizmo_keys[m], false)) state.volume_gizmo = VolumeGizmo(m);
+    }
+    if (io.WantCaptureMouse || dragging_light_ >= 0 || dragging_volume_ >= 0) return;
     const glm::vec2 d = gl2(io.MouseDelta);
     const float height = std::max(image_hi_.y - image_lo_.y, 1.0f);
     std::optional<Camera> moved;

@@ -1,6 +1,6 @@
 // The viewport: the newest image drawn to fit the window (scaled up while coarse levels show),
-// the before/after wipe, the pixel probe, the volume's bounding box and an axis triad, the light
-// gizmos, and the camera moves of the mouse as Houdini's and Blender's viewports have them (left
+// the before/after wipe, the pixel probe, the volumes' bounding box and an axis triad, the light
+// gizmos, each volume's gizmo (W moves, E turns, R scales it, as in Maya), and the camera moves of the mouse as Houdini's and Blender's viewports have them (left
 // drag orbits, middle pans, right or the wheel dollies, with or without Alt; F frames the volume;
 // Ctrl + left drag draws a render region, rendered alone at full quality over the image).
 // Everything is drawn with Dear ImGui's background draw list, clipped to the viewport, so the
@@ -36,6 +36,9 @@ public:
 
     // The light gizmo drag of `light` by `by` screen pixels, as a mouse drag does it.
     static bool dragLight(ViewerState& state, int light, glm::vec2 by, glm::vec2 image_size);
+    // The gizmo drag of volume `index` by `by` screen pixels in state.volume_gizmo's mode; false
+    // when the edit was refused or the volume is placed by a matrix or keys.
+    static bool dragVolume(ViewerState& state, int index, glm::vec2 by, glm::vec2 image_size);
 
 private:
     struct Texture;
@@ -51,6 +54,7 @@ private:
     std::optional<glm::vec4> probe_;
     glm::ivec2 probe_pixel_{0};
     int dragging_light_ = -1;
+    int dragging_volume_ = -1;
     bool navigating_[3] = {false, false, false};   // the drag of each button began in the viewport
     std::optional<glm::vec2> region_from_;          // where a Ctrl + drag of the render region began
 };

@@ -4,8 +4,10 @@
 
 namespace voxlux {
 
+bool isEmptyRange(const kernel::VxPageRange& r) { return r.capacity == 0 || glm::any(glm::greaterThan(r.lo, r.hi)); }
+
 bool growByPageRange(const kernel::VxPageRange& r, const glm::mat4& index_to_space, glm::vec3& lo, glm::vec3& hi) {
-    if (r.capacity == 0 || glm::any(glm::greaterThan(r.lo, r.hi))) return false;
+    if (isEmptyRange(r)) return false;
     for (int corner = 0; corner < 8; ++corner) {
         const glm::ivec3 b(corner & 1 ? r.hi.x + 1 : r.lo.x, corner & 2 ? r.hi.y + 1 : r.lo.y, corner & 4 ? r.hi.z + 1 : r.lo.z);
         const glm::vec3 p(index_to_space * glm::vec4(glm::vec3(b * VX_BRICK), 1.0f));

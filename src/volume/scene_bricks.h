@@ -21,6 +21,9 @@ struct SceneBricks {
     std::vector<glm::mat4> index_to_world;       // each volume's file's
 };
 
+// Whether range `r` holds no brick (its volume has nothing visible).
+bool isEmptyRange(const kernel::VxPageRange& r);
+
 // Grows [lo, hi] by the box of range `r`'s bricks mapped by `index_to_space` (its 8 corners); an
 // empty range adds nothing and gives false.
 bool growByPageRange(const kernel::VxPageRange& r, const glm::mat4& index_to_space, glm::vec3& lo, glm::vec3& hi);

@@ -123,8 +123,11 @@ StageActivity EmptyFrameStage::activity(const Scene&) const {
 }
 
 void EmptyFrameStage::run(StageRun& run) {
-    const std::string& why = classify_.emptyReason();
-    if (why.empty()) return;
+    if (classify_.emptyReason().empty() || !noVisibleBricks(classify_, volumes_)) return;
+    const size_t others = std::max<size_t>(volumes_.bricks().ranges.size(), 1) - 1;
+    const std::string why = classify_.emptyReason() + (others == 1 ? ", nor in the other volume"
+                                                       : others > 1 ? ", nor in the other " + std::to_string(others) + " volumes"
+                                                                    : "");
     if (!run.scene.value("/input/allow_empty").get<bool>()) throw InputError(why);
     run.warnings.push_back(why + "; rendered as an empty frame");
 }
@@ -143,7 +146,8 @@ StageActivity VolumesStage::activity(const Scene& s) const {
 
 void VolumesStage::run(StageRun& run) {
     const Scene& scene = run.scene(reads().keys);
-    kept_.resize(scene.volumes.size() - 1);
+    std::vector<Kept> before = std::move(kept_);
+    kept_.assign(scene.volumes.size() - 1, Kept{});
     for (size_t v = 1; v < scene.volumes.size(); ++v) {
         const std::string at = "/volumes/" + std::to_string(v);
         nlohmann::json entry = run.scene.value(at);
@@ -151,7 +155,11 @@ void VolumesStage::run(StageRun& run) {
         const nlohmann::json& file = run.scene.value("/input/volume_files/" + std::to_string(v));
         const std::string key = entry.dump() + file.dump() + run.scene.value("/render/filter").dump();
         Kept& k = kept_[v - 1];
-        if (k.key == key) {
+        // Kept under its key, not its place: the volumes after a disabled one move up the list.
+        const auto same = std::find_if(before.begin(), before.end(), [&](const Kept& b) { return b.key == key; });
+        if (same != before.end()) {
+            k = std::move(*same);
+            same->key.clear();   // taken: a second volume of the same key loads its own
             run.reused.push_back("volumes: " + scene.volumes[v].name);
             continue;
         }
@@ -170,6 +178,11 @@ void VolumesStage::run(StageRun& run) {
         pages.push_back(&k.pages);
     }
     joined_ = joinVolumeBricks(atlases, pages);
+}
+
+bool noVisibleBricks(const ClassifyStage& classify, const VolumesStage& volumes) {
+    const std::vector<kernel::VxPageRange>& ranges = volumes.bricks().ranges;
+    return classify.pages().empty() && std::all_of(ranges.begin(), ranges.end(), isEmptyRange);
 }
 
 StageReads CameraStage::reads() const { return {withPlacementKeys({"/camera", "/render/resolution", "/volumes/*/up"})}; }

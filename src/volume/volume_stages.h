@@ -105,12 +105,14 @@ private:
     std::string empty_reason_;
 };
 
-// Refuses a frame with nothing visible (InputError), unless the render document's
+class VolumesStage;
+
+// Refuses a frame with nothing visible in any volume (InputError), unless the render document's
 // /input/allow_empty says a sequence may have such frames; then it warns. A stage of its own, so
 // that allowing empty frames re-runs nothing but the stages after it.
 class EmptyFrameStage final : public Stage {
 public:
-    explicit EmptyFrameStage(const ClassifyStage& classify) : classify_(input(classify)) {}
+    EmptyFrameStage(const ClassifyStage& classify, const VolumesStage& volumes) : classify_(input(classify)), volumes_(input(volumes)) {}
     std::string name() const override { return "empty_check"; }
     StageReads reads() const override { return {{"/input/allow_empty"}}; }
     StageActivity activity(const Scene& scene) const override;
@@ -118,12 +120,14 @@ public:
 
 private:
     const ClassifyStage& classify_;
+    const VolumesStage& volumes_;
 };
 
 // The volumes of a scene of several after the first (whose stages are load, brick and classify):
 // each loaded, bricked and classified as those do, and kept while its own keys (its entry but the
-// transform, its file, the filter) stay the same, so an edit of one volume reloads no other; then
-// all joined into one atlas (volume/scene_bricks.h). It does not run for one volume.
+// transform, its file, the filter) stay the same, wherever it moves in the list, so an edit of one
+// volume, or one disabled or enabled again, reloads no other; then all joined into one atlas
+// (volume/scene_bricks.h). It does not run for one volume.
 // Cost: the changed volumes' load, brick and classify, and one copy of every volume's bricks.
 class VolumesStage final : public Stage {
 public:
@@ -146,6 +150,10 @@ private:
     std::vector<Kept> kept_;   // volumes 1, 2, ...
     SceneBricks joined_;
 };
+
+// Whether no volume of the scene has a brick to render: the first volume's classified pages are
+// empty, and so is every other volume's range. The light grid's stages idle then.
+bool noVisibleBricks(const ClassifyStage& classify, const VolumesStage& volumes);
 
 class CameraStage final : public Stage {
 public:

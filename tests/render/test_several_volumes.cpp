@@ -168,6 +168,39 @@ TEST(SeveralVolumes, AnEditOfOneVolumeReloadsNoOther) {
     EXPECT_EQ(std::find(edited.reused.begin(), edited.reused.end(), "volumes: c"), edited.reused.end());
 }
 
+// The gizmo's drag: a move of one volume re-runs the framing, light and march stages, no load or
+// brick of any volume.
+TEST(SeveralVolumes, AMoveOfOneVolumeReloadsAndRebricksNone) {
+    const std::string file = writeBall(tempDir("several-move"));
+    Scene scene = sceneOf({ball(file, "a", 0.6f), ball(file, "b", 0.6f, glm::vec3(1.0f, 0, 0))});
+    Renderer renderer(scene);
+    renderer.render(std::nullopt, false);
+    scene.volumes[1].transform->translate.y += 0.5f;
+    renderer.setScene(scene);
+    const FrameResult moved = renderer.render(std::nullopt, false);
+    for (const char* kept : {"load", "brick", "classify", "volumes"})
+        EXPECT_NE(std::find(moved.reused.begin(), moved.reused.end(), kept), moved.reused.end()) << kept;
+}
+
+// A disabled volume (the viewer's visibility toggle) renders as if it were not in the scene, and
+// turning it off and on reloads no other volume.
+TEST(SeveralVolumes, ADisabledVolumeRendersAsIfItWereNotThereAndReloadsNoOther) {
+    const std::string file = writeBall(tempDir("several-disabled"));
+    Scene scene = sceneOf({ball(file, "a", 0.6f), ball(file, "hidden", 2.0f, glm::vec3(0.5f, 0, 0)), ball(file, "c", 0.4f, glm::vec3(-1.0f, 0, 0))});
+    Renderer renderer(scene);
+    renderer.render(std::nullopt, false);
+    const auto reusedOnToggle = [&](bool on) {
+        scene.volumes[1].enabled = on;
+        renderer.setScene(scene);
+        const FrameResult r = renderer.render(std::nullopt, false);
+        return std::make_pair(r.image, std::find(r.reused.begin(), r.reused.end(), "volumes: c") != r.reused.end());
+    };
+    const auto [without_hidden, c_kept_off] = reusedOnToggle(false);
+    EXPECT_TRUE(c_kept_off);
+    EXPECT_TRUE(reusedOnToggle(true).second);
+    EXPECT_EQ(largestRelativeDifference(without_hidden, render(sceneOf({ball(file, "a", 0.6f), ball(file, "c", 0.4f, glm::vec3(-1.0f, 0, 0))}))), 0.0f);
+}
+
 // An instance is its volume placed again, reading the same bricks: a volume with two instances
 // renders as two volumes of the same file at those poses, to the bit, and 100 instances take the
 // atlas of one.
@@ -229,8 +262,11 @@ TEST(SeveralVolumes, WhatSeveralVolumesDoNotTakeYetIsRefusedByName) {
               "albedo and anisotropy only, so far");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb"}], "effects": {"perturbation": {}}})"),
               "shot.json: /effects/perturbation: set with 2 volumes: several volumes render without it, so far");
-    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "instances": [{}, {}]}], "effects": {"indirect": {}}})"),
-              "shot.json: /effects/indirect: set with 2 volumes: several volumes render without it, so far");
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "material": {"anisotropy": 0.5}}], "effects": {"indirect": {}}})"),
+              "shot.json: /effects/indirect: the diffusion model takes its profile from one material, and volume 'b' has another albedo "
+              "or anisotropy than 'a': give them one, or take the kniss model (transport_color)");
+    EXPECT_NO_THROW(parseScene(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "material": {"anisotropy": 0.5}}],
+        "effects": {"indirect": {"transport_color": [0.6, 0.5, 0.4]}}})", "shot.json", ""));
 }
 
 // Every method's light grid holds every volume: a volume between the light and another shadows
@@ -260,26 +296,66 @@ TEST(SeveralVolumes, AVolumeShadowsAnotherInEveryMethod) {
     }
 }
 
+// A frame where the first volume has nothing visible (a smoke not yet emitted) renders the others
+// lit, in every method, as when the empty one comes second; only a frame where no volume has
+// anything visible is refused.
+TEST(SeveralVolumes, AnEmptyFirstVolumeLeavesTheOthersLit) {
+    const std::string file = writeBall(tempDir("several-empty-first"));
+    const VolumeSpec empty = ball(file, "empty", 0.0f), lit = ball(file, "lit", 0.8f, glm::vec3(0.5f, 0, 0));
+    for (ShadowMethod method : {ShadowMethod::Raymarch, ShadowMethod::SatCone, ShadowMethod::Propagation}) {
+        const auto scene = [&](std::vector<VolumeSpec> v) {
+            Scene s = sceneOf(std::move(v));
+            s.effects.shadows = method;
+            return s;
+        };
+        EXPECT_LE(largestRelativeDifference(render(scene({lit, empty})), render(scene({empty, lit}))), 1e-5f) << shadowMethodName(method);
+    }
+    VolumeSpec also_empty = ball(file, "also_empty", 0.0f, glm::vec3(1.0f, 0, 0));
+    try {
+        render(sceneOf({empty, also_empty}));
+        ADD_FAILURE() << "rendered a frame with nothing visible";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(", nor in the other volume"), std::string::npos) << e.what();
+    }
+}
+
 // The light grid methods see two copies at half the density as one at the whole: the same medium
 // on a grid resampled from the volumes (shaders/vx_volumes.h) rather than box-filtered from one.
+// So do propagation's indirect light, by either model, and its eye pass.
 TEST(SeveralVolumes, TheLightGridMethodsSeeTwoHalvesAsTheWhole) {
     const std::string file = writeBall(tempDir("several-grid-additive"));
-    for (ShadowMethod method : {ShadowMethod::SatCone, ShadowMethod::Propagation}) {
+    Indirect kniss;
+    kniss.model = IndirectModel::Kniss;
+    kniss.transport_color = glm::vec3(0.7f, 0.5f, 0.3f);
+    struct Case {
+        const char* name;
+        ShadowMethod shadows;
+        std::optional<Indirect> indirect;
+        bool eye_pass = false;
+    };
+    for (const Case& c : {Case{"sat_cone", ShadowMethod::SatCone, std::nullopt}, Case{"propagation", ShadowMethod::Propagation, std::nullopt},
+                          Case{"propagation+indirect", ShadowMethod::Propagation, Indirect{}},
+                          Case{"propagation+kniss+eye_pass", ShadowMethod::Propagation, kniss, true}}) {
         Scene one = sceneOf({ball(file, "ball", 1.2f)});
         Scene two = sceneOf({ball(file, "a", 0.6f), ball(file, "b", 0.6f)});
         for (Scene* s : {&one, &two}) {
-            s->effects.shadows = method;
+            s->effects.shadows = c.shadows;
             s->effects.ambient_occlusion = AmbientOcclusion{};
+            s->effects.indirect = c.indirect;
+            s->effects.propagation.eye_pass = c.eye_pass;
         }
-        const RenderImage a = render(one), b = render(two);
-        double difference = 0.0, total = 0.0;
+        const FrameResult a_result = Renderer(one).render(std::nullopt, false), b_result = Renderer(two).render(std::nullopt, false);
+        const RenderImage &a = a_result.image, &b = b_result.image;
+        double difference = 0.0, total = 0.0, indirect = 0.0;
         for (size_t i = 0; i < a.pixels.size(); ++i) {
             difference += std::abs(luminance(glm::vec3(a.pixels[i].rgba)) - luminance(glm::vec3(b.pixels[i].rgba)));
             total += luminance(glm::vec3(a.pixels[i].rgba));
+            indirect += luminance(b.pixels[i].indirect);
         }
-        std::printf("  %s: mean relative difference %.4f\n", shadowMethodName(method).c_str(), difference / total);
+        std::printf("  %s: mean relative difference %.4f, indirect %.3f of %.3f\n", c.name, difference / total, indirect, total);
         EXPECT_GT(total, 1.0);
-        EXPECT_LE(difference / total, 0.03) << shadowMethodName(method);
+        EXPECT_EQ(indirect > 0.01 * total, c.indirect.has_value()) << c.name;
+        EXPECT_LE(difference / total, 0.03) << c.name;
     }
 }
 

@@ -380,7 +380,7 @@ TEST(EmissionScene, ErrorsNameTheKey) {
               "shot.json: /emission: at most 4 sources (got 5)");
     // The old single-grid keys are gone.
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "emission": "heat"}})"),
-              "shot.json: /volume/emission: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances, role)");
+              "shot.json: /volume/emission: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances, role, enabled)");
 }
 
 }  // namespace

@@ -55,13 +55,31 @@ TEST(SceneVolumes, ConflictsAndDuplicatesAreRefused) {
               "shot.json: /material: goes in each entry of volumes");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": []})"), "shot.json: /volumes: expected at least one volume");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "shadow": "matte"}]})"),
-              "shot.json: /volumes/0/shadow: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances, role, material, emission)");
+              "shot.json: /volumes/0/shadow: unknown key (expected one of name, path, frames, density, color, level_set, up, transform, instances, role, enabled, material, emission)");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a/smoke.vdb"}, {"path": "b/smoke.vdb"}]})"),
               "shot.json: /volumes/1/name: 'smoke' is also volume 0's name (taken from the file's; set name)");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "name": "x"}, {"path": "b.vdb", "name": "x"}]})"),
               "shot.json: /volumes/1/name: 'x' is also volume 0's name");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "color": "Cd", "material": {"transfer_function_2d": "ct_tissue"}}]})"),
               "shot.json: /volumes/0/color: the 2D transfer function (material.transfer_function_2d) gives the albedo; remove color");
+}
+
+// A disabled volume stays in the scene (written back, `enabled: false`) and is left out of the
+// render; what it holds is not refused, as it does not render; one volume stays enabled.
+TEST(SceneVolumes, ADisabledVolumeIsKeptAndLeftOutOfTheRender) {
+    const Scene s = parseScene(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "enabled": false,
+        "emission": [{"grid": "heat", "kind": "constant"}]}], "render": {"motion_blur": true}})", "shot.json", "");
+    ASSERT_EQ(s.volumes.size(), 2u);
+    EXPECT_FALSE(s.volumes[1].enabled);
+    EXPECT_EQ(sceneToJson(s)["volumes"][1]["enabled"], false);
+    EXPECT_FALSE(sceneToJson(s)["volumes"][0].contains("enabled"));
+    const Scene rendered = withEnabledVolumes(s);
+    ASSERT_EQ(rendered.volumes.size(), 1u);
+    EXPECT_EQ(rendered.volume().name, "a");
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "enabled": false}]})"),
+              "shot.json: /volumes: every volume is disabled (enabled: false): a scene renders one at least");
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb"}], "render": {"motion_blur": true}})"),
+              "shot.json: /render/motion_blur: set with 2 volumes: several volumes render without it, so far");
 }
 
 TEST(SceneVolumes, SetReachesAVolumeByIndexOrNameAndTheOneVolumesKeysAsWritten) {

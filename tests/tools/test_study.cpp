@@ -206,24 +206,25 @@ TEST(StudyPlan, EveryMethodOnceAndAOOnlyWithAnAmbientLight) {
     }
 }
 
-// A scene of several volumes studies what it can render and says what it refuses: indirect light,
-// so far.
+// A scene of several volumes studies what it can render and says what it refuses: the diffusion
+// model of indirect light, as the volumes' materials differ (Kniss's model takes any).
 TEST(StudyPlan, SeveralVolumesStudyEveryMethodTheyTake) {
     const std::string vdb = test::writeBall(test::tempDir("study_plan_several"));
     nlohmann::json j = ballScene(vdb, true);
     j["volumes"] = {{{"path", vdb}, {"name", "a"}, {"material", j["material"]}},
-                    {{"path", vdb}, {"name", "b"}, {"transform", {{"translate", {1, 0, 0}}}}}};
+                    {{"path", vdb}, {"name", "b"}, {"transform", {{"translate", {1, 0, 0}}}}, {"material", {{"albedo", {0.5, 0.5, 0.5}}}}}};
     j.erase("volume");
     j.erase("material");
     const nlohmann::json base = sceneToJson(parseScene(j.dump(), "s.json", ""));
     const StudyPlan plan = planStudy(base, {1}, 1);
     std::set<std::string> methods;
     for (const auto& s : plan.sweeps) methods.insert(s.method);
-    for (const char* m : {"unshadowed", "raymarch", "sat_cone", "propagation", "sat_cone+AO", "reference", kPresetSweep})
+    for (const char* m : {"unshadowed", "raymarch", "sat_cone", "propagation", "propagation+kniss", "sat_cone+AO", "reference", kPresetSweep})
         EXPECT_TRUE(methods.count(m)) << m;
     EXPECT_FALSE(methods.count("propagation+indirect"));
     ASSERT_EQ(plan.skipped.size(), 1u);
-    EXPECT_EQ(plan.skipped[0], "/effects/indirect: set with 2 volumes: several volumes render without it, so far");
+    EXPECT_EQ(plan.skipped[0], "/effects/indirect: the diffusion model takes its profile from one material, and volume 'b' has another "
+                               "albedo or anisotropy than 'a': give them one, or take the kniss model (transport_color)");
 }
 
 TEST(StudyPlan, KeepsTheScenesOwnIndirectSettings) {

@@ -328,6 +328,66 @@ TEST(ViewerWindow, TheVolumesPanelTurnsAVolumeWithoutReloadingIt) {
     EXPECT_NE(std::find(stats["edit_stages"].begin(), stats["edit_stages"].end(), "march"), stats["edit_stages"].end()) << stats;
 }
 
+// Two clouds side by side. A real 40-pixel drag of the right one's gizmo handle moves it with the
+// pointer (the handle lands 40 pixels on) and re-runs neither the load, the brick nor the volumes
+// stage; scripted drags turn it 0.4 degrees and scale it 1% a pixel; a click on its checkbox
+// disables it.
+TEST(ViewerWindow, AVolumesGizmoMovesTurnsAndScalesItAndItsCheckboxHidesIt) {
+    const std::string dir = tempDir("viewer-gizmo");
+    for (const char* f : {"layout.json", "moved.json", "go1", "go2"}) std::filesystem::remove(dir + "/" + f);
+    const nlohmann::json cloud = {{"path", sourceDir() + "/grids/cloud.vdb"}, {"material", {{"density_scale", 40.0}}}};
+    nlohmann::json right = cloud;
+    right["name"] = "right";
+    right["transform"] = {{"translate", {1.0, 0.0, 0.0}}};
+    nlohmann::json left = cloud;
+    left["name"] = "left";
+    std::ofstream(dir + "/two.json") << nlohmann::json{
+        {"volumes", {left, right}},
+        {"lights", {{{"type", "directional"}, {"direction", {0.65, -0.6, -0.45}}, {"intensity", 8.0}}}},
+        {"camera", {{"position", {0.5, 0.0, 5.0}}, {"look_at", {0.5, 0.0, 0.0}}, {"fov", 35.0}}},
+        {"render", {{"resolution", {160, 100}}, {"filter", "trilinear"}, {"backend", "cpu"}}},
+        {"effects", {{"shadows", "propagation"}}}};
+    const std::string script = writeScript(dir, "s.json",
+        {{{"wait", "converged"}}, {{"layout", dir + "/layout.json"}}, {{"wait_file", dir + "/go1"}, {"timeout", 120}},
+         {{"wait", "converged"}}, {{"layout", dir + "/moved.json"}}, {{"save", dir + "/moved_scene.json"}}, {{"stats", dir + "/stats.json"}},
+         {{"drag_volume", "right"}, {"by", {50, 0}}, {"mode", "rotate"}}, {{"save", dir + "/turned.json"}},
+         {{"drag_volume", 1}, {"by", {30, 0}}, {"mode", "scale"}}, {{"save", dir + "/scaled.json"}},
+         {{"wait_file", dir + "/go2"}, {"timeout", 120}}, {{"wait", 0.3}}, {{"save", dir + "/hidden.json"}}, {{"quit", true}}});
+    std::string moved_handle = centreOf("volume/1/handle");
+    moved_handle.replace(moved_handle.find("layout.json"), 11, "moved.json");
+    const CliResult r = runEvents(dir, R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        set -- HANDLE; xdotool mousemove --window $wid $1 $2; sleep 0.3
+        xdotool mousedown 1; sleep 0.2; for i in $(seq 8); do xdotool mousemove_relative 5 0; sleep 0.05; done; xdotool mouseup 1; sleep 0.3
+        touch DIR/go1; for i in $(seq 1200); do [ -f DIR/moved.json ] && break; sleep 0.1; done; sleep 0.3
+        set -- ENABLE; xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool click 1; sleep 0.3
+        touch DIR/go2; wait $pid)sh",
+                                  {{"VIEWER", voxluxBinary() + " view " + dir + "/two.json"}, {"SCRIPT", script},
+                                   {"HANDLE", centreOf("volume/1/handle")}, {"ENABLE", centreOf("volume/1/enable")}});
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const auto handle = [](const nlohmann::json& layout) {
+        const nlohmann::json& w = layout["widgets"]["volume/1/handle"];
+        return glm::vec2(w[0].get<float>() + w[2].get<float>(), w[1].get<float>() + w[3].get<float>()) * 0.5f;
+    };
+    const glm::vec2 travel = handle(readJson(dir + "/moved.json")) - handle(readJson(dir + "/layout.json"));
+    EXPECT_NEAR(travel.x, 40.0f, 4.0f);
+    EXPECT_NEAR(travel.y, 0.0f, 2.0f);
+    const nlohmann::json moved = readJson(dir + "/moved_scene.json")["volumes"][1]["transform"];
+    EXPECT_GT(moved["translate"][0].get<double>(), 1.1) << moved;
+    EXPECT_EQ(readJson(dir + "/moved_scene.json")["volumes"][0].value("transform", nlohmann::json()), nlohmann::json()) << "the left one stays";
+    const nlohmann::json stats = readJson(dir + "/stats.json");
+    ASSERT_TRUE(stats.contains("edit_stages")) << stats;
+    for (const auto& stage : stats["edit_stages"])
+        EXPECT_TRUE(stage != "load" && stage != "brick" && stage != "classify" && stage != "volumes") << stats;
+    // The camera looks along -z: a drag across the screen turns about y.
+    const nlohmann::json turned = readJson(dir + "/turned.json")["volumes"][1]["transform"];
+    EXPECT_NEAR(turned["rotate"][1].get<double>(), 20.0, 0.5) << turned;
+    EXPECT_NEAR(turned["rotate"][0].get<double>(), 0.0, 0.5) << turned;
+    const nlohmann::json scaled = readJson(dir + "/scaled.json")["volumes"][1]["transform"];
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(scaled["scale"][a].get<double>(), std::exp(0.3), 1e-4) << scaled;
+    EXPECT_EQ(readJson(dir + "/hidden.json")["volumes"][1].value("enabled", true), false);
+}
+
 // The timeline takes a typed frame (Enter shows it) and the arrow keys step it.
 TEST(ViewerWindow, TheTimelineTakesATypedFrameAndTheArrowKeys) {
     const std::string dir = tempDir("viewer-timeline-keys");

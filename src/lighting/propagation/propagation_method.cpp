@@ -17,7 +17,7 @@ public:
     explicit PropagationMethod(const SharedStages& shared)
         : grid_(shared.color_space, shared.xyz_to_working, shared.brick, shared.classify, shared.volumes, shared.light_grid),
           propagation_(shared.brick, shared.classify, shared.volumes, grid_),
-          eye_pass_(shared.brick, shared.classify, shared.camera, grid_, propagation_) {
+          eye_pass_(shared.brick, shared.classify, shared.volumes, shared.camera, grid_, propagation_) {
         shared.light_grid.addReader({"the illumination volume", illuminationVolumeRuns});
     }
     std::vector<Stage*> stages() override { return {&grid_, &propagation_, &eye_pass_}; }

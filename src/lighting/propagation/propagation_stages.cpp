@@ -606,8 +606,9 @@ void EyePassStage::run(StageRun& run) {
     passes_.keepFor(grid_.generation());   // as the propagation's, above
     const IlluminationVolume& lit = propagation_.volume();
     volume_ = lit;
-    const Scene& scene = run.scene({"/effects/indirect", "/effects/perturbation", "/volumes/*/transform"});
-    const KernelInputs inputs = makeKernelInputs(scene, brick_.atlas(), classify_.pages(), run.scene.frame());
+    const Scene& scene = run.scene({"/effects/indirect", "/effects/perturbation", "/volumes/*/material", "/volumes/*/transform",
+                                    "/volumes/*/instances", "/volumes/*/role"});
+    const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
     const std::vector<float> before(lit.values.begin() + long(lit.indirectOffset()), lit.values.end());
     const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);
     sweepTowardsEye(*scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, passes_.on(run.backend), volume_);

@@ -84,7 +84,7 @@ public:
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
-    bool idle() const override { return classify_.pages().empty(); }
+    bool idle() const override { return noVisibleBricks(classify_, volumes_); }
     void release() override;
     // The grid direct light sweeps over, and the one indirect light sweeps over (the same grid
     // unless chroma subsampled).
@@ -116,7 +116,7 @@ public:
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
-    bool idle() const override { return classify_.pages().empty(); }
+    bool idle() const override { return noVisibleBricks(classify_, volumes_); }
     void release() override;
     const IlluminationVolume& volume() const { return volume_; }
     const LightUpdate& lastUpdate() const { return last_update_; }
@@ -138,14 +138,15 @@ private:
 
 class EyePassStage final : public MarchLightingStageOf<IlluminationVolume> {
 public:
-    EyePassStage(const BrickStage& brick, const ClassifyStage& classify, const CameraStage& camera,
+    EyePassStage(const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes, const CameraStage& camera,
                  const IlluminationGridStage& grid, const PropagationStage& propagation)
-        : brick_(input(brick)), classify_(input(classify)), camera_(input(camera)), grid_(input(grid)), propagation_(input(propagation)) {}
+        : brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)), camera_(input(camera)), grid_(input(grid)),
+          propagation_(input(propagation)) {}
     std::string name() const override { return "eye_pass"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
     void run(StageRun& run) override;
-    bool idle() const override { return classify_.pages().empty(); }
+    bool idle() const override { return noVisibleBricks(classify_, volumes_); }
     void release() override {
         volume_ = IlluminationVolume{};
         passes_.release();
@@ -157,6 +158,7 @@ public:
 private:
     const BrickStage& brick_;
     const ClassifyStage& classify_;
+    const VolumesStage& volumes_;
     const CameraStage& camera_;
     const IlluminationGridStage& grid_;
     const PropagationStage& propagation_;
