@@ -134,7 +134,7 @@ FrameResult Renderer::runGraph(std::optional<int> frame, bool allow_empty, const
     // Of several volumes, the joined atlas the march reads (instances share their volume's bricks).
     const bool several = rendersAsSeveral(scene_);
     r.bricks = several ? stages_->volumes.bricks().pages.occupied : stages_->classify.pages().occupied;
-    r.empty = stages_->classify.pages().empty();
+    r.empty = noVisibleBricks(stages_->classify, stages_->volumes);
     r.atlas_bytes = several ? stages_->volumes.bricks().atlas.bytes() : stages_->brick.atlas().bytes();
     return r;
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -61,6 +62,13 @@ bool rendersAsSeveral(const Scene& scene) {
     return placedVolumeCount(scene) > 1 ||
            std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) { return v.role != VolumeRole::Visible; });
 }
+
+const VolumeSpec& Scene::volume() const {
+    const auto first = std::find_if(volumes.begin(), volumes.end(), [](const VolumeSpec& v) { return v.enabled; });
+    return first != volumes.end() ? *first : volumes.front();
+}
+
+VolumeSpec& Scene::volume() { return const_cast<VolumeSpec&>(std::as_const(*this).volume()); }
 
 Scene withEnabledVolumes(Scene scene) {
     std::erase_if(scene.volumes, [](const VolumeSpec& v) { return !v.enabled; });

@@ -333,10 +333,11 @@ struct ColorSettings {
 
 struct Scene {
     std::vector<VolumeSpec> volumes{1};    // at least one, and at least one enabled
-    // The first volume: the one whose frames, grids and up axis the quick form and the viewer's
-    // sequence controls take.
-    VolumeSpec& volume() { return volumes.front(); }
-    const VolumeSpec& volume() const { return volumes.front(); }
+    // The first enabled volume (the Renderer's first): the one whose frames, grids and up axis the
+    // quick form, the sequence tools and the viewer's timeline take.
+    // (The first volume when none is enabled, which only a scene built in code can be.)
+    VolumeSpec& volume();
+    const VolumeSpec& volume() const;
     std::vector<Light> lights;
     std::optional<Camera> camera;          // absent: framed from the volume's bounding box
     RenderSettings render;

@@ -743,8 +743,9 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
                 o.fail("name", "'" + v.name + "' is also volume " + std::to_string(k) + "'s name" +
                                    (o.has("name") ? "" : " (taken from the file's; set name)"));
     }
+    const std::string list = root.has("volumes") ? "volumes" : "volume";
     if (std::none_of(volumes.begin(), volumes.end(), [](const VolumeSpec& v) { return v.enabled; }))
-        root.fail(root.has("volumes") ? "volumes" : "volume", "every volume is disabled (enabled: false): a scene renders one at least");
+        root.fail(list, "every volume is disabled (enabled: false): a scene renders one at least");
     // What the march through several volumes (shaders/vx_volumes.h) does not read yet: each
     // volume is its density grid under its material's scale, albedo and anisotropy. Disabled
     // volumes are not rendered, so they take anything.
@@ -756,8 +757,7 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
         roles |= v.role != VolumeRole::Visible;
     }
     if (placed > VX_MAX_VOLUMES)
-        root.fail(root.has("volumes") ? "volumes" : "volume",
-                  std::to_string(placed) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
+        root.fail(list, std::to_string(placed) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
     if (placed > 1 || roles)
         for (size_t i = 0; i < volumes.size(); ++i) {
             const JsonObject& o = entries[i];

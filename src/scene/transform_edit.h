@@ -10,8 +10,9 @@
 
 namespace voxlux {
 
-// The degrees that give `rotation` in `order`; at gimbal lock (the middle angle at +-90) the
-// first angle is 0 and the last carries the turn. The inverse of rotationMatrix (scene.h).
+// The degrees that give `rotation` in `order`, to float rounding near gimbal lock too (the middle
+// angle at +-90, where the first angle is 0 and the last carries the turn). The inverse of
+// rotationMatrix (scene.h).
 glm::vec3 rotationAngles(const glm::mat3& rotation, RotateOrder order);
 
 // `t` (still: no matrix, no keys) moved by `by`, turned by `turn` about `pivot`, or scaled by

@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
-#include "viewer/viewer_state.h"
+#include "viewer/volume_gizmo.h"
 
 namespace voxlux {
 namespace {

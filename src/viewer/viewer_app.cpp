@@ -17,7 +17,6 @@
 #include <imgui_impl_opengl3.h>
 
 #include "core/error.h"
-#include "core/frame_pattern.h"
 #include "core/json_reader.h"
 #include "core/progress.h"
 #include "core/thread_limit.h"
@@ -30,7 +29,6 @@
 #include "viewer/view_script.h"
 #include "viewer/viewer_panels.h"
 #include "viewer/viewport.h"
-#include "volume/vdb_loader.h"
 
 namespace voxlux {
 namespace {
@@ -43,25 +41,6 @@ constexpr int kSettleFrames = 3;             // frames drawn after an event befo
 
 std::string glfwProblem;
 extern "C" void onGlfwError(int, const char* text) { glfwProblem = text; }
-
-// Each volume's box from its density grid's active voxels, and the box of them all as placed, for
-// framing, the gizmos and their sizes.
-void readBounds(ViewerState& state) {
-    const std::vector<VolumeSpec>& volumes = state.editor.scene().volumes;
-    state.volume_boxes.assign(volumes.size(), std::nullopt);
-    for (size_t i = 0; i < volumes.size(); ++i) {
-        const VolumeSpec& v = volumes[i];
-        try {
-            const std::string file = state.frame ? expandFramePattern(v.path, *state.frame) : v.path;
-            for (const GridSummary& g : summarizeFile(file))
-                if (g.name == v.density.name && g.active_voxels > 0)
-                    state.volume_boxes[i] = {glm::vec3(g.world_min.x, g.world_min.y, g.world_min.z),
-                                             glm::vec3(g.world_max.x, g.world_max.y, g.world_max.z)};
-        } catch (const std::exception&) {   // the render names the problem
-        }
-    }
-    state.updateBounds();
-}
 
 // Writes display-referred RGBA8 read back from the window (rows bottom-up) as a PNG.
 void writeWindowPng(const std::string& path, int width, int height) {
@@ -188,6 +167,7 @@ void ViewerApp::syncRender() {
         state_.submitted_region = state_.region;
     }
     if (state_.frame) state_.remember(state_.render->latest());
+    state_.readVolumeBoxes();   // for the gizmos, after a new frame, file or grid
     if (rendering_.valid() && rendering_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         try {
             state_.showNote(rendering_.get());
@@ -417,7 +397,8 @@ int ViewerApp::run(GLFWwindow* window) {
         state_.frame = state_.first_frame;
     }
     state_.save_path = defaultSaveName(options_.source);
-    readBounds(state_);
+    state_.readVolumeBoxes();
+    state_.updateBounds();
     state_.frame_cache_bytes = state_.frame ? options_.frame_cache_mb << 20 : 0;   // one frame needs no cache
     // The render wakes the UI when an image lands; the UI sleeps otherwise.
     state_.render = std::make_unique<ProgressiveRender>(scene, state_.frame, state_.frame_cache_bytes, [] { glfwPostEmptyEvent(); });

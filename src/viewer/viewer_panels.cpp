@@ -145,22 +145,20 @@ void lightEditor(ViewerState& state) {
     if (changed) state.editor.setLight(i, l);
 }
 
-const std::vector<std::string>& densityGrids(const ViewerState& state) {
-    static std::string file;
-    static std::vector<std::string> names;
-    const Scene& s = state.editor.scene();
-    const std::string now = state.frame ? expandFramePattern(s.volume().path, *state.frame) : s.volume().path;
-    if (now != file) {
-        file = now;
-        names.clear();
+// The float grids of `volume`'s file at the frame shown, each file read once.
+const std::vector<std::string>& densityGrids(const ViewerState& state, const VolumeSpec& volume) {
+    static std::map<std::string, std::vector<std::string>> grids;
+    const std::string file = state.frame ? expandFramePattern(volume.path, *state.frame) : volume.path;
+    const auto [at, added] = grids.try_emplace(file);
+    if (added) {
         try {
             const VdbFile vdb(file);
             for (const auto& g : vdb.grids())
-                if (g.value_type == "float" || g.value_type == "half") names.push_back(g.name);
+                if (g.value_type == "float" || g.value_type == "half") at->second.push_back(g.name);
         } catch (const std::exception&) {   // the render names the problem; the list stays empty
         }
     }
-    return names;
+    return at->second;
 }
 
 void colourControls(ViewerState& state) {
@@ -210,8 +208,7 @@ void volumeList(ViewerState& state) {
         ImGui::SameLine();
         const std::string label = v.name + "  " + std::filesystem::path(v.path).filename().string();
         if (ImGui::Selectable(label.c_str(), state.selected_volume == int(i))) state.selected_volume = state.selected_volume == int(i) ? -1 : int(i);
-        if (i == 0)
-            if (auto g = combo("density grid", v.density.name, densityGrids(state))) setKey(state, "/volumes/0/density", *g);
+        if (auto g = combo("density grid", v.density.name, densityGrids(state, v))) setKey(state, "/volumes/" + std::to_string(i) + "/density", *g);
         if (auto role = combo("role", kVolumeRoleNames[size_t(v.role)], kVolumeRoleNames))
             setKey(state, "/volumes/" + std::to_string(i) + "/role", *role);
         const VolumeTransform t = v.transform.value_or(VolumeTransform{});

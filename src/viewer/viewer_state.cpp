@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/frame_pattern.h"
 #include "viewer/orbit_camera.h"
+#include "volume/vdb_loader.h"
 
 namespace voxlux {
 
@@ -49,9 +51,31 @@ double ViewerState::fps() const {
 }
 
 std::optional<glm::vec3> ViewerState::volumePivot(size_t index) const {
-    if (index >= volume_boxes.size() || !volume_boxes[index] || index >= editor.scene().volumes.size()) return std::nullopt;
+    const std::vector<VolumeSpec>& volumes = editor.scene().volumes;
+    if (index >= volume_boxes.size() || !volume_boxes[index] || index >= volumes.size()) return std::nullopt;
+    const VolumeSpec& v = volumes[index];
+    if (!v.instances.empty() || (v.transform && (v.transform->matrix || !v.transform->keys.empty()))) return std::nullopt;
     const auto& [lo, hi] = *volume_boxes[index];
-    return glm::vec3(volumePlacement(editor.scene().volumes[index], frame) * glm::vec4(0.5f * (lo + hi), 1.0f));
+    return glm::vec3(volumePlacement(v, frame) * glm::vec4(0.5f * (lo + hi), 1.0f));
+}
+
+void ViewerState::readVolumeBoxes() {
+    const std::vector<VolumeSpec>& volumes = editor.scene().volumes;
+    std::string key = frame ? std::to_string(*frame) : "-";
+    for (const VolumeSpec& v : volumes) key += "|" + v.path + "|" + v.density.name;
+    if (key == volume_boxes_key) return;
+    volume_boxes_key = key;
+    volume_boxes.assign(volumes.size(), std::nullopt);
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const VolumeSpec& v = volumes[i];
+        try {
+            const std::string file = frame ? expandFramePattern(v.path, *frame) : v.path;
+            for (const GridSummary& g : summarizeFile(file))
+                if (g.name == v.density.name && g.active_voxels > 0)
+                    volume_boxes[i] = {glm::vec3(g.world_min.x, g.world_min.y, g.world_min.z), glm::vec3(g.world_max.x, g.world_max.y, g.world_max.z)};
+        } catch (const std::exception&) {   // the render names the problem
+        }
+    }
 }
 
 void ViewerState::updateBounds() {

@@ -13,16 +13,12 @@
 
 #include "viewer/progressive_render.h"
 #include "viewer/scene_editor.h"
+#include "viewer/volume_gizmo.h"
 
 namespace voxlux {
 
 // The AOVs the viewport can show; "beauty" is the graded image through the scene's display and view.
 inline const std::vector<std::string> kViewAovs = {"beauty", "direct", "indirect", "ambient", "emission", "transmittance", "depth"};
-
-// What a drag of a volume's gizmo does (W, E and R, as in Maya): move it in the plane facing the
-// camera, turn it about the camera's up and right axes, or scale it, all about its box's centre.
-enum class VolumeGizmo { Move, Rotate, Scale };
-inline const std::vector<std::string> kVolumeGizmoNames{"move", "rotate", "scale"};
 
 struct ViewerState {
     explicit ViewerState(Scene scene) : editor(std::move(scene)) {}
@@ -37,9 +33,10 @@ struct ViewerState {
     bool message_is_error = false;
 
     glm::vec3 bounds_lo{-1.0f}, bounds_hi{1.0f};   // the enabled volumes' world box (framing, gizmo sizes)
-    // Each volume's box in its file's world (its density grid's active voxels), by index; unset
-    // when its file could not be read (the render names the problem).
+    // Each volume's box in its file's world (its density grid's active voxels) at the frame shown,
+    // by index; unset when its file could not be read (the render names the problem).
     std::vector<std::optional<std::array<glm::vec3, 2>>> volume_boxes;
+    std::string volume_boxes_key;                  // the frame, paths and grids they were read for
     std::optional<int> frame;                      // the frame of a #### sequence shown
     int first_frame = 0, last_frame = 0;
     bool playing = false;
@@ -90,9 +87,13 @@ struct ViewerState {
     double fps() const;
     // The scene's camera, or the framing the render chose when it has none yet.
     Camera camera() const;
-    // Volume `index`'s box centre as its transform places it (its instances are placed on top):
-    // where its gizmo handle sits and what the gizmo turns and scales about. Unset without a box.
+    // Volume `index`'s box centre as its transform places it: where its gizmo handle sits and what
+    // the gizmo turns and scales about. Unset without a box, or when the gizmo cannot edit its
+    // placement: a matrix, keys, or instances (each placed on top of the transform, so none sits
+    // where the handle would).
     std::optional<glm::vec3> volumePivot(size_t index) const;
+    // Reads volume_boxes again when the frame or a volume's file or grid changed.
+    void readVolumeBoxes();
     // The world box of every enabled volume as placed (instances too), from volume_boxes.
     void updateBounds();
     void showError(const std::string& line) { message = line, message_is_error = true; }

@@ -198,7 +198,7 @@ bool Viewport::dragVolume(ViewerState& state, int index, glm::vec2 by, glm::vec2
     if (index < 0 || index >= int(volumes.size())) return false;
     const VolumeTransform t = volumes[size_t(index)].transform.value_or(VolumeTransform{});
     const std::optional<glm::vec3> pivot = state.volumePivot(size_t(index));
-    if (!pivot || t.matrix || !t.keys.empty()) return false;   // the panel says what places it
+    if (!pivot) return false;   // the panel says what places it
     const Camera camera = state.camera();
     const glm::mat4 frame = cameraToWorld(camera);
     const glm::vec3 right(frame[0]), up(frame[1]);

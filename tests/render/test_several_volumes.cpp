@@ -174,12 +174,14 @@ TEST(SeveralVolumes, AMoveOfOneVolumeReloadsAndRebricksNone) {
     const std::string file = writeBall(tempDir("several-move"));
     Scene scene = sceneOf({ball(file, "a", 0.6f), ball(file, "b", 0.6f, glm::vec3(1.0f, 0, 0))});
     Renderer renderer(scene);
-    renderer.render(std::nullopt, false);
+    const RenderImage before = renderer.render(std::nullopt, false).image;
     scene.volumes[1].transform->translate.y += 0.5f;
     renderer.setScene(scene);
     const FrameResult moved = renderer.render(std::nullopt, false);
     for (const char* kept : {"load", "brick", "classify", "volumes"})
         EXPECT_NE(std::find(moved.reused.begin(), moved.reused.end(), kept), moved.reused.end()) << kept;
+    EXPECT_EQ(std::find(moved.reused.begin(), moved.reused.end(), "march"), moved.reused.end());
+    EXPECT_GT(largestRelativeDifference(before, moved.image), 0.05f);   // it moved
 }
 
 // A disabled volume (the viewer's visibility toggle) renders as if it were not in the scene, and

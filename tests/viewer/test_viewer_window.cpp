@@ -379,6 +379,7 @@ TEST(ViewerWindow, AVolumesGizmoMovesTurnsAndScalesItAndItsCheckboxHidesIt) {
     ASSERT_TRUE(stats.contains("edit_stages")) << stats;
     for (const auto& stage : stats["edit_stages"])
         EXPECT_TRUE(stage != "load" && stage != "brick" && stage != "classify" && stage != "volumes") << stats;
+    EXPECT_NE(std::find(stats["edit_stages"].begin(), stats["edit_stages"].end(), "march"), stats["edit_stages"].end()) << stats;
     // The camera looks along -z: a drag across the screen turns about y.
     const nlohmann::json turned = readJson(dir + "/turned.json")["volumes"][1]["transform"];
     EXPECT_NEAR(turned["rotate"][1].get<double>(), 20.0, 0.5) << turned;
