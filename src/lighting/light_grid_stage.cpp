@@ -20,8 +20,8 @@ StageActivity LightGridStage::activity(const Scene& s) const {
         if (s.render.method == RenderMethod::Reference) return {false, kReferenceComputesAllLight};
         return {false, "skipped: no lighting method in the scene reads a light grid"};
     }
-    if (const size_t n = placedVolumeCount(s); rendersAsSeveral(s))
-        return {true, "the " + std::to_string(n) + " volumes' extinction resampled into a " + std::to_string(s.effects.light_resolution) +
+    if (rendersAsSeveral(s))
+        return {true, "the " + std::to_string(placedVolumeCount(s)) + " volumes' extinction resampled into a " + std::to_string(s.effects.light_resolution) +
                           "-cell light grid over their shared box, for " + readers};
     return {true, "extinction box-filtered into a " + std::to_string(s.effects.light_resolution) +
                       "-cell light grid over the occupied bricks, for " + readers};

@@ -218,7 +218,7 @@ struct Tracker {
     // and for a path's last flight. Its tentative collisions are a Poisson process of rate m, so by
     // Campbell's theorem the sum over them of T(t) f(t) / m, with T(t) the running ratio-tracking
     // product, estimates the integral of T f along the ray without bias. With f = sigma that is the
-    // probability of scattering at all: when `choose`, one collision is chosen in proportion to its
+    // probability of scattering at all: for the camera's flight (`camera`), one collision is chosen in proportion to its
     // term, by the pixel's stratified number, and the path scatters there with the whole sum as its
     // weight, where delta tracking would escape with probability T and give nothing. With f = Le it
     // is the emission along the ray. The product at the end is the transmittance to the outside
@@ -245,7 +245,6 @@ struct Tracker {
 
     // `camera`: the camera ray's flight (the flight chooses its scattering then).
     RatioFlight ratioFlight(glm::vec3 x, glm::vec3 w, bool camera, ReferenceRng& rng, int& events) const {
-        const bool choose = camera;
         thread_local std::vector<Candidate> candidates;
         candidates.clear();
         RatioFlight p;
@@ -263,7 +262,7 @@ struct Tracker {
                 if (emits && !opaque) p.emitted += T * emission(c) / m;
                 if (term > 0.0f) {
                     p.weight += term;
-                    if (choose) candidates.push_back({p.weight, at, s});
+                    if (camera) candidates.push_back({p.weight, at, s});
                 }
                 T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - sigma / m);
                 if (T < kRouletteT) T = rng.next() * kRouletteT < T ? kRouletteT : 0.0f;

@@ -167,7 +167,9 @@ void ViewerApp::syncRender() {
         state_.submitted_region = state_.region;
     }
     if (state_.frame) state_.remember(state_.render->latest());
-    state_.readVolumeBoxes();   // for the gizmos, after a new frame, file or grid
+    // The gizmos' boxes, after a new frame, file or grid; not during playback, where reading every
+    // volume's file each frame would hold the UI up for handles no one drags.
+    if (!state_.playing) state_.readVolumeBoxes();
     if (rendering_.valid() && rendering_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         try {
             state_.showNote(rendering_.get());
