@@ -355,7 +355,9 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                 if (deep_on) vx_deep_span(deep, float(k + j) * dt * cos_forward, float(k + j + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
                 // Exact integral of a constant segment: the light scattered in a segment of
                 // extinction sigma is albedo * L_in * (T_k - T_k+1); emission integrates to
-                // Le * (T_k - T_k+1) / sigma, which tends to Le * T_k * dt as sigma -> 0.
+                // Le * (T_k - T_k+1) / sigma = Le * T_k * dt * (1 - e^(-sigma dt)) / (sigma dt),
+                // the quotient by its series where sigma dt is small (thin smoke at a flame's
+                // edge), where the difference of transmittances would lose its digits.
                 tau = chunk.tau[j];
                 float T_next = chunk.T[j];
                 float absorbed = T - T_next;
@@ -371,7 +373,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                     px.ambient = vx_radiance_add(px.ambient, albedo * ambient * vx_lighting_ambient(lit) * absorbed);
                     depth_weighted += absorbed * t * cos_forward;
                 }
-                px.emission = vx_radiance_add(px.emission, le * (sigma > 1e-6f ? absorbed / sigma : T * dt));
+                px.emission = vx_radiance_add(px.emission, le * (T * dt * vx_exp_integral(sigma * dt)));
                 T = T_next;
             }
         }
