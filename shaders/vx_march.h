@@ -222,7 +222,7 @@ VxPixel vx_finish_ray(VxPixel px, float T, float alpha, float depth_weighted, VX
 // g; the space between the volumes' boxes is jumped. Sample by sample, without the one volume's
 // SIMD batches. The ray is attenuated by the visible volumes and the mattes; the light the
 // visible ones absorb is the pixel's alpha (1 - T without mattes), so a matte cuts what is behind
-// it and adds nothing.
+// it and adds nothing. The visible volumes' emission is integrated as the one volume's is.
 VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) deep) {
     VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
@@ -237,16 +237,19 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay
     float coverage = 0.0f;
     float depth_weighted = 0.0f;
     float cos_forward = dot(dir, forward);
+    bool emits = P.emission_sources > 0;
     VxMedium m;
-    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && vx_volumes_sample(origin, dir, dt, t1, k, m); ++k) {
+    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && vx_volumes_sample(origin, dir, dt, t1, emits, k, m); ++k) {
         float t = (float(k) + 0.5f) * dt;
         vec3 x = origin + dir * t;
         px.samples += 1.0f;
-        if (m.sigma_camera <= 0.0f) continue;
+        vec3 le = m.emitted;
+        if (m.sigma_camera <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
         if (deep_on) vx_deep_span(deep, float(k) * dt * cos_forward, float(k + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
         tau += m.sigma_camera * dt;
         float T_next = vx_exp(-tau);
         float absorbed = T - T_next;
+        px.emission = vx_radiance_add(px.emission, le * (T * dt * vx_exp_integral(m.sigma_camera * dt)));   // as the one volume's march
         T = T_next;
         if (m.sigma_visible <= 0.0f) continue;   // a matte's stretch: it cuts, and adds nothing
         vec3 albedo = vx_medium_albedo(m, m.sigma_camera);

@@ -51,19 +51,26 @@ vec3 vx_albedo(VxTaps r) {
 }
 
 // Emitted radiance per world unit at a sample: each source's grid value through its own table
-// (linear between rows, clamped to the grid's range), summed over the sources. The atlas holds
-// the sources' channels one after another, so a source's taps are the density's shifted.
-vec3 vx_emission(VxTaps r) {
+// (linear between rows, clamped to the grid's range), summed over the sources `first` to
+// first + count - 1. The atlas holds the sources' channels one after another, `stride` floats
+// apart, so a source's taps are the density's shifted (by `offset` to the first).
+vec3 vx_emission_of(VxTaps r, int first, int count, int offset, int stride) {
     vec3 sum = vec3(0.0f);
-    for (int s = 0; s < P.emission_sources; ++s) {
-        VxTaps rs = vx_taps_offset(r, s * P.emission_source_floats);
-        float x = clamp(vx_emission_value_at(rs) * P.emission_domain[s], 0.0f, 1.0f) *
+    for (int s = 0; s < count; ++s) {
+        VxTaps rs = vx_taps_offset(r, offset + s * stride);
+        int source = first + s;
+        float x = clamp(vx_emission_value_at(rs) * P.emission_domain[source], 0.0f, 1.0f) *
                   float(VX_EMISSION_LUT_SIZE - 1);
         int i = min(int(x), VX_EMISSION_LUT_SIZE - 2);
-        int row = s * VX_EMISSION_LUT_SIZE + i;
+        int row = source * VX_EMISSION_LUT_SIZE + i;
         sum = vx_radiance_add(sum, vec3(mix(vx_emission_lut(row), vx_emission_lut(row + 1), x - float(i))));
     }
     return sum;
+}
+
+// The one volume's emission: all the scene's sources, right after one another.
+VX_INLINE vec3 vx_emission(VxTaps r) {
+    return vx_emission_of(r, 0, P.emission_sources, 0, P.emission_source_floats);
 }
 
 // Unshadowed radiance arriving at world point x from light L. Returns the direction towards the

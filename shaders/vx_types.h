@@ -126,6 +126,11 @@ struct VxVolume {
     int role;               // VX_ROLE_*
     int pad1;
     int pad2;
+    int emission_first;     // its first emission source: the scene's sources are numbered volume by
+                            // volume (P.emission_domain and the emission table's rows)
+    int emission_count;     // its sources (0: it emits nothing)
+    int emission_offset;    // from a tap's index in the density to its first source's
+    int emission_stride;    // atlas floats from one of its sources to the next (its slots' voxels)
 };
 
 // What one camera ray returns; the AOVs are kept separate so the EXR writer can lay them out.

@@ -4,24 +4,27 @@
 // the volumes' (exactly the mixture's single-scattering albedo), and so is the Henyey-Greenstein g
 // (the mixture's mean cosine, which one lobe of that g stands in for). Roles: every volume's
 // extinction stops light; a camera ray meets the visible volumes and the mattes; only the visible
-// ones scatter colour (a matte or a shadow-only volume absorbs what it stops). Cost: per sample, a box test
+// ones scatter colour and emit (a matte or a shadow-only volume absorbs what it stops). Emission
+// adds. Cost: per sample, a box test
 // per volume and a hashed page lookup per volume whose box holds the sample; the space between
 // the volumes' boxes is crossed in one jump per gap, not sample by sample.
 #pragma once
 #include "vx_dda.h"
+#include "vx_optics.h"
 
 // The volumes' medium at a point: the summed extinction (of every volume, as light meets it; of
 // those a camera ray meets; of the visible ones), the visible ones' scattering (extinction times
-// albedo) and their scattering-weighted sum of g (weighted by the albedo's mean).
+// albedo), their scattering-weighted sum of g (weighted by the albedo's mean) and their summed
+// emitted radiance per world unit.
 struct VxMedium {
     vec3 scattering;
     float sigma;
+    vec3 emitted;
     float sigma_camera;
     float sigma_visible;
     float g_sum;
     float g_weight;
     float pad0;
-    float pad1;
 };
 
 // The scattering-weighted albedo of extinction `sigma` (a light ray's, or a camera ray's), and the
@@ -33,42 +36,56 @@ VX_INLINE float vx_medium_g(VxMedium m) { return m.g_weight > 0.0f ? m.g_sum / m
 VX_INLINE vec3 vx_volume_lo(VxVolume V) { return vec3(V.pages.lo) * float(VX_BRICK); }
 VX_INLINE vec3 vx_volume_hi(VxVolume V) { return vec3(V.pages.hi + ivec3(1)) * float(VX_BRICK); }
 
-// The extinction of volume V at world point x (0 outside its stored bricks); `inside` tells
-// whether x lies in its box of bricks.
-float vx_volume_extinction(VxVolume V, vec3 x, VX_OUT(bool) inside) {
+// The reconstruction of volume V at world point x, in `taps`; false where no stored brick of it
+// holds x (nothing is there). `inside` tells whether x lies in its box of bricks.
+bool vx_volume_taps(VxVolume V, vec3 x, VX_OUT(bool) inside, VX_OUT(VxTaps) taps) {
     vec3 p = vec3(V.world_to_index * vec4(x, 1.0f));
     ivec3 b = ivec3(floor(p / float(VX_BRICK)));
     inside = !(b.x < V.pages.lo.x || b.y < V.pages.lo.y || b.z < V.pages.lo.z || b.x > V.pages.hi.x || b.y > V.pages.hi.y ||
                b.z > V.pages.hi.z);
-    if (!inside) return 0.0f;
+    if (!inside) return false;
     int slot = vx_table_find(b, V.pages.first, V.pages.capacity, V.pages.max_probe);
-    if (slot == VX_PAGE_EMPTY) return 0.0f;
-    return V.density_scale * vx_density_at(vx_taps_in(V.pages, slot, b, p));
+    if (slot == VX_PAGE_EMPTY) return false;
+    taps = vx_taps_in(V.pages, slot, b, p);
+    return true;
 }
 
-// The medium at world point x; `inside` tells whether x lies in any volume's box of bricks (when
-// not, the ray may jump to vx_volumes_next_entry).
-VxMedium vx_volumes_medium(vec3 x, VX_OUT(bool) inside) {
+// The extinction of volume V at world point x (0 outside its stored bricks).
+float vx_volume_extinction(VxVolume V, vec3 x, VX_OUT(bool) inside) {
+    VxTaps taps;
+    return vx_volume_taps(V, x, inside, taps) ? V.density_scale * vx_density_at(taps) : 0.0f;
+}
+
+// The medium at world point x, with the emission when `emission` is set (the camera's rays and
+// the reference's flights; shadow rays need the extinction only); `inside` tells whether x lies
+// in any volume's box of bricks (when not, the ray may jump to vx_volumes_next_entry).
+VxMedium vx_volumes_medium(vec3 x, bool emission, VX_OUT(bool) inside) {
     VxMedium m;
     m.scattering = vec3(0.0f);
     m.sigma = 0.0f;
+    m.emitted = vec3(0.0f);
     m.sigma_camera = 0.0f;
     m.sigma_visible = 0.0f;
     m.g_sum = 0.0f;
     m.g_weight = 0.0f;
     m.pad0 = 0.0f;
-    m.pad1 = 0.0f;
     inside = false;
     for (int v = 0; v < P.volume_count; ++v) {
         VxVolume V = vx_placed_volume(v);
         bool in_box;
-        float sigma = vx_volume_extinction(V, x, in_box);
+        VxTaps taps;
+        bool stored = vx_volume_taps(V, x, in_box, taps);
         inside = inside || in_box;
+        if (!stored) continue;
+        float sigma = V.density_scale * vx_density_at(taps);
+        bool visible = V.role == VX_ROLE_VISIBLE;
+        if (emission && visible && V.emission_count > 0)
+            m.emitted = vx_radiance_add(m.emitted, vx_emission_of(taps, V.emission_first, V.emission_count, V.emission_offset, V.emission_stride));
         if (sigma <= 0.0f) continue;
         m.sigma += sigma;
         if (V.role == VX_ROLE_SHADOW_ONLY) continue;
         m.sigma_camera += sigma;
-        if (V.role == VX_ROLE_MATTE) continue;
+        if (!visible) continue;
         m.sigma_visible += sigma;
         m.scattering += sigma * V.albedo;
         float weight = sigma * (V.albedo.x + V.albedo.y + V.albedo.z);
@@ -122,13 +139,14 @@ int vx_volumes_skip(vec3 x, vec3 w, int k, float dt, float t_end) {
 }
 
 // The ray's sample t_k = (k + 0.5) * dt inside a volume's box, from k on: k moves past the space
-// between boxes, and m is the medium there; false once the samples pass t_end.
-bool vx_volumes_sample(vec3 x, vec3 w, float dt, float t_end, VX_INOUT(int) k, VX_OUT(VxMedium) m) {
+// between boxes, and m is the medium there (with its emission when `emission` is set); false once
+// the samples pass t_end.
+bool vx_volumes_sample(vec3 x, vec3 w, float dt, float t_end, bool emission, VX_INOUT(int) k, VX_OUT(VxMedium) m) {
     for (;; ++k) {
         float t = (float(k) + 0.5f) * dt;
         if (t > t_end) return false;
         bool inside;
-        m = vx_volumes_medium(x + w * t, inside);
+        m = vx_volumes_medium(x + w * t, emission, inside);
         if (inside) return true;
         k = vx_volumes_skip(x, w, k, dt, t_end);
         if (k < 0) return false;
@@ -143,6 +161,6 @@ float vx_volumes_optical_depth(vec3 x, vec3 w, float dist, float dt, float tau_c
     if (!vx_volumes_clip(x, w, t0, t1)) return 0.0f;
     float tau = 0.0f;
     VxMedium m;
-    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut && vx_volumes_sample(x, w, dt, t1, k, m); ++k) tau += m.sigma * dt;
+    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut && vx_volumes_sample(x, w, dt, t1, false, k, m); ++k) tau += m.sigma * dt;
     return tau;
 }

@@ -21,8 +21,9 @@ void ColorSpaceStage::run(StageRun& run) {
     working_.reset();
     const Scene& scene = run.scene({"/color/config", "/color/working_space", "/volumes/*/emission/*/kind"});
     ColorPipeline p = resolveWorkingSpace(scene.color);
-    const bool blackbody = std::any_of(scene.volume().emission.begin(), scene.volume().emission.end(),
-                                       [](const EmissionSource& e) { return e.kind == EmissionKind::Blackbody; });
+    const bool blackbody = std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) {
+        return v.enabled && std::any_of(v.emission.begin(), v.emission.end(), [](const EmissionSource& e) { return e.kind == EmissionKind::Blackbody; });
+    });
     if (blackbody && !p.xyz_to_working)
         throw InputError(p.config_source + ": has no linear cie_xyz_d65_interchange role into '" + p.working_space +
                          "', which blackbody emission needs");

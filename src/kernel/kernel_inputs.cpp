@@ -67,6 +67,11 @@ void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, Kern
             k.density_scale = densityScale(spec.material, voxelEdge(index_to_world));
             k.anisotropy = spec.material.anisotropy;
             k.role = spec.role == VolumeRole::Matte ? VX_ROLE_MATTE : spec.role == VolumeRole::ShadowOnly ? VX_ROLE_SHADOW_ONLY : VX_ROLE_VISIBLE;
+            const VolumeEmission& e = bricks.emission[v];
+            k.emission_first = e.first;
+            k.emission_count = e.count;
+            k.emission_offset = e.offset;
+            k.emission_stride = e.stride;
             in.params.volume_roles |= k.role != VX_ROLE_VISIBLE ? 1 : 0;
             in.volumes.push_back(k);
         }
@@ -84,8 +89,28 @@ float stepUnit(const KernelInputs& in) {
     return edge;
 }
 
+// One emission source of the scene and the largest value of its grid in this frame.
+struct SourceSpan {
+    const EmissionSource* source;
+    float grid_max;
+};
+
+// The scene's emission sources in the kernel's numbering: the one volume's, or of several (their
+// joined `volumes`) each volume's in turn.
+std::vector<SourceSpan> emissionSources(const Scene& scene, const BrickAtlas& atlas, const SceneBricks* volumes) {
+    std::vector<SourceSpan> out;
+    if (!volumes) {
+        for (size_t e = 0; e < atlas.emission_sources; ++e) out.push_back({&scene.volume().emission.at(e), atlas.emissionGridMax(e)});
+        return out;
+    }
+    for (size_t v = 0; v < scene.volumes.size(); ++v)
+        for (size_t s = 0; s < size_t(volumes->emission[v].count); ++s)
+            out.push_back({&scene.volumes[v].emission.at(s), volumes->emission_grid_max[size_t(volumes->emission[v].first) + s]});
+    return out;
+}
+
 // The medium: the march step, the material, the transfer function and the emission tables.
-void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz_to_working, KernelInputs& in) {
+void setMedium(const Scene& scene, const BrickAtlas& atlas, const SceneBricks* volumes, const glm::mat3& xyz_to_working, KernelInputs& in) {
     auto& P = in.params;
     const auto& r = scene.render;
     const auto& m = scene.volume().material;
@@ -102,14 +127,15 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const glm::mat3& xyz
     // Each source's table spans its grid's values in this frame's atlas. When none emits anywhere
     // (all-zero grids) the march runs as without emission, to the bit.
     bool emits = false;
-    for (size_t e = 0; e < atlas.emission_sources; ++e) {
-        const float grid_max = atlas.emissionGridMax(e);
-        const EmissionTable table = bakeEmission(scene.volume().emission.at(e), grid_max, xyz_to_working);
+    const std::vector<SourceSpan> sources = emissionSources(scene, atlas, volumes);
+    for (size_t e = 0; e < sources.size(); ++e) {
+        const float grid_max = sources[e].grid_max;
+        const EmissionTable table = bakeEmission(*sources[e].source, grid_max, xyz_to_working);
         in.emission_lut.insert(in.emission_lut.end(), table.rows.begin(), table.rows.end());
         P.emission_domain[int(e)] = grid_max > 0.0f ? 1.0f / grid_max : 0.0f;
         emits |= table.threshold < std::numeric_limits<float>::infinity();
     }
-    P.emission_sources = emits ? int(atlas.emission_sources) : 0;
+    P.emission_sources = emits ? int(sources.size()) : 0;
     P.emission_source_floats = int(atlas.slots()) * VX_BRICK_VOXELS;
     const float lo = m.transfer.empty() ? 0.0f : m.transfer.front().value;
     const float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
@@ -227,7 +253,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     P.region_capacity = pages.region_capacity;
     P.region_max_probe = pages.region_max_probe;
     if (sources.volumes) setVolumes(scene, *sources.volumes, frame, in);   // and the shared frame
-    setMedium(scene, atlas, xyz_to_working, in);
+    setMedium(scene, atlas, sources.volumes, xyz_to_working, in);
     setLights(scene, in);
     in.lighting = sources.lighting;   // the methods' blocks and arrays, as their stages set them
     P.ambient *= sources.lighting.ambient_scale;

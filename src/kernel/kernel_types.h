@@ -30,9 +30,10 @@ VX_LINE_ALIGNED(VxParams, use_surface_grid);
 VX_LINE_ALIGNED(VxParams, camera_open);
 VX_LINE_ALIGNED(VxParams, camera_close);
 static_assert(sizeof(VxPageRange) == 48);
-static_assert(sizeof(VxVolume) == 144);
+static_assert(sizeof(VxVolume) == 160);
 VX_LINE_ALIGNED(VxVolume, pages);
 VX_LINE_ALIGNED(VxVolume, albedo);
+VX_LINE_ALIGNED(VxVolume, emission_first);
 static_assert(VX_MAX_EMISSION == 4, "VxParams::emission_domain holds one source per vec4 component");
 static_assert(sizeof(VxLighting) % 16 == 0, "each lighting method's block is whole 16-byte lines");
 // A method's own blocks are checked in its kernel/ folder (cpu_<method>_kernel.h).

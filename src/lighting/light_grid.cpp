@@ -192,7 +192,9 @@ namespace {
 // cell's mean by the midpoint rule over 2^3 points of the cell (1 where cells are no larger than
 // the finest voxel), each point the volumes' summed medium through their own reconstruction. So
 // every volume is resampled by its own filter, whatever its voxel size or rotation, and the grid
-// need not align with any of them. Cells outside every volume's box cost one box test per volume.
+// need not align with any of them. The emission's mean is taken over the same points (the one
+// volume's over 2^3 points of each voxel). Cells outside every volume's box cost one box test per
+// volume.
 LightGrid buildVolumesLightGrid(const KernelInputs& in, int resolution, LightGridContents contents) {
     kernel::CpuKernelData k = bindKernelData(in);
     const float bleeding = contents.bleeding;
@@ -203,6 +205,9 @@ LightGrid buildVolumesLightGrid(const KernelInputs& in, int resolution, LightGri
     g.cell = float(std::max({voxels.x, voxels.y, voxels.z})) / float(resolution);
     g.origin = glm::vec3(k.P.bricks_min * VX_BRICK);
     assignInHugePages(g.values, g.cells() * g.planes, 0.0f);
+    const bool emits = contents.emission && k.P.emission_sources > 0;
+    if (emits) g.emission.assign(g.cells() * 3, 0.0f);
+    if (emits) g.scattering.assign(g.cells() * 3, 0.0f);
     // Each volume's box in the shared frame.
     std::vector<std::pair<glm::vec3, glm::vec3>> boxes;
     const glm::mat4 world_to_shared = glm::inverse(in.index_to_world);
@@ -224,18 +229,25 @@ LightGrid buildVolumesLightGrid(const KernelInputs& in, int resolution, LightGri
                     }))
                     continue;
                 double sum[4] = {0.0, 0.0, 0.0, 0.0};
+                glm::dvec3 emitted(0.0), scattering(0.0);
                 for (int q = 0; q < n * n * n; ++q) {
                     const glm::vec3 at = lo + (glm::vec3(q % n, q / n % n, q / (n * n)) + 0.5f) * (g.cell / float(n));
                     bool inside = false;
-                    const auto m = k.vx_volumes_medium(glm::vec3(in.index_to_world * glm::vec4(at, 1.0f)), inside);
+                    const auto m = k.vx_volumes_medium(glm::vec3(in.index_to_world * glm::vec4(at, 1.0f)), emits, inside);
                     sum[0] += m.sigma;
                     for (int c = 0; c < 3; ++c) sum[c + 1] += double(m.sigma) - double(bleeding) * m.scattering[c];
+                    emitted += glm::dvec3(m.emitted);
+                    scattering += glm::dvec3(m.scattering);
                 }
-                const double mean = sum[0] / double(n * n * n);
+                const double points = double(n * n * n), mean = sum[0] / points;
                 const double scale = mean > max_sigma ? max_sigma / mean : 1.0;   // as buildLightGrid clamps
                 clamped += mean > max_sigma;
                 const size_t i = (size_t(cz) * g.dims.y + cy) * g.dims.x + cx;
-                for (int p = 0; p < g.planes; ++p) g.values[p * plane + i] = float(sum[p] / double(n * n * n) * scale);
+                for (int p = 0; p < g.planes; ++p) g.values[p * plane + i] = float(sum[p] / points * scale);
+                for (int ch = 0; emits && ch < 3; ++ch) {
+                    g.emission[i * 3 + ch] = float(std::min(emitted[ch] / points, double(VX_FLOAT_MAX)));
+                    g.scattering[i * 3 + ch] = float(scattering[ch] / points * scale);
+                }
             }
     });
     g.clamped_cells = clamped;

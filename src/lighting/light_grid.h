@@ -29,6 +29,8 @@ struct LightGrid {
     std::vector<uint8_t> needed;   // 1 where the march may read the light cache (near extinction)
     std::vector<float> emission;   // when asked for: RGB per cell, x fastest: mean emitted radiance
                                    // per world unit over the cell
+    std::vector<float> scattering; // with the emission, of several volumes: RGB per cell, the mean
+                                   // scattering coefficient (of one volume: its albedo times the extinction)
     std::vector<float> transport_depth;   // when asked for: 3 planes (R, G, B), x fastest: mean
                                           // extinction times -ln(transport colour) over the cell
     uint64_t clamped_cells = 0;    // cells above kMaxCellOpticalDepth, clamped

@@ -54,7 +54,7 @@ struct Tracker {
         const glm::vec3 p = s.o + s.d * t;
         if (s.slot < 0) {
             bool inside = false;
-            c.mixed = k.vx_volumes_medium(p, inside);
+            c.mixed = k.vx_volumes_medium(p, k.P.emission_sources > 0, inside);
             return c;
         }
         bool found = false;
@@ -74,7 +74,7 @@ struct Tracker {
     float extinction(const Collision& c) const { return several() ? c.mixed.sigma : c.taps ? k.vx_extinction(*c.taps) : 0.0f; }
     float cameraExtinction(const Collision& c) const { return several() ? c.mixed.sigma_camera : extinction(c); }
     float visibleExtinction(const Collision& c) const { return several() ? c.mixed.sigma_visible : extinction(c); }
-    glm::vec3 emission(const Collision& c) const { return c.taps ? k.vx_emission(*c.taps) : glm::vec3(0.0f); }
+    glm::vec3 emission(const Collision& c) const { return several() ? c.mixed.emitted : c.taps ? k.vx_emission(*c.taps) : glm::vec3(0.0f); }
     // The albedo at a collision with extinction `sigma` (extinction(c) for a path's flights,
     // cameraExtinction(c) for the camera ray's).
     glm::vec3 albedo(const Collision& c, float sigma) const { return several() ? k.vx_medium_albedo(c.mixed, sigma) : k.vx_albedo(*c.taps); }
@@ -372,12 +372,14 @@ ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
     ExtinctionBounds b{std::vector<float>(slots, 0.0f), std::vector<float>(slots, 0.0f), {}};
     if (k.P.volume_count > 0) {
         // Several volumes: each volume's largest extinction (either filter stays within its
-        // voxels' range), over the slots of its pages.
+        // voxels' range), over the slots of its pages; where a volume emits, at least the one
+        // volume's floor, so that its emission is sampled where it has no extinction.
         for (const kernel::VxVolume& v : in.volumes) {
             float hi = 0.0f;
             for (int e = v.pages.first; e < v.pages.first + v.pages.capacity; ++e)
                 if (const int slot = in.pages->entries[size_t(e)].w; slot != VX_PAGE_EMPTY) hi = std::max(hi, atlas.density_range[size_t(slot)].y);
-            b.volume_majorant.push_back(hi * v.density_scale);
+            const bool emits = k.P.emission_sources > 0 && v.emission_count > 0 && v.role == VX_ROLE_VISIBLE && !isEmptyRange(v.pages);
+            b.volume_majorant.push_back(std::max(hi * v.density_scale, emits ? 1.0f / voxelEdge(glm::inverse(v.world_to_index)) : 0.0f));
         }
         return b;
     }

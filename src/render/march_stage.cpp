@@ -76,7 +76,11 @@ StageActivity MarchStage::activity(const Scene& s) const {
         march += reference ? ", motion-blurred where the medium or camera moves (a time a path)"
                            : ", motion-blurred where the medium or camera moves (" + std::to_string(mb->samples) +
                                  (mb->samples == 1 ? " ray" : " rays") + " a pixel)";
-    for (size_t i = 0; i < s.volume().emission.size(); ++i) march += (i ? ", " : ", emission: ") + emissionDescription(s.volume().emission[i]);
+    for (const VolumeSpec& v : s.volumes) {
+        if (!v.enabled || v.emission.empty()) continue;
+        march += ", emission" + (rendersAsSeveral(s) ? " of " + v.name : std::string()) + ": ";
+        for (size_t i = 0; i < v.emission.size(); ++i) march += (i ? ", " : "") + emissionDescription(v.emission[i]);
+    }
     return {true, march};
 }
 

@@ -26,7 +26,7 @@ CoveragePlanes volumeCoverage(const KernelInputs& in, const std::vector<int>& sc
                 const float dt = P.step;
                 float tau = 0.0f, T = 1.0f;
                 kernel::CpuKernelData::VxMedium m;
-                for (int s = k.vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && k.vx_volumes_sample(origin, dir, dt, t1, s, m); ++s) {
+                for (int s = k.vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && k.vx_volumes_sample(origin, dir, dt, t1, false, s, m); ++s) {
                     const glm::vec3 at = origin + dir * ((float(s) + 0.5f) * dt);
                     if (m.sigma_camera <= 0.0f) continue;
                     tau += m.sigma_camera * dt;

@@ -63,6 +63,12 @@ bool rendersAsSeveral(const Scene& scene) {
            std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) { return v.role != VolumeRole::Visible; });
 }
 
+bool emits(const Scene& scene) {
+    return std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) {
+        return v.enabled && !v.emission.empty() && v.role == VolumeRole::Visible;
+    });
+}
+
 const VolumeSpec& Scene::volume() const {
     const auto first = std::find_if(volumes.begin(), volumes.end(), [](const VolumeSpec& v) { return v.enabled; });
     return first != volumes.end() ? *first : volumes.front();

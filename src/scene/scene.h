@@ -281,6 +281,9 @@ size_t placedVolumeCount(const Scene& scene);
 bool rendersAsSeveral(const Scene& scene);
 // The scene as it renders: its disabled volumes left out (scene_read keeps one enabled at least).
 Scene withEnabledVolumes(Scene scene);
+// Whether an enabled volume of the scene has emission sources (one of several emits only when it
+// is visible, shaders/vx_volumes.h).
+bool emits(const Scene& scene);
 
 enum class PixelType { Half, Float };
 

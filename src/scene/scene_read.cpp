@@ -747,14 +747,19 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
     if (std::none_of(volumes.begin(), volumes.end(), [](const VolumeSpec& v) { return v.enabled; }))
         root.fail(list, "every volume is disabled (enabled: false): a scene renders one at least");
     // What the march through several volumes (shaders/vx_volumes.h) does not read yet: each
-    // volume is its density grid under its material's scale, albedo and anisotropy. Disabled
-    // volumes are not rendered, so they take anything.
-    size_t placed = 0;
+    // volume is its density grid under its material's scale, albedo and anisotropy, and the light
+    // its grids emit. Disabled volumes are not rendered, so they take anything.
+    size_t placed = 0, sources = 0;
     bool roles = false;
-    for (const VolumeSpec& v : volumes) {
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const VolumeSpec& v = volumes[i];
         if (!v.enabled) continue;
         placed += std::max<size_t>(1, v.instances.size());
         roles |= v.role != VolumeRole::Visible;
+        sources += v.emission.size();
+        if (sources > VX_MAX_EMISSION)
+            entries[i].fail("emission", "brings the scene's emission sources to " + std::to_string(sources) + ": the volumes take at most " +
+                                            std::to_string(VX_MAX_EMISSION) + " together");
     }
     if (placed > VX_MAX_VOLUMES)
         root.fail(list, std::to_string(placed) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
@@ -763,11 +768,10 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
             const JsonObject& o = entries[i];
             const VolumeSpec& v = volumes[i];
             if (!v.enabled) continue;
-            const std::string why = ": a volume of several takes its density grid, density_scale, albedo and anisotropy only, so far";
+            const std::string why = ": a volume of several takes its density grid, density_scale, albedo, anisotropy and emission only, so far";
             if (!v.material.transfer.empty()) o.object("material").fail("transfer_function", "set" + why);
             if (!v.material.transfer_2d.empty()) o.object("material").fail("transfer_function_2d", "set" + why);
             if (v.color) o.fail("color", "set" + why);
-            if (!v.emission.empty()) o.fail("emission", "set" + why);
         }
     return volumes;
 }

@@ -37,6 +37,16 @@ SceneBricks joinVolumeBricks(const std::vector<const BrickAtlas*>& atlases, cons
         out.atlas.density.insert(out.atlas.density.end(), a.density.begin(), a.density.end());
         out.atlas.density_range.insert(out.atlas.density_range.end(), a.density_range.begin(), a.density_range.end());
         out.atlas.active_voxels += a.active_voxels;
+        // Its sources' blocks after the volumes' before: source s of slot i at offset + s * stride
+        // past the tap's index i * 729 + voxel in the joined density.
+        VolumeEmission e;
+        e.first = int(out.emission_grid_max.size());
+        e.count = int(a.emission_sources);
+        e.stride = int(a.slots()) * VX_BRICK_VOXELS;
+        e.offset = int(out.atlas.emission.size()) - slot_offset * VX_BRICK_VOXELS;
+        out.emission.push_back(e);
+        out.atlas.emission.insert(out.atlas.emission.end(), a.emission.begin(), a.emission.end());
+        for (size_t s = 0; s < a.emission_sources; ++s) out.emission_grid_max.push_back(a.emissionGridMax(s));
         // The bricks' entries only, their slots moved past the volumes before.
         for (int i = 0; i < p.brick_capacity; ++i) {
             glm::ivec4 e = p.entries[size_t(i)];

@@ -133,7 +133,8 @@ void EmptyFrameStage::run(StageRun& run) {
 }
 
 StageReads VolumesStage::reads() const {
-    return {{"/volumes/*/path", "/volumes/*/density", "/volumes/*/level_set", "/volumes/*/material", "/volumes/*/instances?", "/volumes/*/role",
+    return {{"/volumes/*/path", "/volumes/*/density", "/volumes/*/level_set", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/instances?",
+             "/volumes/*/role",
              "/input/volume_files", "/render/filter"}};
 }
 

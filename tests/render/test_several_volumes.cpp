@@ -1,8 +1,8 @@
 // Several volumes in one scene (shaders/vx_volumes.h): extinction adds where they overlap, so two
 // copies at half the density render as one at the whole, in the march (to float rounding) and in
 // the reference (within its noise); far-apart volumes render as each alone; a mix of albedos and
-// anisotropies matches the reference; a matte holds out what is behind it and a shadow-only volume
-// only shadows; a volume's stages re-run only for its own edits; what several volumes do not take
+// anisotropies matches the reference; emission adds, and a fire lights the smoke beside it; a matte
+// holds out what is behind it and a shadow-only volume only shadows; a volume's stages re-run only for its own edits; what several volumes do not take
 // yet is refused by name.
 #include <filesystem>
 #include <fstream>
@@ -78,6 +78,45 @@ std::pair<double, double> meanAndError(const RenderImage& img) {
     return {sum / n, std::sqrt(variance) / n};
 }
 
+// The ball file with a "heat" grid beside its density, 1 at the centre and 0 at 1.2 times the
+// density's radius: it emits where the density has faded out, too.
+std::string writeFireBall(const std::string& dir) {
+    auto density = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
+    auto heat = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
+    heat->setName("heat");
+    auto d = density->getAccessor();
+    auto h = heat->getAccessor();
+    for (int z = -24; z <= 24; ++z)
+        for (int y = -24; y <= 24; ++y)
+            for (int x = -24; x <= 24; ++x) {
+                const float r = std::sqrt(float(x * x + y * y + z * z)) / 20.0f;
+                if (r <= 1.0f) d.setValue({x, y, z}, 1.0f - r);
+                if (r <= 1.2f) h.setValue({x, y, z}, 1.0f - r / 1.2f);
+            }
+    const std::string path = dir + "/fire.vdb";
+    openvdb::io::File(path).write({density, heat});
+    return path;
+}
+
+// A volume of the fire-ball file whose heat glows orange at `intensity`.
+VolumeSpec fire(const std::string& file, const std::string& name, float density_scale, float intensity,
+                glm::vec3 translate = glm::vec3(0.0f)) {
+    VolumeSpec v = ball(file, name, density_scale, translate);
+    EmissionSource glow;
+    glow.grid = GridRef{"heat", 0};
+    glow.color = glm::vec3(1.0f, 0.45f, 0.1f);
+    glow.intensity = intensity;
+    v.emission = {glow};
+    return v;
+}
+
+// The sum of the emission AOV over the image.
+double emitted(const RenderImage& img) {
+    double sum = 0.0;
+    for (const auto& p : img.pixels) sum += luminance(p.emission);
+    return sum;
+}
+
 TEST(SeveralVolumes, TwoCopiesAtHalfTheDensityMarchAsOneAtTheWhole) {
     const std::string file = writeBall(tempDir("several-additive"));
     for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
@@ -128,6 +167,124 @@ TEST(SeveralVolumes, FarApartTheyRenderAsEachAlone) {
     EXPECT_GT(covered_left, 20);
     EXPECT_GT(covered_right, 20);
     EXPECT_LE(largest, 1e-5f);
+}
+
+// A volume of several emits as it does alone: beside a ball that emits nothing, far from it, its
+// pixels are its own single-volume march's, emission AOV and all.
+TEST(SeveralVolumes, AnEmittingVolumeMarchesAsItDoesAlone) {
+    const std::string dir = tempDir("several-emitting-apart");
+    const std::string fire_file = writeFireBall(dir), ball_file = writeBall(dir);
+    const glm::vec3 left(-3.0f, 0.0f, 0.0f), right(3.0f, 0.5f, -1.0f);
+    for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
+        const auto scene = [&](std::vector<VolumeSpec> v) {
+            Scene s = sceneOf(std::move(v), glm::vec3(0.0f), 60.0f);
+            s.lights[0].direction = glm::vec3(0, 0, -1);   // from the camera: neither shadows the other
+            s.render.filter = filter;
+            return s;
+        };
+        const RenderImage both = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left), ball(ball_file, "smoke", 0.5f, right)}));
+        const RenderImage only_fire = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left)}));
+        const RenderImage only_smoke = render(scene({ball(ball_file, "smoke", 0.5f, right)}));
+        float largest = 0.0f, peak = 0.0f;
+        for (size_t i = 0; i < both.pixels.size(); ++i) {
+            const glm::vec4 sum = only_fire.pixels[i].rgba + only_smoke.pixels[i].rgba;
+            largest = std::max({largest, glm::compMax(glm::abs(both.pixels[i].rgba - sum)),
+                                glm::compMax(glm::abs(both.pixels[i].emission - only_fire.pixels[i].emission))});
+            peak = std::max(peak, glm::compMax(only_fire.pixels[i].emission));
+        }
+        std::printf("  filter %d: brightest emission %.4f, largest difference %.3g\n", int(filter), peak, largest);
+        EXPECT_GT(peak, 0.5f);
+        EXPECT_LE(largest, 2e-5f * peak) << "filter " << int(filter);
+    }
+}
+
+// Emission adds where volumes overlap: two copies at half the density and half the glow march as
+// one at the whole, to float rounding.
+TEST(SeveralVolumes, TwoEmittingCopiesAtHalfMarchAsOneAtTheWhole) {
+    const std::string file = writeFireBall(tempDir("several-emitting-additive"));
+    for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
+        Scene one = sceneOf({fire(file, "fire", 1.2f, 3.0f)});
+        Scene two = sceneOf({fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)});
+        one.render.filter = two.render.filter = filter;
+        const RenderImage a = render(one), b = render(two);
+        EXPECT_GT(emitted(a), 1.0);
+        EXPECT_LE(largestRelativeDifference(a, b), 2e-5f) << "filter " << int(filter);
+        EXPECT_NEAR(emitted(a), emitted(b), 2e-5 * emitted(a));
+    }
+}
+
+// The same in the reference, with no light but the glow: within its noise, the emitted light
+// scattered included. Without scattering (albedo 0) the march's emission is the reference's.
+TEST(SeveralVolumes, TwoEmittingCopiesAtHalfTraceAsOneAtTheWholeInTheReference) {
+    const std::string file = writeFireBall(tempDir("several-emitting-reference"));
+    const auto reference = [](std::vector<VolumeSpec> v, RenderMethod method) {
+        Scene s = sceneOf(std::move(v));
+        s.lights.clear();
+        s.render.width = s.render.height = 12;
+        s.render.method = method;
+        s.render.step = 0.1f;
+        s.render.reference.spp = 64;
+        return s;
+    };
+    const auto [mean_one, error_one] = meanAndError(render(reference({fire(file, "fire", 1.2f, 3.0f)}, RenderMethod::Reference)));
+    const auto [mean_two, error_two] =
+        meanAndError(render(reference({fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)}, RenderMethod::Reference)));
+    std::printf("  reference, one glowing at s: %.5f +- %.5f; two at s/2: %.5f +- %.5f\n", mean_one, error_one, mean_two, error_two);
+    EXPECT_GT(mean_one, 0.05);
+    EXPECT_LE(std::abs(mean_one - mean_two), 3.0 * std::hypot(error_one, error_two));
+
+    std::vector<VolumeSpec> dark{fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)};
+    for (VolumeSpec& v : dark) v.material.albedo = glm::vec3(0.0f);
+    const auto [mean_march, unused] = meanAndError(render(reference(dark, RenderMethod::March)));
+    const auto [mean_traced, error] = meanAndError(render(reference(dark, RenderMethod::Reference)));
+    std::printf("  albedo 0: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_traced, error);
+    EXPECT_GT(mean_traced, 0.05);
+    EXPECT_LE(std::abs(mean_march - mean_traced), 3.0 * error + 0.01 * mean_traced);
+}
+
+// A matte or a shadow-only volume that has emission shows none of it: alone it renders nothing.
+TEST(SeveralVolumes, AMatteOrShadowOnlyVolumeEmitsNothing) {
+    const std::string file = writeFireBall(tempDir("several-emitting-roles"));
+    for (VolumeRole role : {VolumeRole::Matte, VolumeRole::ShadowOnly})
+        for (RenderMethod method : {RenderMethod::March, RenderMethod::Reference}) {
+            VolumeSpec held = fire(file, "fire", 1.0f, 4.0f);
+            held.role = role;
+            Scene s = sceneOf({held});
+            s.render.method = method;
+            s.render.reference.spp = 4;
+            float largest = 0.0f;
+            for (const auto& p : render(s).pixels) largest = std::max({largest, glm::compMax(p.rgba), glm::compMax(p.emission)});
+            EXPECT_EQ(largest, 0.0f) << kVolumeRoleNames[size_t(role)] << ", method " << int(method);
+        }
+}
+
+// Propagation carries a fire's glow into the smoke beside it, scattered with the smoke's own
+// albedo: with no light in the scene the smoke is lit, in proportion to the glow.
+TEST(SeveralVolumes, AFireLightsTheSmokeBesideItThroughPropagation) {
+    const std::string dir = tempDir("several-emitting-propagation");
+    const std::string fire_file = writeFireBall(dir), ball_file = writeBall(dir);
+    const auto smokeLight = [&](float glow, glm::vec3 smoke_albedo) {
+        VolumeSpec smoke = ball(ball_file, "smoke", 1.0f, glm::vec3(2.5f, 0.0f, 0.0f));
+        smoke.material.albedo = smoke_albedo;
+        Scene s = sceneOf({fire(fire_file, "fire", 1.0f, glow, glm::vec3(-2.5f, 0.0f, 0.0f)), smoke}, glm::vec3(0.0f), 70.0f);
+        s.lights.clear();
+        s.effects.shadows = ShadowMethod::Propagation;
+        Indirect in;
+        in.model = IndirectModel::Kniss;
+        in.transport_color = glm::vec3(0.6f);
+        s.effects.indirect = in;
+        const RenderImage img = render(s);
+        double sum = 0.0;   // the smoke's half of the image, beyond the fire's reach
+        for (int y = 0; y < kSize; ++y)
+            for (int x = kSize * 3 / 5; x < kSize; ++x) sum += luminance(img.pixels[size_t(y * kSize + x)].indirect);
+        return sum;
+    };
+    const double lit = smokeLight(4.0f, glm::vec3(0.9f)), brighter = smokeLight(8.0f, glm::vec3(0.9f));
+    const double black = smokeLight(4.0f, glm::vec3(0.0f));
+    std::printf("  the smoke's indirect light: %.5f under a glow of 4, %.5f under 8, %.5f at albedo 0\n", lit, brighter, black);
+    EXPECT_GT(lit, 1e-3);
+    EXPECT_NEAR(brighter, 2.0 * lit, 1e-4 * lit);
+    EXPECT_EQ(black, 0.0);
 }
 
 // Where a white forward-scattering volume overlaps a blue isotropic one, the march's single
@@ -261,7 +418,13 @@ TEST(SeveralVolumes, WhatSeveralVolumesDoNotTakeYetIsRefusedByName) {
     const std::string two = R"("volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "material": {"transfer_function": [{"value": 0, "extinction": 0}, {"value": 1, "extinction": 1}]}}])";
     EXPECT_EQ(sceneErrorOf("{" + two + "}"),
               "shot.json: /volumes/1/material/transfer_function: set: a volume of several takes its density grid, density_scale, "
-              "albedo and anisotropy only, so far");
+              "albedo, anisotropy and emission only, so far");
+    const std::string three = R"({"grid": "t"}, {"grid": "t"}, {"grid": "t"})";
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "emission": [)" + three + R"(]}, {"path": "b.vdb", "emission": [)" + three + "]}]}"),
+              "shot.json: /volumes/1/emission: brings the scene's emission sources to 6: the volumes take at most 4 together");
+    EXPECT_NO_THROW(parseScene(R"({"volumes": [{"path": "a.vdb", "emission": [)" + three + R"(]}, {"path": "b.vdb", "enabled": false, "emission": [)" +
+                                   three + "]}]}",
+                               "shot.json", ""));
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb"}], "effects": {"perturbation": {}}})"),
               "shot.json: /effects/perturbation: set with 2 volumes: several volumes render without it, so far");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "material": {"anisotropy": 0.5}}], "effects": {"indirect": {}}})"),
@@ -540,6 +703,10 @@ TEST(SeveralVolumes, TheGlBackendMarchesThemAsTheCpuDoes) {
     matte.role = VolumeRole::Matte;
     Scene cpu = sceneOf({ball(file, "a", 0.8f, glm::vec3(-0.8f, 0, 0)), ball(file, "b", 0.5f, glm::vec3(0.8f, 0.3f, 0.5f)), matte});
     cpu.volumes[1].material.albedo = glm::vec3(0.2f, 0.4f, 0.9f);
+    EmissionSource glow;   // the second volume's: its sources sit past the first's bricks
+    glow.grid = GridRef{"density", 0};
+    glow.color = glm::vec3(1.0f, 0.5f, 0.2f);
+    cpu.volumes[1].emission = {glow};
     Scene on_gl = cpu;
     on_gl.render.backend = Backend::Gl;
     EXPECT_LE(largestRelativeDifference(render(cpu), render(on_gl)), 1e-3f);

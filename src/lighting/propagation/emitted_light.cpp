@@ -60,7 +60,7 @@ double emittedLightCost(const SweepGrid& g) {
 }
 
 bool emissionLightsTheMedium(const Scene& s) {
-    return !s.volume().emission.empty() && s.effects.indirect && s.effects.shadows == ShadowMethod::Propagation &&
+    return emits(s) && s.effects.indirect && s.effects.shadows == ShadowMethod::Propagation &&
            s.render.method == RenderMethod::March;
 }
 
@@ -77,14 +77,20 @@ void addEmittedLight(const SweepGrid& grid, const Material& material, const kern
     sweepSources(*grid.emission, indirect, grid, inputs, device, first, report);
     // The light order 1 scatters: order 2's source.
     std::vector<float> scattered(first.values.size());
-    for (size_t cell = 0; cell < first.values.size() / 3; ++cell)   // (sigma's first plane: the extinction)
-        for (int ch = 0; ch < 3; ++ch)
-            scattered[3 * cell + ch] = capped(double(material.albedo[ch]) * sigma[cell] * first.values[3 * cell + ch] / kFourPi);
+    // The scattering coefficient of channel i % 3 of cell i / 3 (sigma's first plane: the
+    // extinction), and the albedo there.
+    const auto scattering = [&](size_t i) {
+        return grid.scattering ? double((*grid.scattering)[i]) : double(material.albedo[int(i % 3)]) * sigma[i / 3];
+    };
+    const auto albedo = [&](size_t i) {
+        return !grid.scattering ? double(material.albedo[int(i % 3)]) : sigma[i / 3] > 0.0f ? scattering(i) / sigma[i / 3] : 0.0;
+    };
+    for (size_t i = 0; i < first.values.size(); ++i) scattered[i] = capped(scattering(i) * first.values[i] / kFourPi);
     sweepSources(scattered, indirect, grid, inputs, device, second, report);
     // The orders after: a geometric series at the ratio of the second order to the first, per cell
     // and channel, at most the albedo (the ratio the orders tend to in an unbounded medium).
     for (size_t i = 0; i < first.values.size(); ++i) {
-        const double limit = std::min(double(material.albedo[int(i % 3)]), double(kMaxRatio));
+        const double limit = std::min(albedo(i), double(kMaxRatio));
         const double ratio = first.values[i] > 0.0f ? std::min(double(second.values[i]) / first.values[i], limit) : 0.0;
         block[i] = capped(double(block[i]) + first.values[i] + second.values[i] / (1.0 - ratio));
     }

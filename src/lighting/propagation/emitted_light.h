@@ -13,7 +13,7 @@
 // geometric spreading, so far from a small source it stays brighter than the 1 / r^2 it should
 // fall off by; deep in an optically thick medium the series ends too soon (light that needs many
 // scatterings to get out); the inner orders scatter with the material's constant albedo (a
-// colour grid tints only the march's last scattering).
+// colour grid tints only the march's last scattering), of several volumes with each cell's mix.
 // Cost: 12 RGB sweeps over the indirect grid, on an entire update only (emission does not change
 // when a light does).
 #pragma once
@@ -33,7 +33,8 @@ constexpr int kEmittedLightSweeps = 12;
 double emittedLightCost(const SweepGrid& grid);
 
 // Adds the fluence of the emission in `grid` (its `emission`, on the indirect light's grid) into
-// the indirect block of `volume`. `indirect` holds the indirect sweeps' grid and blur.
+// the indirect block of `volume`. `indirect` holds the indirect sweeps' grid and blur. The
+// orders after the first scatter with `material`'s albedo, or the grid's `scattering` if it has one.
 void addEmittedLight(const SweepGrid& grid, const Material& material, const kernel::VxPropParams& indirect,
                      const KernelInputs& inputs, PropagationPasses& device, IlluminationVolume& volume, LightUpdate& report);
 

@@ -349,8 +349,10 @@ StageActivity IlluminationGridStage::activity(const Scene& s) const {
 void IlluminationGridStage::release() {
     own_grid_ = LightGrid{};
     emission_.clear();
+    scattering_.clear();
     chroma_sigma_.clear();
     chroma_emission_.clear();
+    chroma_scattering_.clear();
     transport_sigma_.clear();
     fine_ = coarse_ = SweepGrid{};
 }
@@ -382,8 +384,11 @@ void IlluminationGridStage::run(StageRun& run) {
         own_grid_ = buildLightGrid(inputs, resolution, {true, 0.0f, emission});
         if (own_grid_.clamped_cells) run.warnings.push_back(clampedCellsWarning(own_grid_));
         emission_ = std::move(own_grid_.emission);
+        scattering_ = std::move(own_grid_.scattering);
     } else if (emission && inputs.params.emission_sources > 0) {
-        emission_ = buildLightGrid(inputs, resolution, {false, 0.0f, true}).emission;
+        LightGrid emitted = buildLightGrid(inputs, resolution, {false, 0.0f, true});
+        emission_ = std::move(emitted.emission);
+        scattering_ = std::move(emitted.scattering);
     }
     const LightGrid& grid = shared ? shared_.grid() : own_grid_;
 
@@ -394,6 +399,7 @@ void IlluminationGridStage::run(StageRun& run) {
     fine_.sigma = &grid.values;
     fine_.sigma_generation = generation_;
     fine_.emission = emission_.empty() ? nullptr : &emission_;
+    fine_.scattering = scattering_.empty() ? nullptr : &scattering_;
     coarse_ = fine_;
     if (chroma > 1) {
         chroma_sigma_ = halveGrid(grid.values.data(), grid.dims, 1);
@@ -402,6 +408,12 @@ void IlluminationGridStage::run(StageRun& run) {
             coarse_.emission = &chroma_emission_;
             fine_.emission = nullptr;
             emission_ = std::vector<float>();
+        }
+        if (fine_.scattering) {
+            chroma_scattering_ = halveGrid(scattering_.data(), grid.dims, 3);
+            coarse_.scattering = &chroma_scattering_;
+            fine_.scattering = nullptr;
+            scattering_ = std::vector<float>();
         }
         coarse_.grid_to_world = fine_.grid_to_world * glm::scale(glm::mat4(1.0f), glm::vec3(float(chroma)));
         coarse_.world_to_grid = glm::inverse(coarse_.grid_to_world);

@@ -68,6 +68,7 @@ struct SweepGrid {
     bool transport_planes = false;         // sigma is 4 planes: the extinction, then it times
                                            // -ln(transport colour) per channel (VxPropParams)
     const std::vector<float>* emission = nullptr;   // RGB emitted radiance per cell, when it lights the medium
+    const std::vector<float>* scattering = nullptr; // with it, of several volumes: RGB scattering coefficient per cell
 };
 
 class IlluminationGridStage final : public Stage {
@@ -100,8 +101,9 @@ private:
     const LightGridStage& shared_;
     LightGrid own_grid_;   // empty unless this volume's memory lowered its resolution below the shared grid's
     std::vector<float> emission_;   // RGB emitted radiance per cell, when it lights the medium
+    std::vector<float> scattering_; // with it, of several volumes: RGB scattering coefficient per cell
     std::vector<float> chroma_sigma_;   // the light grid averaged over 2^3 cells (chroma subsampling)
-    std::vector<float> chroma_emission_;   // and its emission
+    std::vector<float> chroma_emission_, chroma_scattering_;   // and its emission and scattering
     std::vector<float> transport_sigma_;   // the coarse grid's extinction and transport depth, with
                                            // a per-voxel transport colour (SweepGrid::transport_planes)
     SweepGrid fine_, coarse_;
