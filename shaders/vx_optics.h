@@ -25,11 +25,17 @@ VX_INLINE float vx_exp_integral(float x) {
     return x < 1e-3f ? 1.0f - x * (0.5f - x * (1.0f / 6.0f)) : (1.0f - vx_exp(-x)) / x;
 }
 
-// Transfer-function lookup for a raw grid value: rgb = albedo tint, a = extinction multiplier.
+// Transfer-function lookup for a raw grid value in the table from row `first`, whose rows span
+// grid values lo to lo + 1 / inv_range: rgb = albedo tint, a = extinction multiplier.
+VX_INLINE vec4 vx_tf_eval_in(float value, int first, float lo, float inv_range) {
+    float x = clamp((value - lo) * inv_range, 0.0f, 1.0f) * float(VX_TF_LUT_SIZE - 1);
+    int i = first + min(int(x), VX_TF_LUT_SIZE - 2);
+    return mix(vx_tf_lut(i), vx_tf_lut(i + 1), x - float(i - first));
+}
+
+// The same in the one volume's table.
 VX_INLINE vec4 vx_tf_eval(float value) {
-    float x = clamp((value - P.transfer_lo) * P.transfer_inv_range, 0.0f, 1.0f) * float(VX_TF_LUT_SIZE - 1);
-    int i = min(int(x), VX_TF_LUT_SIZE - 2);
-    return mix(vx_tf_lut(i), vx_tf_lut(i + 1), x - float(i));
+    return vx_tf_eval_in(value, 0, P.transfer_lo, P.transfer_inv_range);
 }
 
 // Extinction per world unit for a raw (reconstructed) grid value.

@@ -124,8 +124,12 @@ struct VxVolume {
     float density_scale;    // extinction per world unit per unit of its density grid
     float anisotropy;       // Henyey-Greenstein g
     int role;               // VX_ROLE_*
-    int pad1;
-    int pad2;
+    int transfer_row;       // its transfer function's first row in the table (-1: it has none)
+    int use_color;          // 1 if it has a colour (Cd) grid
+    float transfer_lo;      // grid value at its table's first row
+    float transfer_inv_range;  // 1 / (value range of its table)
+    int color_offset;       // from a tap's index in the density to its colour's (vx_atlas_color)
+    int pad0;
     int emission_first;     // its first emission source: the scene's sources are numbered volume by
                             // volume (P.emission_domain and the emission table's rows)
     int emission_count;     // its sources (0: it emits nothing)

@@ -1,6 +1,6 @@
 // Several volumes in one scene (P.volume_count > 0): the medium where they overlap, and a ray's way
-// through them. Each volume has its own placement, pages, material and role (VxVolume); all share
-// the atlas. Overlap is physical: extinction adds; the albedo is the scattering-weighted mean of
+// through them. Each volume has its own placement, pages, material (a transfer function and a
+// colour grid too) and role (VxVolume); all share the atlas. Overlap is physical: extinction adds; the albedo is the scattering-weighted mean of
 // the volumes' (exactly the mixture's single-scattering albedo), and so is the Henyey-Greenstein g
 // (the mixture's mean cosine, which one lobe of that g stands in for). Roles: every volume's
 // extinction stops light; a camera ray meets the visible volumes and the mattes; only the visible
@@ -50,10 +50,25 @@ bool vx_volume_taps(VxVolume V, vec3 x, VX_OUT(bool) inside, VX_OUT(VxTaps) taps
     return true;
 }
 
+// The extinction of volume V at its reconstruction `taps`, and in `tint` what its transfer
+// function and colour grid make of its albedo (as vx_extinction and vx_albedo do the one volume's).
+float vx_volume_sigma(VxVolume V, VxTaps taps, VX_OUT(vec3) tint) {
+    float value = vx_density_at(taps);
+    tint = vec3(1.0f);
+    if (V.transfer_row >= 0) {
+        vec4 tf = vx_tf_eval_in(value, V.transfer_row, V.transfer_lo, V.transfer_inv_range);
+        value = tf.w;
+        tint = vec3(tf);
+    }
+    if (V.use_color != 0) tint *= vx_color_at(vx_taps_offset(taps, V.color_offset));
+    return V.density_scale * value;
+}
+
 // The extinction of volume V at world point x (0 outside its stored bricks).
 float vx_volume_extinction(VxVolume V, vec3 x, VX_OUT(bool) inside) {
     VxTaps taps;
-    return vx_volume_taps(V, x, inside, taps) ? V.density_scale * vx_density_at(taps) : 0.0f;
+    vec3 tint;
+    return vx_volume_taps(V, x, inside, taps) ? vx_volume_sigma(V, taps, tint) : 0.0f;
 }
 
 // The medium at world point x, with the emission when `emission` is set (the camera's rays and
@@ -77,7 +92,8 @@ VxMedium vx_volumes_medium(vec3 x, bool emission, VX_OUT(bool) inside) {
         bool stored = vx_volume_taps(V, x, in_box, taps);
         inside = inside || in_box;
         if (!stored) continue;
-        float sigma = V.density_scale * vx_density_at(taps);
+        vec3 tint;
+        float sigma = vx_volume_sigma(V, taps, tint);
         bool visible = V.role == VX_ROLE_VISIBLE;
         if (emission && visible && V.emission_count > 0)
             m.emitted = vx_radiance_add(m.emitted, vx_emission_of(taps, V.emission_first, V.emission_count, V.emission_offset, V.emission_stride));
@@ -87,8 +103,9 @@ VxMedium vx_volumes_medium(vec3 x, bool emission, VX_OUT(bool) inside) {
         m.sigma_camera += sigma;
         if (!visible) continue;
         m.sigma_visible += sigma;
-        m.scattering += sigma * V.albedo;
-        float weight = sigma * (V.albedo.x + V.albedo.y + V.albedo.z);
+        vec3 albedo = V.albedo * tint;
+        m.scattering += sigma * albedo;
+        float weight = sigma * (albedo.x + albedo.y + albedo.z);
         m.g_sum += weight * V.anisotropy;
         m.g_weight += weight;
     }

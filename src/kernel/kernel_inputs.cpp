@@ -54,10 +54,17 @@ void setSharedFrame(KernelInputs& in) {
 }
 
 // The volumes of a scene of several, each instance placed at `frame` over its volume's range of
-// the joined bricks.
+// the joined bricks. Their transfer functions' tables follow the one volume's in in.tf_lut.
 void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, KernelInputs& in) {
+    std::vector<glm::vec4> tables;
     for (size_t v = 0; v < scene.volumes.size(); ++v) {
         const VolumeSpec& spec = scene.volumes[v];
+        const std::vector<TransferPoint>& transfer = spec.material.transfer;
+        const int transfer_row = transfer.empty() ? -1 : VX_TF_LUT_SIZE + int(tables.size());
+        if (!transfer.empty()) {
+            const std::vector<glm::vec4> table = bakeTransfer(transfer);
+            tables.insert(tables.end(), table.begin(), table.end());
+        }
         for (const glm::mat4& placement : instancePlacements(spec, frame)) {
             const glm::mat4 index_to_world = placement * bricks.index_to_world[v];
             kernel::VxVolume k{};
@@ -67,15 +74,21 @@ void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, Kern
             k.density_scale = densityScale(spec.material, voxelEdge(index_to_world));
             k.anisotropy = spec.material.anisotropy;
             k.role = spec.role == VolumeRole::Matte ? VX_ROLE_MATTE : spec.role == VolumeRole::ShadowOnly ? VX_ROLE_SHADOW_ONLY : VX_ROLE_VISIBLE;
-            const VolumeEmission& e = bricks.emission[v];
-            k.emission_first = e.first;
-            k.emission_count = e.count;
-            k.emission_offset = e.offset;
-            k.emission_stride = e.stride;
+            k.transfer_row = transfer_row;
+            k.transfer_lo = transfer.empty() ? 0.0f : transfer.front().value;
+            k.transfer_inv_range = transfer.empty() ? 1.0f : 1.0f / (transfer.back().value - transfer.front().value);
+            const VolumeChannels& c = bricks.channels[v];
+            k.use_color = c.color ? 1 : 0;
+            k.color_offset = c.color_offset;
+            k.emission_first = c.emission_first;
+            k.emission_count = c.emission_count;
+            k.emission_offset = c.emission_offset;
+            k.emission_stride = c.emission_stride;
             in.params.volume_roles |= k.role != VX_ROLE_VISIBLE ? 1 : 0;
             in.volumes.push_back(k);
         }
     }
+    in.tf_lut = std::move(tables);
     setSharedFrame(in);
     if (in.volumes.size() > VX_MAX_VOLUMES)
         throw InputError(std::to_string(in.volumes.size()) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
@@ -104,8 +117,8 @@ std::vector<SourceSpan> emissionSources(const Scene& scene, const BrickAtlas& at
         return out;
     }
     for (size_t v = 0; v < scene.volumes.size(); ++v)
-        for (size_t s = 0; s < size_t(volumes->emission[v].count); ++s)
-            out.push_back({&scene.volumes[v].emission.at(s), volumes->emission_grid_max[size_t(volumes->emission[v].first) + s]});
+        for (size_t s = 0; s < size_t(volumes->channels[v].emission_count); ++s)
+            out.push_back({&scene.volumes[v].emission.at(s), volumes->emission_grid_max[size_t(volumes->channels[v].emission_first) + s]});
     return out;
 }
 
@@ -141,11 +154,13 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const SceneBricks* v
     const float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
     P.transfer_lo = lo;
     P.transfer_inv_range = 1.0f / (hi - lo);
-    P.use_transfer = m.transfer.empty() ? 0 : 1;
-    P.use_color_grid = atlas.color.empty() ? 0 : 1;
+    // Of several volumes, each volume's transfer function and colour are its own (VxVolume).
+    P.use_transfer = m.transfer.empty() || volumes ? 0 : 1;
+    P.use_color_grid = atlas.color.empty() || volumes ? 0 : 1;
     P.use_surface_grid = atlas.surface.empty() ? 0 : 1;
     P.surface_offset = int(atlas.color.size() + atlas.velocity.size());   // GL: after both in their block
-    in.tf_lut = bakeTransfer(m.transfer);
+    const std::vector<glm::vec4> own = bakeTransfer(volumes ? std::vector<TransferPoint>{} : m.transfer);
+    in.tf_lut.insert(in.tf_lut.begin(), own.begin(), own.end());   // before the volumes' tables (setVolumes)
 }
 
 // The enabled lights, ambient ones summed into one radiance, and how their shadows are found.

@@ -36,7 +36,8 @@ struct MarchLighting {
 struct KernelInputs {
     kernel::VxParams params{};
     std::vector<kernel::VxLight> lights;
-    std::vector<glm::vec4> tf_lut;          // VX_TF_LUT_SIZE entries; a constant row if unused
+    std::vector<glm::vec4> tf_lut;          // VX_TF_LUT_SIZE entries, a constant row if unused; of several
+                                            // volumes, each one's table after (VxVolume::transfer_row)
     std::vector<glm::vec4> emission_lut;    // VX_EMISSION_LUT_SIZE rows per emission source
     const BrickAtlas* atlas = nullptr;
     const PageTable* pages = nullptr;

@@ -372,12 +372,16 @@ ExtinctionBounds brickExtinctionBounds(const KernelInputs& in) {
     ExtinctionBounds b{std::vector<float>(slots, 0.0f), std::vector<float>(slots, 0.0f), {}};
     if (k.P.volume_count > 0) {
         // Several volumes: each volume's largest extinction (either filter stays within its
-        // voxels' range), over the slots of its pages; where a volume emits, at least the one
-        // volume's floor, so that its emission is sampled where it has no extinction.
+        // voxels' range), over the slots of its pages, or under a transfer function its table's
+        // largest; where a volume emits, at least the one volume's floor, so that its emission is
+        // sampled where it has no extinction.
         for (const kernel::VxVolume& v : in.volumes) {
             float hi = 0.0f;
             for (int e = v.pages.first; e < v.pages.first + v.pages.capacity; ++e)
                 if (const int slot = in.pages->entries[size_t(e)].w; slot != VX_PAGE_EMPTY) hi = std::max(hi, atlas.density_range[size_t(slot)].y);
+            if (v.transfer_row >= 0)
+                hi = std::max_element(in.tf_lut.begin() + v.transfer_row, in.tf_lut.begin() + v.transfer_row + VX_TF_LUT_SIZE,
+                                      [](const glm::vec4& a, const glm::vec4& b) { return a.w < b.w; })->w;
             const bool emits = k.P.emission_sources > 0 && v.emission_count > 0 && v.role == VX_ROLE_VISIBLE && !isEmptyRange(v.pages);
             b.volume_majorant.push_back(std::max(hi * v.density_scale, emits ? 1.0f / voxelEdge(glm::inverse(v.world_to_index)) : 0.0f));
         }

@@ -747,8 +747,8 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
     if (std::none_of(volumes.begin(), volumes.end(), [](const VolumeSpec& v) { return v.enabled; }))
         root.fail(list, "every volume is disabled (enabled: false): a scene renders one at least");
     // What the march through several volumes (shaders/vx_volumes.h) does not read yet: each
-    // volume is its density grid under its material's scale, albedo and anisotropy, and the light
-    // its grids emit. Disabled volumes are not rendered, so they take anything.
+    // volume is its density grid under its material (a 1D transfer function too), its colour
+    // grid, and the light its grids emit. Disabled volumes are not rendered, so they take anything.
     size_t placed = 0, sources = 0;
     bool roles = false;
     for (size_t i = 0; i < volumes.size(); ++i) {
@@ -764,15 +764,10 @@ std::vector<VolumeSpec> readVolumes(const JsonObject& root, const std::string& b
     if (placed > VX_MAX_VOLUMES)
         root.fail(list, std::to_string(placed) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
     if (placed > 1 || roles)
-        for (size_t i = 0; i < volumes.size(); ++i) {
-            const JsonObject& o = entries[i];
-            const VolumeSpec& v = volumes[i];
-            if (!v.enabled) continue;
-            const std::string why = ": a volume of several takes its density grid, density_scale, albedo, anisotropy and emission only, so far";
-            if (!v.material.transfer.empty()) o.object("material").fail("transfer_function", "set" + why);
-            if (!v.material.transfer_2d.empty()) o.object("material").fail("transfer_function_2d", "set" + why);
-            if (v.color) o.fail("color", "set" + why);
-        }
+        for (size_t i = 0; i < volumes.size(); ++i)
+            if (volumes[i].enabled && !volumes[i].material.transfer_2d.empty())
+                entries[i].object("material").fail("transfer_function_2d",
+                                                   "set: a volume of several takes a 1D transfer function (transfer_function) only, so far");
     return volumes;
 }
 

@@ -37,15 +37,19 @@ SceneBricks joinVolumeBricks(const std::vector<const BrickAtlas*>& atlases, cons
         out.atlas.density.insert(out.atlas.density.end(), a.density.begin(), a.density.end());
         out.atlas.density_range.insert(out.atlas.density_range.end(), a.density_range.begin(), a.density_range.end());
         out.atlas.active_voxels += a.active_voxels;
-        // Its sources' blocks after the volumes' before: source s of slot i at offset + s * stride
-        // past the tap's index i * 729 + voxel in the joined density.
-        VolumeEmission e;
-        e.first = int(out.emission_grid_max.size());
-        e.count = int(a.emission_sources);
-        e.stride = int(a.slots()) * VX_BRICK_VOXELS;
-        e.offset = int(out.atlas.emission.size()) - slot_offset * VX_BRICK_VOXELS;
-        out.emission.push_back(e);
+        // Its sources' and colour's blocks after the volumes' before: source s of slot i at
+        // emission_offset + s * emission_stride past the tap's index i * 729 + voxel in the joined
+        // density, its colour at color_offset past it (3 floats a voxel).
+        VolumeChannels c;
+        c.emission_first = int(out.emission_grid_max.size());
+        c.emission_count = int(a.emission_sources);
+        c.emission_stride = int(a.slots()) * VX_BRICK_VOXELS;
+        c.emission_offset = int(out.atlas.emission.size()) - slot_offset * VX_BRICK_VOXELS;
+        c.color = !a.color.empty();
+        c.color_offset = int(out.atlas.color.size() / 3) - slot_offset * VX_BRICK_VOXELS;
+        out.channels.push_back(c);
         out.atlas.emission.insert(out.atlas.emission.end(), a.emission.begin(), a.emission.end());
+        out.atlas.color.insert(out.atlas.color.end(), a.color.begin(), a.color.end());
         for (size_t s = 0; s < a.emission_sources; ++s) out.emission_grid_max.push_back(a.emissionGridMax(s));
         // The bricks' entries only, their slots moved past the volumes before.
         for (int i = 0; i < p.brick_capacity; ++i) {

@@ -1,8 +1,8 @@
 // Several volumes in one atlas (shaders/vx_volumes.h): every volume's bricks appended to one
 // atlas and its page table to one array of page entries, each volume keeping its own range of
 // both (kernel::VxPageRange), so the march reaches any volume's bricks through one set of arrays.
-// An instance reuses its volume's range. Cost: one copy of the volumes' density and emission
-// bricks and page entries; no dense array over their union's box.
+// An instance reuses its volume's range. Cost: one copy of the volumes' density, emission and
+// colour bricks and page entries; no dense array over their union's box.
 #pragma once
 #include <vector>
 
@@ -14,23 +14,26 @@
 
 namespace voxlux {
 
-// Where one volume's emission sources sit in the joined atlas's `emission` (kernel::VxVolume's
-// emission_* members): the scene's sources are numbered volume by volume.
-struct VolumeEmission {
-    int first = 0;    // its first source's number
-    int count = 0;
-    int offset = 0;   // from a tap's index in the joined density to its first source's
-    int stride = 0;   // floats from one of its sources to the next
+// Where one volume's channels besides the density sit in the joined atlas (kernel::VxVolume's
+// emission_* and color_offset): its emission sources in `emission`, numbered volume by volume
+// over the scene, and its colour in `color`.
+struct VolumeChannels {
+    int emission_first = 0;    // its first source's number
+    int emission_count = 0;
+    int emission_offset = 0;   // from a tap's index in the joined density to its first source's
+    int emission_stride = 0;   // floats from one of its sources to the next
+    bool color = false;        // whether it has a colour grid
+    int color_offset = 0;      // from a tap's index in the joined density to its colour's
 };
 
 struct SceneBricks {
     BrickAtlas atlas;                            // the volumes' density bricks, slot ranges one after another,
-                                                 // and their emission sources' blocks (not emission_max:
-                                                 // emission_grid_max below)
+                                                 // and their emission sources' and colours' blocks (not
+                                                 // emission_max: emission_grid_max below)
     PageTable pages;                             // their brick tables one after another (no regions' table)
     std::vector<kernel::VxPageRange> ranges;     // each volume's pages
     std::vector<glm::mat4> index_to_world;       // each volume's file's
-    std::vector<VolumeEmission> emission;        // each volume's sources
+    std::vector<VolumeChannels> channels;        // each volume's emission and colour
     std::vector<float> emission_grid_max;        // each source's largest value, by its number
 };
 

@@ -1,8 +1,9 @@
 // Several volumes in one scene (shaders/vx_volumes.h): extinction adds where they overlap, so two
 // copies at half the density render as one at the whole, in the march (to float rounding) and in
 // the reference (within its noise); far-apart volumes render as each alone; a mix of albedos and
-// anisotropies matches the reference; emission adds, and a fire lights the smoke beside it; a matte
-// holds out what is behind it and a shadow-only volume only shadows; a volume's stages re-run only for its own edits; what several volumes do not take
+// anisotropies, transfer functions and colour grids matches the reference; emission adds, and a
+// fire lights the smoke beside it; a matte holds out what is behind it and a shadow-only volume
+// only shadows; a volume's stages re-run only for its own edits; what several volumes do not take
 // yet is refused by name.
 #include <filesystem>
 #include <fstream>
@@ -79,23 +80,38 @@ std::pair<double, double> meanAndError(const RenderImage& img) {
 }
 
 // The ball file with a "heat" grid beside its density, 1 at the centre and 0 at 1.2 times the
-// density's radius: it emits where the density has faded out, too.
+// density's radius (it emits where the density has faded out, too), and a colour grid "Cd" that
+// turns from orange to blue along x.
 std::string writeFireBall(const std::string& dir) {
     auto density = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
     auto heat = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
     heat->setName("heat");
+    auto colour = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    colour->setTransform(density->transform().copy());
+    colour->setName("Cd");
     auto d = density->getAccessor();
     auto h = heat->getAccessor();
+    auto c = colour->getAccessor();
     for (int z = -24; z <= 24; ++z)
         for (int y = -24; y <= 24; ++y)
             for (int x = -24; x <= 24; ++x) {
-                const float r = std::sqrt(float(x * x + y * y + z * z)) / 20.0f;
+                const float r = std::sqrt(float(x * x + y * y + z * z)) / 20.0f, u = float(x + 24) / 48.0f;
                 if (r <= 1.0f) d.setValue({x, y, z}, 1.0f - r);
+                if (r <= 1.0f) c.setValue({x, y, z}, openvdb::Vec3s(1.0f - 0.6f * u, 0.6f, 0.3f + 0.7f * u));
                 if (r <= 1.2f) h.setValue({x, y, z}, 1.0f - r / 1.2f);
             }
     const std::string path = dir + "/fire.vdb";
-    openvdb::io::File(path).write({density, heat});
+    openvdb::io::File(path).write({density, heat, colour});
     return path;
+}
+
+// A volume of the fire-ball file tinted by its colour grid and a transfer function that thins its
+// edge and turns its core blue.
+VolumeSpec tinted(const std::string& file, const std::string& name, glm::vec3 translate = glm::vec3(0.0f)) {
+    VolumeSpec v = ball(file, name, 1.0f, translate);
+    v.color = GridRef{"Cd", 0};
+    v.material.transfer = {{0.0f, 0.0f, glm::vec3(1.0f)}, {0.3f, 0.5f, glm::vec3(1.0f, 0.6f, 0.3f)}, {1.0f, 2.0f, glm::vec3(0.5f, 0.7f, 1.0f)}};
+    return v;
 }
 
 // A volume of the fire-ball file whose heat glows orange at `intensity`.
@@ -287,17 +303,40 @@ TEST(SeveralVolumes, AFireLightsTheSmokeBesideItThroughPropagation) {
     EXPECT_EQ(black, 0.0);
 }
 
-// Where a white forward-scattering volume overlaps a blue isotropic one, the march's single
-// scattering (fine steps) matches the reference's first bounce: the mix of albedo and g is the same.
-TEST(SeveralVolumes, OverlappingMaterialsMixAsTheReferenceDoes) {
-    const std::string file = writeBall(tempDir("several-mix"));
-    VolumeSpec white = ball(file, "white", 0.8f, glm::vec3(-0.8f, 0.0f, 0.0f));
-    white.material.albedo = glm::vec3(0.95f);
-    white.material.anisotropy = 0.7f;
-    VolumeSpec blue = ball(file, "blue", 0.8f, glm::vec3(0.8f, 0.3f, 0.5f));
-    blue.material.albedo = glm::vec3(0.2f, 0.4f, 0.9f);
-    blue.material.anisotropy = -0.2f;
-    Scene march = sceneOf({white, blue});
+// A volume of several takes its transfer function and colour grid as it does alone: beside a
+// plain ball, far from it, its pixels are its own single-volume march's.
+TEST(SeveralVolumes, ATransferFunctionAndAColourGridMarchAsTheyDoAlone) {
+    const std::string dir = tempDir("several-tinted-apart");
+    const std::string fire_file = writeFireBall(dir), ball_file = writeBall(dir);
+    const glm::vec3 left(-3.0f, 0.0f, 0.0f), right(3.0f, 0.5f, -1.0f);
+    for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
+        const auto scene = [&](std::vector<VolumeSpec> v) {
+            Scene s = sceneOf(std::move(v), glm::vec3(0.0f), 60.0f);
+            s.lights[0].direction = glm::vec3(0, 0, -1);   // from the camera: neither shadows the other
+            s.render.filter = filter;
+            return s;
+        };
+        const RenderImage both = render(scene({tinted(fire_file, "tinted", left), ball(ball_file, "plain", 0.5f, right)}));
+        const RenderImage only_tinted = render(scene({tinted(fire_file, "tinted", left)}));
+        const RenderImage only_plain = render(scene({ball(ball_file, "plain", 0.5f, right)}));
+        float largest = 0.0f, peak = 0.0f;
+        glm::vec3 tinted_sum(0.0f);
+        for (size_t i = 0; i < both.pixels.size(); ++i) {
+            const glm::vec4 sum = only_tinted.pixels[i].rgba + only_plain.pixels[i].rgba;
+            largest = std::max(largest, glm::compMax(glm::abs(both.pixels[i].rgba - sum)));
+            peak = std::max(peak, glm::compMax(only_tinted.pixels[i].rgba));
+            tinted_sum += glm::vec3(only_tinted.pixels[i].rgba);
+        }
+        std::printf("  filter %d: the tinted volume's colour sum (%.3f, %.3f, %.3f), largest difference %.3g\n", int(filter), tinted_sum.x,
+                    tinted_sum.y, tinted_sum.z, largest);
+        EXPECT_GT(peak, 0.2f);
+        EXPECT_GT(tinted_sum.x, 1.2f * tinted_sum.z);   // its tints show: redder than its bluish light
+        EXPECT_LE(largest, 2e-5f * peak) << "filter " << int(filter);
+    }
+}
+
+// The march's single scattering (fine steps) matches the reference's first bounce, in the mean.
+void expectSingleScatteringAsTheReference(Scene march) {
     march.lights.pop_back();   // the directional light alone: single scattering is all the march adds
     march.render.width = march.render.height = 12;
     march.render.step = 0.1f;
@@ -311,6 +350,28 @@ TEST(SeveralVolumes, OverlappingMaterialsMixAsTheReferenceDoes) {
     std::printf("  single scattering: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_reference, error);
     EXPECT_GT(mean_reference, 0.005);
     EXPECT_LE(std::abs(mean_march - mean_reference), 3.0 * error + 0.01 * mean_reference);
+}
+
+// Where a tinted volume (a transfer function and a colour grid) overlaps a plain one, the mix is
+// the reference's: its extinction bound (the table's largest) and its tints are the march's.
+TEST(SeveralVolumes, ATintedVolumeMixesAsTheReferenceDoes) {
+    const std::string dir = tempDir("several-tinted-mix");
+    VolumeSpec plain = ball(writeBall(dir), "plain", 0.8f, glm::vec3(0.8f, 0.3f, 0.5f));
+    plain.material.anisotropy = 0.5f;
+    expectSingleScatteringAsTheReference(sceneOf({tinted(writeFireBall(dir), "tinted", glm::vec3(-0.8f, 0.0f, 0.0f)), plain}));
+}
+
+// Where a white forward-scattering volume overlaps a blue isotropic one, the march's single
+// scattering (fine steps) matches the reference's first bounce: the mix of albedo and g is the same.
+TEST(SeveralVolumes, OverlappingMaterialsMixAsTheReferenceDoes) {
+    const std::string file = writeBall(tempDir("several-mix"));
+    VolumeSpec white = ball(file, "white", 0.8f, glm::vec3(-0.8f, 0.0f, 0.0f));
+    white.material.albedo = glm::vec3(0.95f);
+    white.material.anisotropy = 0.7f;
+    VolumeSpec blue = ball(file, "blue", 0.8f, glm::vec3(0.8f, 0.3f, 0.5f));
+    blue.material.albedo = glm::vec3(0.2f, 0.4f, 0.9f);
+    blue.material.anisotropy = -0.2f;
+    expectSingleScatteringAsTheReference(sceneOf({white, blue}));
 }
 
 TEST(SeveralVolumes, AnEditOfOneVolumeReloadsNoOther) {
@@ -415,10 +476,10 @@ TEST(SeveralVolumes, InstancesAreReadAndWrittenBack) {
 }
 
 TEST(SeveralVolumes, WhatSeveralVolumesDoNotTakeYetIsRefusedByName) {
-    const std::string two = R"("volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "material": {"transfer_function": [{"value": 0, "extinction": 0}, {"value": 1, "extinction": 1}]}}])";
+    const std::string two = R"("volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "material": {"transfer_function_2d": "ct_tissue"}}])";
     EXPECT_EQ(sceneErrorOf("{" + two + "}"),
-              "shot.json: /volumes/1/material/transfer_function: set: a volume of several takes its density grid, density_scale, "
-              "albedo, anisotropy and emission only, so far");
+              "shot.json: /volumes/1/material/transfer_function_2d: set: a volume of several takes a 1D transfer function "
+              "(transfer_function) only, so far");
     const std::string three = R"({"grid": "t"}, {"grid": "t"}, {"grid": "t"})";
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "emission": [)" + three + R"(]}, {"path": "b.vdb", "emission": [)" + three + "]}]}"),
               "shot.json: /volumes/1/emission: brings the scene's emission sources to 6: the volumes take at most 4 together");
@@ -698,10 +759,11 @@ TEST(SeveralVolumes, RolesAreReadAndWrittenBack) {
 
 TEST(SeveralVolumes, TheGlBackendMarchesThemAsTheCpuDoes) {
     VOXLUX_REQUIRE_GL(gl);
-    const std::string file = writeBall(tempDir("several-gl"));
+    const std::string dir = tempDir("several-gl");
+    const std::string file = writeBall(dir);
     VolumeSpec matte = ball(file, "matte", 0.5f, glm::vec3(0.0f, -1.5f, 3.0f));
     matte.role = VolumeRole::Matte;
-    Scene cpu = sceneOf({ball(file, "a", 0.8f, glm::vec3(-0.8f, 0, 0)), ball(file, "b", 0.5f, glm::vec3(0.8f, 0.3f, 0.5f)), matte});
+    Scene cpu = sceneOf({tinted(writeFireBall(dir), "a", glm::vec3(-0.8f, 0, 0)), ball(file, "b", 0.5f, glm::vec3(0.8f, 0.3f, 0.5f)), matte});
     cpu.volumes[1].material.albedo = glm::vec3(0.2f, 0.4f, 0.9f);
     EmissionSource glow;   // the second volume's: its sources sit past the first's bricks
     glow.grid = GridRef{"density", 0};
