@@ -222,8 +222,11 @@ VxPixel vx_finish_ray(VxPixel px, float T, float alpha, float depth_weighted, VX
 // g; the space between the volumes' boxes is jumped. Sample by sample, without the one volume's
 // SIMD batches. The ray is attenuated by the visible volumes and the mattes; the light the
 // visible ones absorb is the pixel's alpha (1 - T without mattes), so a matte cuts what is behind
-// it and adds nothing. The visible volumes' emission is integrated as the one volume's is.
-VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay) deep) {
+// it and adds nothing. The visible volumes' emission is integrated as the one volume's is. At a
+// `time` within the shutter each volume is where its velocity moved it; the light a sample
+// receives is the frame's own at the sample's point (the volumes move each on its own, so no one
+// motion carries the light along, as the one volume's march does).
+VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
     VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
     float t0 = 0.0f;
@@ -237,9 +240,8 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay
     float coverage = 0.0f;
     float depth_weighted = 0.0f;
     float cos_forward = dot(dir, forward);
-    bool emits = P.emission_sources > 0;
     VxMedium m;
-    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && vx_volumes_sample(origin, dir, dt, t1, emits, k, m); ++k) {
+    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && vx_volumes_sample(origin, dir, dt, t1, true, time, k, m); ++k) {
         float t = (float(k) + 0.5f) * dt;
         vec3 x = origin + dir * t;
         px.samples += 1.0f;
@@ -271,7 +273,7 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, VX_INOUT(VxDeepRay
 // stages' volumes) is made where the medium was at `time`: the light stages are the frame's own,
 // carried along with the medium.
 VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
-    if (VX_SEVERAL_VOLUMES) return vx_march_volumes(origin, dir, forward, deep);
+    if (VX_SEVERAL_VOLUMES) return vx_march_volumes(origin, dir, forward, time, deep);
     VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
     bool deep_on = P.deep_samples > 0;
@@ -385,18 +387,13 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     return vx_finish_ray(px, T, 1.0f - T, depth_weighted, deep);
 }
 
-// Ray i of pixel (x, y)'s P.time_samples (without motion blur, its one ray at the frame's time).
+// Ray i of pixel (x, y)'s P.time_samples (vx_pixel_ray).
 VxPixel vx_render_ray(int x, int y, int i, VX_INOUT(VxDeepRay) deep) {
     vec3 origin;
     vec3 dir;
     vec3 forward;
-    if (P.motion_blur == 0) {
-        vx_camera_ray(x, y, origin, dir, forward);
-        return vx_march_ray(origin, dir, forward, 0.0f, deep);
-    }
-    float fraction = vx_shutter_fraction(i, P.time_samples, vx_pixel_time_offset(x, y));
-    vx_camera_ray_at(x, y, fraction, origin, dir, forward);
-    return vx_march_ray(origin, dir, forward, vx_shutter_time(fraction), deep);
+    float time = vx_pixel_ray(x, y, i, origin, dir, forward);
+    return vx_march_ray(origin, dir, forward, time, deep);
 }
 
 // Pixel (x, y): the mean of its rays. The GL backend dispatches ray by ray instead and averages

@@ -7,6 +7,7 @@
 // velocity (one more reconstruction) and the moved point, with a page lookup when that lies in
 // another brick.
 #pragma once
+#include "vx_pixel.h"
 #include "vx_sample.h"
 
 VX_DEFINE_RECONSTRUCT(vec3, vx_velocity_at, vx_atlas_velocity)
@@ -46,3 +47,16 @@ VX_INLINE float vx_pixel_time_offset(int x, int y) {
 // Ray i of a pixel's n: its fraction of the way from shutter open to close, and its time in frames.
 VX_INLINE float vx_shutter_fraction(int i, int n, float offset) { return (float(i) + offset) / float(n); }
 VX_INLINE float vx_shutter_time(float fraction) { return P.shutter_open + (P.shutter_close - P.shutter_open) * fraction; }
+
+// Ray i of pixel (x, y)'s P.time_samples: its world origin, unit direction and the camera's
+// forward, at the time it returns (frames from the frame's own; without motion blur, the one ray
+// at the frame's time).
+float vx_pixel_ray(int x, int y, int i, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+    if (P.motion_blur == 0) {
+        vx_camera_ray(x, y, origin, dir, forward);
+        return 0.0f;
+    }
+    float fraction = vx_shutter_fraction(i, P.time_samples, vx_pixel_time_offset(x, y));
+    vx_camera_ray_at(x, y, fraction, origin, dir, forward);
+    return vx_shutter_time(fraction);
+}

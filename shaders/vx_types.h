@@ -129,7 +129,11 @@ struct VxVolume {
     float transfer_lo;      // grid value at its table's first row
     float transfer_inv_range;  // 1 / (value range of its table)
     int color_offset;       // from a tap's index in the density to its colour's (vx_atlas_color)
+    int use_velocity;       // 1 if it moves under motion blur (its velocity in its index voxels a second)
+    int velocity_offset;    // from a tap's index in the density to its velocity's (vx_atlas_velocity)
     int pad0;
+    int pad1;
+    int pad2;
     int emission_first;     // its first emission source: the scene's sources are numbered volume by
                             // volume (P.emission_domain and the emission table's rows)
     int emission_count;     // its sources (0: it emits nothing)

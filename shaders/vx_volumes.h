@@ -10,6 +10,7 @@
 // the volumes' boxes is crossed in one jump per gap, not sample by sample.
 #pragma once
 #include "vx_dda.h"
+#include "vx_motion.h"
 #include "vx_optics.h"
 
 // The volumes' medium at a point: the summed extinction (of every volume, as light meets it; of
@@ -36,9 +37,11 @@ VX_INLINE float vx_medium_g(VxMedium m) { return m.g_weight > 0.0f ? m.g_sum / m
 VX_INLINE vec3 vx_volume_lo(VxVolume V) { return vec3(V.pages.lo) * float(VX_BRICK); }
 VX_INLINE vec3 vx_volume_hi(VxVolume V) { return vec3(V.pages.hi + ivec3(1)) * float(VX_BRICK); }
 
-// The reconstruction of volume V at world point x, in `taps`; false where no stored brick of it
-// holds x (nothing is there). `inside` tells whether x lies in its box of bricks.
-bool vx_volume_taps(VxVolume V, vec3 x, VX_OUT(bool) inside, VX_OUT(VxTaps) taps) {
+// The reconstruction of volume V at world point x at `time` (frames from the frame's own), in
+// `taps`; false where no stored brick of it holds what is there. `inside` tells whether x lies in
+// its box of bricks. A moving volume is read where its medium was (vx_motion.h): at x moved back
+// by its velocity at x, which the joined atlas holds in its index voxels a second.
+bool vx_volume_taps(VxVolume V, vec3 x, float time, VX_OUT(bool) inside, VX_OUT(VxTaps) taps) {
     vec3 p = vec3(V.world_to_index * vec4(x, 1.0f));
     ivec3 b = ivec3(floor(p / float(VX_BRICK)));
     inside = !(b.x < V.pages.lo.x || b.y < V.pages.lo.y || b.z < V.pages.lo.z || b.x > V.pages.hi.x || b.y > V.pages.hi.y ||
@@ -47,12 +50,19 @@ bool vx_volume_taps(VxVolume V, vec3 x, VX_OUT(bool) inside, VX_OUT(VxTaps) taps
     int slot = vx_table_find(b, V.pages.first, V.pages.capacity, V.pages.max_probe);
     if (slot == VX_PAGE_EMPTY) return false;
     taps = vx_taps_in(V.pages, slot, b, p);
+    if (V.use_velocity == 0 || !vx_moving(time)) return true;
+    vec3 q = p - vx_velocity_at(vx_taps_offset(taps, V.velocity_offset)) * (P.velocity_per_frame * time);
+    ivec3 qb = ivec3(floor(q / float(VX_BRICK)));
+    int qs = all(equal(qb, b)) ? slot : vx_table_find(qb, V.pages.first, V.pages.capacity, V.pages.max_probe);
+    if (qs == VX_PAGE_EMPTY) return false;
+    taps = vx_taps_in(V.pages, qs, qb, q);
     return true;
 }
 
 // The extinction of volume V at its reconstruction `taps`, and in `tint` what its transfer
-// function and colour grid make of its albedo (as vx_extinction and vx_albedo do the one volume's).
-float vx_volume_sigma(VxVolume V, VxTaps taps, VX_OUT(vec3) tint) {
+// function and (when `tinted`) its colour grid make of its albedo (as vx_extinction and vx_albedo
+// do the one volume's).
+float vx_volume_sigma(VxVolume V, VxTaps taps, bool tinted, VX_OUT(vec3) tint) {
     float value = vx_density_at(taps);
     tint = vec3(1.0f);
     if (V.transfer_row >= 0) {
@@ -60,21 +70,21 @@ float vx_volume_sigma(VxVolume V, VxTaps taps, VX_OUT(vec3) tint) {
         value = tf.w;
         tint = vec3(tf);
     }
-    if (V.use_color != 0) tint *= vx_color_at(vx_taps_offset(taps, V.color_offset));
+    if (tinted && V.use_color != 0) tint *= vx_color_at(vx_taps_offset(taps, V.color_offset));
     return V.density_scale * value;
 }
 
-// The extinction of volume V at world point x (0 outside its stored bricks).
-float vx_volume_extinction(VxVolume V, vec3 x, VX_OUT(bool) inside) {
+// The extinction of volume V at world point x at `time` (0 outside its stored bricks).
+float vx_volume_extinction(VxVolume V, vec3 x, float time, VX_OUT(bool) inside) {
     VxTaps taps;
     vec3 tint;
-    return vx_volume_taps(V, x, inside, taps) ? vx_volume_sigma(V, taps, tint) : 0.0f;
+    return vx_volume_taps(V, x, time, inside, taps) ? vx_volume_sigma(V, taps, false, tint) : 0.0f;
 }
 
-// The medium at world point x, with the emission when `emission` is set (the camera's rays and
-// the reference's flights; shadow rays need the extinction only); `inside` tells whether x lies
-// in any volume's box of bricks (when not, the ray may jump to vx_volumes_next_entry).
-VxMedium vx_volumes_medium(vec3 x, bool emission, VX_OUT(bool) inside) {
+// The medium at world point x at `time`: its extinctions, and when `shading` (the camera's rays,
+// the reference's flights; not shadow rays) its scattering, g and emission; `inside` tells whether
+// x lies in any volume's box of bricks (when not, the ray may jump to vx_volumes_next_entry).
+VxMedium vx_volumes_medium(vec3 x, bool shading, float time, VX_OUT(bool) inside) {
     VxMedium m;
     m.scattering = vec3(0.0f);
     m.sigma = 0.0f;
@@ -85,16 +95,17 @@ VxMedium vx_volumes_medium(vec3 x, bool emission, VX_OUT(bool) inside) {
     m.g_weight = 0.0f;
     m.pad0 = 0.0f;
     inside = false;
+    bool emission = shading && P.emission_sources > 0;
     for (int v = 0; v < P.volume_count; ++v) {
         VxVolume V = vx_placed_volume(v);
         bool in_box;
         VxTaps taps;
-        bool stored = vx_volume_taps(V, x, in_box, taps);
+        bool stored = vx_volume_taps(V, x, time, in_box, taps);
         inside = inside || in_box;
         if (!stored) continue;
-        vec3 tint;
-        float sigma = vx_volume_sigma(V, taps, tint);
         bool visible = V.role == VX_ROLE_VISIBLE;
+        vec3 tint;
+        float sigma = vx_volume_sigma(V, taps, shading && visible, tint);
         if (emission && visible && V.emission_count > 0)
             m.emitted = vx_radiance_add(m.emitted, vx_emission_of(taps, V.emission_first, V.emission_count, V.emission_offset, V.emission_stride));
         if (sigma <= 0.0f) continue;
@@ -103,6 +114,7 @@ VxMedium vx_volumes_medium(vec3 x, bool emission, VX_OUT(bool) inside) {
         m.sigma_camera += sigma;
         if (!visible) continue;
         m.sigma_visible += sigma;
+        if (!shading) continue;
         vec3 albedo = V.albedo * tint;
         m.scattering += sigma * albedo;
         float weight = sigma * (albedo.x + albedo.y + albedo.z);
@@ -156,14 +168,14 @@ int vx_volumes_skip(vec3 x, vec3 w, int k, float dt, float t_end) {
 }
 
 // The ray's sample t_k = (k + 0.5) * dt inside a volume's box, from k on: k moves past the space
-// between boxes, and m is the medium there (with its emission when `emission` is set); false once
-// the samples pass t_end.
-bool vx_volumes_sample(vec3 x, vec3 w, float dt, float t_end, bool emission, VX_INOUT(int) k, VX_OUT(VxMedium) m) {
+// between boxes, and m is the medium there at `time` (shaded as vx_volumes_medium says); false
+// once the samples pass t_end.
+bool vx_volumes_sample(vec3 x, vec3 w, float dt, float t_end, bool shading, float time, VX_INOUT(int) k, VX_OUT(VxMedium) m) {
     for (;; ++k) {
         float t = (float(k) + 0.5f) * dt;
         if (t > t_end) return false;
         bool inside;
-        m = vx_volumes_medium(x + w * t, emission, inside);
+        m = vx_volumes_medium(x + w * t, shading, time, inside);
         if (inside) return true;
         k = vx_volumes_skip(x, w, k, dt, t_end);
         if (k < 0) return false;
@@ -171,13 +183,14 @@ bool vx_volumes_sample(vec3 x, vec3 w, float dt, float t_end, bool emission, VX_
 }
 
 // Optical depth of the volumes from world point x along unit direction w over [0, dist], summed
-// at samples t_k = (k + 0.5) * dt; it stops once past tau_cut.
+// at samples t_k = (k + 0.5) * dt, in the medium at the frame's own time; it stops once past
+// tau_cut.
 float vx_volumes_optical_depth(vec3 x, vec3 w, float dist, float dt, float tau_cut) {
     float t0 = 0.0f;
     float t1 = dist;
     if (!vx_volumes_clip(x, w, t0, t1)) return 0.0f;
     float tau = 0.0f;
     VxMedium m;
-    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut && vx_volumes_sample(x, w, dt, t1, false, k, m); ++k) tau += m.sigma * dt;
+    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut && vx_volumes_sample(x, w, dt, t1, false, 0.0f, k, m); ++k) tau += m.sigma * dt;
     return tau;
 }

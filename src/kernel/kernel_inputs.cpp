@@ -36,6 +36,11 @@ float densityScale(const Material& m, float edge) {
     return m.density_units == DensityUnits::Voxel ? std::min(m.density_scale / edge, std::numeric_limits<float>::max()) : m.density_scale;
 }
 
+// The grid value at a transfer function's table's first row, and 1 / the values its rows span (0
+// to 1 without a transfer function).
+float transferLow(const std::vector<TransferPoint>& tf) { return tf.empty() ? 0.0f : tf.front().value; }
+float transferInverseRange(const std::vector<TransferPoint>& tf) { return tf.empty() ? 1.0f : 1.0f / (tf.back().value - tf.front().value); }
+
 // Of several volumes, the index space the light grids and the lighting methods' lookups work in
 // (in.index_to_world, P.world_to_index): aligned with the world axes, its voxel the finest
 // volume's edge, its bricks (P.bricks_min to P.bricks_max) covering the box of all placed volumes.
@@ -75,11 +80,13 @@ void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, Kern
             k.anisotropy = spec.material.anisotropy;
             k.role = spec.role == VolumeRole::Matte ? VX_ROLE_MATTE : spec.role == VolumeRole::ShadowOnly ? VX_ROLE_SHADOW_ONLY : VX_ROLE_VISIBLE;
             k.transfer_row = transfer_row;
-            k.transfer_lo = transfer.empty() ? 0.0f : transfer.front().value;
-            k.transfer_inv_range = transfer.empty() ? 1.0f : 1.0f / (transfer.back().value - transfer.front().value);
+            k.transfer_lo = transferLow(transfer);
+            k.transfer_inv_range = transferInverseRange(transfer);
             const VolumeChannels& c = bricks.channels[v];
             k.use_color = c.color ? 1 : 0;
             k.color_offset = c.color_offset;
+            k.use_velocity = c.velocity ? 1 : 0;
+            k.velocity_offset = c.velocity_offset;
             k.emission_first = c.emission_first;
             k.emission_count = c.emission_count;
             k.emission_offset = c.emission_offset;
@@ -102,10 +109,12 @@ float stepUnit(const KernelInputs& in) {
     return edge;
 }
 
-// One emission source of the scene and the largest value of its grid in this frame.
+// One emission source of the scene, the largest value of its grid in this frame, and whether its
+// volume is seen (a matte's or a shadow-only volume's sources emit nothing).
 struct SourceSpan {
     const EmissionSource* source;
     float grid_max;
+    bool seen = true;
 };
 
 // The scene's emission sources in the kernel's numbering: the one volume's, or of several (their
@@ -118,7 +127,8 @@ std::vector<SourceSpan> emissionSources(const Scene& scene, const BrickAtlas& at
     }
     for (size_t v = 0; v < scene.volumes.size(); ++v)
         for (size_t s = 0; s < size_t(volumes->channels[v].emission_count); ++s)
-            out.push_back({&scene.volumes[v].emission.at(s), volumes->emission_grid_max[size_t(volumes->channels[v].emission_first) + s]});
+            out.push_back({&scene.volumes[v].emission.at(s), volumes->emission_grid_max[size_t(volumes->channels[v].emission_first) + s],
+                           scene.volumes[v].role == VolumeRole::Visible});
     return out;
 }
 
@@ -146,14 +156,12 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const SceneBricks* v
         const EmissionTable table = bakeEmission(*sources[e].source, grid_max, xyz_to_working);
         in.emission_lut.insert(in.emission_lut.end(), table.rows.begin(), table.rows.end());
         P.emission_domain[int(e)] = grid_max > 0.0f ? 1.0f / grid_max : 0.0f;
-        emits |= table.threshold < std::numeric_limits<float>::infinity();
+        emits |= sources[e].seen && table.threshold < std::numeric_limits<float>::infinity();
     }
     P.emission_sources = emits ? int(sources.size()) : 0;
     P.emission_source_floats = int(atlas.slots()) * VX_BRICK_VOXELS;
-    const float lo = m.transfer.empty() ? 0.0f : m.transfer.front().value;
-    const float hi = m.transfer.empty() ? 1.0f : m.transfer.back().value;
-    P.transfer_lo = lo;
-    P.transfer_inv_range = 1.0f / (hi - lo);
+    P.transfer_lo = transferLow(m.transfer);
+    P.transfer_inv_range = transferInverseRange(m.transfer);
     // Of several volumes, each volume's transfer function and colour are its own (VxVolume).
     P.use_transfer = m.transfer.empty() || volumes ? 0 : 1;
     P.use_color_grid = atlas.color.empty() || volumes ? 0 : 1;

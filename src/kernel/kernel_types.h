@@ -30,7 +30,7 @@ VX_LINE_ALIGNED(VxParams, use_surface_grid);
 VX_LINE_ALIGNED(VxParams, camera_open);
 VX_LINE_ALIGNED(VxParams, camera_close);
 static_assert(sizeof(VxPageRange) == 48);
-static_assert(sizeof(VxVolume) == 176);
+static_assert(sizeof(VxVolume) == 192);
 VX_LINE_ALIGNED(VxVolume, pages);
 VX_LINE_ALIGNED(VxVolume, albedo);
 VX_LINE_ALIGNED(VxVolume, transfer_lo);

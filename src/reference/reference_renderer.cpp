@@ -43,18 +43,18 @@ struct Tracker {
 
     // The medium at a tentative collision: the one volume's reconstruction at the path's time
     // (nothing where it came from no stored brick: all its values are 0), or the several volumes'
-    // summed medium.
+    // summed medium, shaded (its scattering and emission) unless `extinction_only` (shadow rays).
     struct Collision {
         std::optional<CpuKernelData::VxTaps> taps;
         CpuKernelData::VxMedium mixed{};
     };
 
-    Collision medium(const Segment& s, float t) const {
+    Collision medium(const Segment& s, float t, bool extinction_only = false) const {
         Collision c;
         const glm::vec3 p = s.o + s.d * t;
         if (s.slot < 0) {
             bool inside = false;
-            c.mixed = k.vx_volumes_medium(p, k.P.emission_sources > 0, inside);
+            c.mixed = k.vx_volumes_medium(p, !extinction_only, time, inside);
             return c;
         }
         bool found = false;
@@ -178,7 +178,7 @@ struct Tracker {
             if (T <= 0.0f) return false;
             if (!(residual > 0.0f)) return true;  // uniform here: exact
             return collisions(s.t, s.t_end, residual, rng, events, [&](float t, bool opaque) {
-                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (extinction(medium(s, t)) - c) / residual);
+                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (extinction(medium(s, t, true)) - c) / residual);
                 return T > 0.0f;
             });
         });

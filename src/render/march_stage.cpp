@@ -77,7 +77,7 @@ StageActivity MarchStage::activity(const Scene& s) const {
                            : ", motion-blurred where the medium or camera moves (" + std::to_string(mb->samples) +
                                  (mb->samples == 1 ? " ray" : " rays") + " a pixel)";
     for (const VolumeSpec& v : s.volumes) {
-        if (!v.enabled || v.emission.empty()) continue;
+        if (!v.enabled || v.emission.empty() || v.role != VolumeRole::Visible) continue;
         march += ", emission" + (rendersAsSeveral(s) ? " of " + v.name : std::string()) + ": ";
         for (size_t i = 0; i < v.emission.size(); ++i) march += (i ? ", " : "") + emissionDescription(v.emission[i]);
     }

@@ -17,16 +17,18 @@ CoveragePlanes volumeCoverage(const KernelInputs& in, const std::vector<int>& sc
     tbb::parallel_for(region.y, region.w, [&](int y) {
         std::vector<float> pixel(names.size());
         for (int x = region.x; x < region.z; ++x) {
-            glm::vec3 origin, dir, forward;
-            k.vx_camera_ray(x, y, origin, dir, forward);
             std::fill(pixel.begin(), pixel.end(), 0.0f);
-            float t0 = 0.0f, t1 = 1e30f;
-            if (k.vx_volumes_clip(origin, dir, t0, t1)) {
+            // The pixel's rays of vx_render_pixel, their mean.
+            for (int ray = 0; ray < P.time_samples; ++ray) {
+                glm::vec3 origin, dir, forward;
+                const float time = k.vx_pixel_ray(x, y, ray, origin, dir, forward);
+                float t0 = 0.0f, t1 = 1e30f;
+                if (!k.vx_volumes_clip(origin, dir, t0, t1)) continue;
                 // The samples and transmittance of vx_march_volumes.
-                const float dt = P.step;
+                const float dt = P.step, share = 1.0f / float(P.time_samples);
                 float tau = 0.0f, T = 1.0f;
                 kernel::CpuKernelData::VxMedium m;
-                for (int s = k.vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && k.vx_volumes_sample(origin, dir, dt, t1, false, s, m); ++s) {
+                for (int s = k.vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && k.vx_volumes_sample(origin, dir, dt, t1, false, time, s, m); ++s) {
                     const glm::vec3 at = origin + dir * ((float(s) + 0.5f) * dt);
                     if (m.sigma_camera <= 0.0f) continue;
                     tau += m.sigma_camera * dt;
@@ -38,8 +40,8 @@ CoveragePlanes volumeCoverage(const KernelInputs& in, const std::vector<int>& sc
                         const kernel::VxVolume V = k.vx_placed_volume(v);
                         if (V.role != VX_ROLE_VISIBLE) continue;
                         bool in_box = false;
-                        const float sigma = k.vx_volume_extinction(V, at, in_box);
-                        if (sigma > 0.0f) pixel[size_t(scene_volume[size_t(v)])] += absorbed * (sigma / m.sigma_camera);
+                        const float sigma = k.vx_volume_extinction(V, at, time, in_box);
+                        if (sigma > 0.0f) pixel[size_t(scene_volume[size_t(v)])] += share * absorbed * (sigma / m.sigma_camera);
                     }
                 }
             }
@@ -55,7 +57,7 @@ bool wantsCoverage(const Scene& scene) {
 
 StageReads CoverageStage::reads() const {
     return {withPlacementKeys({"/output/aovs", "/volumes/*/name", "/volumes/*/material", "/render/resolution", "/render/step",
-                               "/render/transmittance_cutoff", "/render/filter", "/render/region"})};
+                               "/render/transmittance_cutoff", "/render/filter", "/render/region", "/render/motion_blur"})};
 }
 
 StageActivity CoverageStage::activity(const Scene& s) const {

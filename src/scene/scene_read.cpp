@@ -798,7 +798,6 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
         const std::string why = placed > 1 ? " with " + std::to_string(placed) + " volumes: several volumes render without it, so far"
                                            : " with a volume of role \"" + kVolumeRoleNames[size_t(rendered.volume().role)] +
                                                  "\": it renders as one of several volumes, which render without it, so far";
-        if (s.render.motion_blur) root.object("render").fail("motion_blur", "set" + why);
         if (s.effects.surface) root.object("effects").fail("surface", "set" + why);
         if (s.effects.perturbation) root.object("effects").fail("perturbation", "set" + why);
         // Kniss's transport colour holds for any medium; the diffusion profile is one material's.

@@ -1,5 +1,6 @@
 #include "volume/scene_bricks.h"
 
+#include <algorithm>
 #include <cassert>
 
 namespace voxlux {
@@ -47,9 +48,19 @@ SceneBricks joinVolumeBricks(const std::vector<const BrickAtlas*>& atlases, cons
         c.emission_offset = int(out.atlas.emission.size()) - slot_offset * VX_BRICK_VOXELS;
         c.color = !a.color.empty();
         c.color_offset = int(out.atlas.color.size() / 3) - slot_offset * VX_BRICK_VOXELS;
+        c.velocity = !a.velocity.empty() && a.motion_reach > 0;
+        c.velocity_offset = int(out.atlas.velocity.size() / 3) - slot_offset * VX_BRICK_VOXELS;
         out.channels.push_back(c);
         out.atlas.emission.insert(out.atlas.emission.end(), a.emission.begin(), a.emission.end());
         out.atlas.color.insert(out.atlas.color.end(), a.color.begin(), a.color.end());
+        if (c.velocity) {
+            const glm::mat3 to_index = glm::inverse(glm::mat3(a.index_to_world));
+            for (size_t i = 0; i < a.velocity.size(); i += 3) {
+                const glm::vec3 v = to_index * glm::vec3(a.velocity[i], a.velocity[i + 1], a.velocity[i + 2]);
+                out.atlas.velocity.insert(out.atlas.velocity.end(), {v.x, v.y, v.z});
+            }
+            out.atlas.motion_reach = std::max(out.atlas.motion_reach, a.motion_reach);
+        }
         for (size_t s = 0; s < a.emission_sources; ++s) out.emission_grid_max.push_back(a.emissionGridMax(s));
         // The bricks' entries only, their slots moved past the volumes before.
         for (int i = 0; i < p.brick_capacity; ++i) {

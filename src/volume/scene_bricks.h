@@ -15,8 +15,9 @@
 namespace voxlux {
 
 // Where one volume's channels besides the density sit in the joined atlas (kernel::VxVolume's
-// emission_* and color_offset): its emission sources in `emission`, numbered volume by volume
-// over the scene, and its colour in `color`.
+// emission_*, color_offset and velocity_offset): its emission sources in `emission`, numbered
+// volume by volume over the scene, its colour in `color`, and its velocity in `velocity`, turned
+// from the file's world units into its index voxels (each volume moves in its own index space).
 struct VolumeChannels {
     int emission_first = 0;    // its first source's number
     int emission_count = 0;
@@ -24,12 +25,14 @@ struct VolumeChannels {
     int emission_stride = 0;   // floats from one of its sources to the next
     bool color = false;        // whether it has a colour grid
     int color_offset = 0;      // from a tap's index in the joined density to its colour's
+    bool velocity = false;     // whether it moves under motion blur
+    int velocity_offset = 0;   // from a tap's index in the joined density to its velocity's
 };
 
 struct SceneBricks {
     BrickAtlas atlas;                            // the volumes' density bricks, slot ranges one after another,
-                                                 // and their emission sources' and colours' blocks (not
-                                                 // emission_max: emission_grid_max below)
+                                                 // and their emission sources', colours' and velocities'
+                                                 // blocks (not emission_max: emission_grid_max below)
     PageTable pages;                             // their brick tables one after another (no regions' table)
     std::vector<kernel::VxPageRange> ranges;     // each volume's pages
     std::vector<glm::mat4> index_to_world;       // each volume's file's

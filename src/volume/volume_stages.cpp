@@ -134,8 +134,8 @@ void EmptyFrameStage::run(StageRun& run) {
 
 StageReads VolumesStage::reads() const {
     return {{"/volumes/*/path", "/volumes/*/density", "/volumes/*/level_set", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/instances?",
-             "/volumes/*/role",
-             "/input/volume_files", "/render/filter"}};
+             "/volumes/*/role", "/input/volume_files", "/render/filter", "/render/motion_blur?", "/render/motion_blur/velocity",
+             "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps"}};
 }
 
 StageActivity VolumesStage::activity(const Scene& s) const {
@@ -154,7 +154,10 @@ void VolumesStage::run(StageRun& run) {
         nlohmann::json entry = run.scene.value(at);
         for (const char* placement_or_name : {"transform", "instances", "name", "role"}) entry.erase(placement_or_name);
         const nlohmann::json& file = run.scene.value("/input/volume_files/" + std::to_string(v));
-        const std::string key = entry.dump() + file.dump() + run.scene.value("/render/filter").dump();
+        std::string key = entry.dump() + file.dump() + run.scene.value("/render/filter").dump();
+        if (scene.render.motion_blur)   // what loading and bricking take of it: the velocity and its reach
+            for (const char* what : {"velocity", "shutter", "velocity_scale", "fps"})
+                key += run.scene.value(std::string("/render/motion_blur/") + what).dump();
         Kept& k = kept_[v - 1];
         // Kept under its key, not its place: the volumes after a disabled one move up the list.
         const auto same = std::find_if(before.begin(), before.end(), [&](const Kept& b) { return b.key == key; });
@@ -165,9 +168,9 @@ void VolumesStage::run(StageRun& run) {
             continue;
         }
         const VolumeSpec& spec = scene.volumes[v];
-        const LoadedVolume loaded = loadVolume(file.at("path").get<std::string>(), spec, std::nullopt);
+        const LoadedVolume loaded = loadVolume(file.at("path").get<std::string>(), spec, scene.render.motion_blur);
         run.warnings.insert(run.warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
-        k.atlas = buildBrickAtlas(loaded);
+        k.atlas = buildBrickAtlas(loaded, motionReachBricks(loaded, scene.render.motion_blur));
         for (const std::string& w : sanitizeReport(k.atlas, loaded)) run.warnings.push_back(w);
         k.pages = classifiedPageTable(k.atlas, spec, scene.render.filter);
         k.key = key;

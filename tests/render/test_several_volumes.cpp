@@ -2,9 +2,9 @@
 // copies at half the density render as one at the whole, in the march (to float rounding) and in
 // the reference (within its noise); far-apart volumes render as each alone; a mix of albedos and
 // anisotropies, transfer functions and colour grids matches the reference; emission adds, and a
-// fire lights the smoke beside it; a matte holds out what is behind it and a shadow-only volume
-// only shadows; a volume's stages re-run only for its own edits; what several volumes do not take
-// yet is refused by name.
+// fire lights the smoke beside it; a moving volume blurs as it does alone; a matte holds out what
+// is behind it and a shadow-only volume only shadows; a volume's stages re-run only for its own
+// edits; what several volumes do not take yet is refused by name.
 #include <filesystem>
 #include <fstream>
 
@@ -80,8 +80,8 @@ std::pair<double, double> meanAndError(const RenderImage& img) {
 }
 
 // The ball file with a "heat" grid beside its density, 1 at the centre and 0 at 1.2 times the
-// density's radius (it emits where the density has faded out, too), and a colour grid "Cd" that
-// turns from orange to blue along x.
+// density's radius (it emits where the density has faded out, too), a colour grid "Cd" that
+// turns from orange to blue along x, and a velocity "vel" of 2 world units a second along x.
 std::string writeFireBall(const std::string& dir) {
     auto density = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
     auto heat = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
@@ -101,7 +101,11 @@ std::string writeFireBall(const std::string& dir) {
                 if (r <= 1.2f) h.setValue({x, y, z}, 1.0f - r / 1.2f);
             }
     const std::string path = dir + "/fire.vdb";
-    openvdb::io::File(path).write({density, heat, colour});
+    auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    velocity->setTransform(density->transform().copy());
+    velocity->setName("vel");
+    velocity->denseFill(openvdb::CoordBBox({-28, -28, -28}, {28, 28, 28}), openvdb::Vec3s(2.0f, 0.0f, 0.0f), true);
+    openvdb::io::File(path).write({density, heat, colour, velocity});
     return path;
 }
 
@@ -333,6 +337,69 @@ TEST(SeveralVolumes, ATransferFunctionAndAColourGridMarchAsTheyDoAlone) {
         EXPECT_GT(tinted_sum.x, 1.2f * tinted_sum.z);   // its tints show: redder than its bluish light
         EXPECT_LE(largest, 2e-5f * peak) << "filter " << int(filter);
     }
+}
+
+// Under motion blur (1 frame a second: the fire ball moves half a unit either way over the
+// shutter) a moving volume of several blurs as it does alone, glow and all, beside a still ball
+// that blurs not at all. Under ambient light only: the light is the same wherever the medium moved.
+TEST(SeveralVolumes, AMovingVolumeBlursAsItDoesAlone) {
+    const std::string dir = tempDir("several-moving-apart");
+    const std::string fire_file = writeFireBall(dir), ball_file = writeBall(dir);
+    const glm::vec3 left(-3.0f, 0.0f, 0.0f), right(3.0f, 0.5f, -1.0f);
+    for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
+        const auto scene = [&](std::vector<VolumeSpec> v, bool blurred) {
+            Scene s = sceneOf(std::move(v), glm::vec3(0.0f), 60.0f);
+            s.lights = {s.lights[1]};
+            s.render.filter = filter;
+            if (blurred) {
+                MotionBlur blur;
+                blur.fps = 1.0f;
+                blur.samples = 4;
+                s.render.motion_blur = blur;
+            }
+            return s;
+        };
+        const RenderImage both = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left), ball(ball_file, "smoke", 0.5f, right)}, true));
+        const RenderImage only_fire = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left)}, true));
+        const RenderImage only_smoke = render(scene({ball(ball_file, "smoke", 0.5f, right)}, true));
+        const RenderImage still = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left), ball(ball_file, "smoke", 0.5f, right)}, false));
+        float largest = 0.0f, peak = 0.0f, blurred = 0.0f;
+        for (size_t i = 0; i < both.pixels.size(); ++i) {
+            const glm::vec4 sum = only_fire.pixels[i].rgba + only_smoke.pixels[i].rgba;
+            largest = std::max(largest, glm::compMax(glm::abs(both.pixels[i].rgba - sum)));
+            peak = std::max(peak, glm::compMax(sum));
+            blurred = std::max(blurred, std::abs(both.pixels[i].rgba.w - still.pixels[i].rgba.w));
+        }
+        std::printf("  filter %d: largest difference %.3g of %.3f; the blur moves alpha by %.3f\n", int(filter), largest, peak, blurred);
+        EXPECT_GT(blurred, 0.05f);   // it does blur
+        EXPECT_LE(largest, 2e-5f * peak) << "filter " << int(filter);
+    }
+}
+
+// The reference blurs several volumes as the march does: each path at its time sees each volume
+// where it moved (a glowing ball behind a still smoke, both of albedo 0: the march is exact but
+// for its steps).
+TEST(SeveralVolumes, TheReferenceBlursAMovingVolumeAsTheMarchDoes) {
+    const std::string dir = tempDir("several-moving-reference");
+    VolumeSpec glow = fire(writeFireBall(dir), "fire", 1.0f, 3.0f, glm::vec3(-0.8f, 0.0f, 0.0f));
+    VolumeSpec smoke = ball(writeBall(dir), "smoke", 0.6f, glm::vec3(1.5f, 0.0f, 1.0f));
+    glow.material.albedo = smoke.material.albedo = glm::vec3(0.0f);
+    Scene march = sceneOf({glow, smoke});
+    march.lights.clear();
+    march.render.width = march.render.height = 12;
+    march.render.step = 0.1f;
+    MotionBlur blur;
+    blur.fps = 1.0f;
+    blur.samples = 8;
+    march.render.motion_blur = blur;
+    Scene reference = march;
+    reference.render.method = RenderMethod::Reference;
+    reference.render.reference.spp = 64;
+    const auto [mean_march, unused] = meanAndError(render(march));
+    const auto [mean_reference, error] = meanAndError(render(reference));
+    std::printf("  blurred glow: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_reference, error);
+    EXPECT_GT(mean_reference, 0.05);
+    EXPECT_LE(std::abs(mean_march - mean_reference), 3.0 * error + 0.01 * mean_reference);
 }
 
 // The march's single scattering (fine steps) matches the reference's first bounce, in the mean.
@@ -728,6 +795,29 @@ TEST(SeveralVolumes, EachVolumesCoverageSumsToTheAlpha) {
     EXPECT_EQ(single.planes.at("coverage.ball"), single.planes.at("A"));
 }
 
+// Under motion blur each volume's coverage is the mean over the pixel's rays, as the alpha is.
+TEST(SeveralVolumes, UnderMotionBlurEachVolumesCoverageStillSumsToTheAlpha) {
+    const std::string dir = tempDir("several-coverage-blurred");
+    const std::string fire_file = writeFireBall(dir), ball_file = writeBall(dir);
+    const std::string scene = dir + "/coverage.json";
+    std::ofstream(scene) << R"({"volumes": [
+        {"name": "fire", "path": ")" << fire_file << R"("},
+        {"name": "smoke", "path": ")" << ball_file << R"(", "transform": {"translate": [1.5, 0.5, 1]}}],
+      "camera": {"position": [0, 0, 12], "look_at": [0, 0, 0], "fov": 40},
+      "render": {"resolution": [32, 32], "motion_blur": {"fps": 1, "samples": 4}},
+      "output": {"path": ")" << dir << R"(/coverage.exr", "pixel_type": "float", "aovs": ["coverage"]}})";
+    const CliResult r = runCli("render " + scene);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Exr exr = readExr(dir + "/coverage.exr");
+    float largest = 0.0f, fire = 0.0f;
+    for (size_t i = 0; i < exr.planes.at("A").size(); ++i) {
+        largest = std::max(largest, std::abs(exr.planes.at("coverage.fire")[i] + exr.planes.at("coverage.smoke")[i] - exr.planes.at("A")[i]));
+        fire = std::max(fire, exr.planes.at("coverage.fire")[i]);
+    }
+    EXPECT_GT(fire, 0.3f);
+    EXPECT_LE(largest, 1e-5f);
+}
+
 // A volume after the first whose file is missing or damaged is named, and nothing is written.
 TEST(SeveralVolumes, ABadSecondFileIsNamedAndNothingIsWritten) {
     const std::string dir = tempDir("several-bad-file");
@@ -772,6 +862,11 @@ TEST(SeveralVolumes, TheGlBackendMarchesThemAsTheCpuDoes) {
     Scene on_gl = cpu;
     on_gl.render.backend = Backend::Gl;
     EXPECT_LE(largestRelativeDifference(render(cpu), render(on_gl)), 1e-3f);
+    MotionBlur blur;   // the tinted volume moves (its file's velocity), the others stand still
+    blur.fps = 1.0f;
+    blur.samples = 2;
+    cpu.render.motion_blur = on_gl.render.motion_blur = blur;
+    EXPECT_LE(largestRelativeDifference(render(cpu), render(on_gl)), 1e-3f) << "under motion blur";
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ TEST(SceneVolumes, ConflictsAndDuplicatesAreRefused) {
 // render; what it holds is not refused, as it does not render; one volume stays enabled.
 TEST(SceneVolumes, ADisabledVolumeIsKeptAndLeftOutOfTheRender) {
     const Scene s = parseScene(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "enabled": false,
-        "emission": [{"grid": "heat", "kind": "constant"}]}], "render": {"motion_blur": true}})", "shot.json", "");
+        "material": {"transfer_function_2d": "ct_tissue"}}]})", "shot.json", "");
     ASSERT_EQ(s.volumes.size(), 2u);
     EXPECT_FALSE(s.volumes[1].enabled);
     EXPECT_EQ(sceneToJson(s)["volumes"][1]["enabled"], false);
@@ -78,8 +78,9 @@ TEST(SceneVolumes, ADisabledVolumeIsKeptAndLeftOutOfTheRender) {
     EXPECT_EQ(rendered.volume().name, "a");
     EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb", "enabled": false}]})"),
               "shot.json: /volumes: every volume is disabled (enabled: false): a scene renders one at least");
-    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb"}], "render": {"motion_blur": true}})"),
-              "shot.json: /render/motion_blur: set with 2 volumes: several volumes render without it, so far");
+    EXPECT_EQ(sceneErrorOf(R"({"volumes": [{"path": "a.vdb"}, {"path": "b.vdb", "material": {"transfer_function_2d": "ct_tissue"}}]})"),
+              "shot.json: /volumes/1/material/transfer_function_2d: set: a volume of several takes a 1D transfer function "
+              "(transfer_function) only, so far");
 }
 
 TEST(SceneVolumes, SetReachesAVolumeByIndexOrNameAndTheOneVolumesKeysAsWritten) {

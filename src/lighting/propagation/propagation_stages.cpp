@@ -307,7 +307,7 @@ void lightTheMarchFrom(const IlluminationVolume& v, const Scene& scene, MarchLig
 
 bool illuminationVolumeRuns(const Scene& scene) { return propagationActivity(scene, "").runs; }
 
-size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission, bool transport) {
+size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission, bool transport, bool scattering) {
     const size_t cells = size_t(d.x) * d.y * d.z;
     // The light grid, its mask, the direct RGB, and an x pass's slice-major copies of the
     // extinction and of its RGB result (CPU).
@@ -325,6 +325,8 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission,
         // The emission grid (and its coarsening), the two orders, the second's source and an x
         // pass's slice-major copy of a source.
         if (emission) bytes += (cells + (chroma > 1 ? cc : 0) + 4 * cc) * 3 * sizeof(float);
+        // Of several volumes, the scattering grid (and its coarsening) the emitted light scatters by.
+        if (emission && scattering) bytes += (cells + (chroma > 1 ? cc : 0)) * 3 * sizeof(float);
         // Per-material transport: its three planes over the light grid while they are built, and
         // the coarse grid's four planes with an x pass's slice-major copy of them.
         if (transport) bytes += (3 * cells + 8 * cc) * sizeof(float);
@@ -369,7 +371,8 @@ void IlluminationGridStage::run(StageRun& run) {
     const glm::vec3 extent = lightGridExtent(inputs);
     const bool emission = emissionLightsTheMedium(scene);
     const bool transport = indirect && !brick_.atlas().transport.empty();
-    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport); },
+    const bool scattering = inputs.params.volume_count > 0;
+    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport, scattering); },
                         // The kernels index the volume (3 + 3 floats per cell at most) with ints.
                         [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 < uint64_t(INT32_MAX); },
                         "illumination volume"};
