@@ -24,18 +24,23 @@ VX_INLINE vec3 vx_motion_shift(int slot, ivec3 b, vec3 p, float time) {
     return mat3(P.velocity_to_world) * vx_velocity_at(vx_taps_at(slot, b, p)) * (P.velocity_per_frame * time);
 }
 
-// The reconstruction at index point p of stored brick (slot, b) moved back by world `shift`: where
-// the medium now at p was in the frame. `found` is false where that point lies in no stored brick
-// (its values are all 0 there). Unmoved, it is vx_taps_at(slot, b, p) itself, so a still medium
-// renders bit for bit as without blur.
+// The reconstruction at index point q among `pages`, where a point of stored brick (slot, b) was
+// in the frame: its own brick's slot, or another's looked up. `found` is false where q lies in no
+// stored brick (its values are all 0 there).
+VX_INLINE VxTaps vx_taps_moved_to(VxPageRange pages, int slot, ivec3 b, vec3 q, VX_OUT(bool) found) {
+    ivec3 qb = ivec3(floor(q / float(VX_BRICK)));
+    int qs = all(equal(qb, b)) ? slot : vx_page_lookup_in(pages, qb);
+    found = qs != VX_PAGE_EMPTY;
+    return vx_taps_in(pages, found ? qs : slot, qb, q);    // not found: any stored cell, unused
+}
+
+// The reconstruction at index point p of the one volume's stored brick (slot, b) moved back by
+// world `shift`: where the medium now at p was in the frame. Unmoved, it is vx_taps_at(slot, b, p)
+// itself, so a still medium renders bit for bit as without blur.
 VX_INLINE VxTaps vx_moved_taps(int slot, ivec3 b, vec3 p, vec3 shift, VX_OUT(bool) found) {
     found = true;
     if (vx_is_zero(shift)) return vx_taps_at(slot, b, p);
-    vec3 q = p - vx_to_index_dir(shift);
-    ivec3 qb = ivec3(floor(q / float(VX_BRICK)));
-    int qs = all(equal(qb, b)) ? slot : vx_page_lookup(qb);
-    found = qs != VX_PAGE_EMPTY;
-    return vx_taps_at(found ? qs : slot, qb, q);    // not found: any stored cell, unused
+    return vx_taps_moved_to(vx_own_pages(), slot, b, p - vx_to_index_dir(shift), found);
 }
 
 // Where in [0, 1) pixel (x, y) shifts its rays' strata: one offset a pixel, so the copies of a

@@ -52,11 +52,9 @@ bool vx_volume_taps(VxVolume V, vec3 x, float time, VX_OUT(bool) inside, VX_OUT(
     taps = vx_taps_in(V.pages, slot, b, p);
     if (V.use_velocity == 0 || !vx_moving(time)) return true;
     vec3 q = p - vx_velocity_at(vx_taps_offset(taps, V.velocity_offset)) * (P.velocity_per_frame * time);
-    ivec3 qb = ivec3(floor(q / float(VX_BRICK)));
-    int qs = all(equal(qb, b)) ? slot : vx_table_find(qb, V.pages.first, V.pages.capacity, V.pages.max_probe);
-    if (qs == VX_PAGE_EMPTY) return false;
-    taps = vx_taps_in(V.pages, qs, qb, q);
-    return true;
+    bool found;
+    taps = vx_taps_moved_to(V.pages, slot, b, q, found);
+    return found;
 }
 
 // The extinction of volume V at its reconstruction `taps`, and in `tint` what its transfer

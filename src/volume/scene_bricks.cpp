@@ -38,9 +38,10 @@ SceneBricks joinVolumeBricks(const std::vector<const BrickAtlas*>& atlases, cons
         out.atlas.density.insert(out.atlas.density.end(), a.density.begin(), a.density.end());
         out.atlas.density_range.insert(out.atlas.density_range.end(), a.density_range.begin(), a.density_range.end());
         out.atlas.active_voxels += a.active_voxels;
-        // Its sources' and colour's blocks after the volumes' before: source s of slot i at
-        // emission_offset + s * emission_stride past the tap's index i * 729 + voxel in the joined
-        // density, its colour at color_offset past it (3 floats a voxel).
+        // Its sources', colour's and velocity's blocks after the volumes' before: source s of slot
+        // i at emission_offset + s * emission_stride past the tap's index i * 729 + voxel in the
+        // joined density, its colour and velocity at color_offset and velocity_offset past it (3
+        // floats a voxel).
         VolumeChannels c;
         c.emission_first = int(out.emission_grid_max.size());
         c.emission_count = int(a.emission_sources);

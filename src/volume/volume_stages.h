@@ -125,9 +125,10 @@ private:
 
 // The volumes of a scene of several after the first (whose stages are load, brick and classify):
 // each loaded, bricked and classified as those do, and kept while its own keys (its entry but the
-// transform, its file, the filter) stay the same, wherever it moves in the list, so an edit of one
-// volume, or one after the first disabled or enabled again, reloads no other; then all joined
-// into one atlas (volume/scene_bricks.h). It does not run for one volume.
+// transform, its file, the filter, and the motion blur's velocity keys) stay the same, wherever it
+// moves in the list, so an edit of one volume, or one after the first disabled or enabled again,
+// reloads no other; then all joined into one atlas (volume/scene_bricks.h). It does not run for
+// one volume.
 // Cost: the changed volumes' load, brick and classify, and one copy of every volume's bricks.
 class VolumesStage final : public Stage {
 public:

@@ -6,6 +6,7 @@
 // is behind it and a shadow-only volume only shadows; a volume's stages re-run only for its own
 // edits; what several volumes do not take yet is refused by name.
 #include <filesystem>
+#include <functional>
 #include <fstream>
 
 #include <glm/gtx/component_wise.hpp>
@@ -165,28 +166,45 @@ TEST(SeveralVolumes, TwoCopiesAtHalfTheDensityTraceAsOneAtTheWholeInTheReference
     EXPECT_LE(std::abs(mean_one - mean_two), 3.0 * std::hypot(error_one, error_two));
 }
 
-TEST(SeveralVolumes, FarApartTheyRenderAsEachAlone) {
-    const std::string file = writeBall(tempDir("several-apart"));
-    const glm::vec3 left(-3.0f, 0.0f, 0.0f), right(3.0f, 0.5f, -1.0f);
+// Two volumes far apart, `a` at the left of a wide view and `b` at the right, rendered together
+// and each alone. Lit from the camera's side, so neither shadows the other; `adjust` sets the
+// scenes' other keys.
+struct ApartRenders {
+    RenderImage both, a, b;
+    // The largest difference of any channel of `both` from the sum of `a` and `b`.
+    float largestFromSum() const {
+        float largest = 0.0f;
+        for (size_t i = 0; i < both.pixels.size(); ++i)
+            largest = std::max(largest, glm::compMax(glm::abs(both.pixels[i].rgba - (a.pixels[i].rgba + b.pixels[i].rgba))));
+        return largest;
+    }
+};
+
+ApartRenders renderApart(VolumeSpec a, VolumeSpec b, const std::function<void(Scene&)>& adjust = [](Scene&) {}) {
+    a.transform = VolumeTransform{};
+    a.transform->translate = glm::vec3(-3.0f, 0.0f, 0.0f);
+    b.transform = VolumeTransform{};
+    b.transform->translate = glm::vec3(3.0f, 0.5f, -1.0f);
     const auto scene = [&](std::vector<VolumeSpec> v) {
         Scene s = sceneOf(std::move(v), glm::vec3(0.0f), 60.0f);
-        s.lights[0].direction = glm::vec3(0, 0, -1);   // from the camera: neither shadows the other
+        s.lights[0].direction = glm::vec3(0, 0, -1);
+        adjust(s);
         return s;
     };
-    const RenderImage both = render(scene({ball(file, "left", 1.0f, left), ball(file, "right", 0.5f, right)}));
-    const RenderImage only_left = render(scene({ball(file, "left", 1.0f, left)}));
-    const RenderImage only_right = render(scene({ball(file, "right", 0.5f, right)}));
-    float largest = 0.0f;
+    return {render(scene({a, b})), render(scene({a})), render(scene({b}))};
+}
+
+TEST(SeveralVolumes, FarApartTheyRenderAsEachAlone) {
+    const std::string file = writeBall(tempDir("several-apart"));
+    const ApartRenders r = renderApart(ball(file, "left", 1.0f), ball(file, "right", 0.5f));
     int covered_left = 0, covered_right = 0;
-    for (size_t i = 0; i < both.pixels.size(); ++i) {
-        const glm::vec4 sum = only_left.pixels[i].rgba + only_right.pixels[i].rgba;
-        largest = std::max(largest, glm::compMax(glm::abs(both.pixels[i].rgba - sum)));
-        covered_left += only_left.pixels[i].rgba.w > 0.1f;
-        covered_right += only_right.pixels[i].rgba.w > 0.1f;
+    for (size_t i = 0; i < r.both.pixels.size(); ++i) {
+        covered_left += r.a.pixels[i].rgba.w > 0.1f;
+        covered_right += r.b.pixels[i].rgba.w > 0.1f;
     }
     EXPECT_GT(covered_left, 20);
     EXPECT_GT(covered_right, 20);
-    EXPECT_LE(largest, 1e-5f);
+    EXPECT_LE(r.largestFromSum(), 1e-5f);
 }
 
 // A volume of several emits as it does alone: beside a ball that emits nothing, far from it, its
@@ -194,23 +212,13 @@ TEST(SeveralVolumes, FarApartTheyRenderAsEachAlone) {
 TEST(SeveralVolumes, AnEmittingVolumeMarchesAsItDoesAlone) {
     const std::string dir = tempDir("several-emitting-apart");
     const std::string fire_file = writeFireBall(dir), ball_file = writeBall(dir);
-    const glm::vec3 left(-3.0f, 0.0f, 0.0f), right(3.0f, 0.5f, -1.0f);
     for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
-        const auto scene = [&](std::vector<VolumeSpec> v) {
-            Scene s = sceneOf(std::move(v), glm::vec3(0.0f), 60.0f);
-            s.lights[0].direction = glm::vec3(0, 0, -1);   // from the camera: neither shadows the other
-            s.render.filter = filter;
-            return s;
-        };
-        const RenderImage both = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left), ball(ball_file, "smoke", 0.5f, right)}));
-        const RenderImage only_fire = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left)}));
-        const RenderImage only_smoke = render(scene({ball(ball_file, "smoke", 0.5f, right)}));
-        float largest = 0.0f, peak = 0.0f;
-        for (size_t i = 0; i < both.pixels.size(); ++i) {
-            const glm::vec4 sum = only_fire.pixels[i].rgba + only_smoke.pixels[i].rgba;
-            largest = std::max({largest, glm::compMax(glm::abs(both.pixels[i].rgba - sum)),
-                                glm::compMax(glm::abs(both.pixels[i].emission - only_fire.pixels[i].emission))});
-            peak = std::max(peak, glm::compMax(only_fire.pixels[i].emission));
+        const ApartRenders r = renderApart(fire(fire_file, "fire", 1.0f, 4.0f), ball(ball_file, "smoke", 0.5f),
+                                           [&](Scene& s) { s.render.filter = filter; });
+        float largest = r.largestFromSum(), peak = 0.0f;
+        for (size_t i = 0; i < r.both.pixels.size(); ++i) {
+            largest = std::max(largest, glm::compMax(glm::abs(r.both.pixels[i].emission - r.a.pixels[i].emission)));
+            peak = std::max(peak, glm::compMax(r.a.pixels[i].emission));
         }
         std::printf("  filter %d: brightest emission %.4f, largest difference %.3g\n", int(filter), peak, largest);
         EXPECT_GT(peak, 0.5f);
@@ -312,25 +320,15 @@ TEST(SeveralVolumes, AFireLightsTheSmokeBesideItThroughPropagation) {
 TEST(SeveralVolumes, ATransferFunctionAndAColourGridMarchAsTheyDoAlone) {
     const std::string dir = tempDir("several-tinted-apart");
     const std::string fire_file = writeFireBall(dir), ball_file = writeBall(dir);
-    const glm::vec3 left(-3.0f, 0.0f, 0.0f), right(3.0f, 0.5f, -1.0f);
     for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
-        const auto scene = [&](std::vector<VolumeSpec> v) {
-            Scene s = sceneOf(std::move(v), glm::vec3(0.0f), 60.0f);
-            s.lights[0].direction = glm::vec3(0, 0, -1);   // from the camera: neither shadows the other
-            s.render.filter = filter;
-            return s;
-        };
-        const RenderImage both = render(scene({tinted(fire_file, "tinted", left), ball(ball_file, "plain", 0.5f, right)}));
-        const RenderImage only_tinted = render(scene({tinted(fire_file, "tinted", left)}));
-        const RenderImage only_plain = render(scene({ball(ball_file, "plain", 0.5f, right)}));
-        float largest = 0.0f, peak = 0.0f;
+        const ApartRenders r = renderApart(tinted(fire_file, "tinted"), ball(ball_file, "plain", 0.5f), [&](Scene& s) { s.render.filter = filter; });
+        float peak = 0.0f;
         glm::vec3 tinted_sum(0.0f);
-        for (size_t i = 0; i < both.pixels.size(); ++i) {
-            const glm::vec4 sum = only_tinted.pixels[i].rgba + only_plain.pixels[i].rgba;
-            largest = std::max(largest, glm::compMax(glm::abs(both.pixels[i].rgba - sum)));
-            peak = std::max(peak, glm::compMax(only_tinted.pixels[i].rgba));
-            tinted_sum += glm::vec3(only_tinted.pixels[i].rgba);
+        for (const auto& p : r.a.pixels) {
+            peak = std::max(peak, glm::compMax(p.rgba));
+            tinted_sum += glm::vec3(p.rgba);
         }
+        const float largest = r.largestFromSum();
         std::printf("  filter %d: the tinted volume's colour sum (%.3f, %.3f, %.3f), largest difference %.3g\n", int(filter), tinted_sum.x,
                     tinted_sum.y, tinted_sum.z, largest);
         EXPECT_GT(peak, 0.2f);
@@ -345,31 +343,26 @@ TEST(SeveralVolumes, ATransferFunctionAndAColourGridMarchAsTheyDoAlone) {
 TEST(SeveralVolumes, AMovingVolumeBlursAsItDoesAlone) {
     const std::string dir = tempDir("several-moving-apart");
     const std::string fire_file = writeFireBall(dir), ball_file = writeBall(dir);
-    const glm::vec3 left(-3.0f, 0.0f, 0.0f), right(3.0f, 0.5f, -1.0f);
     for (Filter filter : {Filter::Trilinear, Filter::Tricubic}) {
-        const auto scene = [&](std::vector<VolumeSpec> v, bool blurred) {
-            Scene s = sceneOf(std::move(v), glm::vec3(0.0f), 60.0f);
-            s.lights = {s.lights[1]};
-            s.render.filter = filter;
-            if (blurred) {
+        const auto ambientOnly = [&](bool blurred) {
+            return [=](Scene& s) {
+                s.lights = {s.lights[1]};
+                s.render.filter = filter;
+                if (!blurred) return;
                 MotionBlur blur;
                 blur.fps = 1.0f;
                 blur.samples = 4;
                 s.render.motion_blur = blur;
-            }
-            return s;
+            };
         };
-        const RenderImage both = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left), ball(ball_file, "smoke", 0.5f, right)}, true));
-        const RenderImage only_fire = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left)}, true));
-        const RenderImage only_smoke = render(scene({ball(ball_file, "smoke", 0.5f, right)}, true));
-        const RenderImage still = render(scene({fire(fire_file, "fire", 1.0f, 4.0f, left), ball(ball_file, "smoke", 0.5f, right)}, false));
-        float largest = 0.0f, peak = 0.0f, blurred = 0.0f;
-        for (size_t i = 0; i < both.pixels.size(); ++i) {
-            const glm::vec4 sum = only_fire.pixels[i].rgba + only_smoke.pixels[i].rgba;
-            largest = std::max(largest, glm::compMax(glm::abs(both.pixels[i].rgba - sum)));
-            peak = std::max(peak, glm::compMax(sum));
-            blurred = std::max(blurred, std::abs(both.pixels[i].rgba.w - still.pixels[i].rgba.w));
+        const ApartRenders r = renderApart(fire(fire_file, "fire", 1.0f, 4.0f), ball(ball_file, "smoke", 0.5f), ambientOnly(true));
+        const RenderImage still = renderApart(fire(fire_file, "fire", 1.0f, 4.0f), ball(ball_file, "smoke", 0.5f), ambientOnly(false)).both;
+        float peak = 0.0f, blurred = 0.0f;
+        for (size_t i = 0; i < r.both.pixels.size(); ++i) {
+            peak = std::max(peak, glm::compMax(r.a.pixels[i].rgba + r.b.pixels[i].rgba));
+            blurred = std::max(blurred, std::abs(r.both.pixels[i].rgba.w - still.pixels[i].rgba.w));
         }
+        const float largest = r.largestFromSum();
         std::printf("  filter %d: largest difference %.3g of %.3f; the blur moves alpha by %.3f\n", int(filter), largest, peak, blurred);
         EXPECT_GT(blurred, 0.05f);   // it does blur
         EXPECT_LE(largest, 2e-5f * peak) << "filter " << int(filter);

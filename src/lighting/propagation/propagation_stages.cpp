@@ -406,18 +406,17 @@ void IlluminationGridStage::run(StageRun& run) {
     coarse_ = fine_;
     if (chroma > 1) {
         chroma_sigma_ = halveGrid(grid.values.data(), grid.dims, 1);
-        if (fine_.emission) {   // only the coarse grid's is swept
-            chroma_emission_ = halveGrid(emission_.data(), grid.dims, 3);
-            coarse_.emission = &chroma_emission_;
-            fine_.emission = nullptr;
-            emission_ = std::vector<float>();
-        }
-        if (fine_.scattering) {
-            chroma_scattering_ = halveGrid(scattering_.data(), grid.dims, 3);
-            coarse_.scattering = &chroma_scattering_;
-            fine_.scattering = nullptr;
-            scattering_ = std::vector<float>();
-        }
+        // Only the coarse grid's emission (and scattering) is swept: the fine one is let go.
+        const auto coarsen = [&](std::vector<float>& fine, std::vector<float>& coarse, const std::vector<float>*& fine_ref,
+                                 const std::vector<float>*& coarse_ref) {
+            if (!fine_ref) return;
+            coarse = halveGrid(fine.data(), grid.dims, 3);
+            coarse_ref = &coarse;
+            fine_ref = nullptr;
+            fine = std::vector<float>();
+        };
+        coarsen(emission_, chroma_emission_, fine_.emission, coarse_.emission);
+        coarsen(scattering_, chroma_scattering_, fine_.scattering, coarse_.scattering);
         coarse_.grid_to_world = fine_.grid_to_world * glm::scale(glm::mat4(1.0f), glm::vec3(float(chroma)));
         coarse_.world_to_grid = glm::inverse(coarse_.grid_to_world);
         coarse_.dims = coarserDims(grid.dims, chroma);
