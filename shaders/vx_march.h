@@ -160,7 +160,7 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
 }
 
 // Single-scattered light at world point x for a camera ray travelling along unit direction dir,
-// from the lights `which` selects (VX_LIGHTS_*). Unshadowed directional light is the same all
+// from the lights `which` selects (VX_LIGHTS_*) of the march's light group. Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
 // `lit` is what the lighting methods looked up at x; `surface` is vx_surface; g the medium's
 // Henyey-Greenstein anisotropy there.
@@ -171,6 +171,7 @@ vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VX_IN(VxLightingSample) lit, V
         VxLight light = vx_light(i);
         bool directional = light.type == VX_LIGHT_DIRECTIONAL;
         if ((which == VX_LIGHTS_DIRECTIONAL && !directional) || (which == VX_LIGHTS_LOCAL && directional)) continue;
+        if (light.group != P.light_group) continue;
         vec3 wi;
         float dist;
         vec3 e = vx_light_incident(light, x, wi, dist);

@@ -19,6 +19,10 @@ struct VxLight {
     float cos_outer;        // cos(outer cone half-angle) (spot)
     vec3 color;             // colour * intensity (scene-linear, unclamped)
     float cos_inner;        // cos(inner half-angle) (spot)
+    int group;              // its light group's index (output.aovs "light_groups"; 0 without them)
+    int pad0;
+    int pad1;
+    int pad2;
 };
 
 // Everything the march needs besides the data arrays.
@@ -94,7 +98,8 @@ struct VxParams {
                             // scales the gradient ramp's
     int surface_offset;     // GL: its first float in the vectors' block (vx_gl_bindings.glsl)
     int volume_roles;       // 1 if a volume of vx_placed_volume is not visible: alpha is the visible volumes' coverage
-    int pad4;
+    int light_group;        // the light group this march scatters the lights of (VxLight.group; all
+                            // lights are group 0 without output.aovs "light_groups")
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
 };

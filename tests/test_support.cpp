@@ -209,5 +209,33 @@ std::string writeBall(const std::string& dir) {
     return path;
 }
 
+RenderImage renderScene(const Scene& scene) { return Renderer(scene).render(std::nullopt, false).image; }
+
+std::string writeFireBall(const std::string& dir) {
+    auto density = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
+    auto heat = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
+    heat->setName("heat");
+    auto colour = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    colour->setTransform(density->transform().copy());
+    colour->setName("Cd");
+    auto d = density->getAccessor();
+    auto h = heat->getAccessor();
+    auto c = colour->getAccessor();
+    for (int z = -24; z <= 24; ++z)
+        for (int y = -24; y <= 24; ++y)
+            for (int x = -24; x <= 24; ++x) {
+                const float r = std::sqrt(float(x * x + y * y + z * z)) / 20.0f, u = float(x + 24) / 48.0f;
+                if (r <= 1.0f) d.setValue({x, y, z}, 1.0f - r);
+                if (r <= 1.0f) c.setValue({x, y, z}, openvdb::Vec3s(1.0f - 0.6f * u, 0.6f, 0.3f + 0.7f * u));
+                if (r <= 1.2f) h.setValue({x, y, z}, 1.0f - r / 1.2f);
+            }
+    const std::string path = dir + "/fire.vdb";
+    auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    velocity->setTransform(density->transform().copy());
+    velocity->setName("vel");
+    velocity->denseFill(openvdb::CoordBBox({-28, -28, -28}, {28, 28, 28}), openvdb::Vec3s(2.0f, 0.0f, 0.0f), true);
+    openvdb::io::File(path).write({density, heat, colour, velocity});
+    return path;
+}
 
 }  // namespace voxlux::test

@@ -67,6 +67,15 @@ openvdb::FloatGrid::Ptr twoHalvesGrid(float left, float right);
 // file, since the renderer keys its caches on it.
 std::string writeBall(const std::string& dir);
 
+// A ball of radius 20 voxels (voxel 0.1) written to `dir`/fire.vdb with a "heat" grid beside its
+// density, 1 at the centre and 0 at 1.2 times the density's radius (it emits where the density
+// has faded out, too), a colour grid "Cd" that turns from orange to blue along x, and a velocity
+// "vel" of 2 world units a second along x; returns the path.
+std::string writeFireBall(const std::string& dir);
+
+// The image of `scene` (its files read from disk), rendered once by a Renderer of its own.
+RenderImage renderScene(const Scene& scene);
+
 // Rec. 709 luminance of scene-linear RGB.
 double luminance(glm::vec3 rgb);
 

@@ -7,13 +7,14 @@ namespace {
 
 using PixelRgb = glm::vec3 kernel::VxPixel::*;
 
-// Runs `processor` over one RGB plane of the image (an AOV: no alpha, nothing to unpremultiply).
-void transformPlane(RenderImage& image, PixelRgb member, const OCIO::ConstProcessorRcPtr& processor,
-                    ColorTransformer& transformer) {
-    std::vector<glm::vec4> plane(image.pixels.size());
-    for (size_t i = 0; i < plane.size(); ++i) plane[i] = glm::vec4(image.pixels[i].*member, 1.0f);
+// Runs `processor` over one RGB plane of n values, `rgb(i)` the i-th (an AOV or a light group: no
+// alpha, nothing to unpremultiply).
+template <class Rgb>
+void transformPlane(size_t n, Rgb rgb, const OCIO::ConstProcessorRcPtr& processor, ColorTransformer& transformer) {
+    std::vector<glm::vec4> plane(n);
+    for (size_t i = 0; i < n; ++i) plane[i] = glm::vec4(rgb(i), 1.0f);
     transformer.transformColors(processor, plane, false);
-    for (size_t i = 0; i < plane.size(); ++i) image.pixels[i].*member = glm::vec3(plane[i]);
+    for (size_t i = 0; i < n; ++i) rgb(i) = glm::vec3(plane[i]);
 }
 
 // The deep samples go through what the beauty does, each on its own: their composite is the
@@ -48,7 +49,10 @@ std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color
                                                            {"indirect", &kernel::VxPixel::indirect},
                                                            {"emission", &kernel::VxPixel::emission}};
         for (const auto& [name, member] : planes)
-            if (std::find(aovs.begin(), aovs.end(), name) != aovs.end()) transformPlane(image, member, color.output, transformer);
+            if (std::find(aovs.begin(), aovs.end(), name) != aovs.end())
+                transformPlane(image.pixels.size(), [&](size_t i) -> glm::vec3& { return image.pixels[i].*member; }, color.output, transformer);
+        for (LightGroupLayer& layer : image.light_groups)
+            transformPlane(layer.rgb.size(), [&](size_t i) -> glm::vec3& { return layer.rgb[i]; }, color.output, transformer);
     }
     for (size_t i = 0; i < beauty.size(); ++i) image.pixels[i].rgba = beauty[i];
     gradeDeepSamples(image.deep, color, transformer);

@@ -16,7 +16,8 @@ namespace voxlux {
 
 // Grades `image` in place: the beauty through color.grade (unpremultiplied per
 // color.unpremultiply) then color.output; the colour AOVs named in `aovs` (direct, ambient,
-// indirect, emission) through color.output only, so they stay ungraded. Returns the preview's
+// indirect, emission) and the light groups through color.output only, so they stay ungraded (they
+// sum to the beauty before its grade). Returns the preview's
 // display-referred RGBA (the graded beauty over black through color.preview), or nothing when
 // the pipeline has no preview. Deep samples go through the beauty's processors, each on its own.
 std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color, const std::vector<std::string>& aovs,

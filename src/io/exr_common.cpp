@@ -8,6 +8,7 @@
 #include <ImfIntAttribute.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
+#include <ImfStringVectorAttribute.h>
 
 namespace voxlux {
 namespace {
@@ -36,6 +37,8 @@ Imf::Header voxluxExrHeader(int width, int height, const ExrMetadata& meta) {
     }
     if (!meta.color_config.empty()) header.insert("voxlux/config", Imf::StringAttribute(meta.color_config));
     header.insert("voxlux/exposure", Imf::FloatAttribute(meta.exposure));
+    // Which layers are light groups, in order (a compositor rebuilding the beauty sums them).
+    if (!meta.light_groups.empty()) header.insert("voxlux/lightGroups", Imf::StringVectorAttribute(meta.light_groups));
     if (const auto& c = meta.chromaticities) {
         auto xy = [](glm::vec2 v) { return Imath::V2f(v.x, v.y); };
         Imf::addChromaticities(header, Imf::Chromaticities(xy((*c)[0]), xy((*c)[1]), xy((*c)[2]), xy((*c)[3])));

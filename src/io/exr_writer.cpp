@@ -184,6 +184,13 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         if (aov.name == "variance") add("variance.Y", type, [](const kernel::VxPixel& p) { return p.variance; });
         if (aov.name == "coverage")
             for (const ExrPlane& plane : coverage) channels.push_back({"coverage." + plane.name, type, *plane.values, {}});
+        if (aov.name == "light_groups")
+            for (const LightGroupLayer& layer : img.light_groups)
+                for (int k = 0; k < 3; ++k) {
+                    Channel c{"lightgroup." + layer.name + "." + rgb[k], type, std::vector<float>(n), {}};
+                    for (size_t i = 0; i < n; ++i) c.plane[i] = layer.rgb[i][k];
+                    channels.push_back(std::move(c));
+                }
     }
 
     ExrWriteReport report;

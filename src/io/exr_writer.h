@@ -27,6 +27,7 @@ struct ExrMetadata {
     std::string color_config;              // the OCIO config's name or path, as voxlux/config; "" = none
     float exposure = 0.0f;                 // stops applied before the output transform, as voxlux/exposure
     std::optional<std::array<glm::vec2, 4>> chromaticities;  // CIE xy of red, green, blue, white
+    std::vector<std::string> light_groups; // the light-group layers, as voxlux/lightGroups ("lightgroup.key", ...)
 };
 
 struct ExrWriteReport {

@@ -19,11 +19,20 @@ struct DeepSamples {
     std::vector<kernel::VxDeepSample> samples;
 };
 
+// One layer of output.aovs "light_groups": the light one group brings to the beauty, per pixel as
+// RenderImage::pixels.
+struct LightGroupLayer {
+    std::string name;                      // lightgroup.<name>
+    std::vector<glm::vec3> rgb;
+};
+
 struct RenderImage {
     int width = 0;
     int height = 0;
     std::vector<kernel::VxPixel> pixels;   // row-major, row 0 at the top
     DeepSamples deep;
+    std::vector<LightGroupLayer> light_groups;   // the scene's light groups, then "emission": they sum
+                                                 // to the beauty's colour (empty unless asked for)
 };
 
 enum class Device { Cpu, Gl };

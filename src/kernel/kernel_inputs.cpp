@@ -171,19 +171,26 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const SceneBricks* v
     in.tf_lut.insert(in.tf_lut.begin(), own.begin(), own.end());   // before the volumes' tables (setVolumes)
 }
 
-// The enabled lights, ambient ones summed into one radiance, and how their shadows are found.
+// The enabled lights, ambient ones summed into one radiance (and per light group), and how their
+// shadows are found.
 void setLights(const Scene& scene, KernelInputs& in) {
     auto& P = in.params;
+    const LightGroups groups = lightGroups(scene);
+    in.group_ambient.assign(std::max<size_t>(groups.names.size(), 1), glm::vec3(0.0f));
     // Ambient lights are not shadowed and act the same everywhere: they sum into one radiance.
     glm::vec3 ambient(0.0f);
     int local_lights = 0;
-    for (const auto& l : scene.lights) {
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& l = scene.lights[i];
         if (!l.enabled) continue;
+        const int group = groups.names.empty() ? 0 : groups.of_light[i];
         if (l.type == LightType::Ambient) {
             ambient = kernel::vx_radiance_add(ambient, l.color * l.intensity);
+            in.group_ambient[size_t(group)] = kernel::vx_radiance_add(in.group_ambient[size_t(group)], l.color * l.intensity);
             continue;
         }
         in.lights.push_back(packLight(l));
+        in.lights.back().group = group;
         local_lights += l.type != LightType::Directional;
     }
     P.ambient = ambient;
@@ -280,6 +287,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     setLights(scene, in);
     in.lighting = sources.lighting;   // the methods' blocks and arrays, as their stages set them
     P.ambient *= sources.lighting.ambient_scale;
+    for (glm::vec3& a : in.group_ambient) a *= sources.lighting.ambient_scale;
     setKnissEffects(scene.effects, voxelEdge(in.index_to_world), frame, in);
     setMotionBlur(scene, atlas, sources.camera, in);
     return in;

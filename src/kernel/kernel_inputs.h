@@ -36,6 +36,8 @@ struct MarchLighting {
 struct KernelInputs {
     kernel::VxParams params{};
     std::vector<kernel::VxLight> lights;
+    std::vector<glm::vec3> group_ambient;   // the ambient radiance per light group (VxLight::group),
+                                            // which params.ambient sums
     std::vector<glm::vec4> tf_lut;          // VX_TF_LUT_SIZE entries, a constant row if unused; of several
                                             // volumes, each one's table after (VxVolume::transfer_row)
     std::vector<glm::vec4> emission_lut;    // VX_EMISSION_LUT_SIZE rows per emission source

@@ -12,7 +12,7 @@ using uint = unsigned int;
 // std140 and C++ agree when every vector, matrix and struct member sits at a multiple of 16 bytes
 // and every struct is whole 16-byte lines (vx_types.h).
 #define VX_LINE_ALIGNED(T, member) static_assert(offsetof(T, member) % 16 == 0, #T "::" #member " must start a 16-byte line")
-static_assert(sizeof(VxLight) == 48);
+static_assert(sizeof(VxLight) == 64);
 VX_LINE_ALIGNED(VxLight, position);
 VX_LINE_ALIGNED(VxLight, direction);
 VX_LINE_ALIGNED(VxLight, color);

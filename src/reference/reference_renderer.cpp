@@ -283,22 +283,37 @@ struct Tracker {
 float toFloat(double v) { return float(std::min(v, double(std::numeric_limits<float>::max()))); }
 glm::vec3 toFloat(const glm::dvec3& v) { return {toFloat(v.x), toFloat(v.y), toFloat(v.z)}; }
 
-// One path's contributions.
+// One path's contributions. With light groups, `layers` (one per group, then the emitted light's)
+// receives the same terms as the light AOVs, each under the group of the light it came from.
 struct PathSample {
     glm::vec3 direct{0.0f}, indirect{0.0f}, ambient{0.0f}, emission{0.0f};
     float transmittance = 1.0f;
     float scatter_weight = 0.0f;  // the camera pass's probability-of-scattering estimate
     float depth = 0.0f;           // camera-space distance of the first scattering
     int events = 0;
+    std::vector<glm::vec3> layers;
+
+    // Ambient light `beta` * (the ambient radiance) * T reaching the path, per group.
+    void addAmbient(const std::vector<glm::vec3>& group_ambient, glm::vec3 beta, float T, glm::vec3 total) {
+        ambient += beta * total * T;
+        if (layers.empty()) return;
+        for (size_t g = 0; g < group_ambient.size(); ++g) layers[g] += beta * group_ambient[g] * T;
+    }
+    // Emitted light reaching the camera (seen, or scattered: `to` is emission or indirect).
+    void addEmitted(glm::vec3& to, glm::vec3 light) {
+        to += light;
+        if (!layers.empty()) layers.back() += light;
+    }
 };
 
-PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 origin, glm::vec3 dir,
-                     glm::vec3 forward, ReferenceRng& rng) {
+PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::vector<glm::vec3>& group_ambient, int layers,
+                     glm::vec3 origin, glm::vec3 dir, glm::vec3 forward, ReferenceRng& rng) {
     CpuKernelData& k = tr.k;
     PathSample ps;
+    ps.layers.assign(size_t(layers), glm::vec3(0.0f));
     const Tracker::RatioFlight camera = tr.ratioFlight(origin, dir, true, rng, ps.events);
     ps.transmittance = camera.transmittance;
-    ps.emission = camera.emitted;
+    ps.addEmitted(ps.emission, camera.emitted);
     if (!camera.scatter.collided) return ps;
     ps.scatter_weight = camera.weight;
     ps.depth = camera.scatter.t * glm::dot(dir, forward);
@@ -317,10 +332,13 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
         for (int i = 0; i < k.P.light_count; ++i) {
             glm::vec3 wi;
             float dist;
-            const glm::vec3 e = k.vx_light_incident(k.vx_light(i), x, wi, dist);
+            const kernel::VxLight light = k.vx_light(i);
+            const glm::vec3 e = k.vx_light_incident(light, x, wi, dist);
             if (e.x + e.y + e.z <= 0.0f) continue;
             const float T = tr.transmittance(x, wi, dist, rng, ps.events);
-            (bounce == 0 ? ps.direct : ps.indirect) += beta * e * (T * k.vx_phase_hg(glm::dot(wi, w), g));
+            const glm::vec3 scattered = beta * e * (T * k.vx_phase_hg(glm::dot(wi, w), g));
+            (bounce == 0 ? ps.direct : ps.indirect) += scattered;
+            if (layers) ps.layers[size_t(light.group)] += scattered;
         }
         // After the last scattering only escaping light (ambient) or emission can still arrive.
         if (bounce + 1 == rs.max_bounces && !escapes_count) break;
@@ -341,17 +359,17 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, glm::vec3 o
         if (bounce + 1 == rs.max_bounces) {
             if (k.P.emission_sources > 0) {
                 const Tracker::RatioFlight last = tr.ratioFlight(x, w, false, rng, ps.events);
-                ps.indirect += beta * last.emitted;
-                ps.ambient += beta * ambient * last.transmittance;
+                ps.addEmitted(ps.indirect, beta * last.emitted);
+                ps.addAmbient(group_ambient, beta, last.transmittance, ambient);
             } else {
-                ps.ambient += beta * ambient * tr.transmittance(x, w, 1e30f, rng, ps.events);
+                ps.addAmbient(group_ambient, beta, tr.transmittance(x, w, 1e30f, rng, ps.events), ambient);
             }
             break;
         }
         const Tracker::Flight f = tr.flight(x, w, rng, ps.events);
-        ps.indirect += beta * f.emitted;
+        ps.addEmitted(ps.indirect, beta * f.emitted);
         if (!f.collided) {
-            ps.ambient += beta * ambient;
+            ps.addAmbient(group_ambient, beta, 1.0f, ambient);
             break;
         }
         x += w * f.t;
@@ -444,7 +462,7 @@ float ratioTrackedTransmittance(const KernelInputs& in, const ExtinctionBounds& 
 }
 
 RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs, uint64_t* opaque_segments,
-                            ReferenceSums* sums) {
+                            ReferenceSums* sums, const std::vector<std::string>& light_groups) {
     CpuKernelData k = bindKernelData(in);
     if (k.P.surface_inv_range > 0.0f || k.P.noise_octaves > 0)
         throw InputError("render.method reference: effects.surface and effects.perturbation are march-only effects");
@@ -456,8 +474,15 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
     img.height = k.P.height;
     img.pixels.assign(size_t(img.width) * img.height, k.vx_empty_pixel());   // outside the region, empty
     const glm::ivec4 region = in.region;
-    const bool resume = sums && sums->width == img.width && sums->height == img.height && sums->samples < rs.spp;
-    if (sums && !resume) *sums = ReferenceSums{0, img.width, img.height, std::vector<ReferenceSums::Pixel>(img.pixels.size())};
+    // With light groups, a layer per group and the emitted light's, summed per pixel as the AOVs are.
+    const size_t layers = light_groups.empty() ? 0 : light_groups.size() + 1;
+    const bool resume = sums && sums->width == img.width && sums->height == img.height && sums->samples < rs.spp &&
+                        sums->layers.size() == img.pixels.size() * layers;
+    if (sums && !resume)
+        *sums = ReferenceSums{0, img.width, img.height, std::vector<ReferenceSums::Pixel>(img.pixels.size()),
+                              std::vector<glm::dvec3>(img.pixels.size() * layers)};
+    for (size_t l = 0; l < layers; ++l)
+        img.light_groups.push_back({l < light_groups.size() ? light_groups[l] : "emission", std::vector<glm::vec3>(img.pixels.size())});
     const int first = resume ? sums->samples : 0;
     const double n = rs.spp;
     ProgressTask progress("reference", int64_t(region.z - region.x) * (region.w - region.y) * (rs.spp - first), "samples");
@@ -473,6 +498,8 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 // legal, and a float sum of several such samples (or a luminance squared) overflows.
                 ReferenceSums::Pixel local;
                 ReferenceSums::Pixel& acc = sums ? sums->pixels[pixel] : local;
+                std::vector<glm::dvec3> local_layers(sums ? 0 : layers);
+                glm::dvec3* acc_layers = sums ? sums->layers.data() + size_t(pixel) * layers : local_layers.data();
                 for (int s = first; s < rs.spp; ++s) {
                     ReferenceRng rng(uint32_t(rs.seed), pixel, uint32_t(s));
                     Tracker at_time = tracker;
@@ -481,7 +508,8 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                         at_time.time = k.vx_shutter_time(fraction);
                         k.vx_camera_ray_at(x, y, fraction, origin, dir, forward);
                     }
-                    const PathSample p = tracePath(at_time, rs, origin, dir, forward, rng);
+                    const PathSample p = tracePath(at_time, rs, in.group_ambient, int(layers), origin, dir, forward, rng);
+                    for (size_t l = 0; l < layers; ++l) acc_layers[l] += p.layers[l];
                     acc.direct += p.direct;
                     acc.indirect += p.indirect;
                     acc.ambient += p.ambient;
@@ -506,6 +534,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 // of scattering off them.
                 const float alpha = k.P.volume_roles != 0 ? float(std::min(acc.scatter_weight / n, 1.0)) : 1.0f - px.transmittance;
                 px.rgba = glm::vec4(toFloat((acc.direct + acc.indirect + acc.ambient + acc.emission) / n), alpha);
+                for (size_t l = 0; l < layers; ++l) img.light_groups[l].rgb[pixel] = toFloat(acc_layers[l] / n);
                 px.depth = acc.scatter_weight > 0.0 ? float(acc.depth / acc.scatter_weight) : 0.0f;
                 px.samples = float(double(acc.events) / n);
                 const double mean = acc.lum / rs.spp;

@@ -10,6 +10,7 @@
 // (shaders/vx_*.h).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "kernel/kernel_backend.h"
@@ -41,7 +42,7 @@ float ratioTrackedTransmittance(const KernelInputs& inputs, const ExtinctionBoun
 // Every pixel's sums over the samples taken so far, kept by an interactive render so that more
 // samples continue an image rather than restart it: samples [samples, spp) added to the sums of
 // [0, samples), one pixel's in order, give the sums a render of spp samples takes, so the image is
-// the same bit for bit. Costs 144 bytes a pixel.
+// the same bit for bit. Costs 144 bytes a pixel, and 24 a light-group layer.
 struct ReferenceSums {
     struct Pixel {
         glm::dvec3 direct{0.0}, indirect{0.0}, ambient{0.0}, emission{0.0};
@@ -51,6 +52,7 @@ struct ReferenceSums {
     int samples = 0;   // per pixel
     int width = 0, height = 0;
     std::vector<Pixel> pixels;
+    std::vector<glm::dvec3> layers;   // with light groups, each pixel's layers (as RenderImage::light_groups)
 };
 
 // Renders inputs.params' camera with `settings.spp` paths per pixel centre. The pixel holds the
@@ -64,7 +66,11 @@ struct ReferenceSums {
 // With `sums` of the same image size and fewer samples, only the missing samples are taken and
 // added to them; otherwise they are started again (the caller keeps them only while nothing but
 // the sample count changes).
+// With `light_groups` (lightGroups' names), the image's light_groups are each path's
+// contributions by the group of the light they came from, and the emitted light's: the same
+// samples as the beauty, so they sum to it.
 RenderImage renderReference(const KernelInputs& inputs, const ReferenceSettings& settings,
-                            uint64_t* opaque_segments = nullptr, ReferenceSums* sums = nullptr);
+                            uint64_t* opaque_segments = nullptr, ReferenceSums* sums = nullptr,
+                            const std::vector<std::string>& light_groups = {});
 
 }  // namespace voxlux

@@ -36,8 +36,8 @@ StageActivity GradeStage::activity(const Scene& s) const {
 
 namespace {
 
-// Exposure scales light, so the beauty's colour, the light AOVs, the deep samples' colour and the
-// variance (by the square); alpha, transmittance and depth stay. Results above the float maximum
+// Exposure scales light, so the beauty's colour, the light AOVs and light groups, the deep samples'
+// colour and the variance (by the square); alpha, transmittance and depth stay. Results above the float maximum
 // stay at it.
 void expose(RenderImage& image, float stops) {
     if (stops == 0.0f) return;
@@ -52,6 +52,8 @@ void expose(RenderImage& image, float stops) {
         p.variance = std::min(p.variance * gain * gain, std::numeric_limits<float>::max());
     }
     for (kernel::VxDeepSample& s : image.deep.samples) s.rgb = scale(s.rgb, gain);
+    for (LightGroupLayer& layer : image.light_groups)
+        for (glm::vec3& c : layer.rgb) c = scale(c, gain);
 }
 
 }  // namespace

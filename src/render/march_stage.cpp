@@ -7,6 +7,7 @@
 #include "lighting/march_lighting.h"
 #include "lighting/propagation/emitted_light.h"
 #include "lighting/propagation/propagation_stages.h"
+#include "render/light_group_passes.h"
 #include "volume/volume_stages.h"
 
 namespace voxlux {
@@ -47,7 +48,7 @@ StageReads MarchStage::reads() const {
     return {withPlacementKeys({"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
              "/render/method", "/render/reference", "/render/motion_blur", "/render/region", "/volumes/*/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
-             "/volumes/*/emission", "/output/deep", "/output/deep_samples"})};
+             "/volumes/*/emission", "/output/deep", "/output/deep_samples", "/input/light_groups"})};
 }
 
 StageActivity MarchStage::activity(const Scene& s) const {
@@ -72,6 +73,12 @@ StageActivity MarchStage::activity(const Scene& s) const {
     if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation && !reference) march += ", noise-perturbed";
     if (s.output.deep) march += ", deep samples (up to " + std::to_string(s.output.deep_samples) + " a pixel)";
+    if (const LightGroups groups = lightGroups(s); !groups.names.empty()) {
+        const size_t layers = groups.names.size() + 1;
+        march += reference ? ", each path's light split into " + std::to_string(layers) + " light-group layers"
+                           : ", " + std::to_string(groups.names.size() + (emits(s) ? 1 : 0)) + " marches for the light groups (one a group" +
+                                 (emits(s) ? ", one for the emitted light)" : ")");
+    }
     if (const auto& mb = s.render.motion_blur)
         march += reference ? ", motion-blurred where the medium or camera moves (a time a path)"
                            : ", motion-blurred where the medium or camera moves (" + std::to_string(mb->samples) +
@@ -91,20 +98,21 @@ void MarchStage::run(StageRun& run) {
     for (const MarchLightingStage* s : lighting_) s->lightTheMarch(scene, sources.lighting);
     sources.camera = &camera_.camera();
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame(), color_.xyzToWorking(), sources);
+    const LightGroups groups = lightGroups(scene);
     if (scene.render.method != RenderMethod::Reference) {
-        image_ = run.backend.march(inputs);
+        image_ = groups.names.empty() ? run.backend.march(inputs) : marchLightGroups(run.backend, inputs, groups.names, emits(scene));
         return;
     }
     uint64_t opaque = 0;
     if (!keep_sums_) {
-        image_ = renderReference(inputs, scene.render.reference, &opaque);
+        image_ = renderReference(inputs, scene.render.reference, &opaque, nullptr, groups.names);
     } else {
         const std::string setup = referenceSetupKey(run);
         if (setup != sums_key_) sums_ = ReferenceSums{};
         sums_key_ = setup;
         const int kept = sums_.samples < scene.render.reference.spp ? sums_.samples : 0;
         try {
-            image_ = renderReference(inputs, scene.render.reference, &opaque, &sums_);
+            image_ = renderReference(inputs, scene.render.reference, &opaque, &sums_, groups.names);
         } catch (...) {   // the sums may hold part of the new samples
             sums_ = ReferenceSums{};
             sums_key_.clear();

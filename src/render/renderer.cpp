@@ -117,6 +117,12 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
     }
     if (scene_.volume().transform && !scene_.volume().transform->chan.empty())
         in["transform_chan"] = fileIdentity(scene_.volume().transform->chan);
+    // Which march a light lights in (the light groups): derived from the lights' groups and
+    // whether output.aovs asks for them, so that neither alone re-runs what reads it.
+    const LightGroups groups = lightGroups(scene_);
+    in["light_groups"] = groups.names.empty() ? nlohmann::json(nullptr)
+                                              : nlohmann::json{{"names", groups.names}, {"of_light", groups.of_light},
+                                                               {"marches", lightGroupMarches(scene_)}};
     const char* ocio = std::getenv("OCIO");
     in["ocio"] = ocio ? ocio : "";
     in["allow_empty"] = allow_empty;

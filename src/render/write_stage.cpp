@@ -54,6 +54,7 @@ void WriteStage::run(StageRun& run) {
     meta.color_space = cp.output_space;
     meta.color_config = cp.config_source;
     meta.exposure = scene.render.exposure;
+    for (const LightGroupLayer& layer : image.light_groups) meta.light_groups.push_back("lightgroup." + layer.name);
     if (cp.output_chromaticities) {
         const Chromaticities& c = *cp.output_chromaticities;
         meta.chromaticities = {{c.red, c.green, c.blue, c.white}};

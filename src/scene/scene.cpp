@@ -87,8 +87,28 @@ int enabledLightCount(const Scene& scene, bool ambient) {
 }
 
 const std::vector<std::string>& knownAovs() {
-    static const std::vector<std::string> aovs{"direct", "ambient", "indirect", "emission", "transmittance", "depth", "variance", "coverage"};
+    static const std::vector<std::string> aovs{"direct",   "ambient",  "indirect", "emission",    "transmittance",
+                                               "depth",    "variance", "coverage", "light_groups"};
     return aovs;
+}
+
+LightGroups lightGroups(const Scene& scene) {
+    LightGroups groups;
+    const bool asked = std::any_of(scene.output.aovs.begin(), scene.output.aovs.end(), [](const AovSpec& a) { return a.name == "light_groups"; });
+    if (!asked) return groups;
+    for (const Light& l : scene.lights) {
+        const std::string name = l.group.empty() ? "default" : l.group;
+        const auto at = std::find(groups.names.begin(), groups.names.end(), name);
+        groups.of_light.push_back(int(at - groups.names.begin()));
+        if (at == groups.names.end()) groups.names.push_back(name);
+    }
+    if (groups.names.empty()) groups.names.push_back("default");
+    return groups;
+}
+
+int lightGroupMarches(const Scene& scene) {
+    const size_t groups = lightGroups(scene).names.size();
+    return groups == 0 ? 1 : int(groups) + (emits(scene) ? 1 : 0);
 }
 
 bool isRegion(const std::array<float, 4>& b) { return b[0] >= 0 && b[1] >= 0 && b[0] < b[2] && b[1] < b[3] && b[2] <= 1 && b[3] <= 1; }

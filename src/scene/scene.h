@@ -118,6 +118,7 @@ struct Light {
     float intensity = 1.0f;
     float cone_angle = 30.0f;              // spot: outer half-angle, degrees
     float cone_softness = 5.0f;            // spot: degrees of falloff inside the outer angle
+    std::string group;                     // its light group (output.aovs "light_groups"); "" = the default group
 };
 
 struct Camera {
@@ -353,6 +354,20 @@ struct Scene {
 int enabledLightCount(const Scene& scene, bool ambient);
 
 const std::vector<std::string>& knownAovs();
+
+// The light groups output.aovs "light_groups" splits the beauty into, each written as a layer
+// lightgroup.<name> beside lightgroup.emission (the emitted light's own): the groups the lights
+// name, in the order they first appear, with "default" for the lights that name none. A scene
+// whose lights name no group has the default group alone.
+struct LightGroups {
+    std::vector<std::string> names;        // empty when the AOV is not asked for
+    std::vector<int> of_light;             // per scene light, its group's index in names
+};
+LightGroups lightGroups(const Scene& scene);
+// The marches the light groups take: one per group, and one more for the emitted light when the
+// scene emits; 1 without light groups. Under propagation each reads an illumination volume of its
+// own.
+int lightGroupMarches(const Scene& scene);
 const std::vector<std::string>& knownCompressions();  // EXR compressions by their OpenEXR names
 
 }  // namespace voxlux

@@ -475,7 +475,7 @@ AovSpec readAov(const JsonObject& output, size_t index) {
     auto known = [](const std::string& name) {
         return std::find(knownAovs().begin(), knownAovs().end(), name) != knownAovs().end();
     };
-    const std::string expected = " (expected direct, ambient, indirect, emission, transmittance, depth or variance)";
+    const std::string expected = " (expected direct, ambient, indirect, emission, transmittance, depth, variance, coverage or light_groups)";
     const auto& a = output.raw("aovs")[index];
     if (!a.is_object()) {
         const std::string name = a.is_string() ? a.get<std::string>() : jsonText(a);
@@ -653,11 +653,19 @@ Light readLight(const JsonObject& o) {
              : type == "ambient" ? LightType::Ambient
                                  : LightType::Directional;
     if (l.type == LightType::Ambient)
-        o.rejectUnknown({"name", "enabled", "type", "color", "intensity"});
+        o.rejectUnknown({"name", "enabled", "type", "color", "intensity", "group"});
     else
         o.rejectUnknown({"name", "enabled", "type", "position", "direction", "color", "intensity", "cone_angle",
-                         "cone_softness"});
+                         "cone_softness", "group"});
     l.name = o.string("name", "");
+    l.group = o.string("group", "");
+    // The name becomes the EXR layer lightgroup.<group>: Nuke splits channel names at dots.
+    const bool layer_name = !l.group.empty() && std::all_of(l.group.begin(), l.group.end(), [](unsigned char c) {
+        return std::isalnum(c) || c == '_' || c == '-';
+    });
+    if (o.has("group") && !layer_name)
+        o.fail("group", "'" + l.group + "' is not a layer name: use letters, digits, '_' and '-'");
+    if (l.group == "emission") o.fail("group", "'emission' is the emitted light's own group (lightgroup.emission)");
     l.enabled = o.boolean("enabled", true);
     if (l.type == LightType::Point || l.type == LightType::Spot) l.position = readPoint(o, "position");
     if (l.type == LightType::Directional || l.type == LightType::Spot) l.direction = readDirection(o, "direction");
@@ -810,6 +818,8 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     }
     if (s.output.deep && std::any_of(s.volumes.begin(), s.volumes.end(), [](const VolumeSpec& v) { return v.enabled && v.role != VolumeRole::Visible; }))
         root.fail("output", "deep output with a volume of role matte or shadow_only: its deep samples would carry every volume's opacity, so far");
+    if (s.output.deep && !lightGroups(s).names.empty())
+        root.fail("output", "deep output with the light_groups AOV: the deep samples carry the beauty alone, so far; write the groups in a render of their own");
     if (s.render.motion_blur && s.output.deep)
         root.fail("output", "deep output is made at one time and render.motion_blur spreads a pixel over the shutter: turn one of them off");
     return s;

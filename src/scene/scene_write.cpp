@@ -117,6 +117,7 @@ nlohmann::json lightToJson(const Light& l) {
         lj["cone_angle"] = jsonDecimal(l.cone_angle);
         lj["cone_softness"] = jsonDecimal(l.cone_softness);
     }
+    if (!l.group.empty()) lj["group"] = l.group;
     return lj;
 }
 

@@ -47,14 +47,16 @@ nlohmann::json lightSpecJson(const std::string& spec, const std::string& context
     nlohmann::json light = {{"type", parts.empty() ? std::string() : parts[0]}};
     const std::map<std::string, std::string> keys = {{"dir", "direction"}, {"pos", "position"}, {"color", "color"},
                                                      {"intensity", "intensity"}, {"angle", "cone_angle"},
-                                                     {"softness", "cone_softness"}};
+                                                     {"softness", "cone_softness"}, {"group", "group"}};
     for (size_t i = 1; i < parts.size(); ++i) {
         auto eq = parts[i].find('=');
         if (eq == std::string::npos) throw InputError(context + ": expected key=value, got '" + parts[i] + "'");
         const std::string key = parts[i].substr(0, eq), value = parts[i].substr(eq + 1);
         const auto named = keys.find(key);
-        if (named == keys.end()) throw InputError(context + ": unknown key '" + key + "' (dir, pos, color, intensity, angle, softness)");
-        if (key == "dir" || key == "pos" || key == "color") {
+        if (named == keys.end()) throw InputError(context + ": unknown key '" + key + "' (dir, pos, color, intensity, angle, softness, group)");
+        if (key == "group") {
+            light["group"] = value;
+        } else if (key == "dir" || key == "pos" || key == "color") {
             const glm::vec3 v = parseVec3(value, context);
             light[named->second] = {v.x, v.y, v.z};
         } else {

@@ -56,8 +56,6 @@ Scene sceneOf(std::vector<VolumeSpec> volumes, glm::vec3 look_at = glm::vec3(0.0
     return s;
 }
 
-RenderImage render(const Scene& scene) { return Renderer(scene).render(std::nullopt, false).image; }
-
 // The largest difference of any channel of any pixel, relative to the brightest channel of `a`.
 float largestRelativeDifference(const RenderImage& a, const RenderImage& b) {
     float largest = 0.0f, peak = 0.0f;
@@ -78,36 +76,6 @@ std::pair<double, double> meanAndError(const RenderImage& img) {
     }
     const double n = double(img.pixels.size());
     return {sum / n, std::sqrt(variance) / n};
-}
-
-// The ball file with a "heat" grid beside its density, 1 at the centre and 0 at 1.2 times the
-// density's radius (it emits where the density has faded out, too), a colour grid "Cd" that
-// turns from orange to blue along x, and a velocity "vel" of 2 world units a second along x.
-std::string writeFireBall(const std::string& dir) {
-    auto density = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
-    auto heat = boxGrid({0, 0, 0}, {-1, -1, -1}, 0.0f, 0.1);
-    heat->setName("heat");
-    auto colour = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
-    colour->setTransform(density->transform().copy());
-    colour->setName("Cd");
-    auto d = density->getAccessor();
-    auto h = heat->getAccessor();
-    auto c = colour->getAccessor();
-    for (int z = -24; z <= 24; ++z)
-        for (int y = -24; y <= 24; ++y)
-            for (int x = -24; x <= 24; ++x) {
-                const float r = std::sqrt(float(x * x + y * y + z * z)) / 20.0f, u = float(x + 24) / 48.0f;
-                if (r <= 1.0f) d.setValue({x, y, z}, 1.0f - r);
-                if (r <= 1.0f) c.setValue({x, y, z}, openvdb::Vec3s(1.0f - 0.6f * u, 0.6f, 0.3f + 0.7f * u));
-                if (r <= 1.2f) h.setValue({x, y, z}, 1.0f - r / 1.2f);
-            }
-    const std::string path = dir + "/fire.vdb";
-    auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
-    velocity->setTransform(density->transform().copy());
-    velocity->setName("vel");
-    velocity->denseFill(openvdb::CoordBBox({-28, -28, -28}, {28, 28, 28}), openvdb::Vec3s(2.0f, 0.0f, 0.0f), true);
-    openvdb::io::File(path).write({density, heat, colour, velocity});
-    return path;
 }
 
 // A volume of the fire-ball file tinted by its colour grid and a transfer function that thins its
@@ -144,7 +112,7 @@ TEST(SeveralVolumes, TwoCopiesAtHalfTheDensityMarchAsOneAtTheWhole) {
         Scene one = sceneOf({ball(file, "ball", 1.2f)});
         Scene two = sceneOf({ball(file, "a", 0.6f), ball(file, "b", 0.6f)});
         one.render.filter = two.render.filter = filter;
-        const RenderImage a = render(one), b = render(two);
+        const RenderImage a = renderScene(one), b = renderScene(two);
         // The same samples, the extinction summed in another order: float rounding only.
         EXPECT_LE(largestRelativeDifference(a, b), 2e-5f) << "filter " << int(filter);
     }
@@ -159,8 +127,8 @@ TEST(SeveralVolumes, TwoCopiesAtHalfTheDensityTraceAsOneAtTheWholeInTheReference
         s->render.method = RenderMethod::Reference;
         s->render.reference.spp = 64;
     }
-    const auto [mean_one, error_one] = meanAndError(render(one));
-    const auto [mean_two, error_two] = meanAndError(render(two));
+    const auto [mean_one, error_one] = meanAndError(renderScene(one));
+    const auto [mean_two, error_two] = meanAndError(renderScene(two));
     std::printf("  reference, one at s: %.5f +- %.5f; two at s/2: %.5f +- %.5f\n", mean_one, error_one, mean_two, error_two);
     EXPECT_GT(mean_one, 0.02);
     EXPECT_LE(std::abs(mean_one - mean_two), 3.0 * std::hypot(error_one, error_two));
@@ -191,7 +159,7 @@ ApartRenders renderApart(VolumeSpec a, VolumeSpec b, const std::function<void(Sc
         adjust(s);
         return s;
     };
-    return {render(scene({a, b})), render(scene({a})), render(scene({b}))};
+    return {renderScene(scene({a, b})), renderScene(scene({a})), renderScene(scene({b}))};
 }
 
 TEST(SeveralVolumes, FarApartTheyRenderAsEachAlone) {
@@ -234,7 +202,7 @@ TEST(SeveralVolumes, TwoEmittingCopiesAtHalfMarchAsOneAtTheWhole) {
         Scene one = sceneOf({fire(file, "fire", 1.2f, 3.0f)});
         Scene two = sceneOf({fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)});
         one.render.filter = two.render.filter = filter;
-        const RenderImage a = render(one), b = render(two);
+        const RenderImage a = renderScene(one), b = renderScene(two);
         EXPECT_GT(emitted(a), 1.0);
         EXPECT_LE(largestRelativeDifference(a, b), 2e-5f) << "filter " << int(filter);
         EXPECT_NEAR(emitted(a), emitted(b), 2e-5 * emitted(a));
@@ -254,17 +222,17 @@ TEST(SeveralVolumes, TwoEmittingCopiesAtHalfTraceAsOneAtTheWholeInTheReference) 
         s.render.reference.spp = 64;
         return s;
     };
-    const auto [mean_one, error_one] = meanAndError(render(reference({fire(file, "fire", 1.2f, 3.0f)}, RenderMethod::Reference)));
+    const auto [mean_one, error_one] = meanAndError(renderScene(reference({fire(file, "fire", 1.2f, 3.0f)}, RenderMethod::Reference)));
     const auto [mean_two, error_two] =
-        meanAndError(render(reference({fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)}, RenderMethod::Reference)));
+        meanAndError(renderScene(reference({fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)}, RenderMethod::Reference)));
     std::printf("  reference, one glowing at s: %.5f +- %.5f; two at s/2: %.5f +- %.5f\n", mean_one, error_one, mean_two, error_two);
     EXPECT_GT(mean_one, 0.05);
     EXPECT_LE(std::abs(mean_one - mean_two), 3.0 * std::hypot(error_one, error_two));
 
     std::vector<VolumeSpec> dark{fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)};
     for (VolumeSpec& v : dark) v.material.albedo = glm::vec3(0.0f);
-    const auto [mean_march, unused] = meanAndError(render(reference(dark, RenderMethod::March)));
-    const auto [mean_traced, error] = meanAndError(render(reference(dark, RenderMethod::Reference)));
+    const auto [mean_march, unused] = meanAndError(renderScene(reference(dark, RenderMethod::March)));
+    const auto [mean_traced, error] = meanAndError(renderScene(reference(dark, RenderMethod::Reference)));
     std::printf("  albedo 0: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_traced, error);
     EXPECT_GT(mean_traced, 0.05);
     EXPECT_LE(std::abs(mean_march - mean_traced), 3.0 * error + 0.01 * mean_traced);
@@ -281,7 +249,7 @@ TEST(SeveralVolumes, AMatteOrShadowOnlyVolumeEmitsNothing) {
             s.render.method = method;
             s.render.reference.spp = 4;
             float largest = 0.0f;
-            for (const auto& p : render(s).pixels) largest = std::max({largest, glm::compMax(p.rgba), glm::compMax(p.emission)});
+            for (const auto& p : renderScene(s).pixels) largest = std::max({largest, glm::compMax(p.rgba), glm::compMax(p.emission)});
             EXPECT_EQ(largest, 0.0f) << kVolumeRoleNames[size_t(role)] << ", method " << int(method);
         }
 }
@@ -301,7 +269,7 @@ TEST(SeveralVolumes, AFireLightsTheSmokeBesideItThroughPropagation) {
         in.model = IndirectModel::Kniss;
         in.transport_color = glm::vec3(0.6f);
         s.effects.indirect = in;
-        const RenderImage img = render(s);
+        const RenderImage img = renderScene(s);
         double sum = 0.0;   // the smoke's half of the image, beyond the fire's reach
         for (int y = 0; y < kSize; ++y)
             for (int x = kSize * 3 / 5; x < kSize; ++x) sum += luminance(img.pixels[size_t(y * kSize + x)].indirect);
@@ -388,8 +356,8 @@ TEST(SeveralVolumes, TheReferenceBlursAMovingVolumeAsTheMarchDoes) {
     Scene reference = march;
     reference.render.method = RenderMethod::Reference;
     reference.render.reference.spp = 64;
-    const auto [mean_march, unused] = meanAndError(render(march));
-    const auto [mean_reference, error] = meanAndError(render(reference));
+    const auto [mean_march, unused] = meanAndError(renderScene(march));
+    const auto [mean_reference, error] = meanAndError(renderScene(reference));
     std::printf("  blurred glow: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_reference, error);
     EXPECT_GT(mean_reference, 0.05);
     EXPECT_LE(std::abs(mean_march - mean_reference), 3.0 * error + 0.01 * mean_reference);
@@ -405,8 +373,8 @@ void expectSingleScatteringAsTheReference(Scene march) {
     reference.render.method = RenderMethod::Reference;
     reference.render.reference.spp = 256;
     reference.render.reference.max_bounces = 1;
-    const auto [mean_march, unused] = meanAndError(render(march));
-    const auto [mean_reference, error] = meanAndError(render(reference));
+    const auto [mean_march, unused] = meanAndError(renderScene(march));
+    const auto [mean_reference, error] = meanAndError(renderScene(reference));
     std::printf("  single scattering: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_reference, error);
     EXPECT_GT(mean_reference, 0.005);
     EXPECT_LE(std::abs(mean_march - mean_reference), 3.0 * error + 0.01 * mean_reference);
@@ -478,7 +446,7 @@ TEST(SeveralVolumes, ADisabledVolumeRendersAsIfItWereNotThereAndReloadsNoOther) 
     const auto [without_hidden, c_kept_off] = reusedOnToggle(false);
     EXPECT_TRUE(c_kept_off);
     EXPECT_TRUE(reusedOnToggle(true).second);
-    EXPECT_EQ(largestRelativeDifference(without_hidden, render(sceneOf({ball(file, "a", 0.6f), ball(file, "c", 0.4f, glm::vec3(-1.0f, 0, 0))}))), 0.0f);
+    EXPECT_EQ(largestRelativeDifference(without_hidden, renderScene(sceneOf({ball(file, "a", 0.6f), ball(file, "c", 0.4f, glm::vec3(-1.0f, 0, 0))}))), 0.0f);
 }
 
 // An instance is its volume placed again, reading the same bricks: a volume with two instances
@@ -496,8 +464,8 @@ TEST(SeveralVolumes, InstancesRenderAsCopiesAndShareTheBricks) {
     VolumeSpec a = ball(file, "a", 1.0f), b = ball(file, "b", 1.0f);
     a.transform = left;
     b.transform = right;
-    const RenderImage copies = render(sceneOf({a, b}, glm::vec3(0.0f), 60.0f));
-    const RenderImage instances = render(sceneOf({instanced}, glm::vec3(0.0f), 60.0f));
+    const RenderImage copies = renderScene(sceneOf({a, b}, glm::vec3(0.0f), 60.0f));
+    const RenderImage instances = renderScene(sceneOf({instanced}, glm::vec3(0.0f), 60.0f));
     float largest = 0.0f, covered = 0.0f;
     for (size_t i = 0; i < copies.pixels.size(); ++i) {
         largest = std::max(largest, glm::compMax(glm::abs(copies.pixels[i].rgba - instances.pixels[i].rgba)));
@@ -574,8 +542,8 @@ TEST(SeveralVolumes, AVolumeShadowsAnotherInEveryMethod) {
         return sum;
     };
     for (ShadowMethod method : {ShadowMethod::Raymarch, ShadowMethod::SatCone, ShadowMethod::Propagation}) {
-        const double alone = leftLuminance(render(scene({ball(file, "lit", 1.0f)}, method)));
-        const double shadowed = leftLuminance(render(scene({ball(file, "lit", 1.0f), ball(file, "blocker", 1.0f, glm::vec3(4.0f, 0, 0))}, method)));
+        const double alone = leftLuminance(renderScene(scene({ball(file, "lit", 1.0f)}, method)));
+        const double shadowed = leftLuminance(renderScene(scene({ball(file, "lit", 1.0f), ball(file, "blocker", 1.0f, glm::vec3(4.0f, 0, 0))}, method)));
         std::printf("  %s: the lit volume's light %.3f alone, %.3f behind the blocker\n", shadowMethodName(method).c_str(), alone, shadowed);
         EXPECT_GT(alone, 1.0);
         EXPECT_LT(shadowed, 0.5 * alone) << shadowMethodName(method);
@@ -594,11 +562,11 @@ TEST(SeveralVolumes, AnEmptyFirstVolumeLeavesTheOthersLit) {
             s.effects.shadows = method;
             return s;
         };
-        EXPECT_LE(largestRelativeDifference(render(scene({lit, empty})), render(scene({empty, lit}))), 1e-5f) << shadowMethodName(method);
+        EXPECT_LE(largestRelativeDifference(renderScene(scene({lit, empty})), renderScene(scene({empty, lit}))), 1e-5f) << shadowMethodName(method);
     }
     VolumeSpec also_empty = ball(file, "also_empty", 0.0f, glm::vec3(1.0f, 0, 0));
     try {
-        render(sceneOf({empty, also_empty}));
+        renderScene(sceneOf({empty, also_empty}));
         ADD_FAILURE() << "rendered a frame with nothing visible";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find(", nor in the other volume"), std::string::npos) << e.what();
@@ -668,10 +636,10 @@ TEST(SeveralVolumes, AMatteCutsTheVolumeBehindItByItsTransmittance) {
         s.lights[0].direction = glm::vec3(0.0f, -1.0f, 0.0f);   // from above: the slab does not shadow the ball
         return s;
     };
-    const RenderImage ball_alone = render(lit({ball(file, "ball", 1.0f)}));
-    const RenderImage slab_seen = render(lit({slabInFront(dir, VolumeRole::Visible)}));
-    const RenderImage held_out = render(lit({ball(file, "ball", 1.0f), slabInFront(dir, VolumeRole::Matte)}));
-    const RenderImage matte_alone = render(lit({slabInFront(dir, VolumeRole::Matte)}));
+    const RenderImage ball_alone = renderScene(lit({ball(file, "ball", 1.0f)}));
+    const RenderImage slab_seen = renderScene(lit({slabInFront(dir, VolumeRole::Visible)}));
+    const RenderImage held_out = renderScene(lit({ball(file, "ball", 1.0f), slabInFront(dir, VolumeRole::Matte)}));
+    const RenderImage matte_alone = renderScene(lit({slabInFront(dir, VolumeRole::Matte)}));
     float largest = 0.0f, peak = 0.0f, matte_largest = 0.0f, slab_opacity = 0.0f;
     for (size_t i = 0; i < held_out.pixels.size(); ++i) {
         const float T = slab_seen.pixels[i].transmittance;
@@ -696,10 +664,10 @@ TEST(SeveralVolumes, AShadowOnlyVolumeShadowsAndIsNotSeen) {
         return s;
     };
     VolumeSpec blocker = ball(file, "blocker", 1.0f, glm::vec3(4.0f, 0, 0));
-    const RenderImage alone = render(scene({ball(file, "lit", 1.0f)}));
-    const RenderImage blocker_seen = render(scene({blocker}));
+    const RenderImage alone = renderScene(scene({ball(file, "lit", 1.0f)}));
+    const RenderImage blocker_seen = renderScene(scene({blocker}));
     blocker.role = VolumeRole::ShadowOnly;
-    const RenderImage shadowed = render(scene({ball(file, "lit", 1.0f), blocker}));
+    const RenderImage shadowed = renderScene(scene({ball(file, "lit", 1.0f), blocker}));
     double lit_alone = 0.0, lit_shadowed = 0.0;
     float unseen = 0.0f;
     int blocker_pixels = 0;
@@ -733,7 +701,7 @@ TEST(SeveralVolumes, TheReferenceHoldsOutAMatteAsTheMarchDoes) {
     reference.render.method = RenderMethod::Reference;
     reference.render.reference.spp = 256;
     reference.render.reference.max_bounces = 1;
-    const RenderImage a = render(march), b = render(reference);
+    const RenderImage a = renderScene(march), b = renderScene(reference);
     double alpha_march = 0.0, alpha_reference = 0.0;
     for (size_t i = 0; i < a.pixels.size(); ++i) {
         alpha_march += a.pixels[i].rgba.w;
@@ -748,7 +716,7 @@ TEST(SeveralVolumes, TheReferenceHoldsOutAMatteAsTheMarchDoes) {
     EXPECT_NEAR(alpha_reference, alpha_march, 0.02 * alpha_march);
     Scene matte_only = reference;
     matte_only.volumes = {slabInFront(dir, VolumeRole::Matte)};
-    for (const auto& p : render(matte_only).pixels) EXPECT_EQ(p.rgba, glm::vec4(0.0f));
+    for (const auto& p : renderScene(matte_only).pixels) EXPECT_EQ(p.rgba, glm::vec4(0.0f));
 }
 
 // output.aovs "coverage": a channel per volume, named by it, which sum to the alpha; a matte's is 0;
@@ -854,12 +822,12 @@ TEST(SeveralVolumes, TheGlBackendMarchesThemAsTheCpuDoes) {
     cpu.volumes[1].emission = {glow};
     Scene on_gl = cpu;
     on_gl.render.backend = Backend::Gl;
-    EXPECT_LE(largestRelativeDifference(render(cpu), render(on_gl)), 1e-3f);
+    EXPECT_LE(largestRelativeDifference(renderScene(cpu), renderScene(on_gl)), 1e-3f);
     MotionBlur blur;   // the tinted volume moves (its file's velocity), the others stand still
     blur.fps = 1.0f;
     blur.samples = 2;
     cpu.render.motion_blur = on_gl.render.motion_blur = blur;
-    EXPECT_LE(largestRelativeDifference(render(cpu), render(on_gl)), 1e-3f) << "under motion blur";
+    EXPECT_LE(largestRelativeDifference(renderScene(cpu), renderScene(on_gl)), 1e-3f) << "under motion blur";
 }
 
 }  // namespace

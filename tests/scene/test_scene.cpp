@@ -40,11 +40,11 @@ TEST(Scene, ErrorsNameTheKeyAndItsPath) {
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb", "density": {"name": "d", "index": -1}}})"),
               "shot.json: /volume/density/index: must be 0 or more");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "output": {"aovs": ["direct", "beauty"]}})"),
-              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
+              "shot.json: /output/aovs: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, transmittance, depth, variance, coverage or light_groups)");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "effects": {"light_resolution": 1}})"),
               "shot.json: /effects/light_resolution: must lie in 2..1024 cells");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "ambient", "position": [0, 0, 0]}]})"),
-              "shot.json: /lights/0/position: unknown key (expected one of name, enabled, type, color, intensity)");
+              "shot.json: /lights/0/position: unknown key (expected one of name, enabled, type, color, intensity, group)");
 }
 
 // Values a float or an int cannot hold, and cameras or lights a ray cannot be traced from, are
@@ -199,10 +199,10 @@ TEST(Scene, OutputAovsAndCompressionAreValidated) {
               "shot.json: /output/compression: 'b44' is not one of none, zip, zips, piz, dwaa, dwab, rle");
     EXPECT_EQ(sceneErrorOf(v + R"({"aovs": "direct"}})"), "shot.json: /output/aovs: expected an array of AOV names or objects");
     EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [3]}})"),
-              "shot.json: /output/aovs: unknown AOV '3' (expected direct, ambient, indirect, emission, transmittance, depth or variance)");
+              "shot.json: /output/aovs: unknown AOV '3' (expected direct, ambient, indirect, emission, transmittance, depth, variance, coverage or light_groups)");
     EXPECT_EQ(sceneErrorOf(v + R"({"aovs": ["direct", {"name": "beauty"}]}})"),
               "shot.json: /output/aovs/1/name: unknown AOV 'beauty' (expected direct, ambient, indirect, emission, "
-              "transmittance, depth or variance)");
+              "transmittance, depth, variance, coverage or light_groups)");
     EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [{"pixel_type": "float"}]}})"), "shot.json: /output/aovs/0/name: required key is missing");
     EXPECT_EQ(sceneErrorOf(v + R"({"aovs": [{"name": "depth", "pixel_type": "double"}]}})"),
               "shot.json: /output/aovs/0/pixel_type: 'double' is not one of half, float");

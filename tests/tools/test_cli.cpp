@@ -536,7 +536,7 @@ TEST(Cli, LightFlagsGetTheScenesChecks) {
     expectRejected("render " + cloud + " --light area:pos=0,0,0",
                    "--light 'area:pos=0,0,0': /type: 'area' is not one of directional, point, spot, ambient");
     expectRejected("render " + cloud + " --light ambient:dir=0,1,0",
-                   "--light 'ambient:dir=0,1,0': /direction: unknown key (expected one of name, enabled, type, color, intensity)");
+                   "--light 'ambient:dir=0,1,0': /direction: unknown key (expected one of name, enabled, type, color, intensity, group)");
     expectRejected("render " + cloud + " --light point:intensity=5", "--light 'point:intensity=5': /position: required key is missing");
     // A zero direction overflowed an int in the march's brick walk.
     expectRejected("render " + cloud + " --light directional:dir=0,0,0", "--light 'directional:dir=0,0,0': /direction: must not be zero");

@@ -201,12 +201,21 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
     if (x_major) {
         sigma = &slicedSigma(pass, layout, scratch);
         if (pass.input) layout.toSlices(pass.input->data(), 3, scratch.input);
-        resizeInHugePages(scratch.result, size_t(dims.x) * dims.y * dims.z * 3);   // every cell is written: no need to clear it
     }
     const glm::ivec3 stride = x_major ? glm::ivec3(dims.z * dims.y, 1, dims.y) : glm::ivec3(1, dims.x, dims.x * dims.y);
     assert(stride[u] == 1);   // rows are contiguous: the row batch and the row writes below rely on it
+    // The blocks the pass's sweeps add into (light groups have one each), and each sweep's.
+    std::vector<int> targets;
+    std::vector<size_t> target_of;
+    for (const kernel::VxPropParams& Q : pass.sweeps) {
+        const auto at = std::find(targets.begin(), targets.end(), Q.block_first);
+        target_of.push_back(size_t(at - targets.begin()));
+        if (at == targets.end()) targets.push_back(Q.block_first);
+    }
+    const size_t cells = size_t(dims.x) * dims.y * dims.z;
+    if (x_major) resizeInHugePages(scratch.result, cells * 3 * targets.size());   // every cell is written: no need to clear it
     // Where a cell's RGB goes: the x-major result or the block itself.
-    float* out = x_major ? scratch.result.data() : block;
+    const auto out = [&](size_t t) { return x_major ? scratch.result.data() + t * cells * 3 : block + targets[t]; };
 
     // One lane per light: its own kernel parameters and its own pair of 2D slice buffers.
     struct Lane {
@@ -239,11 +248,13 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
         }
         const int previous = slice - first.direction;
         tbb::parallel_for(tbb::blocked_range<int>(0, nv), [&](const tbb::blocked_range<int>& rows) {
-            std::vector<float> rgb(size_t(nu) * 3);   // the row's light from every lane of the pass
+            std::vector<float> rgbs(size_t(nu) * 3 * targets.size());   // the row's light from every lane of the pass, per block
             std::vector<float> weights(nu);            // a point or spot light's weight per cell
             for (int j = rows.begin(); j < rows.end(); ++j) {
-                std::fill(rgb.begin(), rgb.end(), 0.0f);
-                for (auto& lane : lanes) {
+                std::fill(rgbs.begin(), rgbs.end(), 0.0f);
+                for (size_t l = 0; l < lanes.size(); ++l) {
+                    Lane* lane = lanes[l].get();
+                    float* rgb = rgbs.data() + target_of[l] * size_t(nu) * 3;
                     kernel::CpuPropagationKernel& k = lane->k;
                     float* row = &lane->cur[size_t(j) * nu * channels];
                     const int step = channels == 1 ? 0 : 1;   // a direct sweep's one value feeds every channel
@@ -270,24 +281,31 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
                 }
                 // The row's cells are contiguous in `out` (u is the fastest axis of either layout).
                 // Integer offsets: a float dot product is exact only below 2^24 cells.
-                float* cells = out + (size_t(slice) * size_t(stride[axis]) + size_t(j) * size_t(stride[v])) * 3;
-                if (x_major || eye) {
-                    std::copy(rgb.begin(), rgb.end(), cells);
-                } else {
+                const size_t row_at = (size_t(slice) * size_t(stride[axis]) + size_t(j) * size_t(stride[v])) * 3;
+                for (size_t t = 0; t < targets.size(); ++t) {
+                    float* row = out(t) + row_at;
+                    const float* rgb = rgbs.data() + t * size_t(nu) * 3;
+                    if (x_major || eye) {
+                        std::copy_n(rgb, size_t(nu) * 3, row);
+                    } else {
 #pragma omp simd
-                    for (size_t m = 0; m < rgb.size(); ++m) cells[m] = kernel::vx_radiance_add(cells[m], rgb[m]);
+                        for (size_t m = 0; m < size_t(nu) * 3; ++m) row[m] = kernel::vx_radiance_add(row[m], rgb[m]);
+                    }
                 }
             }
         });
         for (auto& lane : lanes) std::swap(lane->prev, lane->cur);
     }
     if (!x_major) return;
-    layout.forEachCell([&](size_t n, size_t s) {
-        for (int ch = 0; ch < 3; ++ch) {
-            float& cell = block[n * 3 + ch];
-            cell = eye ? scratch.result[s * 3 + ch] : kernel::vx_radiance_add(cell, scratch.result[s * 3 + ch]);
-        }
-    });
+    for (size_t t = 0; t < targets.size(); ++t) {
+        const float* result = out(t);
+        layout.forEachCell([&](size_t n, size_t s) {
+            for (int ch = 0; ch < 3; ++ch) {
+                float& cell = block[size_t(targets[t]) + n * 3 + ch];
+                cell = eye ? result[s * 3 + ch] : kernel::vx_radiance_add(cell, result[s * 3 + ch]);
+            }
+        });
+    }
 }
 
 }  // namespace voxlux

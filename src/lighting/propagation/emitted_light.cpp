@@ -65,11 +65,11 @@ bool emissionLightsTheMedium(const Scene& s) {
 }
 
 void addEmittedLight(const SweepGrid& grid, const Material& material, const kernel::VxPropParams& indirect,
-                     const KernelInputs& inputs, PropagationPasses& device, IlluminationVolume& volume, LightUpdate& report) {
+                     const KernelInputs& inputs, PropagationPasses& device, size_t block_first, IlluminationVolume& volume, LightUpdate& report) {
     if (!grid.emission || std::all_of(grid.emission->begin(), grid.emission->end(), [](float e) { return e <= 0.0f; }))
         return;
     const std::vector<float>& sigma = *grid.sigma;
-    float* block = volume.values.data() + volume.indirectOffset();
+    float* block = volume.values.data() + block_first + volume.indirectOffset();
     // Sums and products in double, capped at the float maximum: no order, and no sum of them, is
     // ever infinite, so no NaN follows from one (docs/scene.md, "Extreme values").
     auto capped = [](double v) { return float(std::min(v, double(std::numeric_limits<float>::max()))); };

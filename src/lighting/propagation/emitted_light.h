@@ -33,9 +33,9 @@ constexpr int kEmittedLightSweeps = 12;
 double emittedLightCost(const SweepGrid& grid);
 
 // Adds the fluence of the emission in `grid` (its `emission`, on the indirect light's grid) into
-// the indirect block of `volume`. `indirect` holds the indirect sweeps' grid and blur. The
+// the indirect block of the group volume of `volume` that starts at float `block_first`. `indirect` holds the indirect sweeps' grid and blur. The
 // orders after the first scatter with `material`'s albedo, or the grid's `scattering` if it has one.
 void addEmittedLight(const SweepGrid& grid, const Material& material, const kernel::VxPropParams& indirect,
-                     const KernelInputs& inputs, PropagationPasses& device, IlluminationVolume& volume, LightUpdate& report);
+                     const KernelInputs& inputs, PropagationPasses& device, size_t block_first, IlluminationVolume& volume, LightUpdate& report);
 
 }  // namespace voxlux

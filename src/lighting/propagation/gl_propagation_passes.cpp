@@ -24,7 +24,9 @@ public:
         kernel::CpuPropagationKernel axes;
         const int axis = first.axis, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
         const size_t slice_cells = size_t(first.dims[u]) * first.dims[v];
-        const size_t block = size_t(first.dims.x) * first.dims.y * first.dims.z * 3;
+        // The pass's RGB blocks: from its offset to the volume's end, which holds every light
+        // group's block its sweeps add into (VxPropParams::block_first).
+        const size_t block = volume.values.size() - pass.offset;
         march_params_.upload(pass.march, sizeof *pass.march, GL_STREAM_DRAW, "Params");
         march_params_.bind(program, GL_UNIFORM_BLOCK, "Params");
         const struct {

@@ -5,7 +5,7 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = VX_BIND_VOLUME) buffer Volume { float vx_volume[]; };   // the RGB block this sweep writes
+layout(std430, binding = VX_BIND_VOLUME) buffer Volume { float vx_volume[]; };   // the pass's RGB blocks (Q.block_first: this sweep's)
 layout(std430, binding = VX_BIND_SLICE_OUT) writeonly buffer SliceOut { float vx_slice_out[]; };
 
 void main() {
@@ -19,7 +19,7 @@ void main() {
     vec3 value = vx_prop_cell(i, j);
     for (int ch = 0; ch < Q.channels; ++ch) vx_slice_out[n * Q.channels + ch] = value[ch];
     ivec3 c = vx_prop_cell_at(axis, Q.slice, i, j);
-    int cell = ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x) * 3;
+    int cell = Q.block_first + ((c.z * Q.dims.y + c.y) * Q.dims.x + c.x) * 3;
     float weight = Q.eye_sweep != 0 ? 1.0f : vx_prop_weight(i, j);
     for (int ch = 0; ch < 3; ++ch) {
         float added = vx_prop_added(weight, ch, value[Q.channels == 1 ? 0 : ch]);

@@ -209,9 +209,10 @@ void runPasses(const PassSweeps& passes, const SweepGrid& g, size_t offset, bool
 }
 
 // The eye sweep (Ropinski Sec. 4.1): the indirect light flows towards the camera along the axis
-// facing it. It reads `before`, the light sweeps' indirect block, and replaces the volume's.
+// facing it. It reads `before`, the light sweeps' indirect block (one light group's, from float
+// `first` of the volume), and replaces it.
 void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const SweepGrid& coarse, glm::vec3 eye_position,
-                     const std::vector<float>& before, PropagationPasses& device, IlluminationVolume& volume) {
+                     const std::vector<float>& before, size_t first, PropagationPasses& device, IlluminationVolume& volume) {
     const glm::vec3 cam = glm::vec3(coarse.world_to_grid * glm::vec4(eye_position, 1.0f));
     const Sweep s = sweepsFor(cam - 0.5f * glm::vec3(coarse.dims), false)[0];
     const float tan_half = std::tan(glm::radians(0.5f * in.angle));
@@ -232,7 +233,7 @@ void sweepTowardsEye(const Indirect& in, const KernelInputs& inputs, const Sweep
     pass.noise = &inputs.noise;
     pass.sigma = coarse.sigma;
     pass.sigma_generation = coarse.sigma_generation;
-    pass.offset = volume.indirectOffset();
+    pass.offset = first;
     pass.input = &before;
     device.propagate(pass, volume);
 }
@@ -298,6 +299,7 @@ void lightTheMarchFrom(const IlluminationVolume& v, const Scene& scene, MarchLig
     b.chroma_factor = v.chroma;
     b.chroma_dims = v.chroma_dims;
     b.indirect_offset = int(v.indirectOffset());
+    b.group_floats = int(v.groupFloats());
     b.indirect_weight = indirect ? indirect->strength / (4.0f * float(M_PI)) : 0.0f;
     b.light_filter = scene.effects.propagation.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
     lighting.setArray("Illumination", v.values.data(), v.values.size() * sizeof(float));
@@ -307,7 +309,7 @@ void lightTheMarchFrom(const IlluminationVolume& v, const Scene& scene, MarchLig
 
 bool illuminationVolumeRuns(const Scene& scene) { return propagationActivity(scene, "").runs; }
 
-size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission, bool transport, bool scattering) {
+size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission, bool transport, bool scattering, int groups) {
     const size_t cells = size_t(d.x) * d.y * d.z;
     // The light grid, its mask, the direct RGB, and an x pass's slice-major copies of the
     // extinction and of its RGB result (CPU).
@@ -331,12 +333,19 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission,
         // the coarse grid's four planes with an x pass's slice-major copy of them.
         if (transport) bytes += (3 * cells + 8 * cc) * sizeof(float);
     }
+    // Each light group past the first: its direct RGB and its share of an x pass's result, and with
+    // indirect light its indirect RGB, the eye pass's copy of its volume and its input.
+    if (groups > 1) {
+        const glm::ivec3 c = coarserDims(d, chroma);
+        const size_t cc = size_t(c.x) * c.y * c.z;
+        bytes += size_t(groups - 1) * (6 * cells + (indirect ? 3 * cells + 9 * cc : 0)) * sizeof(float);
+    }
     return bytes;
 }
 
 StageReads IlluminationGridStage::reads() const {
     return {withPlacementKeys({"/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
-                               "/effects/propagation/chroma_subsampling", "/volumes/*/emission"})};
+                               "/effects/propagation/chroma_subsampling", "/volumes/*/emission", "/input/light_groups/marches"})};
 }
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
@@ -363,7 +372,8 @@ void IlluminationGridStage::run(StageRun& run) {
     release();
     generation_ = nextGridGeneration();
     const Scene& scene = run.scene({"/effects/indirect?", "/effects/propagation/chroma_subsampling", "/effects/light_resolution",
-                                    "/effects/light_memory_mb", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/transform"});
+                                    "/effects/light_memory_mb", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/transform",
+                                    "/input/light_groups/marches"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
@@ -372,7 +382,8 @@ void IlluminationGridStage::run(StageRun& run) {
     const bool emission = emissionLightsTheMedium(scene);
     const bool transport = indirect && !brick_.atlas().transport.empty();
     const bool scattering = inputs.params.volume_count > 0;
-    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport, scattering); },
+    const int groups = lightGroupMarches(scene);
+    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport, scattering, groups); },
                         // The kernels index the volume (3 + 3 floats per cell at most) with ints.
                         [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 < uint64_t(INT32_MAX); },
                         "illumination volume"};
@@ -453,7 +464,8 @@ StageReads PropagationStage::reads() const {
     return {withPlacementKeys({"/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/lights/*/color",
              "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects/propagation/blend_axes",
              "/effects/propagation/chroma_subsampling", "/effects/propagation/coherent", "/effects/indirect",
-             "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy", "/render/backend"})};
+             "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy", "/render/backend",
+             "/input/light_groups"})};
 }
 
 StageActivity PropagationStage::activity(const Scene& s) const {
@@ -498,12 +510,16 @@ void PropagationStage::run(StageRun& run) {
     const SweepGrid& coarse = grid_.coarse();
     const Scene& scene = run.scene({"/lights", "/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                                     "/effects/propagation/coherent", "/effects/indirect", "/effects/perturbation", "/volumes/*/material",
-                                    "/volumes/*/emission", "/volumes/*/transform"});
+                                    "/volumes/*/emission", "/volumes/*/transform", "/input/light_groups"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
+    // A volume per light group, each light's sweeps adding into its group's (VxPropParams::block_first).
+    const int groups = lightGroupMarches(scene);
+    const size_t group_floats = 3 * size_t(fine.dims.x) * fine.dims.y * fine.dims.z +
+                                (indirect ? 3 * size_t(coarse.dims.x) * coarse.dims.y * coarse.dims.z : 0);
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
-    std::string setup_key = std::to_string(grid_.generation()) + "|" + hashBytes(inputs.params.noise_offset);
+    std::string setup_key = std::to_string(grid_.generation()) + "|" + std::to_string(groups) + "|" + hashBytes(inputs.params.noise_offset);
     passes_.keepFor(grid_.generation());   // copies the passes keep of another grid go
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                             "/effects/indirect", "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy",
@@ -523,9 +539,12 @@ void PropagationStage::run(StageRun& run) {
     // The sweeps of `lights`, weighted by `sign`, on both blocks.
     auto sweepsOf = [&](const std::vector<kernel::VxLight>& lights, float sign, PassSweeps& fine_passes, PassSweeps& coarse_passes) {
         for (kernel::VxLight l : lights) {
-            addLightSweeps(l, sign, fine, direct, blend, fine_passes);
+            const int block_first = int(size_t(l.group) * group_floats);
+            kernel::VxPropParams fine_base = direct, coarse_base = blurred;
+            fine_base.block_first = coarse_base.block_first = block_first;
+            addLightSweeps(l, sign, fine, fine_base, blend, fine_passes);
             l.color *= profile.amplitude;
-            if (indirect) addLightSweeps(l, sign, coarse, blurred, blend, coarse_passes);
+            if (indirect) addLightSweeps(l, sign, coarse, coarse_base, blend, coarse_passes);
         }
     };
     auto estimate = [&](const PassSweeps& f, const PassSweeps& c) {
@@ -586,13 +605,16 @@ void PropagationStage::run(StageRun& run) {
             volume_.chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
             volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
             volume_.world_to_illum = fine.world_to_grid;
-            assignInHugePages(volume_.values, 3 * volume_.cells() + 3 * volume_.chromaCells(), 0.0f);
+            volume_.groups = groups;
+            assignInHugePages(volume_.values, size_t(groups) * volume_.groupFloats(), 0.0f);
             report.mode = LightUpdate::Mode::Entire;
             report.lights_in = int(inputs.lights.size());
             runPasses(all_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
             if (indirect) {
                 runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
-                addEmittedLight(coarse, scene.volume().material, blurred, inputs, passes_.on(run.backend), volume_, report);
+                // The emitted light's volume is the last: with light groups, the emitted light's own.
+                addEmittedLight(coarse, scene.volume().material, blurred, inputs, passes_.on(run.backend), size_t(groups - 1) * group_floats,
+                                volume_, report);
             }
             drift_ = 0.0;
         }
@@ -623,9 +645,12 @@ void EyePassStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/effects/indirect", "/effects/perturbation", "/volumes/*/material", "/volumes/*/transform",
                                     "/volumes/*/instances", "/volumes/*/role"});
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
-    const std::vector<float> before(lit.values.begin() + long(lit.indirectOffset()), lit.values.end());
     const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);
-    sweepTowardsEye(*scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, passes_.on(run.backend), volume_);
+    for (int g = 0; g < lit.groups; ++g) {   // each light group's indirect light, on its own
+        const size_t first = size_t(g) * lit.groupFloats() + lit.indirectOffset();
+        const std::vector<float> before(lit.values.begin() + long(first), lit.values.begin() + long(first + 3 * lit.chromaCells()));
+        sweepTowardsEye(*scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, first, passes_.on(run.backend), volume_);
+    }
 }
 
 }  // namespace voxlux

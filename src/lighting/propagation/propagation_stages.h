@@ -34,9 +34,10 @@ namespace voxlux {
 // RGB, an x pass's slice-major copies, and with indirect light the indirect cells (their own
 // extinction grid when chroma subsampled, and the eye pass's second volume and input copy of the
 // indirect cells), and with `emission` the emission grids and their sweeps' blocks (with
-// `scattering`, of several volumes, their scattering grids too).
-// The lights' 2D slice buffers are left out: two slices per light.
-size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emission, bool transport, bool scattering = false);
+// `scattering`, of several volumes, their scattering grids too), and a volume for each of `groups`
+// light groups (lightGroupMarches). The lights' 2D slice buffers are left out: two slices per light.
+size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emission, bool transport, bool scattering = false,
+                         int groups = 1);
 
 // Whether `scene` lights the march from an illumination volume: propagation shadows, a light or
 // lit emission to propagate, and not the Monte Carlo reference.

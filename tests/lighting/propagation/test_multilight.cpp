@@ -30,7 +30,7 @@ bool hasSweep(const std::vector<Sweep>& sweeps, int axis, int sign) {
 
 // Directional lights go to the face they travel most towards; ties (face and body diagonals) go
 // to z, then y; with blending the second closest face takes Sunden's Eq. 5b share.
-TEST(LightGroups, DirectionalLightsGoToTheExpectedFaces) {
+TEST(LightSweeps, DirectionalLightsGoToTheExpectedFaces) {
     auto one = sweepsFor({0.2f, -1.0f, 0.1f}, false);
     ASSERT_EQ(one.size(), 1u);
     EXPECT_EQ(one[0].axis, 1);
@@ -57,7 +57,7 @@ TEST(LightGroups, DirectionalLightsGoToTheExpectedFaces) {
 }
 
 // Point lights: far away one pass, beside or on a face of the volume five, inside all six.
-TEST(LightGroups, PointLightsGoToEveryFaceTheirCellsSee) {
+TEST(LightSweeps, PointLightsGoToEveryFaceTheirCellsSee) {
     const glm::ivec3 dims(20, 16, 12);
     const auto far_above = pointLightSweeps({10, 1000, 6}, dims, false);
     ASSERT_EQ(far_above.size(), 1u);
@@ -77,7 +77,7 @@ TEST(LightGroups, PointLightsGoToEveryFaceTheirCellsSee) {
 }
 
 // A spot inside the volume needs only the passes its cone reaches (Sunden 2015, Sec. 7.3).
-TEST(LightGroups, SpotLightsInsideNeedOnlyThePassesTheirConeReaches) {
+TEST(LightSweeps, SpotLightsInsideNeedOnlyThePassesTheirConeReaches) {
     const glm::ivec3 dims(20, 16, 12);
     const auto all = pointLightSweeps({10, 8, 6}, dims, false);
     ASSERT_EQ(all.size(), 6u);
@@ -95,7 +95,7 @@ TEST(LightGroups, SpotLightsInsideNeedOnlyThePassesTheirConeReaches) {
 
 // Every cell's flow is carried in full: the weights of the six sweeps sum to 1, with and without
 // blending, including flows on diagonals and along axes.
-TEST(LightGroups, PerCellWeightsSumToOne) {
+TEST(LightSweeps, PerCellWeightsSumToOne) {
     kernel::CpuPropagationKernel k;
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);

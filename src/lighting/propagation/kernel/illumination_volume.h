@@ -3,7 +3,8 @@
 // and, with indirect light, the blurred, transport-attenuated RGB radiance (Kniss 2003), possibly
 // on a grid coarser by the chroma subsampling factor. Every light sweep adds its weighted light,
 // so any number of lights and both blend axes share one volume, and a light is taken out again by
-// sweeping it with a negative weight.
+// sweeping it with a negative weight. With light groups (output.aovs "light_groups"), each group
+// has a volume of its own, one after another, and the march of a group reads its own.
 #pragma once
 #include <vector>
 
@@ -18,11 +19,13 @@ struct IlluminationVolume {
     int chroma = 1;                 // chroma subsampling factor: indirect cells are chroma^3 direct cells
     glm::ivec3 chroma_dims{0};      // indirect cells (0 without indirect light)
     glm::mat4 world_to_illum{1.0f}; // world -> direct-cell coordinates
-    std::vector<float> values;      // RGB per direct cell, then RGB per indirect cell
+    int groups = 1;                 // light groups (Scene lightGroupMarches): one such volume each
+    std::vector<float> values;      // per group: RGB per direct cell, then RGB per indirect cell
 
     size_t cells() const { return size_t(dims.x) * dims.y * dims.z; }
     size_t chromaCells() const { return size_t(chroma_dims.x) * chroma_dims.y * chroma_dims.z; }
-    size_t indirectOffset() const { return 3 * cells(); }
+    size_t indirectOffset() const { return 3 * cells(); }   // within a group's volume
+    size_t groupFloats() const { return 3 * cells() + 3 * chromaCells(); }
 };
 
 }  // namespace voxlux

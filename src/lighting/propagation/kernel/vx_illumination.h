@@ -71,6 +71,9 @@ VX_INLINE VxPropagationSample vx_propagation_sample(vec3 x) {
     return s;
 }
 
+// The first float of the march's light group's volume (P.light_group).
+VX_INLINE int vx_illum_group_first() { return P.light_group * L.propagation.group_floats; }
+
 // The sample's point in direct-light cells.
 VX_INLINE vec3 vx_illum_point(VxPropagationSample s) { return vec3(L.propagation.world_to_illum * vec4(s.x, 1.0f)); }
 
@@ -80,7 +83,7 @@ VX_INLINE vec3 vx_illum_point(VxPropagationSample s) { return vec3(L.propagation
 // (float residue of subtracted lights) count as none.
 VX_INLINE vec3 vx_propagation_direct(VxPropagationSample s, vec3 sum, vec3 unshadowed) {
     if (!vx_propagation_varies()) return sum;
-    vec3 arrived = max(vx_illum_at(vx_illum_point(s), L.propagation.illum_dims, 0), vec3(0.0f));
+    vec3 arrived = max(vx_illum_at(vx_illum_point(s), L.propagation.illum_dims, vx_illum_group_first()), vec3(0.0f));
     return sum * vec3(unshadowed.x > 0.0f ? arrived.x / unshadowed.x : 0.0f, unshadowed.y > 0.0f ? arrived.y / unshadowed.y : 0.0f,
                       unshadowed.z > 0.0f ? arrived.z / unshadowed.z : 0.0f);
 }
@@ -91,6 +94,7 @@ VX_INLINE bool vx_propagation_indirect_on() { return L.propagation.indirect_weig
 VX_INLINE vec3 vx_propagation_indirect(VxPropagationSample s) {
     if (!vx_propagation_indirect_on()) return vec3(0.0f);
     // Slightly negative values (float residue of subtracted lights) count as none.
-    return max(vx_illum_at(vx_illum_point(s) / float(L.propagation.chroma_factor), L.propagation.chroma_dims, L.propagation.indirect_offset), vec3(0.0f)) *
+    return max(vx_illum_at(vx_illum_point(s) / float(L.propagation.chroma_factor), L.propagation.chroma_dims,
+                           vx_illum_group_first() + L.propagation.indirect_offset), vec3(0.0f)) *
            L.propagation.indirect_weight;
 }

@@ -49,13 +49,15 @@ struct VxPropParams {
                             // vx_prop_sigma (extinction times it), and atten is unused
     vec3 tint;              // RGB added per unit propagated (direct: the light's colour over its
                             // luminance; indirect and eye: 1)
-    float pad2;
+    int block_first;        // floats from the pass's RGB block to this sweep's: its light's group's
+                            // volume (IlluminationVolume::groups)
     VxLight light;          // the light (world), for the radiance that enters from outside the grid
     VxTap taps[VX_MAX_TAPS];
 };
 
 // The illumination volume as the march reads it: direct RGB per cell, then the indirect RGB block,
-// possibly at a coarser (chroma-subsampled) resolution.
+// possibly at a coarser (chroma-subsampled) resolution; with light groups, one such volume per
+// group, the march of a group reading its own.
 struct VxPropagationMarch {
     mat4 world_to_illum;    // world -> illumination-volume cell coordinates (cell centres at i + 0.5)
     ivec3 illum_dims;       // direct-light cells (0 = no volume)
@@ -65,6 +67,6 @@ struct VxPropagationMarch {
     float indirect_weight;  // indirect strength / 4 pi (0 = no indirect light)
     int light_filter;       // VX_FILTER_*: how the volume is read between cells (effects.propagation.filter;
                             // `filter` is a GLSL reserved word)
-    int pad0;
+    int group_floats;       // floats from one light group's volume to the next (P.light_group's is read)
     int pad1;
 };
