@@ -147,11 +147,19 @@ bool SceneEditor::setVolumeTransform(int index, const VolumeTransform& transform
 int SceneEditor::volumeIndex(const nlohmann::json& name_or_index) const { return indexByName(scene_.volumes, name_or_index, "volume"); }
 
 bool SceneEditor::soloLight(int index) {
+    return solo("light " + std::to_string(index), [&](size_t i) { return int(i) == index; });
+}
+
+bool SceneEditor::soloGroup(const std::string& group) {
+    return solo("group " + group, [&](size_t i) { return scene_.lights[i].group == group; });
+}
+
+bool SceneEditor::solo(const std::string& what, const std::function<bool(size_t)>& lit) {
     const size_t count = scene_.lights.size();
-    if (solo_ == index && before_solo_.size() == count) {
+    if (solo_ == what && before_solo_.size() == count) {
         const std::vector<bool> states = before_solo_;
         solo_.reset();
-        return edit("unsolo light", [&](nlohmann::json& j) {
+        return edit("unsolo " + what, [&](nlohmann::json& j) {
             for (size_t i = 0; i < count; ++i) j["lights"][i]["enabled"] = bool(states[i]);
         });
     }
@@ -159,9 +167,11 @@ bool SceneEditor::soloLight(int index) {
         before_solo_.clear();
         for (const Light& l : scene_.lights) before_solo_.push_back(l.enabled);
     }
-    solo_ = index;
-    return edit("solo light", [&](nlohmann::json& j) {
-        for (size_t i = 0; i < count; ++i) j["lights"][i]["enabled"] = int(i) == index;
+    std::vector<bool> on(count);
+    for (size_t i = 0; i < count; ++i) on[i] = lit(i);
+    solo_ = what;
+    return edit("solo " + what, [&](nlohmann::json& j) {
+        for (size_t i = 0; i < count; ++i) j["lights"][i]["enabled"] = bool(on[i]);
     });
 }
 

@@ -40,9 +40,12 @@ public:
     bool renameLight(int index, const std::string& name);
     bool changeLight(int index, const nlohmann::json& keys);   // merged over the light's keys
     bool setLight(int index, const Light& light);
-    // Solo: only this light on; solo of the soloed light again gives each light its state back.
+    // Solo: only this light on, or only the lights of a light group (lights[i].group, "" the
+    // default group); the same solo again gives each light its state back.
     bool soloLight(int index);
-    std::optional<int> soloed() const { return solo_; }
+    bool soloGroup(const std::string& group);
+    bool soloedLight(int index) const { return solo_ == "light " + std::to_string(index); }
+    bool soloedGroup(const std::string& group) const { return solo_ == "group " + group; }
     // The index of the light named `name`, or of the index `name` spells; throws InputError.
     int lightIndex(const nlohmann::json& name_or_index) const;
 
@@ -73,8 +76,9 @@ private:
     nlohmann::json json_;
     uint64_t version_ = 0;
     std::string error_;
-    std::optional<int> solo_;
+    std::optional<std::string> solo_;   // "light N" or "group NAME"
     std::vector<bool> before_solo_;
+    bool solo(const std::string& what, const std::function<bool(size_t)>& lit);
 
     struct Step {
         nlohmann::json before;   // the scene's JSON before the step

@@ -23,7 +23,7 @@ const std::map<std::string, std::pair<Shape, std::vector<std::string>>>& kinds()
         {"screenshot", {Shape::Text, {}}},   {"window_screenshot", {Shape::Text, {}}}, {"layout", {Shape::Text, {}}},
         {"save", {Shape::Text, {}}},         {"render", {Shape::Bool, {}}},           {"stats", {Shape::Text, {}}},
         {"quit", {Shape::Bool, {}}},         {"undo", {Shape::Bool, {}}},             {"redo", {Shape::Bool, {}}},
-        {"region", {Shape::Region, {}}},     {"drag_volume", {Shape::Volume, {"by", "mode"}}},
+        {"region", {Shape::Region, {}}},     {"drag_volume", {Shape::Volume, {"by", "mode"}}}, {"solo_group", {Shape::Text, {}}},
     };
     return k;
 }

@@ -92,11 +92,11 @@ void lightList(ViewerState& state) {
         if (ImGui::Checkbox("##on", &on)) state.editor.enableLight(int(i), on);
         remember(state, "light/" + std::to_string(i) + "/enable");
         ImGui::SameLine();
-        const std::string name = l.name.empty() ? "light " + std::to_string(i) : l.name;
-        if (ImGui::Selectable(name.c_str(), state.selected_light == int(i), 0, ImVec2(150, 0))) state.selected_light = int(i);
+        // The light's name and its light group (output.aovs "light_groups").
+        const std::string name = (l.name.empty() ? "light " + std::to_string(i) : l.name) + "  [" + (l.group.empty() ? "default" : l.group) + "]";
+        if (ImGui::Selectable(name.c_str(), state.selected_light == int(i), 0, ImVec2(190, 0))) state.selected_light = int(i);
         ImGui::SameLine();
-        const bool soloed = state.editor.soloed() == int(i);
-        if (ImGui::SmallButton(soloed ? "unsolo" : "solo")) state.editor.soloLight(int(i));
+        if (ImGui::SmallButton(state.editor.soloedLight(int(i)) ? "unsolo" : "solo")) state.editor.soloLight(int(i));
         ImGui::SameLine();
         if (ImGui::SmallButton("remove")) state.editor.removeLight(int(i));
         ImGui::PopID();
@@ -123,6 +123,12 @@ void lightEditor(ViewerState& state) {
     ImGui::Separator();
     std::string name = l.name;
     if (ImGui::InputText("name", &name, ImGuiInputTextFlags_EnterReturnsTrue)) state.editor.renameLight(i, name);
+    // Its light group; solo shows the group's lights alone, as its layer of the light_groups AOV.
+    std::string group = l.group;
+    if (ImGui::InputText("group", &group, ImGuiInputTextFlags_EnterReturnsTrue))   // empty: back to the default group
+        state.editor.changeLight(i, {{"group", group.empty() ? nlohmann::json(nullptr) : nlohmann::json(group)}});
+    ImGui::SameLine();
+    if (ImGui::SmallButton(state.editor.soloedGroup(l.group) ? "unsolo group" : "solo group")) state.editor.soloGroup(l.group);
     const std::string type = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : l.type == LightType::Ambient ? "ambient" : "directional";
     if (auto t = combo("type", type, {"directional", "point", "spot", "ambient"})) state.editor.changeLight(i, {{"type", *t}});
     bool changed = ImGui::ColorEdit3("colour", &l.color.x, ImGuiColorEditFlags_Float);

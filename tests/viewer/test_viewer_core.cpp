@@ -45,7 +45,7 @@ TEST(SceneEditor, ARefusedEditKeepsTheSceneAndSaysWhy) {
     EXPECT_GT(editor.version(), version);
 }
 
-TEST(SceneEditor, SoloTwiceGivesEachLightItsStateBack) {
+TEST(SceneEditor, SoloTwiceGivesEachLightItsStateBack) {   // a light's, and a light group's
     Scene s = smallCloud();
     s.lights.push_back(s.lights[0]);
     s.lights[2].name = "rim";
@@ -60,6 +60,24 @@ TEST(SceneEditor, SoloTwiceGivesEachLightItsStateBack) {
     EXPECT_TRUE(editor.scene().lights[1].enabled);
     EXPECT_FALSE(editor.scene().lights[2].enabled);
     EXPECT_EQ(editor.lightIndex("rim"), 2);
+    // A light group's solo: its lights alone (the default group's, those that name none), and again
+    // each light's state back; a group's name is set and cleared as a light's key.
+    ASSERT_TRUE(editor.changeLight(1, {{"group", "key"}}));
+    EXPECT_EQ(editor.scene().lights[1].group, "key");
+    ASSERT_TRUE(editor.soloGroup(""));
+    EXPECT_TRUE(editor.soloedGroup(""));
+    EXPECT_TRUE(editor.scene().lights[0].enabled);
+    EXPECT_FALSE(editor.scene().lights[1].enabled);
+    EXPECT_TRUE(editor.scene().lights[2].enabled);
+    ASSERT_TRUE(editor.soloGroup("key"));   // another solo keeps the states from before the first
+    EXPECT_FALSE(editor.scene().lights[0].enabled);
+    EXPECT_TRUE(editor.scene().lights[1].enabled);
+    ASSERT_TRUE(editor.soloGroup("key"));
+    EXPECT_TRUE(editor.scene().lights[0].enabled);
+    EXPECT_TRUE(editor.scene().lights[1].enabled);
+    EXPECT_FALSE(editor.scene().lights[2].enabled);
+    ASSERT_TRUE(editor.changeLight(1, {{"group", nullptr}}));
+    EXPECT_EQ(editor.scene().lights[1].group, "");
     EXPECT_EQ(inputErrorOf([&] { editor.lightIndex("fill"); }), "no light named \"fill\"");
     EXPECT_EQ(inputErrorOf([&] { editor.lightIndex(3); }), "no light 3 (the scene has 3)");
 }
