@@ -227,13 +227,14 @@ VxPixel vx_finish_ray(VxPixel px, float T, float alpha, float depth_weighted, VX
 // `time` within the shutter each volume is where its velocity moved it; the light a sample
 // receives is the frame's own at the sample's point (the volumes move each on its own, so no one
 // motion carries the light along, as the one volume's march does).
-VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
+VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, float time, float t_cut, VX_INOUT(VxDeepRay) deep) {
     VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
     float t0 = 0.0f;
     float t1 = 1e30f;
     if (!vx_volumes_clip(origin, dir, t0, t1)) return px;
     float dt = P.step;
+    t1 = min(t1, t_cut + 0.5f * dt);   // the samples whose segments start before the holdout
     bool deep_on = P.deep_samples > 0;
     bool lit_indirect = vx_lighting_indirect_on();
     float tau = 0.0f;
@@ -246,9 +247,13 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, float time, VX_INO
         float t = (float(k) + 0.5f) * dt;
         vec3 x = origin + dir * t;
         px.samples += 1.0f;
-        vec3 le = m.emitted;
+        float share = vx_cut_share(k, dt, t_cut);   // 1 but at a holdout
+        m.sigma_camera *= share;
+        m.sigma_visible *= share;
+        m.scattering *= share;
+        vec3 le = m.emitted * share;
         if (m.sigma_camera <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
-        if (deep_on) vx_deep_span(deep, float(k) * dt * cos_forward, float(k + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
+        if (deep_on) vx_deep_span(deep, float(k) * dt * cos_forward, min(float(k + 1) * dt, t_cut) * cos_forward, T, vx_pixel_radiance(px), tau);
         tau += m.sigma_camera * dt;
         float T_next = vx_exp(-tau);
         float absorbed = T - T_next;
@@ -269,12 +274,12 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, float time, VX_INO
 }
 
 // March one camera ray (world origin, unit world direction, camera forward for depth) at `time`
-// (frames from the frame's own, vx_motion.h). With P.deep_samples > 0 the ray's deep samples go
+// (frames from the frame's own, vx_motion.h), up to a holdout at distance t_cut (1e30: none). With P.deep_samples > 0 the ray's deep samples go
 // to `deep` (vx_deep.h). Under motion blur every lookup of a sample (medium, lights, the light
 // stages' volumes) is made where the medium was at `time`: the light stages are the frame's own,
 // carried along with the medium.
-VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(VxDeepRay) deep) {
-    if (VX_SEVERAL_VOLUMES) return vx_march_volumes(origin, dir, forward, time, deep);
+VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, float t_cut, VX_INOUT(VxDeepRay) deep) {
+    if (VX_SEVERAL_VOLUMES) return vx_march_volumes(origin, dir, forward, time, t_cut, deep);
     VxPixel px = vx_empty_pixel();
     vx_deep_begin(deep);
     bool deep_on = P.deep_samples > 0;
@@ -286,6 +291,8 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
     if (!vx_clip_to_bricks(o, d, t0, t1)) return px;
 
     float dt = P.step;
+    t1 = min(t1, t_cut + 0.5f * dt);   // the samples whose segments start before the holdout
+    if (t0 >= t1) return px;
     float cutoff = P.transmittance_cutoff;
     bool shaded_surface = P.surface_inv_range > 0.0f;
     bool per_ray_directional = P.shadow_rays == 0 && !vx_lighting_shadows() && !shaded_surface;
@@ -324,6 +331,9 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
             // whole batch.
             int lanes = min(VX_CHUNK, (n + VX_LANES - 1) / VX_LANES * VX_LANES);
             vx_chunk_extinction(slot, s.brick, o, d, origin, dir, k, n, lanes, dt, time, chunk);
+            bool cut = float(k + n) * dt > t_cut;   // the chunk reaches the holdout
+            if (cut)
+                for (int j = 0; j < n; ++j) chunk.sigma[j] *= vx_cut_share(k + j, dt, t_cut);
             vx_chunk_transmittance(tau, lanes, dt, chunk);
             px.samples += float(n);
             if (constant_light) {
@@ -337,7 +347,8 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                         }
                     }
                     if (last >= 0)
-                        vx_deep_span(deep, float(k + first) * dt * cos_forward, float(k + last + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
+                        vx_deep_span(deep, float(k + first) * dt * cos_forward, min(float(k + last + 1) * dt, t_cut) * cos_forward, T,
+                                     vx_pixel_radiance(px), tau);
                 }
                 float T_after = chunk.T[n - 1];
                 px.direct = vx_radiance_add(px.direct, P.albedo * directional * (T - T_after));
@@ -356,9 +367,9 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, VX_INOUT(V
                 VxTaps taps;
                 if (occupied && (emits || !plain_albedo || surface_grid)) taps = vx_moved_taps(slot, s.brick, p, shift, here);
                 vec3 le = vec3(0.0f);
-                if (emits && here) le = vx_emission(taps);
+                if (emits && here) le = vx_emission(taps) * (cut ? vx_cut_share(k + j, dt, t_cut) : 1.0f);
                 if (sigma <= 0.0f && le.x + le.y + le.z <= 0.0f) continue;
-                if (deep_on) vx_deep_span(deep, float(k + j) * dt * cos_forward, float(k + j + 1) * dt * cos_forward, T, vx_pixel_radiance(px), tau);
+                if (deep_on) vx_deep_span(deep, float(k + j) * dt * cos_forward, min(float(k + j + 1) * dt, t_cut) * cos_forward, T, vx_pixel_radiance(px), tau);
                 // Exact integral of a constant segment: the light scattered in a segment of
                 // extinction sigma is albedo * L_in * (T_k - T_k+1); emission integrates to
                 // Le * (T_k - T_k+1) / sigma = Le * T_k * dt * (1 - e^(-sigma dt)) / (sigma dt),
@@ -394,7 +405,7 @@ VxPixel vx_render_ray(int x, int y, int i, VX_INOUT(VxDeepRay) deep) {
     vec3 dir;
     vec3 forward;
     float time = vx_pixel_ray(x, y, i, origin, dir, forward);
-    return vx_march_ray(origin, dir, forward, time, deep);
+    return vx_march_ray(origin, dir, forward, time, vx_holdout_distance(x, y, dir, forward), deep);
 }
 
 // Pixel (x, y): the mean of its rays. The GL backend dispatches ray by ray instead and averages

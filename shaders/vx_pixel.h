@@ -59,6 +59,20 @@ void vx_camera_ray_at(int x, int y, float fraction, VX_OUT(vec3) origin, VX_OUT(
     forward = normalize(mix(forward, f1, fraction));
 }
 
+// Depth holdouts (P.holdout): the distance along pixel (x, y)'s ray of unit direction dir to the
+// CG surface, from its camera-space Z (over the cosine between the ray and the camera's forward
+// axis); 1e30 where the pixel has none. The image's own pixel decides for every ray of the pixel.
+float vx_holdout_distance(int x, int y, vec3 dir, vec3 forward) {
+    if (P.holdout == 0) return 1e30f;
+    float z = vx_holdout(y * P.width + x);
+    return z < VX_FLOAT_MAX ? z / max(dot(dir, forward), 1e-6f) : 1e30f;
+}
+
+// The share of march sample k's segment [k dt, (k + 1) dt] in front of a holdout at distance
+// t_cut: the sample's extinction and emission are scaled by it, so the optical depth a ray
+// gathers ends at the surface exactly (for the march's piecewise-constant samples).
+VX_INLINE float vx_cut_share(int k, float dt, float t_cut) { return clamp((t_cut - float(k) * dt) / dt, 0.0f, 1.0f); }
+
 // Adds ray `px`, the n-th of a pixel's (n >= 2), to the mean `m` of the ones before: a running
 // mean, which stays exactly the value of rays that all return the same. Depth is the opacity-
 // weighted mean, as one ray weighs its samples (alpha_sum: the rays' alpha so far); the samples

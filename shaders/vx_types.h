@@ -100,6 +100,10 @@ struct VxParams {
     int volume_roles;       // 1 if a volume of vx_placed_volume is not visible: alpha is the visible volumes' coverage
     int light_group;        // the light group this march scatters the lights of (VxLight.group; all
                             // lights are group 0 without output.aovs "light_groups")
+    int holdout;            // 1: camera rays stop at the depth holdouts' surface (vx_holdout_distance)
+    int holdout_offset;     // GL: the holdout depth's first float in the vectors' block (vx_gl_bindings.glsl)
+    int pad6;
+    int pad7;
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
 };

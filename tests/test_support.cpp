@@ -9,6 +9,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfInputFile.h>
+#include <ImfOutputFile.h>
 
 #include "backend/backend_choice.h"
 #include "core/error.h"
@@ -207,6 +208,20 @@ std::string writeBall(const std::string& dir) {
     const std::string path = dir + "/ball.vdb";
     openvdb::io::File(path).write({grid});
     return path;
+}
+
+void writeDepthExr(const std::string& path, int width, int height, const std::function<float(int, int)>& depth,
+                   const std::string& channel) {
+    std::vector<float> values(size_t(width) * height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) values[size_t(y) * width + x] = depth(x, y);
+    Imf::Header header(width, height);
+    header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
+    Imf::FrameBuffer fb;
+    fb.insert(channel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), sizeof(float), sizeof(float) * size_t(width)));
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(height);
 }
 
 RenderImage renderScene(const Scene& scene) { return Renderer(scene).render(std::nullopt, false).image; }

@@ -73,6 +73,11 @@ std::string writeBall(const std::string& dir);
 // "vel" of 2 world units a second along x; returns the path.
 std::string writeFireBall(const std::string& dir);
 
+// A float EXR at `path` of one channel `channel` whose pixel (x, y) holds depth(x, y): a CG
+// render's depth, for a holdout.
+void writeDepthExr(const std::string& path, int width, int height, const std::function<float(int, int)>& depth,
+                   const std::string& channel = "Z");
+
 // The image of `scene` (its files read from disk), rendered once by a Renderer of its own.
 RenderImage renderScene(const Scene& scene);
 

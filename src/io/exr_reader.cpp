@@ -16,13 +16,21 @@ namespace voxlux {
 // given to `study` is refused by OpenEXR's header check before anything is allocated for it.
 constexpr int kMaxSide = 16384;
 
+namespace {
+
+void limitImageSize() {
+    static std::once_flag limits;   // OpenEXR's limits are process-wide
+    std::call_once(limits, [] {
+        Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
+        Imf::Header::setMaxTileSize(kMaxSide, kMaxSide);
+    });
+}
+
+}  // namespace
+
 RenderImage readExrRgba(const std::string& path) {
     try {
-        static std::once_flag limits;   // OpenEXR's limits are process-wide
-        std::call_once(limits, [] {
-            Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
-            Imf::Header::setMaxTileSize(kMaxSide, kMaxSide);
-        });
+        limitImageSize();
         Imf::InputFile file(path.c_str());
         const Imath::Box2i window = file.header().dataWindow();
         RenderImage image;
@@ -44,6 +52,34 @@ RenderImage readExrRgba(const std::string& path) {
     } catch (const std::exception& e) {
         throw InputError(path + ": cannot read EXR (" + e.what() + ")");
     }
+}
+
+ExrChannel readExrChannel(const std::string& path, const std::string& name) {
+    std::string channels;
+    try {
+        limitImageSize();
+        Imf::InputFile file(path.c_str());
+        if (!file.header().channels().findChannel(name)) {
+            for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c)
+                channels += std::string(channels.empty() ? "" : ", ") + c.name();
+        } else {
+            const Imath::Box2i window = file.header().dataWindow();
+            ExrChannel out;
+            out.width = window.max.x - window.min.x + 1;
+            out.height = window.max.y - window.min.y + 1;
+            out.values.resize(size_t(out.width) * out.height);
+            char* origin = reinterpret_cast<char*>(out.values.data()) -
+                           (ptrdiff_t(window.min.x) + ptrdiff_t(window.min.y) * ptrdiff_t(out.width)) * ptrdiff_t(sizeof(float));
+            Imf::FrameBuffer fb;
+            fb.insert(name, Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(out.width)));
+            file.setFrameBuffer(fb);
+            file.readPixels(window.min.y, window.max.y);
+            return out;
+        }
+    } catch (const std::exception& e) {
+        throw InputError(path + ": cannot read EXR (" + e.what() + ")");
+    }
+    throw InputError(path + ": no channel '" + name + "' (it has " + (channels.empty() ? std::string("none") : channels) + ")");
 }
 
 }  // namespace voxlux

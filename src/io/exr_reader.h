@@ -1,7 +1,8 @@
-// Reads back the RGBA of an EXR that voxlux wrote: the ground truth `voxlux study` keeps between
-// runs, and tests.
+// Reads back the RGBA of an EXR that voxlux wrote (the ground truth `voxlux study` keeps between
+// runs, and tests), and one channel of any EXR (a CG render's depth, for a holdout).
 #pragma once
 #include <string>
+#include <vector>
 
 #include "kernel/kernel_backend.h"
 
@@ -10,5 +11,15 @@ namespace voxlux {
 // R, G, B and A of the data window as float (missing channels read as 0); the other pixel
 // fields stay 0. Throws InputError "<path>: ..." when the file cannot be read.
 RenderImage readExrRgba(const std::string& path);
+
+// One channel of an EXR's data window as float, row 0 at the top.
+struct ExrChannel {
+    int width = 0;
+    int height = 0;
+    std::vector<float> values;
+};
+// Throws InputError "<path>: ..." when the file cannot be read or has no channel `name` (the
+// message lists the channels it has).
+ExrChannel readExrChannel(const std::string& path, const std::string& name);
 
 }  // namespace voxlux

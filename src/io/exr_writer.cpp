@@ -166,8 +166,16 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
         channels.push_back(std::move(c));
     };
     const char* rgb[] = {"R", "G", "B"};
+    // A layer's R, G and B: rgbOf(i) is pixel i's colour.
+    auto addLayer = [&](const std::string& prefix, Imf::PixelType type, auto rgbOf) {
+        for (int k = 0; k < 3; ++k) {
+            Channel c{prefix + rgb[k], type, std::vector<float>(n), {}};
+            for (size_t i = 0; i < n; ++i) c.plane[i] = rgbOf(i)[k];
+            channels.push_back(std::move(c));
+        }
+    };
     auto addRgb = [&](const std::string& prefix, Imf::PixelType type, auto member) {
-        for (int k = 0; k < 3; ++k) add(prefix + rgb[k], type, [=](const kernel::VxPixel& p) { return (p.*member)[k]; });
+        addLayer(prefix, type, [&](size_t i) { return glm::vec3(img.pixels[i].*member); });
     };
     const Imf::PixelType colorType = imfType(spec.pixel_type);
     addRgb("", colorType, &kernel::VxPixel::rgba);
@@ -186,11 +194,7 @@ ExrWriteReport writeExr(const std::string& path, const RenderImage& img, const O
             for (const ExrPlane& plane : coverage) channels.push_back({"coverage." + plane.name, type, *plane.values, {}});
         if (aov.name == "light_groups")
             for (const LightGroupLayer& layer : img.light_groups)
-                for (int k = 0; k < 3; ++k) {
-                    Channel c{"lightgroup." + layer.name + "." + rgb[k], type, std::vector<float>(n), {}};
-                    for (size_t i = 0; i < n; ++i) c.plane[i] = layer.rgb[i][k];
-                    channels.push_back(std::move(c));
-                }
+                addLayer("lightgroup." + layer.name + ".", type, [&](size_t i) { return layer.rgb[i]; });
     }
 
     ExrWriteReport report;

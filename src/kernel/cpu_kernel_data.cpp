@@ -27,6 +27,7 @@ kernel::CpuKernelData bindKernelData(const KernelInputs& in) {
     for (const KernelArrayRef& a : in.lighting.arrays)
         if (!k.vx_bind_array(a.block, a.data, a.bytes)) throw std::logic_error("the kernel has no array " + a.block);
     k.noise = in.noise;
+    if (in.holdout) k.holdout = *in.holdout;
     k.volumes = in.volumes;
     return k;
 }

@@ -44,6 +44,7 @@ struct CpuKernelData {
     KernelArray<float> color;              // 3 floats per voxel
     KernelArray<float> surface;            // 1 float per voxel
     KernelArray<float> velocity;           // 3 floats per voxel
+    KernelArray<float> holdout;            // the depth holdouts' camera-space Z per pixel (shares the block on GL)
     // The volumes of a scene of several: a uniform block on GL (vx_gl_bindings.glsl).
     KernelArray<VxVolume> volumes;
     VxVolume vx_placed_volume(int i) const { return volumes.at(i, "volume"); }
@@ -51,6 +52,7 @@ struct CpuKernelData {
         return vec3(color.at(3 * i, "atlas colour"), color.at(3 * i + 1, "atlas colour"), color.at(3 * i + 2, "atlas colour"));
     }
     float vx_atlas_surface(int i) const { return surface.at(i, "atlas surface weight"); }
+    float vx_holdout(int i) const { return holdout.at(i, "holdout depth"); }
     vec3 vx_atlas_velocity(int i) const {
         return vec3(velocity.at(3 * i, "atlas velocity"), velocity.at(3 * i + 1, "atlas velocity"), velocity.at(3 * i + 2, "atlas velocity"));
     }

@@ -286,6 +286,11 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     setMedium(scene, atlas, sources.volumes, xyz_to_working, in);
     setLights(scene, in);
     in.lighting = sources.lighting;   // the methods' blocks and arrays, as their stages set them
+    if (sources.holdout && !sources.holdout->empty()) {
+        in.holdout = sources.holdout;
+        P.holdout = 1;
+        P.holdout_offset = int(atlas.color.size() + atlas.velocity.size() + atlas.surface.size());   // GL: after them in their block
+    }
     P.ambient *= sources.lighting.ambient_scale;
     for (glm::vec3& a : in.group_ambient) a *= sources.lighting.ambient_scale;
     setKnissEffects(scene.effects, voxelEdge(in.index_to_world), frame, in);

@@ -49,6 +49,8 @@ struct KernelInputs {
                                             // placement and material; empty for one
     MarchLighting lighting;                 // the lighting methods' blocks and arrays
     std::vector<glm::vec4> noise;           // perturbation table, empty without perturbation
+    const std::vector<float>* holdout = nullptr;   // per pixel, the depth holdouts' camera-space Z
+                                                   // (HoldoutStage::depth); null without holdouts
     glm::ivec4 region{0};                   // the pixels [x0, y0) to [x1, y1) to march (render.region)
 };
 
@@ -58,6 +60,7 @@ struct MarchSources {
     MarchLighting lighting;
     const SceneBricks* volumes = nullptr;                // of several volumes: their joined bricks,
                                                          // whose atlas and pages are the ones given
+    const std::vector<float>* holdout = nullptr;         // the depth holdouts' (HoldoutStage::depth)
 };
 
 // `frame` (the sequence frame) animates the perturbation and poses the volume's transform (the

@@ -243,14 +243,15 @@ struct Tracker {
         Segment segment;
     };
 
-    // `camera`: the camera ray's flight (the flight chooses its scattering then).
-    RatioFlight ratioFlight(glm::vec3 x, glm::vec3 w, bool camera, ReferenceRng& rng, int& events) const {
+    // `camera`: the camera ray's flight (the flight chooses its scattering then). The flight ends
+    // at t_max (a holdout's surface) if the volume does not end first.
+    RatioFlight ratioFlight(glm::vec3 x, glm::vec3 w, bool camera, ReferenceRng& rng, int& events, float t_max = 1e30f) const {
         thread_local std::vector<Candidate> candidates;
         candidates.clear();
         RatioFlight p;
         float& T = p.transmittance;
         const bool emits = k.P.emission_sources > 0;
-        walk(x, w, 1e30f, [&](const Segment& s) {
+        walk(x, w, t_max, [&](const Segment& s) {
             const float m = s.majorant;
             return collisions(s.t, s.t_end, m, rng, events, [&](float at, bool opaque) {
                 // A segment taken as opaque (nextCollision): all of T scatters here. The camera's
@@ -306,12 +307,13 @@ struct PathSample {
     }
 };
 
+// The camera ray stops at t_cut (a holdout); the paths it starts are not held out.
 PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::vector<glm::vec3>& group_ambient, int layers,
-                     glm::vec3 origin, glm::vec3 dir, glm::vec3 forward, ReferenceRng& rng) {
+                     glm::vec3 origin, glm::vec3 dir, glm::vec3 forward, float t_cut, ReferenceRng& rng) {
     CpuKernelData& k = tr.k;
     PathSample ps;
     ps.layers.assign(size_t(layers), glm::vec3(0.0f));
-    const Tracker::RatioFlight camera = tr.ratioFlight(origin, dir, true, rng, ps.events);
+    const Tracker::RatioFlight camera = tr.ratioFlight(origin, dir, true, rng, ps.events, t_cut);
     ps.transmittance = camera.transmittance;
     ps.addEmitted(ps.emission, camera.emitted);
     if (!camera.scatter.collided) return ps;
@@ -482,7 +484,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
         *sums = ReferenceSums{0, img.width, img.height, std::vector<ReferenceSums::Pixel>(img.pixels.size()),
                               std::vector<glm::dvec3>(img.pixels.size() * layers)};
     for (size_t l = 0; l < layers; ++l)
-        img.light_groups.push_back({l < light_groups.size() ? light_groups[l] : "emission", std::vector<glm::vec3>(img.pixels.size())});
+        img.light_groups.push_back({l < light_groups.size() ? light_groups[l] : kEmissionLayer, std::vector<glm::vec3>(img.pixels.size())});
     const int first = resume ? sums->samples : 0;
     const double n = rs.spp;
     ProgressTask progress("reference", int64_t(region.z - region.x) * (region.w - region.y) * (rs.spp - first), "samples");
@@ -508,7 +510,8 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                         at_time.time = k.vx_shutter_time(fraction);
                         k.vx_camera_ray_at(x, y, fraction, origin, dir, forward);
                     }
-                    const PathSample p = tracePath(at_time, rs, in.group_ambient, int(layers), origin, dir, forward, rng);
+                    const float t_cut = k.vx_holdout_distance(x, y, dir, forward);
+                    const PathSample p = tracePath(at_time, rs, in.group_ambient, int(layers), origin, dir, forward, t_cut, rng);
                     for (size_t l = 0; l < layers; ++l) acc_layers[l] += p.layers[l];
                     acc.direct += p.direct;
                     acc.indirect += p.indirect;

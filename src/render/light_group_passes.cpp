@@ -18,9 +18,8 @@ kernel::VxParams lightGroupParams(const KernelInputs& in, int layer, int groups)
     return P;
 }
 
-RenderImage marchLightGroups(KernelBackend& backend, const KernelInputs& inputs, const std::vector<std::string>& groups, bool emission) {
+RenderImage marchLightGroups(KernelBackend& backend, const KernelInputs& inputs, const std::vector<std::string>& groups, int passes) {
     const int layers = int(groups.size()) + 1;
-    const int passes = int(groups.size()) + (emission ? 1 : 0);
     std::vector<RenderImage> marched;
     for (int layer = 0; layer < passes; ++layer) {
         KernelInputs pass = inputs;
@@ -30,7 +29,7 @@ RenderImage marchLightGroups(KernelBackend& backend, const KernelInputs& inputs,
     RenderImage image = marched.front();   // alpha, transmittance and depth: the medium's, the same in every pass
     const size_t n = image.pixels.size();
     for (int layer = 0; layer < layers; ++layer) {
-        LightGroupLayer l{layer < int(groups.size()) ? groups[size_t(layer)] : "emission", std::vector<glm::vec3>(n, glm::vec3(0.0f))};
+        LightGroupLayer l{layer < int(groups.size()) ? groups[size_t(layer)] : kEmissionLayer, std::vector<glm::vec3>(n, glm::vec3(0.0f))};
         if (layer < passes)
             for (size_t i = 0; i < n; ++i) l.rgb[i] = glm::vec3(marched[size_t(layer)].pixels[i].rgba);
         image.light_groups.push_back(std::move(l));

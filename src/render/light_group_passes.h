@@ -12,13 +12,14 @@
 #include <vector>
 
 #include "kernel/kernel_backend.h"
+#include "scene/scene.h"
 
 namespace voxlux {
 
-// Marches `inputs` once per light group (their names in `groups`, from lightGroups) and, when
-// `emission` (the scene emits), once more for the emitted light: an image whose light_groups are
-// the groups' layers and "emission".
-RenderImage marchLightGroups(KernelBackend& backend, const KernelInputs& inputs, const std::vector<std::string>& groups, bool emission);
+// Marches `inputs` `passes` times (lightGroupMarches): once per light group (their names in
+// `groups`, from lightGroups) and, with one more, for the emitted light: an image whose
+// light_groups are the groups' layers and "emission".
+RenderImage marchLightGroups(KernelBackend& backend, const KernelInputs& inputs, const std::vector<std::string>& groups, int passes);
 
 // The parameters of the march of layer `layer` of `inputs` (a light group's index, or the number
 // of groups for the emitted light's): its group's lights and ambient light, emission only in the

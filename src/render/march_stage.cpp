@@ -7,6 +7,7 @@
 #include "lighting/march_lighting.h"
 #include "lighting/propagation/emitted_light.h"
 #include "lighting/propagation/propagation_stages.h"
+#include "render/holdout_stage.h"
 #include "render/light_group_passes.h"
 #include "volume/volume_stages.h"
 
@@ -28,9 +29,9 @@ void MarchStage::release() {
 
 MarchStage::MarchStage(const ColorSpaceStage& color, const BrickStage& brick, const ClassifyStage& classify,
                        const VolumesStage& volumes, const EmptyFrameStage& empty_check, const CameraStage& camera,
-                       std::vector<const MarchLightingStage*> lighting)
+                       const HoldoutStage& holdouts, std::vector<const MarchLightingStage*> lighting)
     : color_(input(color)), brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)), camera_(input(camera)),
-      lighting_(std::move(lighting)) {
+      holdouts_(input(holdouts)), lighting_(std::move(lighting)) {
     input(empty_check);   // read for its order alone: an empty frame stops before the march
     for (const MarchLightingStage* s : lighting_) input(*s);
 }
@@ -72,12 +73,13 @@ StageActivity MarchStage::activity(const Scene& s) const {
         march += ", illumination volume read trilinear";
     if (s.effects.surface && !reference) march += ", surface shading where the gradient is steep";
     if (s.effects.perturbation && !reference) march += ", noise-perturbed";
+    if (!s.holdouts.empty()) march += ", camera rays stopped at the holdouts";
     if (s.output.deep) march += ", deep samples (up to " + std::to_string(s.output.deep_samples) + " a pixel)";
     if (const LightGroups groups = lightGroups(s); !groups.names.empty()) {
         const size_t layers = groups.names.size() + 1;
         march += reference ? ", each path's light split into " + std::to_string(layers) + " light-group layers"
-                           : ", " + std::to_string(groups.names.size() + (emits(s) ? 1 : 0)) + " marches for the light groups (one a group" +
-                                 (emits(s) ? ", one for the emitted light)" : ")");
+                           : ", " + std::to_string(lightGroupMarches(s)) + " marches for the light groups (one a group" +
+                                 (size_t(lightGroupMarches(s)) > groups.names.size() ? ", one for the emitted light)" : ")");
     }
     if (const auto& mb = s.render.motion_blur)
         march += reference ? ", motion-blurred where the medium or camera moves (a time a path)"
@@ -97,10 +99,11 @@ void MarchStage::run(StageRun& run) {
     MarchSources sources;
     for (const MarchLightingStage* s : lighting_) s->lightTheMarch(scene, sources.lighting);
     sources.camera = &camera_.camera();
+    sources.holdout = &holdouts_.depth();
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame(), color_.xyzToWorking(), sources);
     const LightGroups groups = lightGroups(scene);
     if (scene.render.method != RenderMethod::Reference) {
-        image_ = groups.names.empty() ? run.backend.march(inputs) : marchLightGroups(run.backend, inputs, groups.names, emits(scene));
+        image_ = groups.names.empty() ? run.backend.march(inputs) : marchLightGroups(run.backend, inputs, groups.names, lightGroupMarches(scene));
         return;
     }
     uint64_t opaque = 0;

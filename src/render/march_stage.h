@@ -13,6 +13,7 @@ namespace voxlux {
 
 class BrickStage;
 class CameraStage;
+class HoldoutStage;
 class ClassifyStage;
 class VolumesStage;
 class EmptyFrameStage;
@@ -24,7 +25,8 @@ public:
     // `lighting`: the lighting methods' stages the march reads (MarchLightingStage), in the order
     // they set its sources.
     MarchStage(const ColorSpaceStage& color, const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes,
-               const EmptyFrameStage& empty_check, const CameraStage& camera, std::vector<const MarchLightingStage*> lighting);
+               const EmptyFrameStage& empty_check, const CameraStage& camera, const HoldoutStage& holdouts,
+               std::vector<const MarchLightingStage*> lighting);
     std::string name() const override { return "march"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -44,6 +46,7 @@ private:
     const ClassifyStage& classify_;
     const VolumesStage& volumes_;
     const CameraStage& camera_;
+    const HoldoutStage& holdouts_;
     std::vector<const MarchLightingStage*> lighting_;
     RenderImage image_;
     bool keep_sums_ = false;

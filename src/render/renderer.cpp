@@ -13,6 +13,7 @@
 #include "lighting/lighting_method.h"
 #include "lighting/march_lighting.h"
 #include "render/grade_stage.h"
+#include "render/holdout_stage.h"
 #include "render/march_stage.h"
 #include "render/write_stage.h"
 #include "scene/scene_json.h"
@@ -25,7 +26,7 @@ namespace voxlux {
 struct Renderer::Stages {
     explicit Stages(std::optional<LoadedVolume> given) : load(given ? LoadStage(std::move(*given)) : LoadStage()) {}
     std::vector<Stage*> all() {
-        std::vector<Stage*> out{&color_space, &color_transforms, &load, &transfer_2d, &brick, &classify, &volumes, &empty_check, &camera, &light_grid};
+        std::vector<Stage*> out{&color_space, &color_transforms, &load, &transfer_2d, &brick, &classify, &volumes, &empty_check, &camera, &holdouts, &light_grid};
         for (const auto& m : methods)
             for (Stage* s : m->stages()) out.push_back(s);
         out.insert(out.end(), {&march, &coverage, &grade, &write});
@@ -53,10 +54,11 @@ struct Renderer::Stages {
     VolumesStage volumes{brick, classify};
     EmptyFrameStage empty_check{classify, volumes};
     CameraStage camera{transfer_2d, volumes};
+    HoldoutStage holdouts{camera};
     LightGridStage light_grid{brick, classify, volumes};
     std::vector<std::unique_ptr<LightingMethod>> methods = makeMethods();
-    MarchStage march{color_space, brick, classify, volumes, empty_check, camera, marchInputs()};
-    CoverageStage coverage{brick, classify, volumes, camera};
+    MarchStage march{color_space, brick, classify, volumes, empty_check, camera, holdouts, marchInputs()};
+    CoverageStage coverage{brick, classify, volumes, camera, holdouts};
     GradeStage grade{march, color_transforms};
     WriteStage write{grade, camera, color_transforms, coverage};
 };
@@ -115,14 +117,20 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
         nlohmann::json& files = in["volume_files"] = nlohmann::json::array();
         for (const VolumeSpec& v : scene_.volumes) files.push_back(fileIdentity(frame ? expandFramePattern(v.path, *frame) : v.path));
     }
+    if (!scene_.holdouts.empty()) {   // the depth images of the frame
+        nlohmann::json& files = in["holdout_files"] = nlohmann::json::array();
+        for (const Holdout& h : scene_.holdouts) files.push_back(fileIdentity(frame ? expandFramePattern(h.depth, *frame) : h.depth));
+    }
     if (scene_.volume().transform && !scene_.volume().transform->chan.empty())
         in["transform_chan"] = fileIdentity(scene_.volume().transform->chan);
     // Which march a light lights in (the light groups): derived from the lights' groups and
     // whether output.aovs asks for them, so that neither alone re-runs what reads it.
     const LightGroups groups = lightGroups(scene_);
-    in["light_groups"] = groups.names.empty() ? nlohmann::json(nullptr)
-                                              : nlohmann::json{{"names", groups.names}, {"of_light", groups.of_light},
-                                                               {"marches", lightGroupMarches(scene_)}};
+    in["light_groups"] = {{"marches", lightGroupMarches(scene_)}};
+    if (!groups.names.empty()) {
+        in["light_groups"]["names"] = groups.names;
+        in["light_groups"]["of_light"] = groups.of_light;
+    }
     const char* ocio = std::getenv("OCIO");
     in["ocio"] = ocio ? ocio : "";
     in["allow_empty"] = allow_empty;

@@ -24,14 +24,17 @@ CoveragePlanes volumeCoverage(const KernelInputs& in, const std::vector<int>& sc
                 const float time = k.vx_pixel_ray(x, y, ray, origin, dir, forward);
                 float t0 = 0.0f, t1 = 1e30f;
                 if (!k.vx_volumes_clip(origin, dir, t0, t1)) continue;
-                // The samples and transmittance of vx_march_volumes.
+                // The samples and transmittance of vx_march_volumes, up to a holdout.
                 const float dt = P.step, share = 1.0f / float(P.time_samples);
+                const float t_cut = k.vx_holdout_distance(x, y, dir, forward);
+                t1 = std::min(t1, t_cut + 0.5f * dt);
                 float tau = 0.0f, T = 1.0f;
                 kernel::CpuKernelData::VxMedium m;
                 for (int s = k.vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && k.vx_volumes_sample(origin, dir, dt, t1, false, time, s, m); ++s) {
                     const glm::vec3 at = origin + dir * ((float(s) + 0.5f) * dt);
+                    const float cut = k.vx_cut_share(s, dt, t_cut);
                     if (m.sigma_camera <= 0.0f) continue;
-                    tau += m.sigma_camera * dt;
+                    tau += m.sigma_camera * cut * dt;
                     const float T_next = k.vx_exp(-tau);
                     const float absorbed = T - T_next;
                     T = T_next;
@@ -41,7 +44,7 @@ CoveragePlanes volumeCoverage(const KernelInputs& in, const std::vector<int>& sc
                         if (V.role != VX_ROLE_VISIBLE) continue;
                         bool in_box = false;
                         const float sigma = k.vx_volume_extinction(V, at, time, in_box);
-                        if (sigma > 0.0f) pixel[size_t(scene_volume[size_t(v)])] += share * absorbed * (sigma / m.sigma_camera);
+                        if (sigma > 0.0f) pixel[size_t(scene_volume[size_t(v)])] += share * absorbed * (sigma / m.sigma_camera);   // both cut alike
                     }
                 }
             }
@@ -70,6 +73,7 @@ void CoverageStage::run(StageRun& run) {
     const Scene& scene = run.scene(reads().keys);
     MarchSources sources;
     sources.camera = &camera_.camera();
+    sources.holdout = &holdouts_.depth();
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame(), kXyzD65ToAcescg, sources);
     std::vector<int> scene_volume;
     std::vector<std::string> names;

@@ -11,6 +11,7 @@
 #include "kernel/kernel_backend.h"
 #include "kernel/kernel_inputs.h"
 #include "graph/render_graph.h"
+#include "render/holdout_stage.h"
 #include "volume/volume_stages.h"
 
 namespace voxlux {
@@ -30,8 +31,9 @@ CoveragePlanes volumeCoverage(const KernelInputs& inputs, const std::vector<int>
 // volumes (rendersAsSeveral); the write stage takes one volume's from the alpha.
 class CoverageStage final : public Stage {
 public:
-    CoverageStage(const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes, const CameraStage& camera)
-        : brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)), camera_(input(camera)) {}
+    CoverageStage(const BrickStage& brick, const ClassifyStage& classify, const VolumesStage& volumes, const CameraStage& camera,
+                  const HoldoutStage& holdouts)
+        : brick_(input(brick)), classify_(input(classify)), volumes_(input(volumes)), camera_(input(camera)), holdouts_(input(holdouts)) {}
     std::string name() const override { return "coverage"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -44,6 +46,7 @@ private:
     const ClassifyStage& classify_;
     const VolumesStage& volumes_;
     const CameraStage& camera_;
+    const HoldoutStage& holdouts_;
     CoveragePlanes planes_;
 };
 

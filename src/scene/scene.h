@@ -335,6 +335,14 @@ struct ColorSettings {
     std::string view;                      // preview: "" = the display's default view
 };
 
+// A CG surface in front of or inside the volumes that holds them out (holdouts): each camera ray
+// stops where it meets it (docs/compositing.md).
+struct Holdout {
+    std::string depth;                     // an EXR the CG render wrote, at the render's resolution; # as in a volume's path
+    std::string channel = "Z";             // its channel of camera-space Z (as Karma, Arnold and Cycles write it)
+    bool ray_distance = false;             // the channel holds the distance along each pixel's ray instead
+};
+
 struct Scene {
     std::vector<VolumeSpec> volumes{1};    // at least one, and at least one enabled
     // The first enabled volume (the Renderer's first): the one whose frames, grids and up axis the
@@ -343,6 +351,7 @@ struct Scene {
     VolumeSpec& volume();
     const VolumeSpec& volume() const;
     std::vector<Light> lights;
+    std::vector<Holdout> holdouts;         // the nearest surface of all of them cuts a ray
     std::optional<Camera> camera;          // absent: framed from the volume's bounding box
     RenderSettings render;
     Effects effects;
@@ -359,6 +368,7 @@ const std::vector<std::string>& knownAovs();
 // lightgroup.<name> beside lightgroup.emission (the emitted light's own): the groups the lights
 // name, in the order they first appear, with "default" for the lights that name none. A scene
 // whose lights name no group has the default group alone.
+inline const std::string kEmissionLayer = "emission";   // the emitted light's layer, lightgroup.emission
 struct LightGroups {
     std::vector<std::string> names;        // empty when the AOV is not asked for
     std::vector<int> of_light;             // per scene light, its group's index in names

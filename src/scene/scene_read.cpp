@@ -665,7 +665,7 @@ Light readLight(const JsonObject& o) {
     });
     if (o.has("group") && !layer_name)
         o.fail("group", "'" + l.group + "' is not a layer name: use letters, digits, '_' and '-'");
-    if (l.group == "emission") o.fail("group", "'emission' is the emitted light's own group (lightgroup.emission)");
+    if (l.group == kEmissionLayer) o.fail("group", "'emission' is the emitted light's own group (lightgroup.emission)");
     l.enabled = o.boolean("enabled", true);
     if (l.type == LightType::Point || l.type == LightType::Spot) l.position = readPoint(o, "position");
     if (l.type == LightType::Directional || l.type == LightType::Spot) l.direction = readDirection(o, "direction");
@@ -683,6 +683,17 @@ Light readLight(const JsonObject& o) {
 }
 
 namespace {
+
+Holdout readHoldout(const JsonObject& o, const std::string& base_dir) {
+    if (o.has("mesh")) o.fail("mesh", "mesh holdouts are not supported yet: give the CG render's depth image (\"depth\")");
+    o.rejectUnknown({"depth", "channel", "ray_distance"});
+    Holdout h;
+    h.depth = resolvePath(o.string("depth"), base_dir);
+    h.channel = o.string("channel", h.channel);
+    if (h.channel.empty()) o.fail("channel", "must name a channel of the depth image");
+    h.ray_distance = o.boolean("ray_distance", h.ray_distance);
+    return h;
+}
 
 // The emission sources at `o`'s "emission", if any.
 std::vector<EmissionSource> readEmission(const JsonObject& o) {
@@ -787,11 +798,13 @@ Scene parseScene(const std::string& text, const std::string& file, const std::st
 
 Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const std::string& base_dir) {
     JsonObject root(json, file, "");
-    root.rejectUnknown({"volume", "volumes", "material", "lights", "camera", "render", "effects", "emission", "color", "output"});
+    root.rejectUnknown({"volume", "volumes", "material", "lights", "holdouts", "camera", "render", "effects", "emission", "color", "output"});
     Scene s;
     s.volumes = readVolumes(root, base_dir);
     if (root.has("lights"))
         for (const auto& l : root.objects("lights")) s.lights.push_back(readLight(l));
+    if (root.has("holdouts"))
+        for (const auto& h : root.objects("holdouts")) s.holdouts.push_back(readHoldout(h, base_dir));
     if (root.has("camera")) s.camera = readCamera(root.object("camera"));
     if (root.has("render")) s.render = readRender(root.object("render"));
     if (root.has("effects")) s.effects = readEffects(root.object("effects"));

@@ -208,6 +208,10 @@ nlohmann::json sceneToJson(const Scene& s) {
 
     j["lights"] = nlohmann::json::array();
     for (const auto& l : s.lights) j["lights"].push_back(lightToJson(l));
+    if (!s.holdouts.empty()) {
+        j["holdouts"] = nlohmann::json::array();
+        for (const Holdout& h : s.holdouts) j["holdouts"].push_back({{"depth", h.depth}, {"channel", h.channel}, {"ray_distance", h.ray_distance}});
+    }
 
     if (s.camera) {
         auto& c = j["camera"];
@@ -290,6 +294,7 @@ Scene scenePathsRelativeTo(Scene scene, const std::string& folder) {
         if (v.transform) relative(v.transform->chan);
     }
     relative(scene.color.config);
+    for (Holdout& h : scene.holdouts) relative(h.depth);
     for (GradeStep& g : scene.color.grade) relative(g.file);
     return scene;
 }

@@ -151,7 +151,9 @@ bool SceneEditor::soloLight(int index) {
 }
 
 bool SceneEditor::soloGroup(const std::string& group) {
-    return solo("group " + group, [&](size_t i) { return scene_.lights[i].group == group; });
+    // A light that names "default" is in the default group, as lightGroups has it.
+    const auto named = [](const std::string& g) { return g.empty() ? std::string("default") : g; };
+    return solo("group " + named(group), [&](size_t i) { return named(scene_.lights[i].group) == named(group); });
 }
 
 bool SceneEditor::solo(const std::string& what, const std::function<bool(size_t)>& lit) {

@@ -40,12 +40,13 @@ public:
     bool renameLight(int index, const std::string& name);
     bool changeLight(int index, const nlohmann::json& keys);   // merged over the light's keys
     bool setLight(int index, const Light& light);
-    // Solo: only this light on, or only the lights of a light group (lights[i].group, "" the
-    // default group); the same solo again gives each light its state back.
+    // Solo: only this light on, or only the lights of a light group (lights[i].group, "" or
+    // "default" the default group; emission stays); the same solo again gives each light its state
+    // back.
     bool soloLight(int index);
     bool soloGroup(const std::string& group);
     bool soloedLight(int index) const { return solo_ == "light " + std::to_string(index); }
-    bool soloedGroup(const std::string& group) const { return solo_ == "group " + group; }
+    bool soloedGroup(const std::string& group) const { return solo_ == "group " + (group.empty() ? std::string("default") : group); }
     // The index of the light named `name`, or of the index `name` spells; throws InputError.
     int lightIndex(const nlohmann::json& name_or_index) const;
 

@@ -217,7 +217,7 @@ bool ViewerApp::runAction(const ViewAction& a) {
     if (a.kind == "light") check(state_.editor.changeLight(light(), a.value["set"]));
     if (a.kind == "enable") check(state_.editor.enableLight(light(), a.value["on"].get<bool>()));
     if (a.kind == "solo") check(state_.editor.soloLight(light()));
-    if (a.kind == "solo_group") check(state_.editor.soloGroup(v.get<std::string>() == "default" ? "" : v.get<std::string>()));
+    if (a.kind == "solo_group") check(state_.editor.soloGroup(v.get<std::string>()));
     if (a.kind == "remove_light") check(state_.editor.removeLight(light()));
     if (a.kind == "add_light") check(state_.editor.addLight(v));
     if (a.kind == "drag_light") {

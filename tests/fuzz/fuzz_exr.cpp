@@ -1,5 +1,5 @@
-// Fuzzes the EXR reader `voxlux study` compares images with, on in-memory files. Bad input must
-// throw InputError; anything else is a defect.
+// Fuzzes the EXR readers, on in-memory files: the RGBA `voxlux study` compares images with, and
+// the one channel a depth holdout reads. Bad input must throw InputError; anything else is a defect.
 #include <cstdint>
 
 #include "core/error.h"
@@ -10,6 +10,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static InMemoryFile file;
     try {
         voxlux::readExrRgba(file.write(data, size));
+    } catch (const voxlux::InputError&) {
+    }
+    try {
+        voxlux::readExrChannel(file.write(data, size), "Z");
     } catch (const voxlux::InputError&) {
     }
     return 0;

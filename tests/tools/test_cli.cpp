@@ -226,7 +226,7 @@ TEST(Cli, ExplainShowsThePlan) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("run   load"), std::string::npos);
     EXPECT_NE(r.out.find("run   march             1 light, ray-marched shadow rays per sample (reference)  [after: "
-                         "color_space brick classify volumes camera empty_check light_cache propagation eye_pass; reads: "
+                         "color_space brick classify volumes camera holdouts empty_check light_cache propagation eye_pass; reads: "
                          "/render/resolution /render/step /render/shadow_step /render/transmittance_cutoff /render/filter /render/backend "
                          "/render/method /render/reference /render/motion_blur /render/region /volumes/*/material"),
               std::string::npos)

@@ -92,12 +92,16 @@ public:
             lighting_arrays_[i].upload(data, bytes, GL_STATIC_DRAW, block);
             lighting_arrays_[i].bind(program, GL_SHADER_STORAGE_BLOCK, block.c_str());
         }
-        // Colour, velocity and surface weight share a block: llvmpipe allows a compute program 16
-        // storage blocks.
+        // Colour, velocity, surface weight and the holdout depth share a block: llvmpipe allows a
+        // compute program 16 storage blocks.
         const size_t color_bytes = atlas.color.size() * sizeof(float), velocity_bytes = atlas.velocity.size() * sizeof(float),
-                     surface_bytes = atlas.surface.size() * sizeof(float);
-        checkStorageSize("AtlasVectors", color_bytes + velocity_bytes + surface_bytes);
-        vectors_.upload({{atlas.color.data(), color_bytes}, {atlas.velocity.data(), velocity_bytes}, {atlas.surface.data(), surface_bytes}},
+                     surface_bytes = atlas.surface.size() * sizeof(float),
+                     holdout_bytes = in.holdout ? in.holdout->size() * sizeof(float) : 0;
+        checkStorageSize("AtlasVectors", color_bytes + velocity_bytes + surface_bytes + holdout_bytes);
+        vectors_.upload({{atlas.color.data(), color_bytes},
+                         {atlas.velocity.data(), velocity_bytes},
+                         {atlas.surface.data(), surface_bytes},
+                         {in.holdout ? in.holdout->data() : nullptr, holdout_bytes}},
                         GL_STATIC_DRAW, "AtlasVectors");
         vectors_.bind(program, GL_SHADER_STORAGE_BLOCK, "AtlasVectors");
 

@@ -194,7 +194,7 @@ void propagateCpu(const PropagationPass& pass, IlluminationVolume& volume, CpuSw
 
     // The pass reads the extinction (and the eye input) once for all its lights: for an x sweep,
     // one slice-major copy shared by every light (and kept for the grid's next x pass), and one
-    // result added back at the end.
+    // result per light group's block added back at the end.
     const SliceMajor layout{dims};
     const bool x_major = axis == 0;
     const std::vector<float>* sigma = pass.sigma;

@@ -1,7 +1,9 @@
 // Propagation sweeps as the GL compute program propagate.comp: one dispatch per slice, two slice
-// buffers swapped between slices, each light's sweep adding into the volume block on the GPU.
+// buffers swapped between slices, each light's sweep adding into its light group's volume block on
+// the GPU.
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -24,9 +26,11 @@ public:
         kernel::CpuPropagationKernel axes;
         const int axis = first.axis, u = axes.vx_axis_u(axis), v = axes.vx_axis_v(axis);
         const size_t slice_cells = size_t(first.dims[u]) * first.dims[v];
-        // The pass's RGB blocks: from its offset to the volume's end, which holds every light
-        // group's block its sweeps add into (VxPropParams::block_first).
-        const size_t block = volume.values.size() - pass.offset;
+        // The pass's RGB blocks: from its offset to the end of the last light group's block its
+        // sweeps add into (VxPropParams::block_first).
+        int last_first = 0;
+        for (const kernel::VxPropParams& Q : pass.sweeps) last_first = std::max(last_first, Q.block_first);
+        const size_t block = size_t(last_first) + size_t(first.dims.x) * first.dims.y * first.dims.z * 3;
         march_params_.upload(pass.march, sizeof *pass.march, GL_STREAM_DRAW, "Params");
         march_params_.bind(program, GL_UNIFORM_BLOCK, "Params");
         const struct {

@@ -13,10 +13,10 @@
 namespace voxlux {
 
 // One pass of the propagation over a grid of extinction `sigma`: one or more sweeps along the same
-// axis and direction, each carrying its own light (Sunden 2015's propagation group), all adding
-// into the RGB block of `volume.values` that starts at `offset`. The eye sweep is a pass of one
-// sweep that replaces the indirect light with its result, reading the light before it from `input`;
-// source sweeps read their sources from `input`.
+// axis and direction, each carrying its own light (Sunden 2015's propagation group), each adding
+// into the RGB block of `volume.values` that starts at `offset` plus its block_first (its light
+// group's volume). The eye sweep is a pass of one sweep that replaces the indirect light with its
+// result, reading the light before it from `input`; source sweeps read their sources from `input`.
 struct PropagationPass {
     std::vector<kernel::VxPropParams> sweeps;       // same dims, axis and direction
     const kernel::VxParams* march = nullptr;        // noise and transport parameters

@@ -334,7 +334,8 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission,
         if (transport) bytes += (3 * cells + 8 * cc) * sizeof(float);
     }
     // Each light group past the first: its direct RGB and its share of an x pass's result, and with
-    // indirect light its indirect RGB, the eye pass's copy of its volume and its input.
+    // indirect light its indirect RGB, the eye pass's copy of its volume and its share of a coarse x
+    // pass's result.
     if (groups > 1) {
         const glm::ivec3 c = coarserDims(d, chroma);
         const size_t cc = size_t(c.x) * c.y * c.z;
@@ -384,8 +385,9 @@ void IlluminationGridStage::run(StageRun& run) {
     const bool scattering = inputs.params.volume_count > 0;
     const int groups = lightGroupMarches(scene);
     const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport, scattering, groups); },
-                        // The kernels index the volume (3 + 3 floats per cell at most) with ints.
-                        [](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 < uint64_t(INT32_MAX); },
+                        // The kernels index the volume (3 + 3 floats per cell at most, a volume per
+                        // light group) with ints.
+                        [&](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 * uint64_t(groups) < uint64_t(INT32_MAX); },
                         "illumination volume"};
     std::string warning;
     const int resolution = fitGridResolution(extent, cappedLightResolution(extent, fx.light_resolution),
@@ -465,7 +467,7 @@ StageReads PropagationStage::reads() const {
              "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects/propagation/blend_axes",
              "/effects/propagation/chroma_subsampling", "/effects/propagation/coherent", "/effects/indirect",
              "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy", "/render/backend",
-             "/input/light_groups"})};
+             "/input/light_groups/of_light", "/input/light_groups/marches"})};
 }
 
 StageActivity PropagationStage::activity(const Scene& s) const {
@@ -510,14 +512,17 @@ void PropagationStage::run(StageRun& run) {
     const SweepGrid& coarse = grid_.coarse();
     const Scene& scene = run.scene({"/lights", "/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                                     "/effects/propagation/coherent", "/effects/indirect", "/effects/perturbation", "/volumes/*/material",
-                                    "/volumes/*/emission", "/volumes/*/transform", "/input/light_groups"});
+                                    "/volumes/*/emission", "/volumes/*/transform", "/input/light_groups/of_light",
+                                    "/input/light_groups/marches"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
     // A volume per light group, each light's sweeps adding into its group's (VxPropParams::block_first).
     const int groups = lightGroupMarches(scene);
-    const size_t group_floats = 3 * size_t(fine.dims.x) * fine.dims.y * fine.dims.z +
-                                (indirect ? 3 * size_t(coarse.dims.x) * coarse.dims.y * coarse.dims.z : 0);
+    IlluminationVolume layout;
+    layout.dims = fine.dims;
+    layout.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
+    const size_t group_floats = layout.groupFloats();
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
     std::string setup_key = std::to_string(grid_.generation()) + "|" + std::to_string(groups) + "|" + hashBytes(inputs.params.noise_offset);
     passes_.keepFor(grid_.generation());   // copies the passes keep of another grid go

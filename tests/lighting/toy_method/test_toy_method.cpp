@@ -98,7 +98,7 @@ TEST(ToyMethod, AMethodFromATestFolderJoinsTheGraphAndLightsTheMarch) {
                         "/effects/shadows /lights/*/type /lights/*/enabled]"),
               std::string::npos)
         << plan;
-    EXPECT_NE(plan.find("[after: color_space brick classify volumes camera empty_check light_cache propagation eye_pass constant_transmittance;"),
+    EXPECT_NE(plan.find("[after: color_space brick classify volumes camera holdouts empty_check light_cache propagation eye_pass constant_transmittance;"),
               std::string::npos)
         << plan;
 

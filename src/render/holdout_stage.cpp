@@ -1,0 +1,55 @@
+#include "render/holdout_stage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "core/frame_pattern.h"
+#include "io/exr_reader.h"
+#include "volume/volume_stages.h"
+
+namespace voxlux {
+
+StageReads HoldoutStage::reads() const { return {{"/holdouts", "/input/holdout_files", "/input/frame", "/render/resolution"}}; }
+
+StageActivity HoldoutStage::activity(const Scene& s) const {
+    if (s.holdouts.empty()) return {false, "skipped: no holdouts"};
+    const size_t n = s.holdouts.size();
+    return {true, "camera rays stop at the nearest surface of " + std::to_string(n) + (n == 1 ? " depth image" : " depth images")};
+}
+
+void HoldoutStage::run(StageRun& run) {
+    const Scene& scene = run.scene({"/holdouts", "/render/resolution"});
+    const nlohmann::json& frame = run.scene.value("/input/frame");
+    const int width = scene.render.width, height = scene.render.height;
+    const float none = std::numeric_limits<float>::max();
+    std::vector<float> depth(size_t(width) * height, none);
+    // A ray distance d along pixel (x, y)'s ray is camera-space Z = d * cos, the cosine between
+    // the pixel's ray and the camera's forward axis (the march's rays, vx_camera_ray_of).
+    const Camera& camera = camera_.camera();
+    const float tan_half = std::tan(glm::radians(camera.fov) * 0.5f), aspect = float(width) / float(height);
+    for (const Holdout& h : scene.holdouts) {
+        const std::string path = frame.is_number() ? expandFramePattern(h.depth, frame.get<int>()) : h.depth;
+        const ExrChannel image = readExrChannel(path, h.channel);
+        if (image.width != width || image.height != height)
+            throw InputError(path + ": is " + std::to_string(image.width) + "x" + std::to_string(image.height) + ", the render " +
+                             std::to_string(width) + "x" + std::to_string(height) + ": a depth holdout is read pixel for pixel");
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const size_t i = size_t(y) * width + x;
+                float z = image.values[i];
+                // No surface: the background's 0, infinity or NaN (renderers write any of them).
+                if (!(z > 0.0f) || !std::isfinite(z)) continue;
+                if (h.ray_distance) {
+                    const float sx = (2.0f * (float(x) + 0.5f) / float(width) - 1.0f) * tan_half * aspect;
+                    const float sy = (1.0f - 2.0f * (float(y) + 0.5f) / float(height)) * tan_half;
+                    z /= std::sqrt(1.0f + sx * sx + sy * sy);
+                }
+                depth[i] = std::min(depth[i], z);
+            }
+    }
+    depth_ = std::move(depth);
+}
+
+}  // namespace voxlux
