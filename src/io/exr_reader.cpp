@@ -4,6 +4,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <algorithm>
 #include <exception>
 #include <mutex>
 #include <vector>
@@ -54,7 +55,7 @@ RenderImage readExrRgba(const std::string& path) {
     }
 }
 
-ExrChannel readExrChannel(const std::string& path, const std::string& name) {
+ExrChannel readExrChannel(const std::string& path, const std::string& name, float outside) {
     std::string channels;
     try {
         limitImageSize();
@@ -63,17 +64,24 @@ ExrChannel readExrChannel(const std::string& path, const std::string& name) {
             for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c)
                 channels += std::string(channels.empty() ? "" : ", ") + c.name();
         } else {
-            const Imath::Box2i window = file.header().dataWindow();
-            ExrChannel out;
-            out.width = window.max.x - window.min.x + 1;
-            out.height = window.max.y - window.min.y + 1;
-            out.values.resize(size_t(out.width) * out.height);
-            char* origin = reinterpret_cast<char*>(out.values.data()) -
-                           (ptrdiff_t(window.min.x) + ptrdiff_t(window.min.y) * ptrdiff_t(out.width)) * ptrdiff_t(sizeof(float));
+            // The data window's pixels, then those inside the display window at their place in it.
+            const Imath::Box2i data = file.header().dataWindow(), display = file.header().displayWindow();
+            const int data_width = data.max.x - data.min.x + 1, data_height = data.max.y - data.min.y + 1;
+            std::vector<float> read(size_t(data_width) * data_height);
+            char* origin = reinterpret_cast<char*>(read.data()) -
+                           (ptrdiff_t(data.min.x) + ptrdiff_t(data.min.y) * ptrdiff_t(data_width)) * ptrdiff_t(sizeof(float));
             Imf::FrameBuffer fb;
-            fb.insert(name, Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(out.width)));
+            fb.insert(name, Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(data_width)));
             file.setFrameBuffer(fb);
-            file.readPixels(window.min.y, window.max.y);
+            file.readPixels(data.min.y, data.max.y);
+            ExrChannel out;
+            out.width = display.max.x - display.min.x + 1;
+            out.height = display.max.y - display.min.y + 1;
+            out.values.assign(size_t(out.width) * out.height, outside);
+            for (int y = std::max(data.min.y, display.min.y); y <= std::min(data.max.y, display.max.y); ++y)
+                for (int x = std::max(data.min.x, display.min.x); x <= std::min(data.max.x, display.max.x); ++x)
+                    out.values[size_t(y - display.min.y) * out.width + size_t(x - display.min.x)] =
+                        read[size_t(y - data.min.y) * data_width + size_t(x - data.min.x)];
             return out;
         }
     } catch (const std::exception& e) {

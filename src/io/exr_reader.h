@@ -12,7 +12,9 @@ namespace voxlux {
 // fields stay 0. Throws InputError "<path>: ..." when the file cannot be read.
 RenderImage readExrRgba(const std::string& path);
 
-// One channel of an EXR's data window as float, row 0 at the top.
+// One channel of an EXR's display window (the frame) as float, row 0 at the top: an auto-cropped
+// data window leaves `outside` in the pixels it does not cover, and overscan past the frame is
+// left out.
 struct ExrChannel {
     int width = 0;
     int height = 0;
@@ -20,6 +22,6 @@ struct ExrChannel {
 };
 // Throws InputError "<path>: ..." when the file cannot be read or has no channel `name` (the
 // message lists the channels it has).
-ExrChannel readExrChannel(const std::string& path, const std::string& name);
+ExrChannel readExrChannel(const std::string& path, const std::string& name, float outside = 0.0f);
 
 }  // namespace voxlux

@@ -32,21 +32,25 @@ void HoldoutStage::run(StageRun& run) {
     for (const Holdout& h : scene.holdouts) {
         const std::string path = frame.is_number() ? expandFramePattern(h.depth, frame.get<int>()) : h.depth;
         const ExrChannel image = readExrChannel(path, h.channel);
-        if (image.width != width || image.height != height)
+        // The render's resolution, or a whole multiple of it (the viewer's coarse levels): then each
+        // render pixel takes the nearest surface of its block of image pixels.
+        const int f = image.width / width;
+        if (f < 1 || image.width != f * width || image.height != f * height)
             throw InputError(path + ": is " + std::to_string(image.width) + "x" + std::to_string(image.height) + ", the render " +
-                             std::to_string(width) + "x" + std::to_string(height) + ": a depth holdout is read pixel for pixel");
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) {
-                const size_t i = size_t(y) * width + x;
-                float z = image.values[i];
+                             std::to_string(width) + "x" + std::to_string(height) +
+                             ": a depth holdout is read pixel for pixel (or in whole blocks of pixels)");
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                float z = image.values[size_t(y) * image.width + x];
                 // No surface: the background's 0, infinity or NaN (renderers write any of them).
                 if (!(z > 0.0f) || !std::isfinite(z)) continue;
                 if (h.ray_distance) {
-                    const float sx = (2.0f * (float(x) + 0.5f) / float(width) - 1.0f) * tan_half * aspect;
-                    const float sy = (1.0f - 2.0f * (float(y) + 0.5f) / float(height)) * tan_half;
+                    const float sx = (2.0f * (float(x) + 0.5f) / float(image.width) - 1.0f) * tan_half * aspect;
+                    const float sy = (1.0f - 2.0f * (float(y) + 0.5f) / float(image.height)) * tan_half;
                     z /= std::sqrt(1.0f + sx * sx + sy * sy);
                 }
-                depth[i] = std::min(depth[i], z);
+                float& nearest = depth[size_t(y / f) * width + size_t(x / f)];
+                nearest = std::min(nearest, z);
             }
     }
     depth_ = std::move(depth);

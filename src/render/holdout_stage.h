@@ -1,7 +1,8 @@
 // Depth holdouts (scene key `holdouts`, docs/compositing.md) as a stage of the render graph: each
-// holdout's depth image for the frame, read pixel for pixel at the render's resolution, turned
-// into camera-space Z where it holds ray distances, and the nearest surface of them all kept per
-// pixel: where the march and the reference stop each camera ray (vx_holdout_distance).
+// holdout's depth image for the frame, read pixel for pixel at the render's resolution (or in
+// whole blocks of pixels at a fraction of it: the viewer's coarse levels), turned into camera-space
+// Z where it holds ray distances, and the nearest surface of them all kept per pixel: where the
+// march and the reference stop each camera ray (vx_holdout_distance).
 // Cost: reading the images; 4 bytes a pixel.
 #pragma once
 #include <vector>
