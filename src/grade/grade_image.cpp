@@ -48,9 +48,11 @@ std::vector<glm::vec4> gradeImage(RenderImage& image, const ColorPipeline& color
                                                            {"ambient", &kernel::VxPixel::ambient},
                                                            {"indirect", &kernel::VxPixel::indirect},
                                                            {"emission", &kernel::VxPixel::emission}};
-        for (const auto& [name, member] : planes)
-            if (std::find(aovs.begin(), aovs.end(), name) != aovs.end())
+        for (const auto& plane : planes) {
+            const PixelRgb member = plane.second;   // a copy: Clang 14 captures no structured binding
+            if (std::find(aovs.begin(), aovs.end(), plane.first) != aovs.end())
                 transformPlane(image.pixels.size(), [&](size_t i) -> glm::vec3& { return image.pixels[i].*member; }, color.output, transformer);
+        }
         for (LightGroupLayer& layer : image.light_groups)
             transformPlane(layer.rgb.size(), [&](size_t i) -> glm::vec3& { return layer.rgb[i]; }, color.output, transformer);
     }
