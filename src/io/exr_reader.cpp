@@ -66,6 +66,12 @@ ExrChannel readExrChannel(const std::string& path, const std::string& name, floa
         } else {
             // The data window's pixels, then those inside the display window at their place in it.
             const Imath::Box2i data = file.header().dataWindow(), display = file.header().displayWindow();
+            const int64_t display_width = int64_t(display.max.x) - display.min.x + 1, display_height = int64_t(display.max.y) - display.min.y + 1;
+            // OpenEXR bounds the data window (setMaxImageSize); the frame is bounded here, before
+            // anything the size of it is allocated.
+            if (display_width < 1 || display_height < 1 || display_width > kMaxSide || display_height > kMaxSide)
+                throw InputError(path + ": its display window is " + std::to_string(display_width) + "x" + std::to_string(display_height) +
+                                 " pixels (at most " + std::to_string(kMaxSide) + " a side)");
             const int data_width = data.max.x - data.min.x + 1, data_height = data.max.y - data.min.y + 1;
             std::vector<float> read(size_t(data_width) * data_height);
             char* origin = reinterpret_cast<char*>(read.data()) -
@@ -75,8 +81,8 @@ ExrChannel readExrChannel(const std::string& path, const std::string& name, floa
             file.setFrameBuffer(fb);
             file.readPixels(data.min.y, data.max.y);
             ExrChannel out;
-            out.width = display.max.x - display.min.x + 1;
-            out.height = display.max.y - display.min.y + 1;
+            out.width = int(display_width);
+            out.height = int(display_height);
             out.values.assign(size_t(out.width) * out.height, outside);
             for (int y = std::max(data.min.y, display.min.y); y <= std::min(data.max.y, display.max.y); ++y)
                 for (int x = std::max(data.min.x, display.min.x); x <= std::min(data.max.x, display.max.x); ++x)
@@ -84,6 +90,8 @@ ExrChannel readExrChannel(const std::string& path, const std::string& name, floa
                         read[size_t(y - data.min.y) * data_width + size_t(x - data.min.x)];
             return out;
         }
+    } catch (const InputError&) {
+        throw;
     } catch (const std::exception& e) {
         throw InputError(path + ": cannot read EXR (" + e.what() + ")");
     }
