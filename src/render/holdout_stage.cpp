@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/frame_pattern.h"
 #include "io/exr_reader.h"
+#include "kernel/cpu_kernel_data.h"
 #include "volume/volume_stages.h"
 
 namespace voxlux {
@@ -26,9 +27,11 @@ void HoldoutStage::run(StageRun& run) {
     const float none = std::numeric_limits<float>::max();
     std::vector<float> depth(size_t(width) * height, none);
     // A ray distance d along pixel (x, y)'s ray is camera-space Z = d * cos, the cosine between
-    // the pixel's ray and the camera's forward axis (the march's rays, vx_camera_ray_of).
-    const Camera& camera = camera_.camera();
-    const float tan_half = std::tan(glm::radians(camera.fov) * 0.5f), aspect = float(width) / float(height);
+    // the pixel's ray and the camera's forward axis: the kernel's own camera ray
+    // (vx_camera_ray_of), of a camera at the image's resolution.
+    kernel::CpuKernelData k;
+    k.P.tan_half_fov = std::tan(glm::radians(camera_.camera().fov) * 0.5f);
+    k.P.aspect = float(width) / float(height);
     for (const Holdout& h : scene.holdouts) {
         const std::string path = frame.is_number() ? expandFramePattern(h.depth, frame.get<int>()) : h.depth;
         const ExrChannel image = readExrChannel(path, h.channel);
@@ -45,9 +48,11 @@ void HoldoutStage::run(StageRun& run) {
                 // No surface: the background's 0, infinity or NaN (renderers write any of them).
                 if (!(z > 0.0f) || !std::isfinite(z)) continue;
                 if (h.ray_distance) {
-                    const float sx = (2.0f * (float(x) + 0.5f) / float(image.width) - 1.0f) * tan_half * aspect;
-                    const float sy = (1.0f - 2.0f * (float(y) + 0.5f) / float(image.height)) * tan_half;
-                    z /= std::sqrt(1.0f + sx * sx + sy * sy);
+                    k.P.width = image.width;
+                    k.P.height = image.height;
+                    glm::vec3 origin, dir, forward;
+                    k.vx_camera_ray_of(glm::mat4(1.0f), x, y, origin, dir, forward);
+                    z *= glm::dot(dir, forward);
                 }
                 float& nearest = depth[size_t(y / f) * width + size_t(x / f)];
                 nearest = std::min(nearest, z);

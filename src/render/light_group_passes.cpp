@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 namespace voxlux {
 
 kernel::VxParams lightGroupParams(const KernelInputs& in, int layer, int groups) {
