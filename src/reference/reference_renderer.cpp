@@ -284,35 +284,41 @@ struct Tracker {
 float toFloat(double v) { return float(std::min(v, double(std::numeric_limits<float>::max()))); }
 glm::vec3 toFloat(const glm::dvec3& v) { return {toFloat(v.x), toFloat(v.y), toFloat(v.z)}; }
 
-// One path's contributions. With light groups, `layers` (one per group, then the emitted light's)
-// receives the same terms as the light AOVs, each under the group of the light it came from.
+// One path's contributions. With light groups, `layers` (the caller's, zeroed: one per group, then
+// the emitted light's) receives the same terms as the light AOVs, each under the group of the
+// light it came from; null without them.
 struct PathSample {
     glm::vec3 direct{0.0f}, indirect{0.0f}, ambient{0.0f}, emission{0.0f};
     float transmittance = 1.0f;
     float scatter_weight = 0.0f;  // the camera pass's probability-of-scattering estimate
     float depth = 0.0f;           // camera-space distance of the first scattering
     int events = 0;
-    std::vector<glm::vec3> layers;
+    glm::vec3* layers = nullptr;
+    size_t layer_count = 0;
 
     // Ambient light `beta` * (the ambient radiance) * T reaching the path, per group.
     void addAmbient(const std::vector<glm::vec3>& group_ambient, glm::vec3 beta, float T, glm::vec3 total) {
         ambient += beta * total * T;
-        if (layers.empty()) return;
+        if (!layers) return;
         for (size_t g = 0; g < group_ambient.size(); ++g) layers[g] += beta * group_ambient[g] * T;
     }
     // Emitted light reaching the camera (seen, or scattered: `to` is emission or indirect).
     void addEmitted(glm::vec3& to, glm::vec3 light) {
         to += light;
-        if (!layers.empty()) layers.back() += light;
+        if (layers) layers[layer_count - 1] += light;
     }
 };
 
 // The camera ray stops at t_cut (a holdout); the paths it starts are not held out.
-PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::vector<glm::vec3>& group_ambient, int layers,
-                     glm::vec3 origin, glm::vec3 dir, glm::vec3 forward, float t_cut, ReferenceRng& rng) {
+PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::vector<glm::vec3>& group_ambient,
+                     std::vector<glm::vec3>& layers, glm::vec3 origin, glm::vec3 dir, glm::vec3 forward, float t_cut, ReferenceRng& rng) {
     CpuKernelData& k = tr.k;
     PathSample ps;
-    ps.layers.assign(size_t(layers), glm::vec3(0.0f));
+    std::fill(layers.begin(), layers.end(), glm::vec3(0.0f));
+    if (!layers.empty()) {
+        ps.layers = layers.data();
+        ps.layer_count = layers.size();
+    }
     const Tracker::RatioFlight camera = tr.ratioFlight(origin, dir, true, rng, ps.events, t_cut);
     ps.transmittance = camera.transmittance;
     ps.addEmitted(ps.emission, camera.emitted);
@@ -340,7 +346,7 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::
             const float T = tr.transmittance(x, wi, dist, rng, ps.events);
             const glm::vec3 scattered = beta * e * (T * k.vx_phase_hg(glm::dot(wi, w), g));
             (bounce == 0 ? ps.direct : ps.indirect) += scattered;
-            if (layers) ps.layers[size_t(light.group)] += scattered;
+            if (ps.layers) ps.layers[size_t(light.group)] += scattered;
         }
         // After the last scattering only escaping light (ambient) or emission can still arrive.
         if (bounce + 1 == rs.max_bounces && !escapes_count) break;
@@ -501,6 +507,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 ReferenceSums::Pixel local;
                 ReferenceSums::Pixel& acc = sums ? sums->pixels[pixel] : local;
                 std::vector<glm::dvec3> local_layers(sums ? 0 : layers);
+                std::vector<glm::vec3> path_layers(layers);   // one path's, reused by each
                 glm::dvec3* acc_layers = sums ? sums->layers.data() + size_t(pixel) * layers : local_layers.data();
                 for (int s = first; s < rs.spp; ++s) {
                     ReferenceRng rng(uint32_t(rs.seed), pixel, uint32_t(s));
@@ -511,8 +518,8 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                         k.vx_camera_ray_at(x, y, fraction, origin, dir, forward);
                     }
                     const float t_cut = k.vx_holdout_distance(x, y, dir, forward);
-                    const PathSample p = tracePath(at_time, rs, in.group_ambient, int(layers), origin, dir, forward, t_cut, rng);
-                    for (size_t l = 0; l < layers; ++l) acc_layers[l] += p.layers[l];
+                    const PathSample p = tracePath(at_time, rs, in.group_ambient, path_layers, origin, dir, forward, t_cut, rng);
+                    for (size_t l = 0; l < layers; ++l) acc_layers[l] += path_layers[l];
                     acc.direct += p.direct;
                     acc.indirect += p.indirect;
                     acc.ambient += p.ambient;
