@@ -29,9 +29,10 @@ endfunction()
 #              shadows()                 whether it shadows the lights (the march then lights per sample)
 #              varies()                  whether its light varies along a ray at all
 #              shadow(s, light)          transmittance towards light `light` (multiplied)
-#              direct(s, sum, unshadowed) the lights' scattered sum, rescaled (chained)
+#              direct(s, sum, unshadowed, block) the lights' scattered sum, rescaled (chained); `block`
+#                                        is the light group and link set's (vx_light_block)
 #              ambient(s)                ambient transmittance (multiplied)
-#              indirect(s)               indirect radiance per unit albedo and absorption (added), with
+#              indirect(s, block)        indirect radiance per unit albedo and absorption (added), with
 #                                        indirect_on(), whether it brings any
 #   PASSES   header of its light passes' kernel text (compiled for its own CPU kernel struct);
 #   ENTRIES  its GL entry points (.comp); UNIFORMS, MARCH_ARRAYS (the march reads them),
@@ -189,11 +190,11 @@ function(voxlux_generate_kernel_contract dir)
       elseif(hook STREQUAL "shadow")
         list(APPEND shadow "vx_${m}_shadow(s.${m}, light)")
       elseif(hook STREQUAL "direct")
-        string(APPEND direct "    sum = vx_${m}_direct(s.${m}, sum, unshadowed);\n")
+        string(APPEND direct "    sum = vx_${m}_direct(s.${m}, sum, unshadowed, block);\n")
       elseif(hook STREQUAL "ambient")
         list(APPEND ambient "vx_${m}_ambient(s.${m})")
       elseif(hook STREQUAL "indirect")
-        list(APPEND indirect "vx_${m}_indirect(s.${m})")
+        list(APPEND indirect "vx_${m}_indirect(s.${m}, block)")
         string(APPEND indirect_on " || vx_${m}_indirect_on()")
       else()
         message(FATAL_ERROR "lighting method ${m}: unknown hook ${hook}")
@@ -226,10 +227,10 @@ function(voxlux_generate_kernel_contract dir)
   string(APPEND hooks "// Whether any method shadows the lights, so that the march lights every sample.\nVX_INLINE bool vx_lighting_shadows() { return false${shadows}; }\n\n")
   string(APPEND hooks "// Whether any method's light varies along a ray.\nVX_INLINE bool vx_lighting_varies() { return false${varies}; }\n\n")
   string(APPEND hooks "// Transmittance towards light `light` at the sample.\nVX_INLINE float vx_lighting_shadow(VxLightingSample s, int light) {\n    VX_UNUSED(s);\n    VX_UNUSED(light);\n    return ${shadow};\n}\n\n")
-  string(APPEND hooks "// The lights' scattered radiance `sum` at the sample, of which `unshadowed` would arrive unshadowed.\nVX_INLINE vec3 vx_lighting_direct(VxLightingSample s, vec3 sum, vec3 unshadowed) {\n    VX_UNUSED(s);\n    VX_UNUSED(unshadowed);\n${direct}    return sum;\n}\n\n")
+  string(APPEND hooks "// The lights' scattered radiance `sum` at the sample, of which `unshadowed` would arrive unshadowed.\nVX_INLINE vec3 vx_lighting_direct(VxLightingSample s, vec3 sum, vec3 unshadowed, int block) {\n    VX_UNUSED(s);\n    VX_UNUSED(unshadowed);\n    VX_UNUSED(block);\n${direct}    return sum;\n}\n\n")
   string(APPEND hooks "// Ambient transmittance at the sample.\nVX_INLINE vec3 vx_lighting_ambient(VxLightingSample s) {\n    VX_UNUSED(s);\n    return ${ambient};\n}\n\n")
   string(APPEND hooks "// Whether any method brings indirect light.\nVX_INLINE bool vx_lighting_indirect_on() { return false${indirect_on}; }\n\n")
-  string(APPEND hooks "// Indirect radiance at the sample, per unit albedo and absorption.\nVX_INLINE vec3 vx_lighting_indirect(VxLightingSample s) {\n    VX_UNUSED(s);\n    return ${indirect_sum};\n}\n")
+  string(APPEND hooks "// Indirect radiance at the sample, per unit albedo and absorption, of block `block`.\nVX_INLINE vec3 vx_lighting_indirect(VxLightingSample s, int block) {\n    VX_UNUSED(s);\n    VX_UNUSED(block);\n    return ${indirect_sum};\n}\n")
   voxlux_write_generated(${dir}/vx_lighting.h "${hooks}")
 
   # Program order: prelude and types, the methods' types, the data, the core text, the methods'

@@ -127,12 +127,13 @@ VX_INLINE float vx_brick_optical_depth(int slot, ivec3 b, vec3 o, vec3 d, vec3 x
 #define VX_SEVERAL_VOLUMES (P.volume_count > 0)
 #endif
 
-// Transmittance from world point x towards a light at distance `dist` along unit direction wi.
+// Transmittance from world point x towards a light at distance `dist` along unit direction wi,
+// through the volumes that shadow link set `link`'s lights (VX_ALL_LINKS: every volume).
 // Reference quality: fixed step P.shadow_step, stops only below the transmittance cutoff.
-float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
+float vx_shadow_transmittance(vec3 x, vec3 wi, float dist, int link) {
     if (VX_SEVERAL_VOLUMES) {
         float tau_cut = -log(P.transmittance_cutoff);
-        float tau = vx_volumes_optical_depth(x, wi, dist, P.shadow_step, tau_cut);
+        float tau = vx_volumes_optical_depth(x, wi, dist, P.shadow_step, tau_cut, link);
         return tau > tau_cut ? 0.0f : vx_exp(-tau);
     }
     vec3 o = vx_to_index_point(x);
@@ -159,29 +160,34 @@ float vx_shadow_transmittance(vec3 x, vec3 wi, float dist) {
     return vx_exp(-tau);
 }
 
+// The lighting methods' block of light (an illumination volume's) that the march's light group
+// and link set `link` read: one per group and link set, group by group.
+VX_INLINE int vx_light_block(int link) { return P.light_group * max(P.link_sets, 1) + max(link, 0); }
+
 // Single-scattered light at world point x for a camera ray travelling along unit direction dir,
-// from the lights `which` selects (VX_LIGHTS_*) of the march's light group. Unshadowed directional light is the same all
+// from the lights `which` selects (VX_LIGHTS_*) of the march's light group and of link set `link`
+// (VX_ALL_LINKS: every light). Unshadowed directional light is the same all
 // along a ray, so the march sums it once per ray and asks here for the local lights only.
 // `lit` is what the lighting methods looked up at x; `surface` is vx_surface; g the medium's
 // Henyey-Greenstein anisotropy there.
-vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VX_IN(VxLightingSample) lit, VxSurface surface, float g) {
+vec3 vx_in_scattered(vec3 x, vec3 dir, int which, VX_IN(VxLightingSample) lit, VxSurface surface, float g, int link) {
     vec3 sum = vec3(0.0f);
     vec3 unshadowed = vec3(0.0f);   // what the lights would bring unshadowed
     for (int i = 0; i < P.light_count; ++i) {
         VxLight light = vx_light(i);
         bool directional = light.type == VX_LIGHT_DIRECTIONAL;
         if ((which == VX_LIGHTS_DIRECTIONAL && !directional) || (which == VX_LIGHTS_LOCAL && directional)) continue;
-        if (light.group != P.light_group) continue;
+        if (light.group != P.light_group || (link != VX_ALL_LINKS && light.link_set != link)) continue;
         vec3 wi;
         float dist;
         vec3 e = vx_light_incident(light, x, wi, dist);
         if (e.x + e.y + e.z <= 0.0f) continue;
-        float shadow = P.shadow_rays != 0 ? vx_shadow_transmittance(x, wi, dist) : 1.0f;
+        float shadow = P.shadow_rays != 0 ? vx_shadow_transmittance(x, wi, dist, link) : 1.0f;
         shadow *= vx_lighting_shadow(lit, i);
         unshadowed = vx_radiance_add(unshadowed, e);
         sum = vx_radiance_add(sum, e * (shadow * vx_phase_hg(dot(wi, dir), g) * vx_surface_factor(surface, wi, dir)));
     }
-    return vx_lighting_direct(lit, sum, unshadowed);
+    return vx_lighting_direct(lit, sum, unshadowed, vx_light_block(link));
 }
 
 // Optical depth is accumulated as a sum (Schlegel 2011, Eq. 2) and turned into transmittance
@@ -223,7 +229,10 @@ VxPixel vx_finish_ray(VxPixel px, float T, float alpha, float depth_weighted, VX
 // g; the space between the volumes' boxes is jumped. Sample by sample, without the one volume's
 // SIMD batches. The ray is attenuated by the visible volumes and the mattes; the light the
 // visible ones absorb is the pixel's alpha (1 - T without mattes), so a matte cuts what is behind
-// it and adds nothing. The visible volumes' emission is integrated as the one volume's is. At a
+// it and adds nothing. The visible volumes' emission is integrated as the one volume's is. With
+// light linking, each link set's lights are scattered by the visible volumes they light (their
+// scattering over the camera's extinction, and their g), a lookup of the volumes per link set; the
+// indirect light is scattered by every visible volume. At a
 // `time` within the shutter each volume is where its velocity moved it; the light a sample
 // receives is the frame's own at the sample's point (the volumes move each on its own, so no one
 // motion carries the light along, as the one volume's march does).
@@ -243,7 +252,7 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, float time, float 
     float depth_weighted = 0.0f;
     float cos_forward = dot(dir, forward);
     VxMedium m;
-    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && vx_volumes_sample(origin, dir, dt, t1, true, time, k, m); ++k) {
+    for (int k = vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && vx_volumes_sample(origin, dir, dt, t1, true, time, VX_ALL_LINKS, k, m); ++k) {
         float t = (float(k) + 0.5f) * dt;
         vec3 x = origin + dir * t;
         px.samples += 1.0f;
@@ -264,9 +273,19 @@ VxPixel vx_march_volumes(vec3 origin, vec3 dir, vec3 forward, float time, float 
         float seen = absorbed * (m.sigma_visible / m.sigma_camera);
         coverage += seen;
         VxLightingSample lit = vx_lighting_sample(x);
-        vec3 incident = vx_in_scattered(x, dir, VX_LIGHTS_ALL, lit, vx_no_surface(), vx_medium_g(m));
-        px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
-        if (lit_indirect) px.indirect = vx_radiance_add(px.indirect, albedo * vx_lighting_indirect(lit) * absorbed);
+        for (int link = P.link_sets > 0 ? 0 : VX_ALL_LINKS; link < P.link_sets; ++link) {
+            vec3 linked_albedo = albedo;
+            float g = vx_medium_g(m);
+            if (link != VX_ALL_LINKS) {
+                bool in_box;
+                VxMedium linked = vx_volumes_medium(x, true, time, link, in_box);
+                linked_albedo = vx_medium_albedo(linked, linked.sigma_camera);   // the camera's extinction is every volume's
+                g = vx_medium_g(linked);
+            }
+            vec3 incident = vx_in_scattered(x, dir, VX_LIGHTS_ALL, lit, vx_no_surface(), g, link);
+            px.direct = vx_radiance_add(px.direct, linked_albedo * incident * absorbed);
+            if (lit_indirect) px.indirect = vx_radiance_add(px.indirect, albedo * vx_lighting_indirect(lit, vx_light_block(link)) * absorbed);
+        }
         px.ambient = vx_radiance_add(px.ambient, albedo * P.ambient * vx_lighting_ambient(lit) * absorbed);
         depth_weighted += seen * t * cos_forward;
     }
@@ -296,7 +315,7 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, float t_cu
     float cutoff = P.transmittance_cutoff;
     bool shaded_surface = P.surface_inv_range > 0.0f;
     bool per_ray_directional = P.shadow_rays == 0 && !vx_lighting_shadows() && !shaded_surface;
-    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, vx_lighting_sample(origin), vx_no_surface(), P.anisotropy)
+    vec3 directional = per_ray_directional ? vx_in_scattered(origin, dir, VX_LIGHTS_DIRECTIONAL, vx_lighting_sample(origin), vx_no_surface(), P.anisotropy, VX_ALL_LINKS)
                                            : vec3(0.0f);
     bool lit_varies = vx_lighting_varies();
     bool lit_indirect = vx_lighting_indirect_on();
@@ -384,9 +403,9 @@ VxPixel vx_march_ray(vec3 origin, vec3 dir, vec3 forward, float time, float t_cu
                     VxLightingSample lit = vx_lighting_sample(x);
                     VxSurface surface = shaded_surface ? vx_surface(moving ? p - vx_to_index_dir(shift) : p) : vx_no_surface();
                     if (surface_grid && here) surface.weight *= vx_surface_weight_at(taps);
-                    vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, lit, surface, P.anisotropy));
+                    vec3 incident = vx_radiance_add(directional, vx_in_scattered(x, dir, per_sample_lights, lit, surface, P.anisotropy, VX_ALL_LINKS));
                     px.direct = vx_radiance_add(px.direct, albedo * incident * absorbed);
-                    if (lit_indirect) px.indirect = vx_radiance_add(px.indirect, albedo * vx_lighting_indirect(lit) * absorbed);
+                    if (lit_indirect) px.indirect = vx_radiance_add(px.indirect, albedo * vx_lighting_indirect(lit, vx_light_block(VX_ALL_LINKS)) * absorbed);
                     px.ambient = vx_radiance_add(px.ambient, albedo * ambient * vx_lighting_ambient(lit) * absorbed);
                     depth_weighted += absorbed * t * cos_forward;
                 }

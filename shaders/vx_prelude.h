@@ -54,6 +54,8 @@
 #define VX_TF_LUT_SIZE 256
 #define VX_MAX_EMISSION 4          // emission sources (grids) per scene
 #define VX_MAX_VOLUMES 256         // volumes and instances a scene places (a GL uniform block of them)
+#define VX_MAX_LINK_SETS 32        // light linking's link sets (bits of VxVolume.lit_sets)
+#define VX_ALL_LINKS (-1)          // every volume lights and shadows (no link set)
 #define VX_ROLE_VISIBLE 0          // VxVolume::role: seen by the camera
 #define VX_ROLE_MATTE 1            // occludes camera and light rays, no colour or alpha of its own
 #define VX_ROLE_SHADOW_ONLY 2      // occludes light rays only

@@ -20,7 +20,7 @@ struct VxLight {
     vec3 color;             // colour * intensity (scene-linear, unclamped)
     float cos_inner;        // cos(inner half-angle) (spot)
     int group;              // its light group's index (output.aovs "light_groups"; 0 without them)
-    int pad0;
+    int link_set;           // its link set (light linking, VxVolume.lit_sets; 0 without linking)
     int pad1;
     int pad2;
 };
@@ -102,7 +102,8 @@ struct VxParams {
                             // lights are group 0 without output.aovs "light_groups")
     int holdout;            // 1: camera rays stop at the depth holdouts' surface (vx_holdout_distance)
     int holdout_offset;     // GL: the holdout depth's first float in the vectors' block (vx_gl_bindings.glsl)
-    int pad6;
+    int link_sets;          // light linking: the link sets of VxLight.link_set (0: every light lights
+                            // and is shadowed by every volume)
     int pad7;
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
@@ -140,8 +141,8 @@ struct VxVolume {
     int color_offset;       // from a tap's index in the density to its colour's (vx_atlas_color)
     int use_velocity;       // 1 if it moves under motion blur (its velocity in its index voxels a second)
     int velocity_offset;    // from a tap's index in the density to its velocity's (vx_atlas_velocity)
-    int pad0;
-    int pad1;
+    int lit_sets;           // light linking: bit s set when the lights of link set s light it
+    int shadow_sets;        // bit s set when its extinction shadows the lights of link set s
     int pad2;
     int emission_first;     // its first emission source: the scene's sources are numbered volume by
                             // volume (P.emission_domain and the emission table's rows)

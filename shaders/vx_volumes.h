@@ -82,7 +82,10 @@ float vx_volume_extinction(VxVolume V, vec3 x, float time, VX_OUT(bool) inside) 
 // The medium at world point x at `time`: its extinctions, and when `shading` (the camera's rays,
 // the reference's flights; not shadow rays) its scattering, g and emission; `inside` tells whether
 // x lies in any volume's box of bricks (when not, the ray may jump to vx_volumes_next_entry).
-VxMedium vx_volumes_medium(vec3 x, bool shading, float time, VX_OUT(bool) inside) {
+// For link set `link` (light linking; VX_ALL_LINKS: none), `sigma` is the extinction of the volumes
+// that shadow its lights and the scattering and g those of the visible volumes its lights light;
+// the camera's extinctions stay every volume's, and nothing emits.
+VxMedium vx_volumes_medium(vec3 x, bool shading, float time, int link, VX_OUT(bool) inside) {
     VxMedium m;
     m.scattering = vec3(0.0f);
     m.sigma = 0.0f;
@@ -93,7 +96,7 @@ VxMedium vx_volumes_medium(vec3 x, bool shading, float time, VX_OUT(bool) inside
     m.g_weight = 0.0f;
     m.pad0 = 0.0f;
     inside = false;
-    bool emission = shading && P.emission_sources > 0;
+    bool emission = shading && P.emission_sources > 0 && link == VX_ALL_LINKS;
     for (int v = 0; v < P.volume_count; ++v) {
         VxVolume V = vx_placed_volume(v);
         bool in_box;
@@ -107,12 +110,12 @@ VxMedium vx_volumes_medium(vec3 x, bool shading, float time, VX_OUT(bool) inside
         if (emission && visible && V.emission_count > 0)
             m.emitted = vx_radiance_add(m.emitted, vx_emission_of(taps, V.emission_first, V.emission_count, V.emission_offset, V.emission_stride));
         if (sigma <= 0.0f) continue;
-        m.sigma += sigma;
+        if (link == VX_ALL_LINKS || ((V.shadow_sets >> link) & 1) != 0) m.sigma += sigma;
         if (V.role == VX_ROLE_SHADOW_ONLY) continue;
         m.sigma_camera += sigma;
         if (!visible) continue;
         m.sigma_visible += sigma;
-        if (!shading) continue;
+        if (!shading || (link != VX_ALL_LINKS && ((V.lit_sets >> link) & 1) == 0)) continue;
         vec3 albedo = V.albedo * tint;
         m.scattering += sigma * albedo;
         float weight = sigma * (albedo.x + albedo.y + albedo.z);
@@ -166,29 +169,29 @@ int vx_volumes_skip(vec3 x, vec3 w, int k, float dt, float t_end) {
 }
 
 // The ray's sample t_k = (k + 0.5) * dt inside a volume's box, from k on: k moves past the space
-// between boxes, and m is the medium there at `time` (shaded as vx_volumes_medium says); false
-// once the samples pass t_end.
-bool vx_volumes_sample(vec3 x, vec3 w, float dt, float t_end, bool shading, float time, VX_INOUT(int) k, VX_OUT(VxMedium) m) {
+// between boxes, and m is the medium there at `time` (shaded, and of link set `link`, as
+// vx_volumes_medium says); false once the samples pass t_end.
+bool vx_volumes_sample(vec3 x, vec3 w, float dt, float t_end, bool shading, float time, int link, VX_INOUT(int) k, VX_OUT(VxMedium) m) {
     for (;; ++k) {
         float t = (float(k) + 0.5f) * dt;
         if (t > t_end) return false;
         bool inside;
-        m = vx_volumes_medium(x + w * t, shading, time, inside);
+        m = vx_volumes_medium(x + w * t, shading, time, link, inside);
         if (inside) return true;
         k = vx_volumes_skip(x, w, k, dt, t_end);
         if (k < 0) return false;
     }
 }
 
-// Optical depth of the volumes from world point x along unit direction w over [0, dist], summed
-// at samples t_k = (k + 0.5) * dt, in the medium at the frame's own time; it stops once past
-// tau_cut.
-float vx_volumes_optical_depth(vec3 x, vec3 w, float dist, float dt, float tau_cut) {
+// Optical depth of the volumes (those that shadow link set `link`'s lights) from world point x
+// along unit direction w over [0, dist], summed at samples t_k = (k + 0.5) * dt, in the medium at
+// the frame's own time; it stops once past tau_cut.
+float vx_volumes_optical_depth(vec3 x, vec3 w, float dist, float dt, float tau_cut, int link) {
     float t0 = 0.0f;
     float t1 = dist;
     if (!vx_volumes_clip(x, w, t0, t1)) return 0.0f;
     float tau = 0.0f;
     VxMedium m;
-    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut && vx_volumes_sample(x, w, dt, t1, false, 0.0f, k, m); ++k) tau += m.sigma * dt;
+    for (int k = vx_first_sample(t0, 1.0f / dt); tau <= tau_cut && vx_volumes_sample(x, w, dt, t1, false, 0.0f, link, k, m); ++k) tau += m.sigma * dt;
     return tau;
 }

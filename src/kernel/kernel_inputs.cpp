@@ -62,6 +62,7 @@ void setSharedFrame(KernelInputs& in) {
 // the joined bricks. Their transfer functions' tables follow the one volume's in in.tf_lut.
 void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, KernelInputs& in) {
     std::vector<glm::vec4> tables;
+    const LightLinks links = lightLinks(scene);
     for (size_t v = 0; v < scene.volumes.size(); ++v) {
         const VolumeSpec& spec = scene.volumes[v];
         const std::vector<TransferPoint>& transfer = spec.material.transfer;
@@ -91,6 +92,13 @@ void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, Kern
             k.emission_count = c.emission_count;
             k.emission_offset = c.emission_offset;
             k.emission_stride = c.emission_stride;
+            for (size_t set = 0; set < links.sets.size(); ++set) {
+                const auto names = [&](const std::optional<std::vector<std::string>>& list) {
+                    return !list || std::binary_search(list->begin(), list->end(), spec.name);
+                };
+                k.lit_sets |= names(links.sets[set].lit) ? 1 << set : 0;
+                k.shadow_sets |= names(links.sets[set].shadows) ? 1 << set : 0;
+            }
             in.params.volume_roles |= k.role != VX_ROLE_VISIBLE ? 1 : 0;
             in.volumes.push_back(k);
         }
@@ -176,6 +184,7 @@ void setMedium(const Scene& scene, const BrickAtlas& atlas, const SceneBricks* v
 void setLights(const Scene& scene, KernelInputs& in) {
     auto& P = in.params;
     const LightGroups groups = lightGroups(scene);
+    const LightLinks links = lightLinks(scene);
     in.group_ambient.assign(std::max<size_t>(groups.names.size(), 1), glm::vec3(0.0f));
     // Ambient lights are not shadowed and act the same everywhere: they sum into one radiance.
     glm::vec3 ambient(0.0f);
@@ -191,12 +200,14 @@ void setLights(const Scene& scene, KernelInputs& in) {
         }
         in.lights.push_back(packLight(l));
         in.lights.back().group = group;
+        in.lights.back().link_set = links.of_light[i];
         local_lights += l.type != LightType::Directional;
     }
     P.ambient = ambient;
     P.has_ambient = glm::any(glm::greaterThan(ambient, glm::vec3(0.0f))) ? 1 : 0;
     P.shadow_rays = scene.effects.shadows == ShadowMethod::Raymarch ? 1 : 0;
     P.light_count = int(in.lights.size());
+    P.link_sets = int(links.sets.size());
     P.local_light_count = local_lights;
 }
 

@@ -234,7 +234,7 @@ LightGrid buildVolumesLightGrid(const KernelInputs& in, int resolution, LightGri
                 for (int q = 0; q < n * n * n; ++q) {
                     const glm::vec3 at = lo + (glm::vec3(q % n, q / n % n, q / (n * n)) + 0.5f) * (g.cell / float(n));
                     bool inside = false;
-                    const auto m = k.vx_volumes_medium(glm::vec3(in.index_to_world * glm::vec4(at, 1.0f)), shading, 0.0f, inside);
+                    const auto m = k.vx_volumes_medium(glm::vec3(in.index_to_world * glm::vec4(at, 1.0f)), shading, 0.0f, contents.link, inside);
                     sum[0] += m.sigma;
                     for (int c = 0; c < 3; ++c) sum[c + 1] += double(m.sigma) - double(bleeding) * m.scattering[c];
                     emitted += glm::dvec3(m.emitted);

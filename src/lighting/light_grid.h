@@ -89,6 +89,8 @@ struct LightGridContents {
     float bleeding = 0.0f;    // > 0, with extinction: the three colour-bleeding planes
     bool emission = false;    // the emitted radiance, when the scene's sources emit
     bool transport = false;   // the transport depth, when the atlas has a transport colour
+    int link = VX_ALL_LINKS;  // of several volumes: the extinction of those that shadow this link
+                              // set's lights (light linking), and the scattering of those they light
 };
 
 // Box-filters the visible bricks into a light grid of `resolution` over the occupied bricks' box;

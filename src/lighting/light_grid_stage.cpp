@@ -9,7 +9,7 @@
 namespace voxlux {
 
 StageReads LightGridStage::reads() const {
-    return {withPlacementKeys({"/volumes/*/path", "/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb"})};
+    return {withPlacementKeys({"/volumes/*/path", "/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb", "/input/light_links/sets"})};
 }
 
 StageActivity LightGridStage::activity(const Scene& s) const {

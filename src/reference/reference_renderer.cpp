@@ -49,12 +49,12 @@ struct Tracker {
         CpuKernelData::VxMedium mixed{};
     };
 
-    Collision medium(const Segment& s, float t, bool extinction_only = false) const {
+    Collision medium(const Segment& s, float t, bool extinction_only = false, int link = VX_ALL_LINKS) const {
         Collision c;
         const glm::vec3 p = s.o + s.d * t;
         if (s.slot < 0) {
             bool inside = false;
-            c.mixed = k.vx_volumes_medium(p, !extinction_only, time, inside);
+            c.mixed = k.vx_volumes_medium(p, !extinction_only, time, link, inside);
             return c;
         }
         bool found = false;
@@ -67,6 +67,12 @@ struct Tracker {
     Collision scattering(const Segment& s, float t, Collision c) const {
         if (s.slot >= 0 && !c.taps) c.taps = k.vx_taps_at(s.slot, s.brick, s.o + s.d * t);
         return c;
+    }
+    // Light linking: the scattering and g at world point x of the volumes link set `link`'s lights
+    // light (vx_volumes_medium).
+    CpuKernelData::VxMedium linked(glm::vec3 x, int link) const {
+        bool inside = false;
+        return k.vx_volumes_medium(x, true, time, link, inside);
     }
     // The extinction light meets (of several volumes, every volume's), and the share of it a
     // camera ray meets and the share that scatters colour (of several volumes, the visible ones';
@@ -169,8 +175,9 @@ struct Tracker {
     // the optical depth is exact, exp(-c * length), and only the residual sigma - c is tracked, with
     // tentative collisions at rate m - c, each weighing 1 - (sigma - c) / (m - c). A brick of
     // uniform density that does not emit (emission raises its majorant) costs no event and adds no
-    // noise (a dense cloud's core); where c is 0 it is plain ratio tracking.
-    float transmittance(glm::vec3 x, glm::vec3 w, float dist, ReferenceRng& rng, int& events) const {
+    // noise (a dense cloud's core); where c is 0 it is plain ratio tracking. Of link set `link`'s
+    // lights, only the volumes that shadow them count (their majorants still bound it).
+    float transmittance(glm::vec3 x, glm::vec3 w, float dist, ReferenceRng& rng, int& events, int link = VX_ALL_LINKS) const {
         float T = 1.0f;
         walk(x, w, dist, [&](const Segment& s) {
             const float c = s.minorant, residual = s.majorant - c;
@@ -178,7 +185,7 @@ struct Tracker {
             if (T <= 0.0f) return false;
             if (!(residual > 0.0f)) return true;  // uniform here: exact
             return collisions(s.t, s.t_end, residual, rng, events, [&](float t, bool opaque) {
-                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (extinction(medium(s, t, true)) - c) / residual);
+                T = opaque ? 0.0f : T * std::max(0.0f, 1.0f - (extinction(medium(s, t, true, link)) - c) / residual);
                 return T > 0.0f;
             });
         });
@@ -335,6 +342,7 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::
     // Each turn scatters at x: next-event estimation to the lights, then a flight by delta tracking
     // (by ratio tracking when it is the last the path may take).
     for (int bounce = 0;; ++bounce) {
+        const glm::vec3 arriving = beta;
         beta *= tr.albedo(cell, cell_sigma);
         const float g = tr.anisotropy(cell);
         for (int i = 0; i < k.P.light_count; ++i) {
@@ -343,8 +351,18 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::
             const kernel::VxLight light = k.vx_light(i);
             const glm::vec3 e = k.vx_light_incident(light, x, wi, dist);
             if (e.x + e.y + e.z <= 0.0f) continue;
-            const float T = tr.transmittance(x, wi, dist, rng, ps.events);
-            const glm::vec3 scattered = beta * e * (T * k.vx_phase_hg(glm::dot(wi, w), g));
+            // A linked light is scattered by the volumes it lights (their share of the collision's
+            // extinction) and shadowed by those it names; the path goes on through every volume.
+            const int link = k.P.link_sets > 0 ? light.link_set : VX_ALL_LINKS;
+            glm::vec3 weight = beta;
+            float g_light = g;
+            if (link != VX_ALL_LINKS) {
+                const CpuKernelData::VxMedium m = tr.linked(x, link);
+                weight = arriving * k.vx_medium_albedo(m, cell_sigma);
+                g_light = k.vx_medium_g(m);
+            }
+            const float T = tr.transmittance(x, wi, dist, rng, ps.events, link);
+            const glm::vec3 scattered = weight * e * (T * k.vx_phase_hg(glm::dot(wi, w), g_light));
             (bounce == 0 ? ps.direct : ps.indirect) += scattered;
             if (ps.layers) ps.layers[size_t(light.group)] += scattered;
         }

@@ -49,7 +49,7 @@ StageReads MarchStage::reads() const {
     return {withPlacementKeys({"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
              "/render/method", "/render/reference", "/render/motion_blur", "/render/region", "/volumes/*/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
-             "/volumes/*/emission", "/output/deep", "/output/deep_samples", "/input/light_groups"})};
+             "/volumes/*/emission", "/output/deep", "/output/deep_samples", "/input/light_groups", "/input/light_links"})};
 }
 
 StageActivity MarchStage::activity(const Scene& s) const {
@@ -81,6 +81,8 @@ StageActivity MarchStage::activity(const Scene& s) const {
                            : ", " + std::to_string(lightGroupMarches(s)) + " marches for the light groups (one a group" +
                                  (size_t(lightGroupMarches(s)) > groups.names.size() ? ", one for the emitted light)" : ")");
     }
+    if (const size_t sets = lightLinks(s).sets.size(); sets > 0)
+        march += ", " + std::to_string(sets) + (sets == 1 ? " link set" : " link sets") + " (light linking)";
     if (const auto& mb = s.render.motion_blur)
         march += reference ? ", motion-blurred where the medium or camera moves (a time a path)"
                            : ", motion-blurred where the medium or camera moves (" + std::to_string(mb->samples) +

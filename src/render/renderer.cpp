@@ -131,6 +131,17 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
         in["light_groups"]["names"] = groups.names;
         in["light_groups"]["of_light"] = groups.of_light;
     }
+    // Which volumes a light lights and which shadow it (light linking), as link sets: derived from
+    // the lights' lists, so that reordering a list or renaming nothing re-runs nothing.
+    const LightLinks links = lightLinks(scene_);
+    in["light_links"] = {{"sets", links.sets.size()}};
+    if (!links.sets.empty()) {
+        in["light_links"]["of_light"] = links.of_light;
+        for (const LinkSet& set : links.sets) {
+            in["light_links"]["lit"].push_back(set.lit ? nlohmann::json(*set.lit) : nlohmann::json());
+            in["light_links"]["shadows"].push_back(set.shadows ? nlohmann::json(*set.shadows) : nlohmann::json());
+        }
+    }
     const char* ocio = std::getenv("OCIO");
     in["ocio"] = ocio ? ocio : "";
     in["allow_empty"] = allow_empty;

@@ -30,7 +30,7 @@ CoveragePlanes volumeCoverage(const KernelInputs& in, const std::vector<int>& sc
                 t1 = std::min(t1, t_cut + 0.5f * dt);
                 float tau = 0.0f, T = 1.0f;
                 kernel::CpuKernelData::VxMedium m;
-                for (int s = k.vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && k.vx_volumes_sample(origin, dir, dt, t1, false, time, s, m); ++s) {
+                for (int s = k.vx_first_sample(t0, 1.0f / dt); T > P.transmittance_cutoff && k.vx_volumes_sample(origin, dir, dt, t1, false, time, VX_ALL_LINKS, s, m); ++s) {
                     const glm::vec3 at = origin + dir * ((float(s) + 0.5f) * dt);
                     const float cut = k.vx_cut_share(s, dt, t_cut);
                     if (m.sigma_camera <= 0.0f) continue;
@@ -60,7 +60,7 @@ bool wantsCoverage(const Scene& scene) {
 
 StageReads CoverageStage::reads() const {
     return {withPlacementKeys({"/output/aovs", "/volumes/*/name", "/volumes/*/material", "/render/resolution", "/render/step",
-                               "/render/transmittance_cutoff", "/render/filter", "/render/region", "/render/motion_blur"})};
+                               "/render/transmittance_cutoff", "/render/filter", "/render/region", "/render/motion_blur", "/input/light_links/sets"})};
 }
 
 StageActivity CoverageStage::activity(const Scene& s) const {

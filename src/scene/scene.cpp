@@ -58,10 +58,12 @@ size_t placedVolumeCount(const Scene& scene) {
     return n;
 }
 
-bool rendersAsSeveral(const Scene& scene) {
+bool placesSeveral(const Scene& scene) {
     return placedVolumeCount(scene) > 1 ||
            std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) { return v.role != VolumeRole::Visible; });
 }
+
+bool rendersAsSeveral(const Scene& scene) { return placesSeveral(scene) || linksLights(scene); }
 
 bool emits(const Scene& scene) {
     return std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) {
@@ -109,6 +111,30 @@ LightGroups lightGroups(const Scene& scene) {
 int lightGroupMarches(const Scene& scene) {
     const size_t groups = lightGroups(scene).names.size();
     return groups == 0 ? 1 : int(groups) + (emits(scene) ? 1 : 0);
+}
+
+bool linksLights(const Scene& scene) {
+    return std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.enabled && (l.volumes || l.shadow_volumes); });
+}
+
+LightLinks lightLinks(const Scene& scene) {
+    LightLinks links;
+    links.of_light.assign(scene.lights.size(), 0);
+    if (!linksLights(scene)) return links;
+    const auto sorted = [](std::optional<std::vector<std::string>> names) {
+        if (names) {
+            std::sort(names->begin(), names->end());
+            names->erase(std::unique(names->begin(), names->end()), names->end());
+        }
+        return names;
+    };
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const LinkSet set{sorted(scene.lights[i].volumes), sorted(scene.lights[i].shadow_volumes)};
+        const auto at = std::find(links.sets.begin(), links.sets.end(), set);
+        links.of_light[i] = int(at - links.sets.begin());
+        if (at == links.sets.end()) links.sets.push_back(set);
+    }
+    return links;
 }
 
 bool isRegion(const std::array<float, 4>& b) { return b[0] >= 0 && b[1] >= 0 && b[0] < b[2] && b[1] < b[3] && b[2] <= 1 && b[3] <= 1; }

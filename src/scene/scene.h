@@ -119,6 +119,10 @@ struct Light {
     float cone_angle = 30.0f;              // spot: outer half-angle, degrees
     float cone_softness = 5.0f;            // spot: degrees of falloff inside the outer angle
     std::string group;                     // its light group (output.aovs "light_groups"); "" = the default group
+    // Light linking: the names of the volumes it lights, and of those whose extinction shadows it;
+    // unset = every volume. Not for ambient lights.
+    std::optional<std::vector<std::string>> volumes;
+    std::optional<std::vector<std::string>> shadow_volumes;
 };
 
 struct Camera {
@@ -277,8 +281,11 @@ std::vector<glm::mat4> instancePlacements(const VolumeSpec& volume, std::optiona
 // The volumes the march places, instances counted.
 struct Scene;
 size_t placedVolumeCount(const Scene& scene);
-// Whether the scene renders through the march of several volumes (shaders/vx_volumes.h): more than
-// one placed volume, or a volume that is not visible (a matte, or shadows only).
+// Whether the scene places several volumes: more than one placed volume, or a volume that is not
+// visible (a matte, or shadows only).
+bool placesSeveral(const Scene& scene);
+// Whether the scene renders through the march of several volumes (shaders/vx_volumes.h): it places
+// several, or links lights to volumes (linksLights).
 bool rendersAsSeveral(const Scene& scene);
 // The scene as it renders: its disabled volumes left out (scene_read keeps one enabled at least).
 Scene withEnabledVolumes(Scene scene);
@@ -378,6 +385,23 @@ LightGroups lightGroups(const Scene& scene);
 // scene emits; 1 without light groups. Under propagation each reads an illumination volume of its
 // own.
 int lightGroupMarches(const Scene& scene);
+
+// Light linking (lights[i].volumes, shadow_volumes): the distinct pairs of volume lists the enabled
+// lights take, in the order they first appear, each a link set; a light with neither key is in the
+// set that lights and is shadowed by every volume. Without any link, no sets: the kernel then
+// lights every volume by every light as it always did.
+struct LinkSet {
+    std::optional<std::vector<std::string>> lit;       // sorted names; unset = every volume
+    std::optional<std::vector<std::string>> shadows;
+    bool operator==(const LinkSet&) const = default;
+};
+struct LightLinks {
+    std::vector<LinkSet> sets;             // empty when no light is linked
+    std::vector<int> of_light;             // per scene light, its set (0 when no light is linked)
+};
+LightLinks lightLinks(const Scene& scene);
+// Whether any enabled light names volumes or shadow volumes.
+bool linksLights(const Scene& scene);
 const std::vector<std::string>& knownCompressions();  // EXR compressions by their OpenEXR names
 
 }  // namespace voxlux

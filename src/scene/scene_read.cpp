@@ -643,6 +643,22 @@ ColorSettings readColor(const JsonObject& o, const std::string& base_dir) {
     return c;
 }
 
+// A light's list of volume names (light linking), unset when the key is absent.
+std::optional<std::vector<std::string>> readVolumeNames(const JsonObject& o, const std::string& key) {
+    if (!o.has(key)) return std::nullopt;
+    const nlohmann::json& list = o.raw(key);
+    if (!list.is_array() || !std::all_of(list.begin(), list.end(), [](const nlohmann::json& n) { return n.is_string(); }))
+        o.fail(key, "must be a list of volume names");
+    return list.get<std::vector<std::string>>();
+}
+
+// "the scene's volumes are 'smoke', 'fire'", for a message about a name that is none of them.
+std::string volumeNamesText(const std::vector<VolumeSpec>& volumes) {
+    std::string text;
+    for (const VolumeSpec& v : volumes) text += (text.empty() ? "'" : ", '") + v.name + "'";
+    return "the scene's volumes are " + text;
+}
+
 }  // namespace
 
 Light readLight(const JsonObject& o) {
@@ -653,10 +669,13 @@ Light readLight(const JsonObject& o) {
              : type == "ambient" ? LightType::Ambient
                                  : LightType::Directional;
     if (l.type == LightType::Ambient)
+        for (const char* key : {"volumes", "shadow_volumes"})
+            if (o.has(key)) o.fail(key, "an ambient light lights every volume: link a directional, point or spot light");
+    if (l.type == LightType::Ambient)
         o.rejectUnknown({"name", "enabled", "type", "color", "intensity", "group"});
     else
         o.rejectUnknown({"name", "enabled", "type", "position", "direction", "color", "intensity", "cone_angle",
-                         "cone_softness", "group"});
+                         "cone_softness", "group", "volumes", "shadow_volumes"});
     l.name = o.string("name", "");
     l.group = o.string("group", "");
     // The name becomes the EXR layer lightgroup.<group>: Nuke splits channel names at dots.
@@ -666,6 +685,8 @@ Light readLight(const JsonObject& o) {
     if (o.has("group") && !layer_name)
         o.fail("group", "'" + l.group + "' is not a layer name: use letters, digits, '_' and '-'");
     if (l.group == kEmissionLayer) o.fail("group", "'emission' is the emitted light's own group (lightgroup.emission)");
+    l.volumes = readVolumeNames(o, "volumes");
+    l.shadow_volumes = readVolumeNames(o, "shadow_volumes");
     l.enabled = o.boolean("enabled", true);
     if (l.type == LightType::Point || l.type == LightType::Spot) l.position = readPoint(o, "position");
     if (l.type == LightType::Directional || l.type == LightType::Spot) l.direction = readDirection(o, "direction");
@@ -803,6 +824,14 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     s.volumes = readVolumes(root, base_dir);
     if (root.has("lights"))
         for (const auto& l : root.objects("lights")) s.lights.push_back(readLight(l));
+    for (size_t i = 0; i < s.lights.size(); ++i)
+        for (const auto& [key, names] : {std::pair{"volumes", s.lights[i].volumes}, std::pair{"shadow_volumes", s.lights[i].shadow_volumes}})
+            for (const std::string& name : names.value_or(std::vector<std::string>{}))
+                if (std::none_of(s.volumes.begin(), s.volumes.end(), [&](const VolumeSpec& v) { return v.name == name; }))
+                    root.element("lights", i).fail(key, "no volume is named '" + name + "' (" + volumeNamesText(s.volumes) + ")");
+    if (const size_t sets = lightLinks(s).sets.size(); sets > VX_MAX_LINK_SETS)
+        root.fail("lights", "link " + std::to_string(sets) + " different pairs of volumes and shadow_volumes: a scene takes at most " +
+                                std::to_string(VX_MAX_LINK_SETS) + " so far");
     if (root.has("holdouts"))
         for (const auto& h : root.objects("holdouts")) s.holdouts.push_back(readHoldout(h, base_dir));
     if (root.has("camera")) s.camera = readCamera(root.object("camera"));
@@ -816,8 +845,9 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
         root.fail("output", "deep is a march-only output (render.method is \"reference\"): the Monte Carlo reference writes no deep samples");
     if (const Scene rendered = withEnabledVolumes(s); rendersAsSeveral(rendered)) {
         const size_t placed = placedVolumeCount(rendered);
-        const std::string why = placed > 1 ? " with " + std::to_string(placed) + " volumes: several volumes render without it, so far"
-                                           : " with a volume of role \"" + kVolumeRoleNames[size_t(rendered.volume().role)] +
+        const std::string why = placed > 1           ? " with " + std::to_string(placed) + " volumes: several volumes render without it, so far"
+                                : linksLights(rendered) ? " with linked lights: a linked scene renders as several volumes, which render without it, so far"
+                                                        : " with a volume of role \"" + kVolumeRoleNames[size_t(rendered.volume().role)] +
                                                  "\": it renders as one of several volumes, which render without it, so far";
         if (s.effects.surface) root.object("effects").fail("surface", "set" + why);
         if (s.effects.perturbation) root.object("effects").fail("perturbation", "set" + why);

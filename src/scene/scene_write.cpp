@@ -118,6 +118,8 @@ nlohmann::json lightToJson(const Light& l) {
         lj["cone_softness"] = jsonDecimal(l.cone_softness);
     }
     if (!l.group.empty()) lj["group"] = l.group;
+    if (l.volumes) lj["volumes"] = *l.volumes;
+    if (l.shadow_volumes) lj["shadow_volumes"] = *l.shadow_volumes;
     return lj;
 }
 

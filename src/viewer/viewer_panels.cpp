@@ -92,8 +92,13 @@ void lightList(ViewerState& state) {
         if (ImGui::Checkbox("##on", &on)) state.editor.enableLight(int(i), on);
         remember(state, "light/" + std::to_string(i) + "/enable");
         ImGui::SameLine();
-        // The light's name and its light group (output.aovs "light_groups").
-        const std::string name = (l.name.empty() ? "light " + std::to_string(i) : l.name) + "  [" + (l.group.empty() ? "default" : l.group) + "]";
+        // The light's name, its light group (output.aovs "light_groups") and the volumes it is linked to.
+        std::string name = (l.name.empty() ? "light " + std::to_string(i) : l.name) + "  [" + (l.group.empty() ? "default" : l.group) + "]";
+        if (l.volumes) {
+            std::string linked;
+            for (const std::string& v : *l.volumes) linked += (linked.empty() ? "" : ", ") + v;
+            name += "  -> " + (linked.empty() ? std::string("no volume") : linked);
+        }
         if (ImGui::Selectable(name.c_str(), state.selected_light == int(i), 0, ImVec2(190, 0))) state.selected_light = int(i);
         ImGui::SameLine();
         if (ImGui::SmallButton(state.editor.soloedLight(int(i)) ? "unsolo" : "solo")) state.editor.soloLight(int(i));
@@ -115,6 +120,24 @@ void lightList(ViewerState& state) {
     ImGui::NewLine();
 }
 
+// Light linking: a checkbox per volume for the volumes the light lights and those that shadow it;
+// every box ticked is no list (every volume, also those added later).
+void linkEditor(ViewerState& state, int i, const Light& l) {
+    const std::vector<VolumeSpec>& volumes = state.editor.scene().volumes;
+    for (const auto& [key, list] : {std::pair{"volumes", l.volumes}, std::pair{"shadow_volumes", l.shadow_volumes}}) {
+        ImGui::TextUnformatted(std::string(key) == "volumes" ? "lights" : "shadowed by");
+        for (const VolumeSpec& v : volumes) {
+            bool in = !list || std::find(list->begin(), list->end(), v.name) != list->end();
+            ImGui::SameLine();
+            if (!ImGui::Checkbox((v.name + "##" + key).c_str(), &in)) continue;
+            nlohmann::json names = nlohmann::json::array();
+            for (const VolumeSpec& other : volumes)
+                if (other.name == v.name ? in : !list || std::find(list->begin(), list->end(), other.name) != list->end()) names.push_back(other.name);
+            state.editor.changeLight(i, {{key, names.size() == volumes.size() ? nlohmann::json(nullptr) : names}});
+        }
+    }
+}
+
 void lightEditor(ViewerState& state) {
     const std::vector<Light>& lights = state.editor.scene().lights;
     if (state.selected_light < 0 || state.selected_light >= int(lights.size())) return;
@@ -129,6 +152,7 @@ void lightEditor(ViewerState& state) {
         state.editor.changeLight(i, {{"group", group.empty() ? nlohmann::json(nullptr) : nlohmann::json(group)}});
     ImGui::SameLine();
     if (ImGui::SmallButton(state.editor.soloedGroup(l.group) ? "unsolo group" : "solo group")) state.editor.soloGroup(l.group);
+    if (l.type != LightType::Ambient) linkEditor(state, i, l);
     const std::string type = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : l.type == LightType::Ambient ? "ambient" : "directional";
     if (auto t = combo("type", type, {"directional", "point", "spot", "ambient"})) state.editor.changeLight(i, {{"type", *t}});
     bool changed = ImGui::ColorEdit3("colour", &l.color.x, ImGuiColorEditFlags_Float);

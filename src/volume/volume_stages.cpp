@@ -134,7 +134,7 @@ void EmptyFrameStage::run(StageRun& run) {
 
 StageReads VolumesStage::reads() const {
     return {{"/volumes/*/path", "/volumes/*/density", "/volumes/*/level_set", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/instances?",
-             "/volumes/*/role", "/input/volume_files", "/render/filter", "/render/motion_blur?", "/render/motion_blur/velocity",
+             "/volumes/*/role", "/input/volume_files", "/input/light_links/sets", "/render/filter", "/render/motion_blur?", "/render/motion_blur/velocity",
              "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps"}};
 }
 
@@ -193,7 +193,7 @@ StageReads CameraStage::reads() const { return {withPlacementKeys({"/camera", "/
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera                      ? "the scene's camera"
-                  : rendersAsSeveral(s)      ? "frames all volumes' bricks (no camera in the scene)"
+                  : placesSeveral(s)         ? "frames all volumes' bricks (no camera in the scene)"
                                          : "frames the density grid's active voxels (no camera in the scene)"};
 }
 
@@ -216,7 +216,7 @@ void CameraStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up", "/volumes/*/transform"});
     if (scene.camera)
         camera_ = *scene.camera;
-    else if (rendersAsSeveral(scene))
+    else if (placesSeveral(scene))   // one volume frames the same with its lights linked or not
         camera_ = frameVolumes(volumes_.bricks(), scene, run.scene.frame(), load_.volume());
     else
         camera_ = frameActiveVoxels(placedVolume(load_.volume(), volumePlacement(scene.volume(), run.scene.frame())), scene);

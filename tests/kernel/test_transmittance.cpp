@@ -156,7 +156,7 @@ TEST(Shadows, SlabShadowRayMatchesBeerLambert) {
     k.page = prepared->pages.entries;
     // From the centre of the box straight up (+y): 32 voxels of full density, then the ramp that
     // adds half a voxel, so depth = 63 - 31.5 + 0.5 = 32.
-    float T = k.vx_shadow_transmittance(glm::vec3(31.5f), glm::vec3(0, 1, 0), 1e30f);
+    float T = k.vx_shadow_transmittance(glm::vec3(31.5f), glm::vec3(0, 1, 0), 1e30f, VX_ALL_LINKS);
     EXPECT_NEAR(T, std::exp(-sigma * 32.0f), 1e-4);
 }
 

@@ -95,7 +95,7 @@ TEST(EmptySpace, ShadowRayAcrossTheGapSeesBothParts) {
     const auto transmittance = [](bool near, bool far) {
         auto prepared = prepare(volumeFromGrid(parts(near, far)), sideLit(ShadowMethod::Raymarch), overhead());
         kernel::CpuKernel k = bindCpuKernel(prepared->inputs);
-        return k.vx_shadow_transmittance(glm::vec3(7.3f, 8.6f, -2100.0f), glm::vec3(0, 0, 1), 1e30f);
+        return k.vx_shadow_transmittance(glm::vec3(7.3f, 8.6f, -2100.0f), glm::vec3(0, 0, 1), 1e30f, VX_ALL_LINKS);
     };
     const float near = transmittance(true, false), far = transmittance(false, true), both = transmittance(true, true);
     const float one_part = std::exp(-kSigma * 16.0f);   // 16 voxels of kSigma each (T in world units of 1 voxel)

@@ -53,6 +53,14 @@ uint64_t nextSatGeneration() {
     return next++;
 }
 
+// The link sets whose lights' cones need a SAT of their own: those only some volumes shadow.
+std::vector<bool> ownShadowSats(const Scene& s) {
+    std::vector<bool> own;
+    if (needsConeShadows(s))
+        for (const LinkSet& set : lightLinks(s).sets) own.push_back(set.shadows.has_value());
+    return own;
+}
+
 }  // namespace
 
 bool lightCacheRuns(const Scene& scene) { return satActivity(scene, "").runs; }
@@ -61,7 +69,7 @@ StageReads SatStage::reads() const {
     // What its grid holds beyond the shared extinction (bleeding) and what the SAT and cache cost
     // (planes, and a channel per light), which may lower its resolution below the shared grid's.
     return {withPlacementKeys({"/effects/color_bleeding", "/effects/ambient_occlusion?", "/effects/shadows", "/lights/*/type",
-                               "/lights/*/enabled", "/render/backend"})};
+                               "/lights/*/enabled", "/input/light_links/shadows", "/render/backend"})};
 }
 
 StageActivity SatStage::activity(const Scene& s) const {
@@ -72,6 +80,16 @@ StageActivity SatStage::activity(const Scene& s) const {
 void SatStage::release() {
     own_grid_ = LightGrid{};
     sat_ = SummedVolume{};
+    linked_sats_.clear();
+    linked_generations_.clear();
+}
+
+const SummedVolume& SatStage::satOf(int link) const {
+    return size_t(link) < linked_sats_.size() && linked_sats_[size_t(link)].planes > 0 ? linked_sats_[size_t(link)] : sat_;
+}
+
+uint64_t SatStage::generationOf(int link) const {
+    return size_t(link) < linked_sats_.size() && linked_sats_[size_t(link)].planes > 0 ? linked_generations_[size_t(link)] : generation_;
 }
 
 void SatStage::run(StageRun& run) {
@@ -82,9 +100,11 @@ void SatStage::run(StageRun& run) {
     const float bleeding = bleedingOf(scene);
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
     const glm::vec3 extent = lightGridExtent(inputs);
+    const std::vector<bool> own_sats = ownShadowSats(scene);
     std::string warning;
+    // A link set's own SAT costs as one more plane.
     resolution_ = fitLightResolution(extent, cappedLightResolution(extent, scene.effects.light_resolution),
-                                     bleeding > 0.0f ? 4 : 1, cacheLayout(scene, enabledLightCount(scene, false)).channels,
+                                     (bleeding > 0.0f ? 4 : 1) + int(std::count(own_sats.begin(), own_sats.end(), true)), cacheLayout(scene, enabledLightCount(scene, false)).channels,
                                      size_t(scene.effects.light_memory_mb) << 20, warning);
     if (!warning.empty()) run.warnings.push_back(warning);
     if (resolution_ != shared_.resolution() || (bleeding > 0.0f && !uniformAlbedo(inputs))) {
@@ -95,11 +115,20 @@ void SatStage::run(StageRun& run) {
     }
     generation_ = nextSatGeneration();
     passes_.on(run.backend).buildSat(grid(), sat_);
+    linked_sats_.resize(own_sats.size());
+    linked_generations_.assign(own_sats.size(), 0);
+    for (size_t link = 0; link < own_sats.size(); ++link) {
+        if (!own_sats[link]) continue;
+        const LightGrid shadows = buildLightGrid(inputs, resolution_, {.link = int(link)});
+        linked_generations_[link] = nextSatGeneration();
+        passes_.on(run.backend).buildSat(shadows, linked_sats_[link]);
+    }
 }
 
 StageReads LightCacheStage::reads() const {
     return {withPlacementKeys({"/effects/ambient_occlusion", "/effects/color_bleeding", "/effects/cone", "/effects/shadows",
-                               "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction", "/render/backend"})};
+                               "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
+                               "/input/light_links/of_light", "/input/light_links/shadows", "/render/backend"})};
 }
 
 StageActivity LightCacheStage::activity(const Scene& s) const {
@@ -209,7 +238,13 @@ void LightCacheStage::run(StageRun& run) {
             const kernel::VxLight& light = inputs.lights[size_t(i)];
             const glm::vec4 where = light.type == VX_LIGHT_DIRECTIONAL ? glm::vec4(light.direction, 0.0f) : glm::vec4(light.position, 1.0f);
             S.light = i;
-            if (!fillChannel(pass, cache_.shadow_channel + i, sat_key + "|cone|" + cone_key + hashBytes(where), passes))
+            // A linked light's cone reads the SAT of the volumes that shadow it.
+            pass.sat = &sat_.satOf(light.link_set);
+            pass.sat_generation = sat_.generationOf(light.link_set);
+            S.planes = pass.sat->planes;
+            S.quantum = pass.sat->quantum;
+            const std::string key = std::to_string(pass.sat_generation) + "|" + run.scene.value("/render/backend").dump();
+            if (!fillChannel(pass, cache_.shadow_channel + i, key + "|cone|" + cone_key + hashBytes(where), passes))
                 run.reused.push_back("shadow of light " + std::to_string(i));
         }
     }

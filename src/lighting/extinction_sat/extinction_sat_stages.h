@@ -8,7 +8,9 @@
 // Cost: sat is linear in grid cells (and in the occupied voxels when it walks them for a grid of
 // its own: colour bleeding with a varying albedo, or a budget below the shared grid's); light_cache is cells x (shells + lights x cuboids) SAT
 // queries, recomputed only for the channels a change invalidates: a moved light recomputes its own
-// channel, a brighter one none.
+// channel, a brighter one none. Light linking: a link set whose lights only some volumes shadow
+// (lights[i].shadow_volumes) has a SAT of those volumes' extinction of its own, which its lights'
+// cones read: a grid and a SAT more per such set.
 #pragma once
 #include <string>
 #include <vector>
@@ -42,6 +44,10 @@ public:
     int resolution() const { return resolution_; }   // cells along the longest side, as fitted
     const SummedVolume& sat() const { return sat_; }
     uint64_t generation() const { return generation_; }   // changes whenever the SAT's contents do
+    // The SAT link set `link`'s lights' cones read (light linking), and its generation: its own
+    // where only some volumes shadow them, else sat().
+    const SummedVolume& satOf(int link) const;
+    uint64_t generationOf(int link) const;
 
 private:
     const BrickStage& brick_;
@@ -53,6 +59,8 @@ private:
     int resolution_ = 0;
     SummedVolume sat_;
     uint64_t generation_ = 0;
+    std::vector<SummedVolume> linked_sats_;   // per link set: empty where every volume shadows its lights
+    std::vector<uint64_t> linked_generations_;
 };
 
 class LightCacheStage final : public MarchLightingStageOf<LightCache> {

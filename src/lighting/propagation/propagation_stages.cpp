@@ -299,7 +299,7 @@ void lightTheMarchFrom(const IlluminationVolume& v, const Scene& scene, MarchLig
     b.chroma_factor = v.chroma;
     b.chroma_dims = v.chroma_dims;
     b.indirect_offset = int(v.indirectOffset());
-    b.group_floats = int(v.groupFloats());
+    b.block_floats = int(v.blockFloats());
     b.indirect_weight = indirect ? indirect->strength / (4.0f * float(M_PI)) : 0.0f;
     b.light_filter = scene.effects.propagation.filter == Filter::Tricubic ? VX_FILTER_TRICUBIC : VX_FILTER_TRILINEAR;
     lighting.setArray("Illumination", v.values.data(), v.values.size() * sizeof(float));
@@ -309,7 +309,7 @@ void lightTheMarchFrom(const IlluminationVolume& v, const Scene& scene, MarchLig
 
 bool illuminationVolumeRuns(const Scene& scene) { return propagationActivity(scene, "").runs; }
 
-size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission, bool transport, bool scattering, int groups) {
+size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission, bool transport, bool scattering, int blocks) {
     const size_t cells = size_t(d.x) * d.y * d.z;
     // The light grid, its mask, the direct RGB, and an x pass's slice-major copies of the
     // extinction and of its RGB result (CPU).
@@ -333,20 +333,21 @@ size_t illuminationBytes(glm::ivec3 d, bool indirect, int chroma, bool emission,
         // the coarse grid's four planes with an x pass's slice-major copy of them.
         if (transport) bytes += (3 * cells + 8 * cc) * sizeof(float);
     }
-    // Each light group past the first: its direct RGB and its share of an x pass's result, and with
-    // indirect light its indirect RGB, the eye pass's copy of its volume and its share of a coarse x
-    // pass's result.
-    if (groups > 1) {
+    // Each block past the first (a light group's, of a link set): its direct RGB and its share of an
+    // x pass's result, and with indirect light its indirect RGB, the eye pass's copy of its volume
+    // and its share of a coarse x pass's result.
+    if (blocks > 1) {
         const glm::ivec3 c = coarserDims(d, chroma);
         const size_t cc = size_t(c.x) * c.y * c.z;
-        bytes += size_t(groups - 1) * (6 * cells + (indirect ? 3 * cells + 9 * cc : 0)) * sizeof(float);
+        bytes += size_t(blocks - 1) * (6 * cells + (indirect ? 3 * cells + 9 * cc : 0)) * sizeof(float);
     }
     return bytes;
 }
 
 StageReads IlluminationGridStage::reads() const {
     return {withPlacementKeys({"/volumes/*/material", "/effects/light_resolution", "/effects/light_memory_mb", "/effects/indirect?",
-                               "/effects/propagation/chroma_subsampling", "/volumes/*/emission", "/input/light_groups/marches"})};
+                               "/effects/propagation/chroma_subsampling", "/volumes/*/emission", "/input/light_groups/marches",
+                               "/input/light_links/sets", "/input/light_links/shadows"})};
 }
 
 StageActivity IlluminationGridStage::activity(const Scene& s) const {
@@ -367,6 +368,7 @@ void IlluminationGridStage::release() {
     chroma_scattering_.clear();
     transport_sigma_.clear();
     fine_ = coarse_ = SweepGrid{};
+    linked_.clear();
 }
 
 void IlluminationGridStage::run(StageRun& run) {
@@ -374,20 +376,21 @@ void IlluminationGridStage::run(StageRun& run) {
     generation_ = nextGridGeneration();
     const Scene& scene = run.scene({"/effects/indirect?", "/effects/propagation/chroma_subsampling", "/effects/light_resolution",
                                     "/effects/light_memory_mb", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/transform",
-                                    "/input/light_groups/marches"});
+                                    "/input/light_groups/marches", "/input/light_links/sets", "/input/light_links/shadows"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const int chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
+    const LightLinks links = lightLinks(scene);
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame(), xyz_to_working_());
     const glm::vec3 extent = lightGridExtent(inputs);
     const bool emission = emissionLightsTheMedium(scene);
     const bool transport = indirect && !brick_.atlas().transport.empty();
     const bool scattering = inputs.params.volume_count > 0;
-    const int groups = lightGroupMarches(scene);
-    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport, scattering, groups); },
+    const int blocks = lightGroupMarches(scene) * std::max<int>(1, int(links.sets.size()));   // the volume's blocks
+    const GridCost cost{[&](glm::ivec3 d) { return illuminationBytes(d, indirect, chroma, emission, transport, scattering, blocks); },
                         // The kernels index the volume (3 + 3 floats per cell at most, a volume per
                         // light group) with ints.
-                        [&](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 * uint64_t(groups) < uint64_t(INT32_MAX); },
+                        [&](glm::ivec3 d) { return uint64_t(d.x) * d.y * d.z * 6 * uint64_t(blocks) < uint64_t(INT32_MAX); },
                         "illumination volume"};
     std::string warning;
     const int resolution = fitGridResolution(extent, cappedLightResolution(extent, fx.light_resolution),
@@ -460,6 +463,28 @@ void IlluminationGridStage::run(StageRun& run) {
         coarse_.sigma_generation = nextGridGeneration();
         coarse_.transport_planes = true;
     }
+    // Light linking: a link set only some volumes shadow sweeps over their extinction alone (a
+    // scene of several volumes takes no 2D transfer function, so there is no transport here).
+    linked_.resize(links.sets.size());
+    for (size_t link = 0; link < links.sets.size(); ++link) {
+        if (!links.sets[link].shadows) continue;
+        LinkedGrids& l = linked_[link];
+        l.fine_sigma = buildLightGrid(inputs, resolution, {.link = int(link)}).values;
+        l.fine = fine_;
+        l.fine.sigma = &l.fine_sigma;
+        l.fine.sigma_generation = nextGridGeneration();
+        l.fine.emission = l.fine.scattering = nullptr;   // the emitted light sweeps the every-volume grid
+        l.coarse = coarse_;
+        l.coarse.emission = l.coarse.scattering = nullptr;
+        if (chroma > 1) {
+            l.coarse_sigma = halveGrid(l.fine_sigma.data(), grid.dims, 1);
+            l.coarse.sigma = &l.coarse_sigma;
+            l.coarse.sigma_generation = nextGridGeneration();
+        } else {
+            l.coarse.sigma = l.fine.sigma;
+            l.coarse.sigma_generation = l.fine.sigma_generation;
+        }
+    }
 }
 
 StageReads PropagationStage::reads() const {
@@ -467,7 +492,7 @@ StageReads PropagationStage::reads() const {
              "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects/propagation/blend_axes",
              "/effects/propagation/chroma_subsampling", "/effects/propagation/coherent", "/effects/indirect",
              "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy", "/render/backend",
-             "/input/light_groups/of_light", "/input/light_groups/marches"})};
+             "/input/light_groups/of_light", "/input/light_groups/marches", "/input/light_links"})};
 }
 
 StageActivity PropagationStage::activity(const Scene& s) const {
@@ -513,18 +538,20 @@ void PropagationStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/lights", "/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                                     "/effects/propagation/coherent", "/effects/indirect", "/effects/perturbation", "/volumes/*/material",
                                     "/volumes/*/emission", "/volumes/*/transform", "/input/light_groups/of_light",
-                                    "/input/light_groups/marches"});
+                                    "/input/light_groups/marches", "/input/light_links"});
     const Effects& fx = scene.effects;
     const bool indirect = fx.indirect.has_value();
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
-    // A volume per light group, each light's sweeps adding into its group's (VxPropParams::block_first).
-    const int groups = lightGroupMarches(scene);
+    // A volume per light group and link set (vx_light_block), each light's sweeps adding into its
+    // own (VxPropParams::block_first).
+    const int link_blocks = std::max<int>(1, inputs.params.link_sets);
+    const int blocks = lightGroupMarches(scene) * link_blocks;
     IlluminationVolume layout;
     layout.dims = fine.dims;
     layout.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
-    const size_t group_floats = layout.groupFloats();
+    const size_t block_floats = layout.blockFloats();
     // The sweeps depend on the grid and these knobs; the lights are compared one by one below.
-    std::string setup_key = std::to_string(grid_.generation()) + "|" + std::to_string(groups) + "|" + hashBytes(inputs.params.noise_offset);
+    std::string setup_key = std::to_string(grid_.generation()) + "|" + std::to_string(blocks) + "|" + hashBytes(inputs.params.noise_offset);
     passes_.keepFor(grid_.generation());   // copies the passes keep of another grid go
     for (const char* key : {"/effects/propagation/blend_axes", "/effects/propagation/chroma_subsampling",
                             "/effects/indirect", "/effects/perturbation", "/volumes/*/material/albedo", "/volumes/*/material/anisotropy",
@@ -541,19 +568,38 @@ void PropagationStage::run(StageRun& run) {
         blurred = baseParams(coarse, 3, blurTaps(*fx.indirect), std::tan(glm::radians(0.5f * fx.indirect->angle)), profile.attenuation);
         blurred.transport_planes = coarse.transport_planes ? 1 : 0;
     }
-    // The sweeps of `lights`, weighted by `sign`, on both blocks.
-    auto sweepsOf = [&](const std::vector<kernel::VxLight>& lights, float sign, PassSweeps& fine_passes, PassSweeps& coarse_passes) {
+    // The sweeps of `lights`, weighted by `sign`, on both blocks, by the grids they sweep over: 0
+    // every volume's, 1 + s link set s's own (light linking, IlluminationGridStage::ownShadows).
+    using GridSweeps = std::vector<PassSweeps>;
+    const int grids = 1 + inputs.params.link_sets;
+    const auto fineAt = [&](int at) -> const SweepGrid& { return at == 0 ? fine : grid_.fineOf(at - 1); };
+    const auto coarseAt = [&](int at) -> const SweepGrid& { return at == 0 ? coarse : grid_.coarseOf(at - 1); };
+    auto sweepsOf = [&](const std::vector<kernel::VxLight>& lights, float sign, GridSweeps& fine_passes, GridSweeps& coarse_passes) {
+        fine_passes.resize(size_t(grids));
+        coarse_passes.resize(size_t(grids));
         for (kernel::VxLight l : lights) {
-            const int block_first = int(size_t(l.group) * group_floats);
+            const int block_first = int(size_t(l.group * link_blocks + l.link_set) * block_floats);
+            const int at = grid_.ownShadows(l.link_set) ? 1 + l.link_set : 0;
             kernel::VxPropParams fine_base = direct, coarse_base = blurred;
             fine_base.block_first = coarse_base.block_first = block_first;
-            addLightSweeps(l, sign, fine, fine_base, blend, fine_passes);
+            addLightSweeps(l, sign, fineAt(at), fine_base, blend, fine_passes[size_t(at)]);
             l.color *= profile.amplitude;
-            if (indirect) addLightSweeps(l, sign, coarse, coarse_base, blend, coarse_passes);
+            if (indirect) addLightSweeps(l, sign, coarseAt(at), coarse_base, blend, coarse_passes[size_t(at)]);
         }
     };
-    auto estimate = [&](const PassSweeps& f, const PassSweeps& c) {
-        return passesCost(f, fine, coherent) + passesCost(c, coarse, coherent);
+    auto estimate = [&](const GridSweeps& f, const GridSweeps& c) {
+        double cost = 0.0;
+        for (int at = 0; at < grids; ++at)
+            cost += passesCost(f[size_t(at)], fineAt(at), coherent) + passesCost(c[size_t(at)], coarseAt(at), coherent);
+        return cost;
+    };
+    // Runs them on both blocks.
+    auto run_sweeps = [&](const GridSweeps& f, const GridSweeps& c, LightUpdate& report) {
+        for (int at = 0; at < grids; ++at) {
+            runPasses(f[size_t(at)], fineAt(at), 0, coherent, inputs, passes_.on(run.backend), volume_, report);
+            if (indirect)
+                runPasses(c[size_t(at)], coarseAt(at), volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
+        }
     };
     auto peak = [&](const std::vector<kernel::VxLight>& lights) {
         double sum = 0.0;
@@ -563,11 +609,11 @@ void PropagationStage::run(StageRun& run) {
 
     LightUpdate report;
     report.lights = int(inputs.lights.size());
-    PassSweeps all_fine, all_coarse;
+    GridSweeps all_fine, all_coarse;
     sweepsOf(inputs.lights, 1.0f, all_fine, all_coarse);
     report.entire_cost = estimate(all_fine, all_coarse) + (indirect ? emittedLightCost(coarse) : 0.0);
     bool selective = false;
-    PassSweeps sel_fine, sel_coarse;
+    GridSweeps sel_fine, sel_coarse;
     std::vector<kernel::VxLight> removed, added;
     if (setup_key != setup_key_) {
         report.reason = setup_key_.empty() ? "first update" : "the grid or the propagation settings changed";
@@ -602,24 +648,23 @@ void PropagationStage::run(StageRun& run) {
             report.mode = LightUpdate::Mode::Selective;
             report.lights_out = int(removed.size());
             report.lights_in = int(added.size());
-            runPasses(sel_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
-            if (indirect) runPasses(sel_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
+            run_sweeps(sel_fine, sel_coarse, report);
             drift_ += peak(removed) + peak(added);
         } else {
             volume_.dims = fine.dims;
             volume_.chroma = indirect && fx.propagation.chroma_subsampling ? 2 : 1;
             volume_.chroma_dims = indirect ? coarse.dims : glm::ivec3(0);
             volume_.world_to_illum = fine.world_to_grid;
-            volume_.groups = groups;
-            assignInHugePages(volume_.values, size_t(groups) * volume_.groupFloats(), 0.0f);
+            volume_.blocks = blocks;
+            assignInHugePages(volume_.values, size_t(blocks) * volume_.blockFloats(), 0.0f);
             report.mode = LightUpdate::Mode::Entire;
             report.lights_in = int(inputs.lights.size());
-            runPasses(all_fine, fine, 0, coherent, inputs, passes_.on(run.backend), volume_, report);
+            run_sweeps(all_fine, all_coarse, report);
             if (indirect) {
-                runPasses(all_coarse, coarse, volume_.indirectOffset(), coherent, inputs, passes_.on(run.backend), volume_, report);
-                // The emitted light's volume is the last: with light groups, the emitted light's own.
-                addEmittedLight(coarse, scene.volume().material, blurred, inputs, passes_.on(run.backend), size_t(groups - 1) * group_floats,
-                                volume_, report);
+                // The emitted light's volume is the last group's (with light groups, the emitted
+                // light's own), of its first link set.
+                addEmittedLight(coarse, scene.volume().material, blurred, inputs, passes_.on(run.backend),
+                                size_t(blocks - link_blocks) * block_floats, volume_, report);
             }
             drift_ = 0.0;
         }
@@ -651,8 +696,8 @@ void EyePassStage::run(StageRun& run) {
                                     "/volumes/*/instances", "/volumes/*/role"});
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame());
     const glm::vec3 eye_position(cameraToWorld(camera_.camera())[3]);
-    for (int g = 0; g < lit.groups; ++g) {   // each light group's indirect light, on its own
-        const size_t first = size_t(g) * lit.groupFloats() + lit.indirectOffset();
+    for (int b = 0; b < lit.blocks; ++b) {   // each light group's (and link set's) indirect light, on its own
+        const size_t first = size_t(b) * lit.blockFloats() + lit.indirectOffset();
         const std::vector<float> before(lit.values.begin() + long(first), lit.values.begin() + long(first + 3 * lit.chromaCells()));
         sweepTowardsEye(*scene.effects.indirect, inputs, grid_.coarse(), eye_position, before, first, passes_.on(run.backend), volume_);
     }

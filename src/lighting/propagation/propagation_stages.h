@@ -13,6 +13,10 @@
 //  eye_pass           the indirect light swept once more towards the camera (Ropinski Sec. 4.1):
 //                     the propagation's volume with its indirect block replaced, so a camera move
 //                     re-runs this sweep alone.
+// Light groups and light linking: the volume holds a block per light group and link set
+// (vx_light_block), each light's sweeps adding into its own; a link set whose lights only some
+// volumes shadow (lights[i].shadow_volumes) sweeps over a grid of those volumes' extinction, one
+// more grid (and its coarsening) per such set.
 // Cost: each sweep is linear in the cells it walks; a point light's sweep costs about 2 directional
 // ones and an indirect one 4 (SweepCost), which is what the selective update weighs.
 #pragma once
@@ -34,10 +38,10 @@ namespace voxlux {
 // RGB, an x pass's slice-major copies, and with indirect light the indirect cells (their own
 // extinction grid when chroma subsampled, and the eye pass's second volume and input copy of the
 // indirect cells), and with `emission` the emission grids and their sweeps' blocks (with
-// `scattering`, of several volumes, their scattering grids too), and a volume for each of `groups`
-// light groups (lightGroupMarches). The lights' 2D slice buffers are left out: two slices per light.
+// `scattering`, of several volumes, their scattering grids too), and a volume for each of `blocks`
+// (light groups, lightGroupMarches, times link sets). The lights' 2D slice buffers are left out: two slices per light.
 size_t illuminationBytes(glm::ivec3 dims, bool indirect, int chroma, bool emission, bool transport, bool scattering = false,
-                         int groups = 1);
+                         int blocks = 1);
 
 // Whether `scene` lights the march from an illumination volume: propagation shadows, a light or
 // lit emission to propagate, and not the Monte Carlo reference.
@@ -93,6 +97,11 @@ public:
     // unless chroma subsampled).
     const SweepGrid& fine() const { return fine_; }
     const SweepGrid& coarse() const { return coarse_; }
+    // The grids link set `link`'s lights sweep over: their own where only some volumes shadow them
+    // (light linking), else fine() and coarse().
+    bool ownShadows(int link) const { return size_t(link) < linked_.size() && linked_[size_t(link)].fine.sigma; }
+    const SweepGrid& fineOf(int link) const { return ownShadows(link) ? linked_[size_t(link)].fine : fine_; }
+    const SweepGrid& coarseOf(int link) const { return ownShadows(link) ? linked_[size_t(link)].coarse : coarse_; }
     uint64_t generation() const { return generation_; }   // changes whenever the grids do
 
 private:
@@ -109,6 +118,13 @@ private:
     std::vector<float> transport_sigma_;   // the coarse grid's extinction and transport depth, with
                                            // a per-voxel transport colour (SweepGrid::transport_planes)
     SweepGrid fine_, coarse_;
+    // Per link set (light linking): the extinction of the volumes that shadow its lights, where
+    // only some do (no sigma otherwise).
+    struct LinkedGrids {
+        std::vector<float> fine_sigma, coarse_sigma;
+        SweepGrid fine, coarse;
+    };
+    std::vector<LinkedGrids> linked_;
     uint64_t generation_ = 0;
 };
 

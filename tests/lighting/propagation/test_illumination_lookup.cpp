@@ -61,10 +61,10 @@ TEST(IlluminationLookup, SplineEqualsTheBSplineSumOverItsCells) {
         // The volume's sample at q: the world is its cell space here.
         const auto at = k.vx_propagation_sample(q);
         b.light_filter = VX_FILTER_TRICUBIC;
-        worst = std::max({worst, glm::length(glm::dvec3(k.vx_propagation_direct(at, glm::vec3(1.0f), glm::vec3(1.0f))) - direct),
-                          glm::length(glm::dvec3(k.vx_propagation_indirect(at)) - indirect)});
+        worst = std::max({worst, glm::length(glm::dvec3(k.vx_propagation_direct(at, glm::vec3(1.0f), glm::vec3(1.0f), 0)) - direct),
+                          glm::length(glm::dvec3(k.vx_propagation_indirect(at, 0)) - indirect)});
         b.light_filter = VX_FILTER_TRILINEAR;
-        worst_trilinear = std::max(worst_trilinear, glm::length(glm::dvec3(k.vx_propagation_direct(at, glm::vec3(1.0f), glm::vec3(1.0f))) - direct));
+        worst_trilinear = std::max(worst_trilinear, glm::length(glm::dvec3(k.vx_propagation_direct(at, glm::vec3(1.0f), glm::vec3(1.0f), 0)) - direct));
     }
     EXPECT_LT(worst, 1e-5);
     EXPECT_GT(worst_trilinear, 1e-2) << "the test sees the filter";

@@ -71,8 +71,8 @@ VX_INLINE VxPropagationSample vx_propagation_sample(vec3 x) {
     return s;
 }
 
-// The first float of the march's light group's volume (P.light_group).
-VX_INLINE int vx_illum_group_first() { return P.light_group * L.propagation.group_floats; }
+// The first float of block `block`'s volume (vx_light_block: a light group's, of a link set).
+VX_INLINE int vx_illum_block_first(int block) { return block * L.propagation.block_floats; }
 
 // The sample's point in direct-light cells.
 VX_INLINE vec3 vx_illum_point(VxPropagationSample s) { return vec3(L.propagation.world_to_illum * vec4(s.x, 1.0f)); }
@@ -81,9 +81,9 @@ VX_INLINE vec3 vx_illum_point(VxPropagationSample s) { return vec3(L.propagation
 // scaled per channel by the fraction of the lights' unshadowed radiance `unshadowed` that arrives.
 // Exact for one light, and for any number when the phase is isotropic. Slightly negative values
 // (float residue of subtracted lights) count as none.
-VX_INLINE vec3 vx_propagation_direct(VxPropagationSample s, vec3 sum, vec3 unshadowed) {
+VX_INLINE vec3 vx_propagation_direct(VxPropagationSample s, vec3 sum, vec3 unshadowed, int block) {
     if (!vx_propagation_varies()) return sum;
-    vec3 arrived = max(vx_illum_at(vx_illum_point(s), L.propagation.illum_dims, vx_illum_group_first()), vec3(0.0f));
+    vec3 arrived = max(vx_illum_at(vx_illum_point(s), L.propagation.illum_dims, vx_illum_block_first(block)), vec3(0.0f));
     return sum * vec3(unshadowed.x > 0.0f ? arrived.x / unshadowed.x : 0.0f, unshadowed.y > 0.0f ? arrived.y / unshadowed.y : 0.0f,
                       unshadowed.z > 0.0f ? arrived.z / unshadowed.z : 0.0f);
 }
@@ -91,10 +91,10 @@ VX_INLINE vec3 vx_propagation_direct(VxPropagationSample s, vec3 sum, vec3 unsha
 VX_INLINE bool vx_propagation_indirect_on() { return L.propagation.indirect_weight > 0.0f && vx_propagation_varies(); }
 
 // Indirect radiance at a sample, weighted (0 when the scene has no indirect light or no volume).
-VX_INLINE vec3 vx_propagation_indirect(VxPropagationSample s) {
+VX_INLINE vec3 vx_propagation_indirect(VxPropagationSample s, int block) {
     if (!vx_propagation_indirect_on()) return vec3(0.0f);
     // Slightly negative values (float residue of subtracted lights) count as none.
     return max(vx_illum_at(vx_illum_point(s) / float(L.propagation.chroma_factor), L.propagation.chroma_dims,
-                           vx_illum_group_first() + L.propagation.indirect_offset), vec3(0.0f)) *
+                           vx_illum_block_first(block) + L.propagation.indirect_offset), vec3(0.0f)) *
            L.propagation.indirect_weight;
 }

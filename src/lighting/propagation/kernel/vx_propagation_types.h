@@ -56,8 +56,8 @@ struct VxPropParams {
 };
 
 // The illumination volume as the march reads it: direct RGB per cell, then the indirect RGB block,
-// possibly at a coarser (chroma-subsampled) resolution; with light groups, one such volume per
-// group, the march of a group reading its own.
+// possibly at a coarser (chroma-subsampled) resolution; with light groups or light linking, one
+// such volume per block (a light group's, of a link set), the march reading its own.
 struct VxPropagationMarch {
     mat4 world_to_illum;    // world -> illumination-volume cell coordinates (cell centres at i + 0.5)
     ivec3 illum_dims;       // direct-light cells (0 = no volume)
@@ -67,6 +67,6 @@ struct VxPropagationMarch {
     float indirect_weight;  // indirect strength / 4 pi (0 = no indirect light)
     int light_filter;       // VX_FILTER_*: how the volume is read between cells (effects.propagation.filter;
                             // `filter` is a GLSL reserved word)
-    int group_floats;       // floats from one light group's volume to the next (P.light_group's is read)
+    int block_floats;       // floats from one block's volume to the next (a light group's, of a link set: vx_light_block)
     int pad1;
 };
