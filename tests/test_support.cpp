@@ -192,6 +192,13 @@ std::string inputErrorOf(const std::function<void()>& action) {
     return "no error";
 }
 
+float largestDifference(const glm::mat4& a, const glm::mat4& b) {
+    float d = 0.0f;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) d = std::max(d, std::abs(a[c][r] - b[c][r]));
+    return d;
+}
+
 std::string sceneErrorOf(const std::string& json) {
     return inputErrorOf([&] { parseScene(json, "shot.json", "/shots"); });
 }

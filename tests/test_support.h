@@ -81,6 +81,9 @@ void writeDepthExr(const std::string& path, int width, int height, const std::fu
 // The image of `scene` (its files read from disk), rendered once by a Renderer of its own.
 RenderImage renderScene(const Scene& scene);
 
+// The largest difference of any element of two matrices.
+float largestDifference(const glm::mat4& a, const glm::mat4& b);
+
 // Rec. 709 luminance of scene-linear RGB.
 double luminance(glm::vec3 rgb);
 

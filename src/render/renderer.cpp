@@ -123,6 +123,7 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
     }
     if (scene_.volume().transform && !scene_.volume().transform->chan.empty())
         in["transform_chan"] = fileIdentity(scene_.volume().transform->chan);
+    if (scene_.camera && scene_.camera->file) in["camera_file"] = fileIdentity(scene_.camera->file->path);
     // Which march a light lights in (the light groups): derived from the lights' groups and
     // whether output.aovs asks for them, so that neither alone re-runs what reads it.
     const LightGroups groups = lightGroups(scene_);

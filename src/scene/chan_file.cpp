@@ -27,8 +27,9 @@ std::vector<std::string_view> fields(std::string_view line) {
 
 }  // namespace
 
-std::vector<TransformKey> parseChan(const std::string& text, const std::string& file) {
-    std::vector<TransformKey> keys;
+ChanTrack parseChan(const std::string& text, const std::string& file) {
+    ChanTrack track;
+    std::vector<TransformKey>& keys = track.keys;
     std::istringstream lines(text);
     std::string line;
     for (int number = 1; std::getline(lines, line); ++number) {
@@ -39,8 +40,8 @@ std::vector<TransformKey> parseChan(const std::string& text, const std::string& 
         if (f.empty()) continue;
         if (f.size() != 7 && f.size() != 8)
             fail("expected frame tx ty tz rx ry rz (7 numbers, or 8 from a camera), found " + std::to_string(f.size()) + " fields");
-        double v[7];
-        for (int i = 0; i < 7; ++i) {
+        double v[8];
+        for (size_t i = 0; i < f.size(); ++i) {
             const char* end = f[i].data() + f[i].size();
             const auto [stop, error] = std::from_chars(f[i].data(), end, v[i]);
             if (error != std::errc() || stop != end || !std::isfinite(v[i]))
@@ -49,12 +50,15 @@ std::vector<TransformKey> parseChan(const std::string& text, const std::string& 
         }
         if (!keys.empty() && !(v[0] > keys.back().frame))
             fail("frame " + std::string(f[0]) + " does not follow frame " + jsonText(keys.back().frame) + " (frames must increase)");
+        if (f.size() == 8 && !(v[7] > 0.0 && v[7] < 180.0)) fail("field of view " + std::string(f[7]) + " does not lie in (0, 180) degrees");
         keys.push_back({v[0], glm::vec3(v[1], v[2], v[3]), glm::vec3(v[4], v[5], v[6]), glm::vec3(1.0f)});
+        if (f.size() == 8) track.vertical_fov.push_back(float(v[7]));
     }
     if (keys.empty()) throw InputError(file + ": no keys (expected lines of frame tx ty tz rx ry rz)");
-    return keys;
+    if (track.vertical_fov.size() != keys.size()) track.vertical_fov.clear();   // a lens only where every key has one
+    return track;
 }
 
-std::vector<TransformKey> readChanFile(const std::string& path) { return parseChan(readFileText(path, ".chan file"), path); }
+ChanTrack readChanFile(const std::string& path) { return parseChan(readFileText(path, ".chan file"), path); }
 
 }  // namespace voxlux

@@ -125,12 +125,24 @@ struct Light {
     std::optional<std::vector<std::string>> shadow_volumes;
 };
 
+// A shot camera from another package (camera.file, src/scene/camera_file.h): its pose per frame
+// and, where the file has one, its lens.
+struct CameraFile {
+    std::string path;                      // resolved: a Nuke .chan, or a glTF 2.0 (.gltf, .glb) or FBX scene
+    std::string name;                      // glTF/FBX: the camera taken ("" = the file's first)
+    VolumeTransform pose;                  // camera-to-world: .chan keys in rotate_order, or a glTF/FBX matrix
+    std::vector<float> vertical_fov;       // degrees: one per key of a .chan, one for a glTF/FBX; empty = fov
+};
+
 struct Camera {
     glm::vec3 position{0.0f, 0.0f, 5.0f};
     glm::vec3 look_at{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     std::optional<glm::mat4> matrix;       // camera-to-world; overrides position/look_at/up
-    float fov = 40.0f;                     // vertical, degrees
+    float fov = 40.0f;                     // vertical, degrees (or from focal_length and film_back)
+    float focal_length = 0.0f;             // mm; > 0: fov = 2 atan(film_back.y / (2 focal_length))
+    glm::vec2 film_back{36.0f, 24.0f};     // mm, width and height (the height fits the frame)
+    std::optional<CameraFile> file;        // camera.file: replaces the pose, and fov where it has a lens
     // Camera-to-world at shutter open and close (camera.motion), blurred under render.motion_blur;
     // the transform above stays the frame's own (EXR metadata, the eye sweep).
     std::optional<std::array<glm::mat4, 2>> motion;

@@ -16,6 +16,7 @@
 #include "core/json_reader.h"
 #include "kernel/kernel_types.h"
 #include "scene/camera.h"
+#include "scene/camera_file.h"
 #include "scene/chan_file.h"
 
 namespace voxlux {
@@ -245,7 +246,7 @@ VolumeTransform readTransformObject(const JsonObject& o, const std::string& base
         for (const char* key : {"translate", "rotate"})
             if (o.has(key)) o.fail(key, "comes from the .chan file, which gives translate and rotate per frame");
         t.chan = resolvePath(o.string("chan"), base_dir);
-        t.keys = readChanFile(t.chan);
+        t.keys = readChanFile(t.chan).keys;
         for (TransformKey& k : t.keys) k.scale = t.scale;
     } else if (o.has("keys")) {
         for (const char* key : {"translate", "rotate", "scale"})
@@ -319,11 +320,49 @@ VolumeSpec readVolume(const JsonObject& o, const std::string& base_dir) {
 }
 
 
-Camera readCamera(const JsonObject& o) {
-    o.rejectUnknown({"position", "look_at", "up", "matrix", "fov", "motion"});
-    Camera c = readCameraPose(o);
+// The camera's lens: fov, or focal_length with film_back (mm); a file's lens replaces both.
+void readLens(const JsonObject& o, Camera& c) {
+    if (o.has("fov") && o.has("focal_length")) o.fail("focal_length", "gives the field of view, which fov gives too: set one of them");
+    const bool lens_in_file = c.file && !c.file->vertical_fov.empty();
+    for (const char* key : {"fov", "focal_length", "film_back"})
+        if (lens_in_file && o.has(key)) o.fail(key, "comes from the camera file, which has a lens");
     c.fov = o.number("fov", c.fov);
     if (!(c.fov > 0 && c.fov < 180)) o.fail("fov", "must lie in (0, 180) degrees");
+    c.focal_length = o.number("focal_length", c.focal_length);
+    if (o.has("focal_length") && !(c.focal_length > 0 && c.focal_length < 1e6f)) o.fail("focal_length", "must lie in (0, 1e6) mm");
+    if (o.has("film_back")) {
+        const std::vector<float> back = o.numbers("film_back", 2);
+        if (!(back[0] > 0 && back[1] > 0 && back[0] < 1e6f && back[1] < 1e6f)) o.fail("film_back", "must be [width, height] in mm, each in (0, 1e6)");
+        if (!o.has("focal_length")) o.fail("film_back", "goes with focal_length");
+        c.film_back = glm::vec2(back[0], back[1]);
+    }
+}
+
+// camera.file: the pose (and lens) from a Nuke .chan, or a glTF or FBX scene's camera.
+CameraFile readCameraFileKeys(const JsonObject& o, const std::string& base_dir) {
+    for (const char* key : {"position", "look_at", "up", "matrix", "motion"})
+        if (o.has(key)) o.fail(key, "comes from the camera file (camera.file)");
+    const std::string path = resolvePath(o.string("file"), base_dir);
+    const bool chan = std::filesystem::path(path).extension() == ".chan";
+    if (chan && o.has("name")) o.fail("name", "picks a camera of a glTF or FBX file; a .chan holds one");
+    if (!chan && o.has("rotate_order")) o.fail("rotate_order", "turns a .chan's rotations; a glTF or FBX camera has its matrix");
+    const std::string order = o.choice("rotate_order", {std::begin(kRotateOrderNames), std::end(kRotateOrderNames)}, "zxy");
+    return readCameraFile(path, o.string("name", ""), RotateOrder(std::find(std::begin(kRotateOrderNames), std::end(kRotateOrderNames), order) -
+                                                                  std::begin(kRotateOrderNames)));
+}
+
+Camera readCamera(const JsonObject& o, const std::string& base_dir) {
+    o.rejectUnknown({"position", "look_at", "up", "matrix", "fov", "focal_length", "film_back", "motion", "file", "name", "rotate_order"});
+    if (o.has("file")) {
+        Camera c;
+        c.file = readCameraFileKeys(o, base_dir);
+        readLens(o, c);
+        return c;
+    }
+    for (const char* key : {"name", "rotate_order"})
+        if (o.has(key)) o.fail(key, "goes with camera.file");
+    Camera c = readCameraPose(o);
+    readLens(o, c);
     if (o.has("motion")) {
         const JsonObject m = o.object("motion");
         m.rejectUnknown({"open", "close"});
@@ -834,7 +873,7 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
                                 std::to_string(VX_MAX_LINK_SETS) + " so far");
     if (root.has("holdouts"))
         for (const auto& h : root.objects("holdouts")) s.holdouts.push_back(readHoldout(h, base_dir));
-    if (root.has("camera")) s.camera = readCamera(root.object("camera"));
+    if (root.has("camera")) s.camera = readCamera(root.object("camera"), base_dir);
     if (root.has("render")) s.render = readRender(root.object("render"));
     if (root.has("effects")) s.effects = readEffects(root.object("effects"));
     if (s.render.method == RenderMethod::Reference && (s.effects.surface || s.effects.perturbation))

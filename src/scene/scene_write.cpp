@@ -217,8 +217,18 @@ nlohmann::json sceneToJson(const Scene& s) {
 
     if (s.camera) {
         auto& c = j["camera"];
-        c["fov"] = jsonDecimal(s.camera->fov);
-        if (s.camera->matrix) {
+        const bool lens_in_file = s.camera->file && !s.camera->file->vertical_fov.empty();
+        if (s.camera->focal_length > 0.0f) {
+            c["focal_length"] = jsonDecimal(s.camera->focal_length);
+            c["film_back"] = {jsonDecimal(s.camera->film_back.x), jsonDecimal(s.camera->film_back.y)};
+        } else if (!lens_in_file) {
+            c["fov"] = jsonDecimal(s.camera->fov);
+        }
+        if (const auto& f = s.camera->file) {   // as written: the file stays a file name
+            c["file"] = f->path;
+            if (!f->pose.keys.empty()) c["rotate_order"] = kRotateOrderNames[int(f->pose.rotate_order)];
+            else c["name"] = f->name;
+        } else if (s.camera->matrix) {
             c["matrix"] = matrixToJson(*s.camera->matrix);
         } else {
             c["position"] = jsonVec3(s.camera->position);
@@ -297,6 +307,7 @@ Scene scenePathsRelativeTo(Scene scene, const std::string& folder) {
     }
     relative(scene.color.config);
     for (Holdout& h : scene.holdouts) relative(h.depth);
+    if (scene.camera && scene.camera->file) relative(scene.camera->file->path);
     for (GradeStep& g : scene.color.grade) relative(g.file);
     return scene;
 }

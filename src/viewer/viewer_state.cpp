@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/frame_pattern.h"
+#include "scene/camera_file.h"
 #include "viewer/orbit_camera.h"
 #include "volume/vdb_loader.h"
 
@@ -97,7 +98,7 @@ void ViewerState::updateBounds() {
 
 Camera ViewerState::camera() const {
     const glm::vec3 pivot = 0.5f * (bounds_lo + bounds_hi);
-    if (editor.scene().camera) return lookAtForm(*editor.scene().camera, pivot);
+    if (editor.scene().camera) return lookAtForm(posedCamera(*editor.scene().camera, frame.value_or(0)), pivot);
     if (render)
         if (const auto frame = render->latest()) return lookAtForm(frame->camera, pivot);
     return Camera{};

@@ -4,6 +4,7 @@
 
 #include "optics/transfer_function_2d.h"
 #include "scene/camera.h"
+#include "scene/camera_file.h"
 #include "volume/transfer_2d.h"
 #include "volume/velocity.h"
 #include "core/error.h"
@@ -189,7 +190,7 @@ bool noVisibleBricks(const ClassifyStage& classify, const VolumesStage& volumes)
     return classify.pages().empty() && std::all_of(ranges.begin(), ranges.end(), isEmptyRange);
 }
 
-StageReads CameraStage::reads() const { return {withPlacementKeys({"/camera", "/render/resolution", "/volumes/*/up"})}; }
+StageReads CameraStage::reads() const { return {withPlacementKeys({"/camera", "/render/resolution", "/volumes/*/up", "/input/camera_file"})}; }
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera                      ? "the scene's camera"
@@ -213,9 +214,9 @@ Camera frameVolumes(const SceneBricks& bricks, const Scene& scene, float frame, 
 }  // namespace
 
 void CameraStage::run(StageRun& run) {
-    const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up", "/volumes/*/transform"});
+    const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up", "/volumes/*/transform", "/input/camera_file"});
     if (scene.camera)
-        camera_ = *scene.camera;
+        camera_ = posedCamera(*scene.camera, run.scene.frame());
     else if (placesSeveral(scene))   // one volume frames the same with its lights linked or not
         camera_ = frameVolumes(volumes_.bricks(), scene, run.scene.frame(), load_.volume());
     else

@@ -11,7 +11,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         voxlux::VolumeTransform t;
-        t.keys = voxlux::parseChan(std::string(reinterpret_cast<const char*>(data), size), "fuzz.chan");
+        t.keys = voxlux::parseChan(std::string(reinterpret_cast<const char*>(data), size), "fuzz.chan").keys;
         for (const double frame : {t.keys.front().frame - 1.0, 0.5 * (t.keys.front().frame + t.keys.back().frame), t.keys.back().frame + 1.0}) {
             const glm::mat4 m = voxlux::volumeTransformMatrix(t, frame);
             for (int c = 0; c < 4; ++c)

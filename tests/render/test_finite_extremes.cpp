@@ -95,7 +95,10 @@ Scene methodScene(ShadowMethod shadows, RenderMethod method) {
     ambient.type = LightType::Ambient;
     ambient.intensity = 0.3f;
     s.lights = {directional, point, ambient};
-    s.camera = Camera{{40.0f, 20.0f, 50.0f}, glm::vec3(12.0f), {0.0f, 1.0f, 0.0f}, std::nullopt, 40.0f, std::nullopt};
+    Camera camera;
+    camera.position = {40.0f, 20.0f, 50.0f};
+    camera.look_at = glm::vec3(12.0f);
+    s.camera = camera;
     return s;
 }
 

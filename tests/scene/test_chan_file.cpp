@@ -8,7 +8,9 @@ namespace voxlux::test {
 namespace {
 
 TEST(ChanFile, ReadsAnAxisAndACameraExport) {
-    const auto keys = parseChan("1 0 1.5 -2 0 90 0\n\n2.5\t1e1 0 0  10 20 30 \n3 0 0 0 0 0 0 54.43\n", "smoke.chan");
+    const ChanTrack track = parseChan("1 0 1.5 -2 0 90 0\n\n2.5\t1e1 0 0  10 20 30 \n3 0 0 0 0 0 0 54.43\n", "smoke.chan");
+    const std::vector<TransformKey>& keys = track.keys;
+    EXPECT_TRUE(track.vertical_fov.empty());   // not every line has the camera's column
     ASSERT_EQ(keys.size(), 3u);
     EXPECT_EQ(keys[0].frame, 1.0);
     EXPECT_EQ(keys[0].translate, glm::vec3(0.0f, 1.5f, -2.0f));

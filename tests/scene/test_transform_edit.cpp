@@ -11,13 +11,6 @@
 namespace voxlux::test {
 namespace {
 
-float largestDifference(const glm::mat4& a, const glm::mat4& b) {
-    float d = 0.0f;
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) d = std::max(d, std::abs(a[c][r] - b[c][r]));
-    return d;
-}
-
 glm::mat4 around(glm::vec3 pivot, const glm::mat4& m) {
     return glm::translate(glm::mat4(1.0f), pivot) * m * glm::translate(glm::mat4(1.0f), -pivot);
 }
