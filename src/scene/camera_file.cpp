@@ -91,9 +91,11 @@ CameraFile parseAssimpCamera(const std::string& bytes, const std::string& hint, 
     return cameraOf(scene, file, hint != "fbx", name, importer.GetErrorString());
 }
 
+bool isChanFile(const std::string& path) { return lowerExtension(path) == "chan"; }
+
 CameraFile readCameraFile(const std::string& path, const std::string& name, RotateOrder order) {
     const std::string ext = lowerExtension(path);
-    if (ext == "chan") {
+    if (isChanFile(path)) {
         const ChanTrack track = readChanFile(path);
         CameraFile out;
         out.path = path;
@@ -119,11 +121,8 @@ Camera posedCamera(const Camera& camera, double frame) {
     if (f.vertical_fov.size() == 1) {
         posed.fov = f.vertical_fov[0];
     } else if (f.vertical_fov.size() > 1) {   // per key, blended as the pose is
-        const auto& keys = f.pose.keys;
-        const auto next = std::upper_bound(keys.begin(), keys.end(), frame, [](double x, const TransformKey& k) { return x < k.frame; });
-        const size_t b = size_t(std::clamp<long>(next - keys.begin(), 1, long(keys.size()) - 1));
-        const double w = std::clamp((frame - keys[b - 1].frame) / (keys[b].frame - keys[b - 1].frame), 0.0, 1.0);
-        posed.fov = float(f.vertical_fov[b - 1] + w * (f.vertical_fov[b] - f.vertical_fov[b - 1]));
+        const KeyBlend k = keyBlend(f.pose.keys, frame);
+        posed.fov = f.vertical_fov[k.a] + k.weight * (f.vertical_fov[k.b] - f.vertical_fov[k.a]);
     }
     return posed;
 }

@@ -14,6 +14,9 @@
 
 namespace voxlux {
 
+// Whether `path` names a Nuke .chan (its extension, in any case), rather than a glTF or FBX scene.
+bool isChanFile(const std::string& path);
+
 // The camera of the file at `path` (its extension says which kind); `name` picks a glTF/FBX camera
 // by its node's name ("" = the first), `order` turns a .chan's rotations. Throws InputError naming
 // the file and the problem.

@@ -29,15 +29,19 @@ glm::mat3 rotationMatrix(glm::vec3 degrees, RotateOrder order) {
 glm::mat4 volumeTransformMatrix(const VolumeTransform& t, std::optional<double> frame) {
     if (t.matrix) return *t.matrix;
     if (t.keys.empty()) return pose(t.translate, t.rotate, t.scale, t.rotate_order);
-    const auto& keys = t.keys;
-    const double f = frame.value_or(keys.front().frame);
-    if (f <= keys.front().frame) return pose(keys.front().translate, keys.front().rotate, keys.front().scale, t.rotate_order);
-    if (f >= keys.back().frame) return pose(keys.back().translate, keys.back().rotate, keys.back().scale, t.rotate_order);
-    const auto next = std::upper_bound(keys.begin(), keys.end(), f, [](double x, const TransformKey& k) { return x < k.frame; });
-    const TransformKey& a = next[-1];
-    const TransformKey& b = *next;
-    const float w = float((f - a.frame) / (b.frame - a.frame));
+    const KeyBlend k = keyBlend(t.keys, frame.value_or(t.keys.front().frame));
+    const TransformKey& a = t.keys[k.a];
+    const TransformKey& b = t.keys[k.b];
+    const float w = k.weight;   // 0 where a key is held: the mix is that key exactly
     return pose(glm::mix(a.translate, b.translate, w), glm::mix(a.rotate, b.rotate, w), glm::mix(a.scale, b.scale, w), t.rotate_order);
+}
+
+KeyBlend keyBlend(const std::vector<TransformKey>& keys, double frame) {
+    if (frame <= keys.front().frame) return {};
+    if (frame >= keys.back().frame) return {keys.size() - 1, keys.size() - 1, 0.0f};
+    const size_t b = size_t(std::upper_bound(keys.begin(), keys.end(), frame, [](double x, const TransformKey& k) { return x < k.frame; }) -
+                            keys.begin());
+    return {b - 1, b, float((frame - keys[b - 1].frame) / (keys[b].frame - keys[b - 1].frame))};
 }
 
 glm::mat4 volumePlacement(const VolumeSpec& volume, std::optional<double> frame) {

@@ -57,6 +57,14 @@ struct VolumeTransform {
     std::vector<TransformKey> keys;        // non-empty: animated, frames strictly increasing
     std::string chan;                      // the Nuke .chan file the keys were read from ("" = written inline)
 };
+// The keys (frames strictly increasing) around `frame`: keys a and b and the weight of b there,
+// held at the first key before it and at the last after it (a == b, weight 0).
+struct KeyBlend {
+    size_t a = 0, b = 0;
+    float weight = 0.0f;
+};
+KeyBlend keyBlend(const std::vector<TransformKey>& keys, double frame);
+
 // Its matrix at `frame` (unset: a still, posed at the first key), from the file's world to the scene's.
 glm::mat4 volumeTransformMatrix(const VolumeTransform& t, std::optional<double> frame = std::nullopt);
 

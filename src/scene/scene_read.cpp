@@ -343,7 +343,7 @@ CameraFile readCameraFileKeys(const JsonObject& o, const std::string& base_dir) 
     for (const char* key : {"position", "look_at", "up", "matrix", "motion"})
         if (o.has(key)) o.fail(key, "comes from the camera file (camera.file)");
     const std::string path = resolvePath(o.string("file"), base_dir);
-    const bool chan = std::filesystem::path(path).extension() == ".chan";
+    const bool chan = isChanFile(path);
     if (chan && o.has("name")) o.fail("name", "picks a camera of a glTF or FBX file; a .chan holds one");
     if (!chan && o.has("rotate_order")) o.fail("rotate_order", "turns a .chan's rotations; a glTF or FBX camera has its matrix");
     const std::string order = o.choice("rotate_order", {std::begin(kRotateOrderNames), std::end(kRotateOrderNames)}, "zxy");

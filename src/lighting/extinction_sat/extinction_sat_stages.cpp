@@ -209,8 +209,10 @@ void LightCacheStage::run(StageRun& run) {
     S.cone_growth = fx.cone.growth;
     S.cone_growth_total = std::pow(1.0f + fx.cone.growth, float(fx.cone.samples));
     const std::string cone_key = hashBytes(glm::vec4(S.cone_tan, float(S.cone_cuboids), S.cone_growth, S.cone_growth_total));
-    // Every channel is computed from this SAT; what else it depends on is added per channel.
-    const std::string sat_key = std::to_string(sat_.generation()) + "|" + run.scene.value("/render/backend").dump();
+    // Every channel is computed from a SAT (a linked light's from its set's); what else it depends on
+    // is added per channel.
+    const std::string backend = run.scene.value("/render/backend").dump();
+    const auto sat_key = [&](uint64_t generation) { return std::to_string(generation) + "|" + backend; };
 
     if (cache_.ambient_channel >= 0) {
         const AmbientOcclusion& ao = *fx.ambient_occlusion;
@@ -226,7 +228,7 @@ void LightCacheStage::run(StageRun& run) {
         for (int i = 0; i < cache_.ambient_width; ++i) {
             S.ao_plane = cache_.ambient_width == 3 ? i + 1 : 0;  // SAT plane: extinction or bleeding RGB
             const glm::vec4 shells(float(S.shells), S.shell_radius, S.cell_world, float(S.ao_plane));
-            ran |= fillChannel(pass, cache_.ambient_channel + i, sat_key + "|ao|" + hashBytes(shells), passes);
+            ran |= fillChannel(pass, cache_.ambient_channel + i, sat_key(sat_.generation()) + "|ao|" + hashBytes(shells), passes);
         }
         if (!ran) run.reused.push_back("ambient");
     }
@@ -243,8 +245,7 @@ void LightCacheStage::run(StageRun& run) {
             pass.sat_generation = sat_.generationOf(light.link_set);
             S.planes = pass.sat->planes;
             S.quantum = pass.sat->quantum;
-            const std::string key = std::to_string(pass.sat_generation) + "|" + run.scene.value("/render/backend").dump();
-            if (!fillChannel(pass, cache_.shadow_channel + i, key + "|cone|" + cone_key + hashBytes(where), passes))
+            if (!fillChannel(pass, cache_.shadow_channel + i, sat_key(pass.sat_generation) + "|cone|" + cone_key + hashBytes(where), passes))
                 run.reused.push_back("shadow of light " + std::to_string(i));
         }
     }
