@@ -1,30 +1,16 @@
 #include "scene/camera_file.h"
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include <assimp/Importer.hpp>
 #include <assimp/scene.h>
 
 #include "core/error.h"
+#include "scene/assimp_import.h"
 #include "scene/chan_file.h"
 
 namespace voxlux {
 namespace {
-
-glm::mat4 toGlm(const aiMatrix4x4& m) {
-    glm::mat4 out;
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) out[c][r] = m[r][c];   // assimp's rows, glm's columns
-    return out;
-}
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext.empty() ? ext : ext.substr(1);
-}
 
 // Whether an animation of `scene` moves `node` or one of its parents.
 bool animated(const aiScene& scene, const aiNode* node) {
@@ -37,8 +23,7 @@ bool animated(const aiScene& scene, const aiNode* node) {
 
 // The camera named `name` (the first when empty) of an imported scene (`gltf`: a glTF's, else an
 // FBX's), posed by its node.
-CameraFile cameraOf(const aiScene* scene, const std::string& file, bool gltf, const std::string& name, const std::string& problem) {
-    if (!scene || !scene->mRootNode) throw InputError(file + ": not a glTF or FBX scene assimp reads (" + problem + ")");
+CameraFile cameraOf(const ImportedScene& scene, const std::string& file, bool gltf, const std::string& name) {
     if (scene->mNumCameras == 0) throw InputError(file + ": has no camera");
     const aiCamera* camera = nullptr;
     std::string names;
@@ -54,7 +39,7 @@ CameraFile cameraOf(const aiScene* scene, const std::string& file, bool gltf, co
         throw InputError(file + ": camera '" + std::string(camera->mName.C_Str()) +
                          "' is animated: voxlux reads a glTF or FBX camera's still pose so far; export it as a Nuke .chan for camera.file");
     glm::mat4 world(1.0f);
-    for (const aiNode* n = node; n; n = n->mParent) world = toGlm(n->mTransformation) * world;
+    for (const aiNode* n = node; n; n = n->mParent) world = glmMatrix(n->mTransformation) * world;
     // The camera's own frame in its node: where it sits, where it looks and which way is up.
     const glm::vec3 at(camera->mPosition.x, camera->mPosition.y, camera->mPosition.z);
     const glm::vec3 look(camera->mLookAt.x, camera->mLookAt.y, camera->mLookAt.z);
@@ -86,9 +71,7 @@ CameraFile cameraOf(const aiScene* scene, const std::string& file, bool gltf, co
 }  // namespace
 
 CameraFile parseAssimpCamera(const std::string& bytes, const std::string& hint, const std::string& file, const std::string& name) {
-    Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str());
-    return cameraOf(scene, file, hint != "fbx", name, importer.GetErrorString());
+    return cameraOf(importSceneBytes(bytes, hint, file), file, hint != "fbx", name);
 }
 
 bool isChanFile(const std::string& path) { return lowerExtension(path) == "chan"; }
@@ -108,8 +91,7 @@ CameraFile readCameraFile(const std::string& path, const std::string& name, Rota
     if (ext != "gltf" && ext != "glb" && ext != "fbx")
         throw InputError(path + ": not a camera file voxlux reads (expected .chan, .gltf, .glb or .fbx)");
     if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": cannot open camera file");
-    Assimp::Importer importer;
-    return cameraOf(importer.ReadFile(path, 0), path, ext != "fbx", name, importer.GetErrorString());
+    return cameraOf(importSceneFile(path, ext), path, ext != "fbx", name);
 }
 
 Camera posedCamera(const Camera& camera, double frame) {

@@ -127,6 +127,7 @@ TEST(CameraFile, BadCameraFilesAndKeysAreRefusedByName) {
     writeText(dir + "/empty.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"name": "n"}]})");
     writeText(dir + "/layout.gltf", gltfCamera(glm::mat4(1.0f), cameraToWorld(knownPose()), 0.6f));
     writeText(dir + "/broken.gltf", "{\"asset\": ");
+    writeText(dir + "/triangle.gltf", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");   // an OBJ: no other format's importer is tried
     const auto error = [&](const std::string& camera) {
         return inputErrorOf([&] { parseScene(R"({"volume": {"path": "a.vdb"}, "camera": )" + camera + "}", "shot.json", dir); });
     };
@@ -135,7 +136,8 @@ TEST(CameraFile, BadCameraFilesAndKeysAreRefusedByName) {
     EXPECT_EQ(error(R"({"file": "shot.abc"})"), dir + "/shot.abc: not a camera file voxlux reads (expected .chan, .gltf, .glb or .fbx)");
     EXPECT_EQ(error(R"({"file": "empty.gltf"})"), dir + "/empty.gltf: has no camera");
     EXPECT_EQ(error(R"({"file": "layout.gltf", "name": "witness"})"), dir + "/layout.gltf: has no camera named 'witness' (its cameras are 'shotCam')");
-    EXPECT_EQ(error(R"({"file": "broken.gltf"})").rfind(dir + "/broken.gltf: not a glTF or FBX scene assimp reads (", 0), 0u);
+    EXPECT_EQ(error(R"({"file": "broken.gltf"})").rfind(dir + "/broken.gltf: not a .gltf file assimp reads (", 0), 0u);
+    EXPECT_EQ(error(R"({"file": "triangle.gltf"})"), dir + "/triangle.gltf: not a .gltf file assimp reads (no importer of its format recognises it)");
     EXPECT_EQ(error(R"({"file": "shot.chan", "position": [0, 0, 1]})"), "shot.json: /camera/position: comes from the camera file (camera.file)");
     EXPECT_EQ(error(R"({"file": "shot.chan", "fov": 30})"), "shot.json: /camera/fov: comes from the camera file, which has a lens");
     EXPECT_EQ(error(R"({"file": "shot.chan", "name": "cam"})"), "shot.json: /camera/name: picks a camera of a glTF or FBX file; a .chan holds one");
