@@ -13,7 +13,8 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev
   libopencolorio-dev opencolorio-tools libpng-dev
   libnifti2-dev libdcmtk-dev  # voxlux import: NIfTI and DICOM scans (docs/scans.md)
-  libassimp-dev               # camera.file: glTF and FBX shot cameras (docs/compositing.md)
+  libassimp-dev               # camera.file and holdout meshes: OBJ, glTF and FBX (docs/compositing.md)
+  libembree-dev               # holdout meshes: the camera's rays into them (docs/compositing.md)
   libgtest-dev
   libglfw3-dev libimgui-dev   # voxlux view: the window and its panels
   xvfb xdotool python3        # the viewer's tests: a virtual X display and real X events

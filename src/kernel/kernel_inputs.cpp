@@ -43,14 +43,16 @@ float transferInverseRange(const std::vector<TransferPoint>& tf) { return tf.emp
 
 // Of several volumes, the index space the light grids and the lighting methods' lookups work in
 // (in.index_to_world, P.world_to_index): aligned with the world axes, its voxel the finest
-// volume's edge, its bricks (P.bricks_min to P.bricks_max) covering the box of all placed volumes.
-void setSharedFrame(KernelInputs& in) {
+// volume's edge, its bricks (P.bricks_min to P.bricks_max) covering the box of all placed volumes
+// but the mesh holdouts' cells (`cells`, per entry of in.volumes), which reach past it.
+void setSharedFrame(KernelInputs& in, const std::vector<bool>& cells) {
     float edge = std::numeric_limits<float>::max();
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const kernel::VxVolume& v : in.volumes) {
-        const glm::mat4 to_world = glm::inverse(v.world_to_index);
+    for (size_t i = 0; i < in.volumes.size(); ++i) {
+        if (cells[i]) continue;
+        const glm::mat4 to_world = glm::inverse(in.volumes[i].world_to_index);
         edge = std::min(edge, voxelEdge(to_world));
-        growByPageRange(v.pages, to_world, lo, hi);
+        growByPageRange(in.volumes[i].pages, to_world, lo, hi);
     }
     if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);
     in.index_to_world = glm::scale(glm::translate(glm::mat4(1.0f), lo), glm::vec3(edge));
@@ -62,6 +64,7 @@ void setSharedFrame(KernelInputs& in) {
 // the joined bricks. Their transfer functions' tables follow the one volume's in in.tf_lut.
 void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, KernelInputs& in) {
     std::vector<glm::vec4> tables;
+    std::vector<bool> cells;   // per entry of in.volumes: a mesh holdout's
     const LightLinks links = lightLinks(scene);
     for (size_t v = 0; v < scene.volumes.size(); ++v) {
         const VolumeSpec& spec = scene.volumes[v];
@@ -101,10 +104,11 @@ void setVolumes(const Scene& scene, const SceneBricks& bricks, float frame, Kern
             }
             in.params.volume_roles |= k.role != VX_ROLE_VISIBLE ? 1 : 0;
             in.volumes.push_back(k);
+            cells.push_back(spec.holdout_mesh.has_value());
         }
     }
     in.tf_lut = std::move(tables);
-    setSharedFrame(in);
+    setSharedFrame(in, cells);
     if (in.volumes.size() > VX_MAX_VOLUMES)
         throw InputError(std::to_string(in.volumes.size()) + " volumes and instances: a scene places at most " + std::to_string(VX_MAX_VOLUMES) + " so far");
     in.params.volume_count = int(in.volumes.size());

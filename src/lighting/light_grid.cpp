@@ -366,9 +366,10 @@ bool uniformAlbedo(const KernelInputs& in) {
 
 LightGrid withUniformBleeding(const LightGrid& extinction, glm::vec3 albedo, float bleeding) {
     assert(extinction.planes == 1);
-    // Every field but the values as they are; the values in one allocation for all four planes.
+    // Every field but the values as they are (a uniform albedo is one volume's, which has no
+    // scattering plane); the values in one allocation for all four planes.
     LightGrid g{.dims = extinction.dims, .origin = extinction.origin, .cell = extinction.cell, .planes = 4, .values = {},
-                .needed = extinction.needed, .emission = extinction.emission, .transport_depth = extinction.transport_depth,
+                .needed = extinction.needed, .emission = extinction.emission, .scattering = {}, .transport_depth = extinction.transport_depth,
                 .clamped_cells = extinction.clamped_cells};
     const size_t plane = g.cells();
     resizeInHugePages(g.values, 4 * plane);

@@ -1,9 +1,11 @@
-// Depth holdouts (scene key `holdouts`, docs/compositing.md) as a stage of the render graph: each
-// holdout's depth image for the frame, read pixel for pixel at the render's resolution (or in
-// whole blocks of pixels at a fraction of it: the viewer's coarse levels), turned into camera-space
-// Z where it holds ray distances, and the nearest surface of them all kept per pixel: where the
-// march and the reference stop each camera ray (vx_holdout_distance).
-// Cost: reading the images; 4 bytes a pixel.
+// Holdouts (scene key `holdouts`, docs/compositing.md) as a stage of the render graph: where each
+// camera ray stops. A depth holdout's image for the frame is read pixel for pixel at the render's
+// resolution (or in whole blocks of pixels at a fraction of it: the viewer's coarse levels) and
+// turned into camera-space Z where it holds ray distances; a mesh holdout's triangles (placed at
+// the frame) are met by each pixel's central camera ray through Embree (render/mesh_rays.h). The
+// nearest surface of them all is kept per pixel: where the march and the reference stop each
+// camera ray (vx_holdout_distance).
+// Cost: reading the images; one BVH over the meshes and one ray a pixel; 4 bytes a pixel.
 #pragma once
 #include <vector>
 
@@ -12,10 +14,11 @@
 namespace voxlux {
 
 class CameraStage;
+class HoldoutMeshStage;
 
 class HoldoutStage final : public Stage {
 public:
-    explicit HoldoutStage(const CameraStage& camera) : camera_(input(camera)) {}
+    HoldoutStage(const CameraStage& camera, const HoldoutMeshStage& meshes) : camera_(input(camera)), meshes_(input(meshes)) {}
     std::string name() const override { return "holdouts"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -27,6 +30,7 @@ public:
 
 private:
     const CameraStage& camera_;
+    const HoldoutMeshStage& meshes_;
     std::vector<float> depth_;
 };
 

@@ -26,7 +26,7 @@ namespace voxlux {
 struct Renderer::Stages {
     explicit Stages(std::optional<LoadedVolume> given) : load(given ? LoadStage(std::move(*given)) : LoadStage()) {}
     std::vector<Stage*> all() {
-        std::vector<Stage*> out{&color_space, &color_transforms, &load, &transfer_2d, &brick, &classify, &volumes, &empty_check, &camera, &holdouts, &light_grid};
+        std::vector<Stage*> out{&color_space, &color_transforms, &load, &transfer_2d, &brick, &classify, &holdout_meshes, &volumes, &empty_check, &camera, &holdouts, &light_grid};
         for (const auto& m : methods)
             for (Stage* s : m->stages()) out.push_back(s);
         out.insert(out.end(), {&march, &coverage, &grade, &write});
@@ -51,10 +51,11 @@ struct Renderer::Stages {
     Transfer2dStage transfer_2d{load};
     BrickStage brick{transfer_2d};
     ClassifyStage classify{transfer_2d, brick};
-    VolumesStage volumes{brick, classify};
+    HoldoutMeshStage holdout_meshes;
+    VolumesStage volumes{brick, classify, holdout_meshes};
     EmptyFrameStage empty_check{classify, volumes};
     CameraStage camera{transfer_2d, volumes};
-    HoldoutStage holdouts{camera};
+    HoldoutStage holdouts{camera, holdout_meshes};
     LightGridStage light_grid{brick, classify, volumes};
     std::vector<std::unique_ptr<LightingMethod>> methods = makeMethods();
     MarchStage march{color_space, brick, classify, volumes, empty_check, camera, holdouts, marchInputs()};
@@ -82,10 +83,10 @@ nlohmann::json fileIdentity(const std::string& file) {
 }  // namespace
 
 Renderer::Renderer(Scene scene)
-    : scene_(withEnabledVolumes(std::move(scene))), stages_(std::make_unique<Stages>(std::nullopt)), graph_(stages_->all()) {}
+    : scene_(renderedScene(std::move(scene))), stages_(std::make_unique<Stages>(std::nullopt)), graph_(stages_->all()) {}
 
 Renderer::Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend)
-    : scene_(withEnabledVolumes(std::move(scene))), backend_(&backend), stages_(std::make_unique<Stages>(std::move(volume))), graph_(stages_->all()) {}
+    : scene_(renderedScene(std::move(scene))), backend_(&backend), stages_(std::make_unique<Stages>(std::move(volume))), graph_(stages_->all()) {}
 
 Renderer::~Renderer() = default;
 
@@ -96,7 +97,7 @@ void Renderer::setScene(Scene scene) {
         owned_backend_.reset();
         backend_ = nullptr;
     }
-    scene_ = withEnabledVolumes(std::move(scene));
+    scene_ = renderedScene(std::move(scene));
 }
 
 KernelBackend& Renderer::backend() {
@@ -115,12 +116,18 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
     in["frame"] = frame ? nlohmann::json(*frame) : nlohmann::json(nullptr);
     if (scene_.volumes.size() > 1) {   // of several, each one's (the first's is also `file`)
         nlohmann::json& files = in["volume_files"] = nlohmann::json::array();
-        for (const VolumeSpec& v : scene_.volumes) files.push_back(fileIdentity(frame ? expandFramePattern(v.path, *frame) : v.path));
+        for (const VolumeSpec& v : scene_.volumes)   // (a mesh holdout's cells: its mesh's, in holdout_files)
+            files.push_back(v.holdout_mesh ? nlohmann::json(nullptr) : fileIdentity(frame ? expandFramePattern(v.path, *frame) : v.path));
     }
-    if (!scene_.holdouts.empty()) {   // the depth images of the frame
+    if (!scene_.holdouts.empty()) {   // the depth images and meshes of the frame
         nlohmann::json& files = in["holdout_files"] = nlohmann::json::array();
-        for (const Holdout& h : scene_.holdouts) files.push_back(fileIdentity(frame ? expandFramePattern(h.depth, *frame) : h.depth));
+        for (const Holdout& h : scene_.holdouts) {
+            const std::string& path = h.mesh.empty() ? h.depth : h.mesh;
+            files.push_back(fileIdentity(frame ? expandFramePattern(path, *frame) : path));
+            if (h.transform && !h.transform->chan.empty()) files.back()["chan"] = fileIdentity(h.transform->chan);
+        }
     }
+    if (nlohmann::json placements = holdoutPlacements(scene_, frame.value_or(0)); !placements.is_null()) in["holdout_placements"] = placements;
     if (scene_.volume().transform && !scene_.volume().transform->chan.empty())
         in["transform_chan"] = fileIdentity(scene_.volume().transform->chan);
     if (scene_.camera && scene_.camera->file) in["camera_file"] = fileIdentity(scene_.camera->file->path);

@@ -78,7 +78,8 @@ void CoverageStage::run(StageRun& run) {
     std::vector<int> scene_volume;
     std::vector<std::string> names;
     for (size_t v = 0; v < scene.volumes.size(); ++v) {
-        names.push_back(scene.volumes[v].name);
+        // A mesh holdout's cells (the last volumes) have no channel: they are the CG's, never seen.
+        if (!scene.volumes[v].holdout_mesh) names.push_back(scene.volumes[v].name);
         scene_volume.insert(scene_volume.end(), std::max<size_t>(1, scene.volumes[v].instances.size()), int(v));
     }
     planes_ = volumeCoverage(inputs, scene_volume, names);

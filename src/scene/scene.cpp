@@ -87,6 +87,31 @@ Scene withEnabledVolumes(Scene scene) {
     return scene;
 }
 
+Scene renderedScene(Scene scene) {
+    scene = withEnabledVolumes(std::move(scene));
+    const auto named = [&](const std::string& name) {
+        return std::any_of(scene.volumes.begin(), scene.volumes.end(), [&](const VolumeSpec& v) { return v.name == name; });
+    };
+    for (size_t h = 0; h < scene.holdouts.size(); ++h) {
+        if (scene.holdouts[h].mesh.empty()) continue;
+        VolumeSpec cells;
+        cells.name = "holdout_" + std::to_string(h);
+        while (named(cells.name)) cells.name += "_";
+        // No path: its mesh is the holdout's (in /holdouts and /input/holdout_files), so that what
+        // reads the volumes' paths (the first volume's load) does not follow a mesh.
+        cells.role = VolumeRole::ShadowOnly;
+        cells.holdout_mesh = h;
+        // Opaque and black: a cell the mesh fills has an optical depth of 20 along its edge (a
+        // shadow ray keeps e^-20 of its light) and scatters nothing; the mesh's transform is in its
+        // voxels, which are made in the world.
+        cells.material.density_scale = 20.0f;
+        cells.material.albedo = glm::vec3(0.0f);
+        cells.material.density_units = DensityUnits::Voxel;
+        scene.volumes.push_back(std::move(cells));
+    }
+    return scene;
+}
+
 int enabledLightCount(const Scene& scene, bool ambient) {
     return int(std::count_if(scene.lights.begin(), scene.lights.end(),
                              [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; }));

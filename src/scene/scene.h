@@ -289,6 +289,9 @@ struct VolumeSpec {
     std::vector<VolumeTransform> instances;
     VolumeRole role = VolumeRole::Visible;
     bool enabled = true;                   // a disabled volume stays in the scene but is neither loaded nor rendered
+    // Made by renderedScene from holdouts[*holdout_mesh]'s mesh, never read from a scene file: the
+    // mesh's voxelised cells, which shadow the volumes (volume/mesh_voxels.h).
+    std::optional<size_t> holdout_mesh;
     Material material;
     std::vector<EmissionSource> emission;
 };
@@ -309,6 +312,9 @@ bool placesSeveral(const Scene& scene);
 bool rendersAsSeveral(const Scene& scene);
 // The scene as it renders: its disabled volumes left out (scene_read keeps one enabled at least).
 Scene withEnabledVolumes(Scene scene);
+// The scene as the Renderer renders it: withEnabledVolumes, then one shadow-only volume per mesh
+// holdout (VolumeSpec::holdout_mesh), after the scene's own.
+Scene renderedScene(Scene scene);
 // Whether an enabled volume of the scene has emission sources (one of several emits only when it
 // is visible, shaders/vx_volumes.h).
 bool emits(const Scene& scene);
@@ -363,11 +369,16 @@ struct ColorSettings {
 };
 
 // A CG surface in front of or inside the volumes that holds them out (holdouts): each camera ray
-// stops where it meets it (docs/compositing.md).
+// stops where it meets it (docs/compositing.md). Either the CG render's depth image, or the CG's
+// mesh, which also shadows the volumes through its voxelised cells.
 struct Holdout {
     std::string depth;                     // an EXR the CG render wrote, at the render's resolution; # as in a volume's path
     std::string channel = "Z";             // its channel of camera-space Z (as Karma, Arnold and Cycles write it)
     bool ray_distance = false;             // the channel holds the distance along each pixel's ray instead
+    std::string mesh;                      // or an OBJ, glTF or FBX file of the CG; # as in a volume's path
+    std::optional<VolumeTransform> transform;  // where the mesh sits, as a volume's transform (keys too)
+    float voxel_size = 0.0f;               // edge of the mesh's shadowing cells, world units; 0: the volumes' finest voxel
+    std::optional<float> shadow_reach;     // how far past the volumes' box the cells are made, world units; unset: its largest side
 };
 
 struct Scene {

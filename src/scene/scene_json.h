@@ -36,6 +36,9 @@ nlohmann::json jsonVec3(glm::vec3 v);
 // One light of a scene's "lights" array, and back.
 Light readLight(const JsonObject& o);
 nlohmann::json lightToJson(const Light& light);
+// A matrix as 16 numbers, column-major (camera.matrix), and back (of a render document's, unchecked).
+nlohmann::json matrixToJson(const glm::mat4& m);
+glm::mat4 matrixFromJson(const nlohmann::json& j);
 // A volume's transform as `transform` writes it (a .chan file as its name).
 nlohmann::json volumeTransformToJson(const VolumeTransform& t);
 

@@ -18,6 +18,7 @@
 #include "scene/camera.h"
 #include "scene/camera_file.h"
 #include "scene/chan_file.h"
+#include "scene/mesh_file.h"
 
 namespace voxlux {
 namespace fs = std::filesystem;
@@ -745,9 +746,24 @@ Light readLight(const JsonObject& o) {
 namespace {
 
 Holdout readHoldout(const JsonObject& o, const std::string& base_dir) {
-    if (o.has("mesh")) o.fail("mesh", "mesh holdouts are not supported yet: give the CG render's depth image (\"depth\")");
-    o.rejectUnknown({"depth", "channel", "ray_distance"});
     Holdout h;
+    if (o.has("mesh")) {
+        if (o.has("depth")) o.fail("depth", "a holdout is a depth image or a mesh, not both");
+        o.rejectUnknown({"mesh", "transform", "voxel_size", "shadow_reach"});
+        h.mesh = resolvePath(o.string("mesh"), base_dir);
+        if (!isMeshFile(h.mesh)) o.fail("mesh", "not a mesh file voxlux reads (expected .obj, .gltf, .glb or .fbx)");
+        if (o.has("transform")) h.transform = readVolumeTransform(o, base_dir);
+        h.voxel_size = o.number("voxel_size", h.voxel_size);
+        if (!(h.voxel_size >= 0.0f) || !std::isfinite(h.voxel_size))
+            o.fail("voxel_size", "must be a finite length >= 0 in world units (0: the volumes' finest voxel)");
+        if (o.has("shadow_reach")) {
+            h.shadow_reach = o.number("shadow_reach");
+            if (!(*h.shadow_reach >= 0.0f) || !std::isfinite(*h.shadow_reach)) o.fail("shadow_reach", "must be a finite length >= 0 in world units");
+        }
+        return h;
+    }
+    o.rejectUnknown({"depth", "channel", "ray_distance"});
+    if (!o.has("depth")) o.fail("depth", "a holdout needs a depth image (\"depth\") or a mesh (\"mesh\")");
     h.depth = resolvePath(o.string("depth"), base_dir);
     h.channel = o.string("channel", h.channel);
     if (h.channel.empty()) o.fail("channel", "must name a channel of the depth image");
@@ -882,9 +898,11 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     if (root.has("output")) s.output = readOutput(root.object("output"));
     if (s.render.method == RenderMethod::Reference && s.output.deep)
         root.fail("output", "deep is a march-only output (render.method is \"reference\"): the Monte Carlo reference writes no deep samples");
-    if (const Scene rendered = withEnabledVolumes(s); rendersAsSeveral(rendered)) {
-        const size_t placed = placedVolumeCount(rendered);
-        const std::string why = placed > 1           ? " with " + std::to_string(placed) + " volumes: several volumes render without it, so far"
+    if (const Scene rendered = renderedScene(s); rendersAsSeveral(rendered)) {
+        const bool meshes = std::any_of(s.holdouts.begin(), s.holdouts.end(), [](const Holdout& h) { return !h.mesh.empty(); });
+        const size_t placed = placedVolumeCount(withEnabledVolumes(s));
+        const std::string why = meshes ? " with a mesh holdout: its shadowing cells make the scene one of several volumes, which render without it, so far"
+                                : placed > 1           ? " with " + std::to_string(placed) + " volumes: several volumes render without it, so far"
                                 : linksLights(rendered) ? " with linked lights: a linked scene renders as several volumes, which render without it, so far"
                                                         : " with a volume of role \"" + kVolumeRoleNames[size_t(rendered.volume().role)] +
                                                  "\": it renders as one of several volumes, which render without it, so far";
@@ -893,13 +911,17 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
         // Kniss's transport colour holds for any medium; the diffusion profile is one material's.
         if (s.effects.indirect && s.effects.indirect->model == IndirectModel::Diffusion)
             for (const VolumeSpec& v : rendered.volumes)
-                if (v.material.albedo != rendered.volume().material.albedo || v.material.anisotropy != rendered.volume().material.anisotropy)
+                if (!v.holdout_mesh &&
+                    (v.material.albedo != rendered.volume().material.albedo || v.material.anisotropy != rendered.volume().material.anisotropy))
                     root.object("effects").fail("indirect", "the diffusion model takes its profile from one material, and volume '" + v.name +
                                                                 "' has another albedo or anisotropy than '" + rendered.volume().name +
                                                                 "': give them one, or take the kniss model (transport_color)");
     }
     if (s.output.deep && std::any_of(s.volumes.begin(), s.volumes.end(), [](const VolumeSpec& v) { return v.enabled && v.role != VolumeRole::Visible; }))
         root.fail("output", "deep output with a volume of role matte or shadow_only: its deep samples would carry every volume's opacity, so far");
+    if (s.output.deep && std::any_of(s.holdouts.begin(), s.holdouts.end(), [](const Holdout& h) { return !h.mesh.empty(); }))
+        root.fail("output", "deep output with a mesh holdout: its shadowing cells are a shadow_only volume, whose opacity the deep samples "
+                            "would carry, so far; hold the deep render out with the mesh's depth image");
     if (s.output.deep && !lightGroups(s).names.empty())
         root.fail("output", "deep output with the light_groups AOV: the deep samples carry the beauty alone, so far; write the groups in a render of their own");
     if (s.render.motion_blur && s.output.deep)

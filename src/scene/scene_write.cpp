@@ -35,12 +35,6 @@ namespace {
 
 const char* pixelTypeName(PixelType t) { return t == PixelType::Float ? "float" : "half"; }
 
-// Column-major, as camera.matrix reads it.
-nlohmann::json matrixToJson(const glm::mat4& m) {
-    nlohmann::json out = nlohmann::json::array();
-    for (int i = 0; i < 16; ++i) out.push_back(jsonDecimal(m[i / 4][i % 4]));
-    return out;
-}
 
 nlohmann::json colorToJson(const ColorSettings& c) {
     nlohmann::json j = nlohmann::json::object();
@@ -133,6 +127,18 @@ nlohmann::json poseToJson(const TransformKey& k) {
 
 // As written: a .chan file stays a file name, so an edit of the file is not an edit of the scene
 // text (the render graph hashes the file's identity beside it).
+nlohmann::json matrixToJson(const glm::mat4& m) {
+    nlohmann::json out = nlohmann::json::array();
+    for (int i = 0; i < 16; ++i) out.push_back(jsonDecimal(m[i / 4][i % 4]));
+    return out;
+}
+
+glm::mat4 matrixFromJson(const nlohmann::json& j) {
+    glm::mat4 m;
+    for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = j.at(size_t(i)).get<float>();
+    return m;
+}
+
 nlohmann::json volumeTransformToJson(const VolumeTransform& t) {
     if (t.matrix) return {{"matrix", matrixToJson(*t.matrix)}};
     nlohmann::json j;
@@ -192,6 +198,7 @@ nlohmann::json volumeToJson(const VolumeSpec& volume) {
     v["up"] = upAxisName(volume.up);
     // Written only when set: a scene without one hashes as it did before the key existed.
     if (const auto& t = volume.transform) v["transform"] = volumeTransformToJson(*t);
+    if (volume.holdout_mesh) v["holdout_mesh"] = *volume.holdout_mesh;   // a render document's, never a scene file's
     for (const VolumeTransform& t : volume.instances) v["instances"].push_back(volumeTransformToJson(t));
     v["role"] = kVolumeRoleNames[size_t(volume.role)];
     if (!volume.enabled) v["enabled"] = false;   // written only when off, as a render's scene has none off
@@ -212,7 +219,15 @@ nlohmann::json sceneToJson(const Scene& s) {
     for (const auto& l : s.lights) j["lights"].push_back(lightToJson(l));
     if (!s.holdouts.empty()) {
         j["holdouts"] = nlohmann::json::array();
-        for (const Holdout& h : s.holdouts) j["holdouts"].push_back({{"depth", h.depth}, {"channel", h.channel}, {"ray_distance", h.ray_distance}});
+        for (const Holdout& h : s.holdouts) {
+            if (h.mesh.empty()) {
+                j["holdouts"].push_back({{"depth", h.depth}, {"channel", h.channel}, {"ray_distance", h.ray_distance}});
+                continue;
+            }
+            nlohmann::json& m = j["holdouts"].emplace_back(nlohmann::json{{"mesh", h.mesh}, {"voxel_size", jsonDecimal(h.voxel_size)}});
+            if (h.transform) m["transform"] = volumeTransformToJson(*h.transform);
+            if (h.shadow_reach) m["shadow_reach"] = jsonDecimal(*h.shadow_reach);
+        }
     }
 
     if (s.camera) {
@@ -306,7 +321,11 @@ Scene scenePathsRelativeTo(Scene scene, const std::string& folder) {
         if (v.transform) relative(v.transform->chan);
     }
     relative(scene.color.config);
-    for (Holdout& h : scene.holdouts) relative(h.depth);
+    for (Holdout& h : scene.holdouts) {
+        relative(h.depth);
+        relative(h.mesh);
+        if (h.transform) relative(h.transform->chan);
+    }
     if (scene.camera && scene.camera->file) relative(scene.camera->file->path);
     for (GradeStep& g : scene.color.grade) relative(g.file);
     return scene;

@@ -1,10 +1,13 @@
 #include "volume/volume_stages.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "optics/transfer_function_2d.h"
 #include "scene/camera.h"
 #include "scene/camera_file.h"
+#include "scene/scene_json.h"
+#include "volume/mesh_voxels.h"
 #include "volume/transfer_2d.h"
 #include "volume/velocity.h"
 #include "core/error.h"
@@ -136,26 +139,100 @@ void EmptyFrameStage::run(StageRun& run) {
 StageReads VolumesStage::reads() const {
     return {{"/volumes/*/path", "/volumes/*/density", "/volumes/*/level_set", "/volumes/*/material", "/volumes/*/emission", "/volumes/*/instances?",
              "/volumes/*/role", "/input/volume_files", "/input/light_links/sets", "/render/filter", "/render/motion_blur?", "/render/motion_blur/velocity",
-             "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps"}};
+             "/render/motion_blur/shutter", "/render/motion_blur/velocity_scale", "/render/motion_blur/fps", "/volumes/*/holdout_mesh?",
+             "/holdouts", "/input/holdout_files", "/input/holdout_placements"}};
 }
 
 StageActivity VolumesStage::activity(const Scene& s) const {
     if (!rendersAsSeveral(s)) return {false, "skipped: one volume"};
     if (s.volumes.size() == 1) return {true, "places the volume over its bricks (" + std::to_string(placedVolumeCount(s)) + " placed)"};
-    return {true, "loads, bricks and classifies volumes 2 to " + std::to_string(s.volumes.size()) +
-                      " (each only when its own keys changed) and joins all into one atlas"};
+    const size_t meshes = size_t(std::count_if(s.volumes.begin(), s.volumes.end(), [](const VolumeSpec& v) { return v.holdout_mesh.has_value(); }));
+    const size_t own = s.volumes.size() - meshes;
+    std::string what = own == 1 ? "" : "loads, bricks and classifies volumes 2 to " + std::to_string(own);
+    if (meshes)
+        what += (what.empty() ? "" : ", ") + std::string("voxelises ") + (meshes == 1 ? "the holdout mesh" : std::to_string(meshes) + " holdout meshes") +
+                " into cells that shadow";
+    return {true, what + " (each only when its own keys changed) and joins all into one atlas"};
 }
+
+namespace {
+
+// Where a mesh holdout's cells are made: the world box of the scene's own volumes' bricks where
+// they sit (grown by the holdout's shadow_reach), and the cells' default edge, the finest of their
+// voxels.
+struct CellsClip {
+    glm::vec3 lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};
+    float voxel = std::numeric_limits<float>::max();
+};
+
+// `placements`: the render document's /input/holdout_placements/volumes, each volume's copies.
+CellsClip cellsClip(const std::vector<std::pair<const BrickAtlas*, const PageTable*>>& volumes, const nlohmann::json& placements) {
+    CellsClip clip;
+    for (size_t v = 0; v < volumes.size(); ++v) {
+        const PageTable& pages = *volumes[v].second;
+        if (glm::any(glm::lessThan(pages.bricks_max, pages.bricks_min))) continue;
+        const glm::vec3 lo = glm::vec3(pages.bricks_min * 8) - 0.5f, hi = glm::vec3(pages.bricks_max * 8 + 7) + 0.5f;
+        for (const nlohmann::json& m : placements.at(v)) {
+            const glm::mat4 to_world = matrixFromJson(m) * volumes[v].first->index_to_world;
+            clip.voxel = std::min(clip.voxel, voxelEdge(to_world));
+            for (int c = 0; c < 8; ++c) {
+                const glm::vec3 corner(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+                const glm::vec3 w = glm::vec3(to_world * glm::vec4(corner, 1.0f));
+                clip.lo = glm::min(clip.lo, w), clip.hi = glm::max(clip.hi, w);
+            }
+        }
+    }
+    return clip;
+}
+
+// How holdouts[h]'s cells are made this frame: where its mesh sits (`placement`, the render
+// document's), over which world box and how finely; none when the volumes have no bricks.
+struct CellsPlan {
+    glm::mat4 placement{1.0f};
+    float cell = 1.0f;
+    glm::vec3 lo{0.0f}, hi{0.0f};
+    bool none = true;
+    std::string key() const { return matrixToJson(placement).dump() + jsonVec3(lo).dump() + jsonVec3(hi).dump() + std::to_string(cell); }
+};
+
+CellsPlan cellsPlan(const CellsClip& clip, const Holdout& holdout, const nlohmann::json& placement) {
+    CellsPlan plan;
+    plan.placement = matrixFromJson(placement);
+    if (clip.lo.x > clip.hi.x) return plan;
+    const glm::vec3 side = clip.hi - clip.lo;
+    const glm::vec3 reach(holdout.shadow_reach ? *holdout.shadow_reach : std::max({side.x, side.y, side.z}));
+    plan.cell = holdout.voxel_size > 0.0f ? holdout.voxel_size : clip.voxel;
+    plan.lo = clip.lo - reach, plan.hi = clip.hi + reach;
+    plan.none = false;
+    return plan;
+}
+
+}  // namespace
 
 void VolumesStage::run(StageRun& run) {
     const Scene& scene = run.scene(reads().keys);
     std::vector<Kept> before = std::move(kept_);
     kept_.assign(scene.volumes.size() - 1, Kept{});
+    std::optional<CellsClip> clip;   // made when the first mesh holdout's volume needs it
     for (size_t v = 1; v < scene.volumes.size(); ++v) {
+        const VolumeSpec& spec = scene.volumes[v];
         const std::string at = "/volumes/" + std::to_string(v);
         nlohmann::json entry = run.scene.value(at);
         for (const char* placement_or_name : {"transform", "instances", "name", "role"}) entry.erase(placement_or_name);
         const nlohmann::json& file = run.scene.value("/input/volume_files/" + std::to_string(v));
         std::string key = entry.dump() + file.dump() + run.scene.value("/render/filter").dump();
+        const nlohmann::json& mesh = spec.holdout_mesh ? run.scene.value("/input/holdout_files/" + std::to_string(*spec.holdout_mesh)) : file;
+        CellsPlan cells;
+        if (spec.holdout_mesh) {   // the scene's own volumes come first: all are kept_ or brick_ by now
+            const nlohmann::json& placements = run.scene.value("/input/holdout_placements");
+            if (!clip) {
+                std::vector<std::pair<const BrickAtlas*, const PageTable*>> own{{&brick_.atlas(), &classify_.pages()}};
+                for (size_t o = 1; o < v; ++o) own.emplace_back(&kept_[o - 1].atlas, &kept_[o - 1].pages);
+                clip = cellsClip(own, placements.at("volumes"));
+            }
+            cells = cellsPlan(*clip, scene.holdouts.at(*spec.holdout_mesh), placements.at("meshes").at(*spec.holdout_mesh));
+            key += cells.key() + mesh.dump();
+        }
         if (scene.render.motion_blur)   // what loading and bricking take of it: the velocity and its reach
             for (const char* what : {"velocity", "shutter", "velocity_scale", "fps"})
                 key += run.scene.value(std::string("/render/motion_blur/") + what).dump();
@@ -168,8 +245,11 @@ void VolumesStage::run(StageRun& run) {
             run.reused.push_back("volumes: " + scene.volumes[v].name);
             continue;
         }
-        const VolumeSpec& spec = scene.volumes[v];
-        const LoadedVolume loaded = loadVolume(file.at("path").get<std::string>(), spec, scene.render.motion_blur);
+        const std::string path = (spec.holdout_mesh ? mesh : file).at("path").get<std::string>();
+        static const TriangleMesh no_triangles;
+        const LoadedVolume loaded =
+            !spec.holdout_mesh ? loadVolume(path, spec, scene.render.motion_blur)
+                               : voxelisedMesh(cells.none ? no_triangles : *meshes_.mesh(*spec.holdout_mesh), cells.placement, cells.cell, cells.lo, cells.hi, path);
         run.warnings.insert(run.warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
         k.atlas = buildBrickAtlas(loaded, motionReachBricks(loaded, scene.render.motion_blur));
         for (const std::string& w : sanitizeReport(k.atlas, loaded)) run.warnings.push_back(w);
@@ -204,6 +284,7 @@ namespace {
 Camera frameVolumes(const SceneBricks& bricks, const Scene& scene, float frame, const LoadedVolume& first) {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (size_t v = 0; v < scene.volumes.size(); ++v) {
+        if (scene.volumes[v].holdout_mesh) continue;   // the CG's cells: held out, never framed
         for (const glm::mat4& placement : instancePlacements(scene.volumes[v], frame))
             growByPageRange(bricks.ranges[v], placement * bricks.index_to_world[v], lo, hi);
     }

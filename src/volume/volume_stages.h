@@ -12,6 +12,7 @@
 #include "volume/page_table.h"
 #include "volume/scene_bricks.h"
 #include "graph/render_graph.h"
+#include "volume/holdout_mesh_stage.h"
 #include "volume/vdb_loader.h"
 
 namespace voxlux {
@@ -130,9 +131,14 @@ private:
 // reloads no other; then all joined into one atlas (volume/scene_bricks.h). It does not run for
 // one volume.
 // Cost: the changed volumes' load, brick and classify, and one copy of every volume's bricks.
+//
+// A mesh holdout's volume (VolumeSpec::holdout_mesh, after the scene's own) is made from its mesh
+// (volume/mesh_voxels.h) over the world box of the scene's own volumes where they sit, kept while
+// its mesh, its placement, that box and the cells' size stay the same.
 class VolumesStage final : public Stage {
 public:
-    VolumesStage(const BrickStage& brick, const ClassifyStage& classify) : brick_(input(brick)), classify_(input(classify)) {}
+    VolumesStage(const BrickStage& brick, const ClassifyStage& classify, const HoldoutMeshStage& meshes)
+        : brick_(input(brick)), classify_(input(classify)), meshes_(input(meshes)) {}
     std::string name() const override { return "volumes"; }
     StageReads reads() const override;
     StageActivity activity(const Scene& scene) const override;
@@ -148,6 +154,7 @@ private:
     };
     const BrickStage& brick_;
     const ClassifyStage& classify_;
+    const HoldoutMeshStage& meshes_;
     std::vector<Kept> kept_;   // volumes 1, 2, ...
     SceneBricks joined_;
 };

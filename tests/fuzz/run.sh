@@ -21,7 +21,7 @@ seeds() {
 
 # OpenVDB's own leaks on a damaged tree are not ours (lsan_suppressions.txt says which).
 export LSAN_OPTIONS="suppressions=$src/tests/fuzz/lsan_suppressions.txt"
-for target in scene light_edits cli_specs vdb exr chan camera; do
+for target in scene light_edits cli_specs vdb exr chan camera mesh; do
   work="$build/fuzz/$target"
   rm -rf "$work" && mkdir -p "$work"
   cp "$src/tests/fuzz/corpus/$target"/* "$work"/

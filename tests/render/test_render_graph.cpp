@@ -16,6 +16,7 @@
 #include "render/renderer.h"
 #include "scene/scene_json.h"
 #include "test_support.h"
+#include "volume/holdout_mesh_stage.h"
 
 namespace voxlux::test {
 namespace {
@@ -215,6 +216,13 @@ std::vector<std::pair<std::string, nlohmann::json>> sweepScenes() {
     scenes.emplace_back("reference", reference);
     scenes.emplace_back("eye pass, chroma subsampled, blended axes, point light", eye);
     scenes.emplace_back("graded with a preview", graded);
+    // A mesh holdout in the moved cloud's scene: its cells follow the cloud's placement.
+    const std::string meshes = tempDir("sweep-meshes");
+    for (const char* name : {"/shelf.obj", "/shelf_copy.obj"})
+        std::ofstream(meshes + name) << "v -0.6 0.1 -0.6\nv 0.6 0.1 -0.6\nv 0.6 0.1 0.6\nv -0.6 0.1 0.6\nf 1 2 3 4\n";
+    nlohmann::json held = scenes[1].second;
+    held["holdouts"] = {{{"mesh", meshes + "/shelf.obj"}, {"transform", {{"translate", {0.1, 0.2, 0.0}}}}, {"voxel_size", 0.05}, {"shadow_reach", 0.3}}};
+    scenes.emplace_back("mesh holdout", held);
     for (auto& [name, j] : scenes) {
         j["render"]["resolution"] = {40, 30};
         j["render"]["backend"] = "cpu";
@@ -267,6 +275,9 @@ Mutation mutate(const nlohmann::json& scene, const std::string& pointer, const s
         m.skipped = "the grid: the bundled cloud has one";
     } else if (pointer == "/volumes/0/path") {
         m.scene[at] = copy_of_cloud;   // the same grids in another file
+    } else if (key == "mesh") {
+        std::string other = v.get<std::string>();
+        m.scene[at] = other.replace(other.rfind(".obj"), 4, "_copy.obj");   // the same quad in another file
     } else if (key == "type" && pointer.rfind("/lights/", 0) == 0) {
         // A light of another type has other keys: the whole light changes.
         const std::string light = pointer.substr(0, pointer.rfind('/'));
@@ -336,11 +347,12 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
                 changed = parseScene(m.scene.dump(), label + ".json", grids);
             } catch (const InputError& e) {
                 // The reference refuses perturbation, surface shading and deep output, several
-                // volumes (a matte's role) the effects they do not take yet, and light groups deep
-                // output: not pairs the sweep can make.
+                // volumes (a matte's role, a mesh holdout's cells) the effects they do not take yet,
+                // and light groups and mesh holdouts deep output: not pairs the sweep can make.
                 const std::string why = e.what();
                 const bool refused = why.find("march-only") != std::string::npos || why.find("render without it, so far") != std::string::npos ||
-                                     why.find("deep output with the light_groups AOV") != std::string::npos;
+                                     why.find("deep output with the light_groups AOV") != std::string::npos ||
+                                     why.find("deep output with a mesh holdout") != std::string::npos;
                 if (!refused) ADD_FAILURE() << "the changed scene does not parse: " << e.what();
                 skipped.insert(pointer + " in " + label + ": " + e.what());
                 continue;
@@ -351,9 +363,11 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
             for (const StageReport& r : edited.stages) {
                 if (r.status == StageStatus::Skipped) continue;
                 const Stage& stage = graph.stage(r.name);
-                bool activity_changed = !stage.activity(base).runs;
+                // Of the scenes as the renderer renders them (a mesh holdout's cells are a volume).
+                const Scene rendered_base = renderedScene(base), rendered_changed = renderedScene(changed);
+                bool activity_changed = !stage.activity(rendered_base).runs;
                 for (const auto& up : upstreamOf(graph, r.name))
-                    activity_changed |= graph.stage(up).activity(base).runs != graph.stage(up).activity(changed).runs;
+                    activity_changed |= graph.stage(up).activity(rendered_base).runs != graph.stage(up).activity(rendered_changed).runs;
                 // The render document's light groups (Renderer::document) derive from the lights'
                 // groups and the AOVs: a stage that reads them re-runs when they change.
                 const LightGroups groups_before = lightGroups(base), groups_after = lightGroups(changed);
@@ -362,7 +376,10 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
                     (graph.reads(r.name, "/input/light_groups/of_light") && groups_before.of_light != groups_after.of_light);
                 // (marches is always there: 1 without light groups)
                 const bool marches_changed = graph.reads(r.name, "/input/light_groups/marches") && lightGroupMarches(base) != lightGroupMarches(changed);
-                const bool expected = activity_changed || graph.reads(r.name, m.changed) || groups_changed || marches_changed;
+                // And where the mesh holdouts' cells are made, from the volumes' and the meshes' placements.
+                const bool placements_changed =
+                    graph.reads(r.name, "/input/holdout_placements") && holdoutPlacements(base, 0.0) != holdoutPlacements(changed, 0.0);
+                const bool expected = activity_changed || graph.reads(r.name, m.changed) || groups_changed || marches_changed || placements_changed;
                 EXPECT_EQ(r.status == StageStatus::Ran, expected) << r.name;
             }
             const RenderImage fresh = Renderer(changed).render(std::nullopt, false).image;
