@@ -53,15 +53,27 @@ VX_INLINE float vx_pixel_time_offset(int x, int y) {
 VX_INLINE float vx_shutter_fraction(int i, int n, float offset) { return (float(i) + offset) / float(n); }
 VX_INLINE float vx_shutter_time(float fraction) { return P.shutter_open + (P.shutter_close - P.shutter_open) * fraction; }
 
+// Where on the lens ray i of a pixel's n leaves, as a point of the unit square: the R2 sequence
+// (Roberts 2018), whose first n points cover the square evenly for every n, shifted by an offset a
+// pixel so that neighbours' rays differ.
+VX_INLINE vec2 vx_lens_square(int i, int x, int y) {
+    vec2 offset = vec2(float(vx_hash(uint(x) * 7919u + vx_hash(uint(y) + 104729u)) >> 8),
+                       float(vx_hash(uint(y) * 6007u + vx_hash(uint(x) + 15485863u)) >> 8)) * (1.0f / 16777216.0f);
+    return fract(vec2(0.7548776662f, 0.5698402910f) * float(i) + offset);
+}
+
 // Ray i of pixel (x, y)'s P.time_samples: its world origin, unit direction and the camera's
 // forward, at the time it returns (frames from the frame's own; without motion blur, the one ray
-// at the frame's time).
+// at the frame's time), through the lens where the camera has depth of field.
 float vx_pixel_ray(int x, int y, int i, VX_OUT(vec3) origin, VX_OUT(vec3) dir, VX_OUT(vec3) forward) {
+    float time = 0.0f;
     if (P.motion_blur == 0) {
         vx_camera_ray(x, y, origin, dir, forward);
-        return 0.0f;
+    } else {
+        float fraction = vx_shutter_fraction(i, P.time_samples, vx_pixel_time_offset(x, y));
+        vx_camera_ray_at(x, y, fraction, origin, dir, forward);
+        time = vx_shutter_time(fraction);
     }
-    float fraction = vx_shutter_fraction(i, P.time_samples, vx_pixel_time_offset(x, y));
-    vx_camera_ray_at(x, y, fraction, origin, dir, forward);
-    return vx_shutter_time(fraction);
+    if (P.lens_radius > 0.0f) vx_through_lens(vx_lens_square(i, x, y), origin, dir, forward);
+    return time;
 }

@@ -59,6 +59,22 @@ void vx_camera_ray_at(int x, int y, float fraction, VX_OUT(vec3) origin, VX_OUT(
     forward = normalize(mix(forward, f1, fraction));
 }
 
+// Depth of field (camera.fstop): the pinhole ray (origin, dir) through a thin lens of radius
+// P.lens_radius sharp at camera-space depth P.focus_distance. The ray leaves the lens at the point
+// `square` (in [0, 1)^2) maps to, uniformly over the disk, and passes where the pinhole ray meets
+// the focal plane: a point there images to one point, a point at depth d to a disk of radius
+// P.lens_radius |1/d - 1/P.focus_distance| in the image plane at unit distance. Camera-space
+// depths (the holdouts', the depth AOV's) still count from the lens's plane.
+void vx_through_lens(vec2 square, VX_INOUT(vec3) origin, VX_INOUT(vec3) dir, vec3 forward) {
+    float r = P.lens_radius * sqrt(square.x);
+    float phi = 6.2831853f * square.y;
+    vec3 focus = origin + dir * (P.focus_distance / dot(dir, forward));
+    vec3 right = normalize(vec3(P.camera_to_world * vec4(1.0f, 0.0f, 0.0f, 0.0f)));
+    vec3 up = normalize(vec3(P.camera_to_world * vec4(0.0f, 1.0f, 0.0f, 0.0f)));
+    origin = origin + (right * cos(phi) + up * sin(phi)) * r;
+    dir = normalize(focus - origin);
+}
+
 // Depth holdouts (P.holdout): the distance along pixel (x, y)'s ray of unit direction dir to the
 // CG surface, from its camera-space Z (over the cosine between the ray and the camera's forward
 // axis); 1e30 where the pixel has none. The image's own pixel decides for every ray of the pixel.

@@ -82,7 +82,8 @@ struct VxParams {
     int voxel_filter;       // VX_FILTER_* (filter is a GLSL reserved word)
     int deep_samples;       // deep samples per ray (output.deep_samples), 0 = no deep output
     int motion_blur;        // 1: camera rays take times within the shutter (vx_motion.h)
-    int time_samples;       // rays a pixel spreads over the shutter (the march; 1 without motion blur)
+    int time_samples;       // rays a pixel spreads over the shutter and the lens (the march; 1 without
+                            // motion blur and depth of field)
     int volume_count;       // 0: one volume, the arrays' own; else the volumes of vx_placed_volume (vx_volumes.h)
 
     int use_velocity;       // 1 if a velocity grid is bound (atlas channel vx_atlas_velocity)
@@ -104,7 +105,12 @@ struct VxParams {
     int holdout_offset;     // GL: the holdout depth's first float in the vectors' block (vx_gl_bindings.glsl)
     int link_sets;          // light linking: the link sets of VxLight.link_set (0: every light lights
                             // and is shadowed by every volume)
-    int pad7;
+    float lens_radius;      // depth of field (vx_through_lens): the thin lens's radius, world units; 0: a pinhole
+
+    float focus_distance;   // camera-space depth the lens is sharp at, world units
+    int pad8;
+    int pad9;
+    int pad10;
     mat4 camera_open;       // camera-to-world at shutter open and close (camera.motion)
     mat4 camera_close;
 };

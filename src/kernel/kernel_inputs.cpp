@@ -267,6 +267,15 @@ void setMotionBlur(const Scene& scene, const BrickAtlas& atlas, const Camera* ca
     }
 }
 
+// Depth of field (vx_through_lens): the lens, and a pixel's rays spread over it too (as many as
+// the shutter takes, at least the camera's lens_samples).
+void setDepthOfField(const Camera* camera, KernelInputs& in) {
+    if (!camera || lensRadius(*camera) <= 0.0f) return;
+    in.params.lens_radius = lensRadius(*camera);
+    in.params.focus_distance = camera->focus_distance;
+    in.params.time_samples = std::max(in.params.time_samples, camera->lens_samples);
+}
+
 }  // namespace
 
 void MarchLighting::setArray(const std::string& block, const void* data, size_t bytes) {
@@ -310,6 +319,7 @@ KernelInputs makeKernelInputs(const Scene& scene, const BrickAtlas& atlas, const
     for (glm::vec3& a : in.group_ambient) a *= sources.lighting.ambient_scale;
     setKnissEffects(scene.effects, voxelEdge(in.index_to_world), frame, in);
     setMotionBlur(scene, atlas, sources.camera, in);
+    setDepthOfField(sources.camera, in);
     return in;
 }
 

@@ -27,6 +27,7 @@ VX_LINE_ALIGNED(VxParams, emission_domain);
 VX_LINE_ALIGNED(VxParams, noise_offset);
 VX_LINE_ALIGNED(VxParams, use_velocity);
 VX_LINE_ALIGNED(VxParams, use_surface_grid);
+VX_LINE_ALIGNED(VxParams, focus_distance);
 VX_LINE_ALIGNED(VxParams, camera_open);
 VX_LINE_ALIGNED(VxParams, camera_close);
 static_assert(sizeof(VxPageRange) == 48);

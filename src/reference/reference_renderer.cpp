@@ -519,7 +519,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                 const uint32_t pixel = uint32_t(y) * uint32_t(img.width) + uint32_t(x);
                 glm::vec3 origin, dir, forward;
                 k.vx_camera_ray(x, y, origin, dir, forward);
-                const bool moving = k.P.motion_blur != 0;
+                const bool moving = k.P.motion_blur != 0, lens = k.P.lens_radius > 0.0f;
                 // Sums in double, written clamped to the float maximum: HDR lights up to 3.4e38 are
                 // legal, and a float sum of several such samples (or a luminance squared) overflows.
                 ReferenceSums::Pixel local;
@@ -535,8 +535,12 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                         at_time.time = k.vx_shutter_time(fraction);
                         k.vx_camera_ray_at(x, y, fraction, origin, dir, forward);
                     }
-                    const float t_cut = k.vx_holdout_distance(x, y, dir, forward);
-                    const PathSample p = tracePath(at_time, rs, in.group_ambient, path_layers, origin, dir, forward, t_cut, rng);
+                    glm::vec3 ray_origin = origin, ray_dir = dir;
+                    if (lens)   // a point of the lens, stratified over the pixel's samples likewise
+                        k.vx_through_lens(glm::vec2(rng.stratified(ReferenceRng::kLensU), rng.stratified(ReferenceRng::kLensV)), ray_origin,
+                                          ray_dir, forward);
+                    const float t_cut = k.vx_holdout_distance(x, y, ray_dir, forward);
+                    const PathSample p = tracePath(at_time, rs, in.group_ambient, path_layers, ray_origin, ray_dir, forward, t_cut, rng);
                     for (size_t l = 0; l < layers; ++l) acc_layers[l] += path_layers[l];
                     acc.direct += p.direct;
                     acc.indirect += p.indirect;

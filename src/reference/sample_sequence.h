@@ -18,8 +18,9 @@ namespace voxlux {
 class ReferenceRng {
 public:
     // The stratified dimensions, in the order a path uses them.
-    // The time within the shutter (render.motion_blur) comes last, so that it leaves the others as they were.
-    enum Stratified { kCameraScatter = 0, kFirstDirectionU, kFirstDirectionV, kShutterTime, kStratifiedCount };
+    // The time within the shutter (render.motion_blur) and the point of the lens (camera.fstop)
+    // come last, so that they leave the others as they were.
+    enum Stratified { kCameraScatter = 0, kFirstDirectionU, kFirstDirectionV, kShutterTime, kLensU, kLensV, kStratifiedCount };
 
     ReferenceRng(uint32_t seed, uint32_t pixel, uint32_t sample);
     float next();                              // uniform in [0, 1): the hashed sequence

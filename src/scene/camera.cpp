@@ -12,6 +12,13 @@ glm::mat4 cameraToWorld(const Camera& c) {
     return glm::inverse(glm::lookAt(c.position, c.look_at, c.up));
 }
 
+float lensRadius(const Camera& c) {
+    if (!(c.fstop > 0.0f)) return 0.0f;
+    // The focal length of the frame's height: the camera's own, or its field of view's.
+    const float focal_mm = c.film_back.y / (2.0f * std::tan(glm::radians(c.fov) * 0.5f));
+    return focal_mm / (2.0f * c.fstop) / c.world_unit_mm;
+}
+
 glm::mat4 cameraProjection(const Camera& c, float aspect) {
     return glm::perspective(glm::radians(c.fov), aspect, 0.01f, 1e5f);
 }

@@ -9,6 +9,10 @@ namespace voxlux {
 // Camera-to-world (camera looks down -Z with +Y up, as OpenEXR's worldToCamera expects).
 glm::mat4 cameraToWorld(const Camera& camera);
 
+// The radius of the camera's lens in world units (0 without depth of field): half its aperture,
+// focal length / fstop.
+float lensRadius(const Camera& camera);
+
 // Perspective projection to NDC in [-1, 1] (OpenEXR's worldToNDC uses it after worldToCamera).
 glm::mat4 cameraProjection(const Camera& camera, float aspect);
 

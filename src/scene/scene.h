@@ -151,6 +151,14 @@ struct Camera {
     float focal_length = 0.0f;             // mm; > 0: fov = 2 atan(film_back.y / (2 focal_length))
     glm::vec2 film_back{36.0f, 24.0f};     // mm, width and height (the height fits the frame)
     std::optional<CameraFile> file;        // camera.file: replaces the pose, and fov where it has a lens
+    // Depth of field (docs/compositing.md): a thin lens of f-number fstop (0: a pinhole), its
+    // aperture focal_length / fstop wide (the focal length of the fov where none is given), in
+    // millimetres of which world_unit_mm make a world unit; sharp at focus_distance world units
+    // along the view; each pixel's rays spread over the lens (at least lens_samples of them).
+    float fstop = 0.0f;
+    float focus_distance = 0.0f;
+    float world_unit_mm = 1000.0f;
+    int lens_samples = 16;
     // Camera-to-world at shutter open and close (camera.motion), blurred under render.motion_blur;
     // the transform above stays the frame's own (EXR metadata, the eye sweep).
     std::optional<std::array<glm::mat4, 2>> motion;

@@ -339,6 +339,26 @@ void readLens(const JsonObject& o, Camera& c) {
     }
 }
 
+// Depth of field: fstop, and where the lens is sharp (focus_distance, by default the look_at's
+// distance), the scene's unit in millimetres and the rays a pixel takes over the lens.
+void readDepthOfField(const JsonObject& o, Camera& c) {
+    if (!o.has("fstop")) {
+        for (const char* key : {"focus_distance", "world_unit_mm", "lens_samples"})
+            if (o.has(key)) o.fail(key, "goes with fstop (depth of field)");
+        return;
+    }
+    c.fstop = o.number("fstop");
+    if (!(c.fstop > 0.0f && c.fstop < 1e6f)) o.fail("fstop", "must lie in (0, 1e6): the f-number, focal length over the aperture");
+    const bool aimed = !c.file && !c.matrix;
+    if (!o.has("focus_distance") && !aimed) o.fail("focus_distance", "is required with fstop when the camera has no look_at");
+    c.focus_distance = o.number("focus_distance", glm::distance(c.position, c.look_at));
+    if (!(c.focus_distance > 0.0f && c.focus_distance < 1e9f)) o.fail("focus_distance", "must lie in (0, 1e9) world units");
+    c.world_unit_mm = o.number("world_unit_mm", c.world_unit_mm);
+    if (!(c.world_unit_mm > 0.0f && c.world_unit_mm < 1e9f)) o.fail("world_unit_mm", "must lie in (0, 1e9): millimetres in one world unit");
+    c.lens_samples = o.integer("lens_samples", c.lens_samples);
+    if (c.lens_samples < 1 || c.lens_samples > 1024) o.fail("lens_samples", "must lie in 1..1024");
+}
+
 // camera.file: the pose (and lens) from a Nuke .chan, or a glTF or FBX scene's camera.
 CameraFile readCameraFileKeys(const JsonObject& o, const std::string& base_dir) {
     for (const char* key : {"position", "look_at", "up", "matrix", "motion"})
@@ -353,17 +373,20 @@ CameraFile readCameraFileKeys(const JsonObject& o, const std::string& base_dir) 
 }
 
 Camera readCamera(const JsonObject& o, const std::string& base_dir) {
-    o.rejectUnknown({"position", "look_at", "up", "matrix", "fov", "focal_length", "film_back", "motion", "file", "name", "rotate_order"});
+    o.rejectUnknown({"position", "look_at", "up", "matrix", "fov", "focal_length", "film_back", "motion", "file", "name", "rotate_order",
+                     "fstop", "focus_distance", "world_unit_mm", "lens_samples"});
     if (o.has("file")) {
         Camera c;
         c.file = readCameraFileKeys(o, base_dir);
         readLens(o, c);
+        readDepthOfField(o, c);
         return c;
     }
     for (const char* key : {"name", "rotate_order"})
         if (o.has(key)) o.fail(key, "goes with camera.file");
     Camera c = readCameraPose(o);
     readLens(o, c);
+    readDepthOfField(o, c);
     if (o.has("motion")) {
         const JsonObject m = o.object("motion");
         m.rejectUnknown({"open", "close"});
@@ -926,6 +949,8 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
         root.fail("output", "deep output with the light_groups AOV: the deep samples carry the beauty alone, so far; write the groups in a render of their own");
     if (s.render.motion_blur && s.output.deep)
         root.fail("output", "deep output is made at one time and render.motion_blur spreads a pixel over the shutter: turn one of them off");
+    if (s.camera && s.camera->fstop > 0.0f && s.output.deep)
+        root.fail("output", "deep output is made through a pinhole and camera.fstop spreads a pixel over the lens: turn one of them off");
     return s;
 }
 

@@ -253,6 +253,12 @@ nlohmann::json sceneToJson(const Scene& s) {
         if (s.camera->motion)
             c["motion"] = {{"open", {{"matrix", matrixToJson((*s.camera->motion)[0])}}},
                            {"close", {{"matrix", matrixToJson((*s.camera->motion)[1])}}}};
+        if (s.camera->fstop > 0.0f) {
+            c["fstop"] = jsonDecimal(s.camera->fstop);
+            c["focus_distance"] = jsonDecimal(s.camera->focus_distance);
+            c["world_unit_mm"] = jsonDecimal(s.camera->world_unit_mm);
+            c["lens_samples"] = s.camera->lens_samples;
+        }
     }
 
     auto& r = j["render"];
