@@ -172,6 +172,8 @@ FrameResult Renderer::runGraph(std::optional<int> frame, bool allow_empty, const
     return r;
 }
 
+const std::vector<float>& Renderer::holdoutDepth() const { return stages_->holdouts.depth(); }
+
 FrameResult Renderer::render(std::optional<int> frame, bool allow_empty) {
     FrameResult r = runGraph(frame, allow_empty, {"march", "grade"});
     r.image = stages_->grade.result();

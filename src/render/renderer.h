@@ -82,6 +82,9 @@ public:
     // Renders one frame (`frame` expands a #### volume path). An empty frame throws InputError
     // unless `allow_empty`, in which case it renders transparent and says so in the warnings.
     FrameResult render(std::optional<int> frame, bool allow_empty);
+    // Of the last frame rendered, per pixel: the nearest holdout's camera-space Z, the largest
+    // float where none stands (empty without holdouts). The viewer draws the CG's silhouette there.
+    const std::vector<float>& holdoutDepth() const;
 
     // Runs every stage but the march, grade and write (no image): brings the lighting up to date
     // after an edit, as a light-edit replay does between frames.

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <limits>
 
 #include <tbb/task_scheduler_observer.h>
 
@@ -40,6 +41,14 @@ std::vector<uint8_t> opaqueTexels(const std::vector<glm::vec4>& display) {
         texels[i * 4 + 3] = 255;
     }
     return texels;
+}
+
+void drawHoldoutSilhouettes(std::vector<uint8_t>& texels, const std::vector<glm::vec4>& display, const std::vector<float>& depth) {
+    if (depth.size() != display.size()) return;   // no holdouts
+    for (size_t i = 0; i < display.size(); ++i) {
+        if (depth[i] == std::numeric_limits<float>::max()) continue;
+        for (int c = 0; c < 3; ++c) texels[i * 4 + c] = displayByte(display[i][c] + (1.0f - display[i].w) * kHoldoutGrey);
+    }
 }
 
 glm::ivec2 levelResolution(glm::ivec2 full, int divisor) {
@@ -243,6 +252,7 @@ void ProgressiveRender::renderEdit(Renderer& renderer, const Scene& scene, std::
         out->image = std::move(r.image);
         out->display = std::move(r.preview);
         out->display_texels = opaqueTexels(out->display);
+        drawHoldoutSilhouettes(out->display_texels, out->display, renderer.holdoutDepth());
         out->warnings = std::move(r.warnings);
         if (k == 0)
             for (const StageReport& s : r.stages)

@@ -74,6 +74,12 @@ struct ViewFrame {
 // PNG does.
 std::vector<uint8_t> opaqueTexels(const std::vector<glm::vec4>& display);
 
+// The holdouts' CG as a dark grey silhouette behind the volume, where a holdout stands (`depth`:
+// Renderer::holdoutDepth) and as much as the volume in front lets through: the render holds the CG
+// out as black, the black of the viewport, and the artist would not see where it stands.
+constexpr float kHoldoutGrey = 0.18f;   // display-referred
+void drawHoldoutSilhouettes(std::vector<uint8_t>& texels, const std::vector<glm::vec4>& display, const std::vector<float>& depth);
+
 // What the worker did since it started: counts a test or benchmark reads.
 struct ViewStatistics {
     uint64_t submitted = 0;

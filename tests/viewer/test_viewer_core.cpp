@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "core/error.h"
+#include "io/png_writer.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
 #include "test_support.h"
@@ -370,6 +372,27 @@ TEST(ProgressiveRender, WhenTheLastGoodSceneFailsTooTheFailureStands) {
 }
 
 // Scrubbing back to a frame takes its grids and bricks from the frame cache, and the viewer says so.
+// A mesh holdout over the view's left part, in front of the cloud: there the viewport shows the
+// dark grey silhouette (the render's alpha is 0 there), elsewhere the render as it is.
+TEST(ProgressiveRender, HoldoutsShowAsDarkSilhouettes) {
+    const std::string dir = tempDir("viewer-holdout");
+    std::ofstream(dir + "/wall.obj") << "v -5 -5 2.5\nv 0.1 -5 2.5\nv 0.1 5 2.5\nv -5 5 2.5\nf 1 2 3 4\n";
+    Scene scene = smallCloud();
+    Holdout wall;
+    wall.mesh = dir + "/wall.obj";
+    scene.holdouts = {wall};
+    ProgressiveRender view(scene, 1, size_t(256) << 20);
+    ASSERT_TRUE(view.waitConverged(120.0));
+    const auto shown = view.latest();
+    const auto texel = [&](int x, int y) { return shown->display_texels[(size_t(y) * 96 + size_t(x)) * 4]; };
+    EXPECT_EQ(shown->display[size_t(30) * 96 + 2].w, 0.0f);
+    EXPECT_EQ(texel(2, 30), displayByte(kHoldoutGrey));
+    EXPECT_EQ(texel(93, 2), 0);   // neither cloud nor wall
+    const size_t cloud = size_t(30) * 96 + 70;   // right of the wall: the render as it is
+    EXPECT_GT(shown->display[cloud].w, 0.5f);
+    EXPECT_EQ(texel(70, 30), displayByte(shown->display[cloud].x));
+}
+
 TEST(ProgressiveRender, ScrubbingBackToAFrameTakesItsBricksFromTheCache) {
     const std::string dir = tempDir("viewer-frames");
     std::filesystem::copy_file(smallCloud().volume().path, dir + "/cloud_0001.vdb", std::filesystem::copy_options::overwrite_existing);
