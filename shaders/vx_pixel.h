@@ -69,8 +69,9 @@ void vx_through_lens(vec2 square, VX_INOUT(vec3) origin, VX_INOUT(vec3) dir, vec
     float r = P.lens_radius * sqrt(square.x);
     float phi = 6.2831853f * square.y;
     vec3 focus = origin + dir * (P.focus_distance / dot(dir, forward));
-    vec3 right = normalize(vec3(P.camera_to_world * vec4(1.0f, 0.0f, 0.0f, 0.0f)));
-    vec3 up = normalize(vec3(P.camera_to_world * vec4(0.0f, 1.0f, 0.0f, 0.0f)));
+    // The lens's plane, across the ray's own forward (a camera moving within the shutter turns it).
+    vec3 right = normalize(cross(forward, vec3(P.camera_to_world * vec4(0.0f, 1.0f, 0.0f, 0.0f))));
+    vec3 up = cross(right, forward);
     origin = origin + (right * cos(phi) + up * sin(phi)) * r;
     dir = normalize(focus - origin);
 }

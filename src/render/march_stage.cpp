@@ -9,6 +9,7 @@
 #include "lighting/propagation/propagation_stages.h"
 #include "render/holdout_stage.h"
 #include "render/light_group_passes.h"
+#include "scene/camera.h"
 #include "volume/volume_stages.h"
 
 namespace voxlux {
@@ -83,10 +84,13 @@ StageActivity MarchStage::activity(const Scene& s) const {
     }
     if (const size_t sets = lightLinks(s).sets.size(); sets > 0)
         march += ", " + std::to_string(sets) + (sets == 1 ? " link set" : " link sets") + " (light linking)";
-    if (const auto& mb = s.render.motion_blur)
+    const bool lens = s.camera && lensRadius(*s.camera) > 0.0f;
+    const int rays = std::max(s.render.motion_blur ? s.render.motion_blur->samples : 1, lens ? s.camera->lens_samples : 1);
+    const std::string per_pixel = std::to_string(rays) + (rays == 1 ? " ray" : " rays") + " a pixel";
+    if (s.render.motion_blur)
         march += reference ? ", motion-blurred where the medium or camera moves (a time a path)"
-                           : ", motion-blurred where the medium or camera moves (" + std::to_string(mb->samples) +
-                                 (mb->samples == 1 ? " ray" : " rays") + " a pixel)";
+                           : ", motion-blurred where the medium or camera moves (" + per_pixel + ")";
+    if (lens) march += reference ? ", depth of field (a point of the lens a path)" : ", depth of field (" + per_pixel + " over the lens)";
     for (const VolumeSpec& v : s.volumes) {
         if (!v.enabled || v.emission.empty() || v.role != VolumeRole::Visible) continue;
         march += ", emission" + (rendersAsSeveral(s) ? " of " + v.name : std::string()) + ": ";

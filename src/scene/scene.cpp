@@ -62,10 +62,26 @@ size_t placedVolumeCount(const Scene& scene) {
     return n;
 }
 
-bool placesSeveral(const Scene& scene) {
-    return placedVolumeCount(scene) > 1 ||
-           std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const VolumeSpec& v) { return v.role != VolumeRole::Visible; });
+namespace {
+
+// Whether `scene` places more than one volume or one that is not visible, its mesh holdouts' cells
+// counted when `cells`.
+bool placesSeveralOf(const Scene& scene, bool cells) {
+    size_t placed = 0;
+    bool hidden = false;
+    for (const VolumeSpec& v : scene.volumes) {
+        if (v.holdout_mesh && !cells) continue;
+        placed += std::max<size_t>(1, v.instances.size());
+        hidden = hidden || v.role != VolumeRole::Visible;
+    }
+    return placed > 1 || hidden;
 }
+
+}  // namespace
+
+bool placesSeveral(const Scene& scene) { return placesSeveralOf(scene, true); }
+
+bool framesSeveral(const Scene& scene) { return placesSeveralOf(scene, false); }
 
 bool rendersAsSeveral(const Scene& scene) { return placesSeveral(scene) || linksLights(scene); }
 

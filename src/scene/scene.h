@@ -315,6 +315,9 @@ size_t placedVolumeCount(const Scene& scene);
 // Whether the scene places several volumes: more than one placed volume, or a volume that is not
 // visible (a matte, or shadows only).
 bool placesSeveral(const Scene& scene);
+// placesSeveral of the scene's own volumes (its mesh holdouts' cells left out): whether the default
+// camera frames all volumes' bricks rather than the one's active voxels.
+bool framesSeveral(const Scene& scene);
 // Whether the scene renders through the march of several volumes (shaders/vx_volumes.h): it places
 // several, or links lights to volumes (linksLights).
 bool rendersAsSeveral(const Scene& scene);

@@ -12,6 +12,7 @@ namespace {
 
 constexpr float kOpaqueWithin = 0.5f;   // voxels from the surface where the shell is solid
 constexpr float kShellReach = 1.5f;     // voxels from the surface where it ends
+constexpr float kFarthest = 1e9f;      // as a mesh file's points
 constexpr int kMostVoxelsAcross = 16384;   // across the clip box: 1.6 m in 0.1 mm cells, finer than any light grid
 
 // `polygon` cut to the box [lo, hi] (Sutherland-Hodgman, one face plane at a time): OpenVDB
@@ -59,6 +60,8 @@ LoadedVolume voxelisedMesh(const TriangleMesh& mesh, const glm::mat4& placement,
         std::vector<openvdb::Vec3s> corners;
         for (const unsigned i : {t.x, t.y, t.z}) {
             const glm::vec3 w = glm::vec3(placement * glm::vec4(mesh.points[i], 1.0f));
+            if (!(glm::all(glm::lessThanEqual(glm::abs(w), glm::vec3(kFarthest)))))
+                throw InputError(file + ": the holdout's transform places a point beyond +-1e9");
             corners.emplace_back(w.x, w.y, w.z);
         }
         const std::vector<openvdb::Vec3s> piece = clippedToBox(std::move(corners), cut_lo, cut_hi);
@@ -66,7 +69,11 @@ LoadedVolume voxelisedMesh(const TriangleMesh& mesh, const glm::mat4& placement,
         points.insert(points.end(), piece.begin(), piece.end());
         for (unsigned i = 2; i < piece.size(); ++i) triangles.emplace_back(first, first + i - 1, first + i);
     }
+    // Index 0 at the box's corner, not the world's origin: a set far from the origin in fine cells
+    // keeps small indices, which floats resolve and OpenVDB's 32-bit coordinates hold.
     const auto transform = openvdb::math::Transform::createLinearTransform(voxel_size);
+    const glm::vec3 corner = glm::floor(lo / voxel_size) * voxel_size;
+    transform->postTranslate(openvdb::Vec3d(corner.x, corner.y, corner.z));
     openvdb::FloatGrid::Ptr cells;
     if (triangles.empty()) {
         cells = openvdb::FloatGrid::create(0.0f);

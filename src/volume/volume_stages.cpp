@@ -192,7 +192,7 @@ struct CellsPlan {
     float cell = 1.0f;
     glm::vec3 lo{0.0f}, hi{0.0f};
     bool none = true;
-    std::string key() const { return matrixToJson(placement).dump() + jsonVec3(lo).dump() + jsonVec3(hi).dump() + std::to_string(cell); }
+    std::string key() const { return matrixToJson(placement).dump() + jsonVec3(lo).dump() + jsonVec3(hi).dump() + nlohmann::json(jsonDecimal(cell)).dump(); }
 };
 
 CellsPlan cellsPlan(const CellsClip& clip, const Holdout& holdout, const nlohmann::json& placement) {
@@ -274,7 +274,7 @@ StageReads CameraStage::reads() const { return {withPlacementKeys({"/camera", "/
 
 StageActivity CameraStage::activity(const Scene& s) const {
     return {true, s.camera                      ? "the scene's camera"
-                  : placesSeveral(s)         ? "frames all volumes' bricks (no camera in the scene)"
+                  : framesSeveral(s)         ? "frames all volumes' bricks (no camera in the scene)"
                                          : "frames the density grid's active voxels (no camera in the scene)"};
 }
 
@@ -298,7 +298,7 @@ void CameraStage::run(StageRun& run) {
     const Scene& scene = run.scene({"/camera", "/render/resolution", "/volumes/*/up", "/volumes/*/transform", "/input/camera_file"});
     if (scene.camera)
         camera_ = posedCamera(*scene.camera, run.scene.frame());
-    else if (placesSeveral(scene))   // one volume frames the same with its lights linked or not
+    else if (framesSeveral(scene))   // one volume frames the same with its lights linked or held out or not
         camera_ = frameVolumes(volumes_.bricks(), scene, run.scene.frame(), load_.volume());
     else
         camera_ = frameActiveVoxels(placedVolume(load_.volume(), volumePlacement(scene.volume(), run.scene.frame())), scene);

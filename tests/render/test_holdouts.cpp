@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "render/renderer.h"
+#include "scene/camera.h"
 #include "scene/scene_json.h"
 #include "test_support.h"
 
@@ -370,6 +371,19 @@ TEST(Holdouts, AMeshShadowsTheMediumInEveryMethod) {
         EXPECT_NEAR(beside, region(open, false), (method == 3 ? 0.05 : 0.02) * lit);
         EXPECT_LT(under, 1e-3 * lit);
     }
+}
+
+// Without a scene camera, a mesh holdout leaves the framing of the volume alone (its cells are the
+// CG's, not a volume to frame).
+TEST(Holdouts, AMeshLeavesTheDefaultFraming) {
+    const std::string dir = tempDir("holdout-mesh-framing");
+    Scene scene = boxScene(writeBox(dir, "box.vdb", -20));
+    scene.camera.reset();
+    writeQuad(dir + "/wide.obj", 1, 0.0f, {-30.0f, -30.0f}, {30.0f, 30.0f});
+    const Camera alone = Renderer(scene).render(std::nullopt, false).camera;
+    const Camera held = Renderer(meshHeldOut(scene, dir + "/wide.obj")).render(std::nullopt, false).camera;
+    EXPECT_EQ(test::largestDifference(cameraToWorld(alone), cameraToWorld(held)), 0.0f);
+    EXPECT_EQ(alone.fov, held.fov);
 }
 
 // set.####.obj: each frame its own mesh (here the quad over the left half, then over the right);
