@@ -71,6 +71,16 @@ openvdb::FloatGrid::Ptr twoHalvesGrid(float left, float right) {
 
 double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
+std::pair<double, double> meanLuminanceAndError(const RenderImage& img) {
+    double sum = 0.0, variance = 0.0;
+    for (const auto& p : img.pixels) {
+        sum += luminance(glm::vec3(p.rgba));
+        variance += p.variance;
+    }
+    const double n = double(img.pixels.size());
+    return {sum / n, std::sqrt(variance) / n};
+}
+
 double cubicBSpline(double x) {
     x = std::abs(x);
     if (x < 1) return (4 - 6 * x * x + 3 * x * x * x) / 6;

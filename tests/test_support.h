@@ -87,6 +87,9 @@ float largestDifference(const glm::mat4& a, const glm::mat4& b);
 // Rec. 709 luminance of scene-linear RGB.
 double luminance(glm::vec3 rgb);
 
+// An image's mean luminance and its standard error (from the reference's per-pixel variances).
+std::pair<double, double> meanLuminanceAndError(const RenderImage& img);
+
 // The uniform cubic B-spline centred on a grid point, at distance x from it: the brute-force
 // weights the tricubic filters are tested against.
 double cubicBSpline(double x);

@@ -40,15 +40,6 @@ std::vector<std::string> colorSpaceNames(const OCIO::Config& config) {
     return names;
 }
 
-// The canonical name of a colour space given by name, alias or role.
-std::string requireColorSpace(const OCIO::Config& config, const std::string& name, const std::string& key,
-                              const std::string& source) {
-    OCIO::ConstColorSpaceRcPtr cs = config.getColorSpace(name.c_str());
-    if (!cs)
-        throw InputError(key + ": no colour space '" + name + "' in " + source + " (it has: " +
-                         listNames(colorSpaceNames(config)) + ")");
-    return cs->getName();
-}
 
 // Every look a look string ("a, +b, -c") names must exist.
 void requireLooks(const OCIO::Config& config, const std::string& looks, const std::string& key, const std::string& source) {
@@ -196,6 +187,16 @@ std::string resolveView(const OCIO::Config& config, const std::string& display, 
 }
 
 }  // namespace
+
+// The canonical name of a colour space given by name, alias or role.
+std::string requireColorSpace(const OCIO::Config& config, const std::string& name, const std::string& key,
+                              const std::string& source) {
+    OCIO::ConstColorSpaceRcPtr cs = config.getColorSpace(name.c_str());
+    if (!cs)
+        throw InputError(key + ": no colour space '" + name + "' in " + source + " (it has: " +
+                         listNames(colorSpaceNames(config)) + ")");
+    return cs->getName();
+}
 
 OCIO::ConstConfigRcPtr loadColorConfig(const ColorSettings& color, std::string& source) {
     std::string file = color.config;

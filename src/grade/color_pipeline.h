@@ -40,6 +40,11 @@ struct ColorPipeline {
 // $OCIO, else the config built into voxlux (ocio/voxlux.ocio). Throws InputError naming the file.
 OCIO::ConstConfigRcPtr loadColorConfig(const ColorSettings& color, std::string& source);
 
+// The canonical name of a colour space given by name, alias or role; throws InputError
+// "<key>: no colour space 'X' in <source> (it has: A, B, ...)".
+std::string requireColorSpace(const OCIO::Config& config, const std::string& name, const std::string& key,
+                              const std::string& source);
+
 // Resolves spaces, looks and files and builds the processors (the preview's only when
 // `with_preview` or the scene names a display). Throws InputError with a one-line message naming
 // what is missing and what exists ("color.output_space: no colour space 'X' in <config> (it has:

@@ -197,6 +197,12 @@ void setLights(const Scene& scene, KernelInputs& in) {
         const Light& l = scene.lights[i];
         if (!l.enabled) continue;
         const int group = groups.names.empty() ? 0 : groups.of_light[i];
+        // The reference samples an environment's map; the march takes its median-cut lights and
+        // remainder, which withEnvironmentLights appended (src/render/environment_lights.h).
+        if (l.type == LightType::Environment) {
+            if (l.environment && l.environment->loaded) in.environments.push_back({l.environment->loaded, group, l.environment->visible_to_camera});
+            continue;
+        }
         if (l.type == LightType::Ambient) {
             ambient = kernel::vx_radiance_add(ambient, l.color * l.intensity);
             in.group_ambient[size_t(group)] = kernel::vx_radiance_add(in.group_ambient[size_t(group)], l.color * l.intensity);

@@ -38,6 +38,12 @@ struct KernelInputs {
     std::vector<kernel::VxLight> lights;
     std::vector<glm::vec3> group_ambient;   // the ambient radiance per light group (VxLight::group),
                                             // which params.ambient sums
+    struct Environment {                    // an environment light's map, which only the reference
+        std::shared_ptr<const EnvironmentMap> map;   // and the background read (the march takes its
+        int group = 0;                               // median-cut lights)
+        bool visible_to_camera = false;
+    };
+    std::vector<Environment> environments;
     std::vector<glm::vec4> tf_lut;          // VX_TF_LUT_SIZE entries, a constant row if unused; of several
                                             // volumes, each one's table after (VxVolume::transfer_row)
     std::vector<glm::vec4> emission_lut;    // VX_EMISSION_LUT_SIZE rows per emission source

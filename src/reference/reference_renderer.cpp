@@ -12,6 +12,7 @@
 #include "core/progress.h"
 
 #include "kernel/cpu_kernel_data.h"
+#include "optics/environment_map.h"
 #include "volume/brick_set.h"
 #include "core/error.h"
 
@@ -303,11 +304,27 @@ struct PathSample {
     glm::vec3* layers = nullptr;
     size_t layer_count = 0;
 
-    // Ambient light `beta` * (the ambient radiance) * T reaching the path, per group.
-    void addAmbient(const std::vector<glm::vec3>& group_ambient, glm::vec3 beta, float T, glm::vec3 total) {
-        ambient += beta * total * T;
-        if (!layers) return;
-        for (size_t g = 0; g < group_ambient.size(); ++g) layers[g] += beta * group_ambient[g] * T;
+    // Light of an environment or the other lights scattered at the path's first scattering (direct)
+    // or a later one, into `group`'s layer too.
+    void addScattered(bool first, glm::vec3 light, int group) {
+        (first ? direct : indirect) += light;
+        if (layers) layers[size_t(group)] += light;
+    }
+    // What a path leaving along w with weight `beta` and transmittance T brings: ambient light, per
+    // group; and each environment's radiance from w, weighted by multiple importance sampling
+    // (power heuristic) against the map's own sampling at next-event estimation: w was drawn from
+    // the phase function, with density `phase_pdf`. After the first scattering it is direct light.
+    void addEscaped(const KernelInputs& in, glm::vec3 beta, float T, glm::vec3 w, float phase_pdf, bool first) {
+        ambient += beta * in.params.ambient * T;
+        if (layers)
+            for (size_t g = 0; g < in.group_ambient.size(); ++g) layers[g] += beta * in.group_ambient[g] * T;
+        for (const KernelInputs::Environment& env : in.environments) {
+            const glm::vec3 radiance = env.map->lookup(w);
+            if (!(radiance.x + radiance.y + radiance.z > 0.0f)) continue;
+            const float light_pdf = env.map->pdf(w);
+            const float mis = phase_pdf * phase_pdf / (phase_pdf * phase_pdf + light_pdf * light_pdf);
+            addScattered(first, beta * radiance * (T * mis), env.group);
+        }
     }
     // Emitted light reaching the camera (seen, or scattered: `to` is emission or indirect).
     void addEmitted(glm::vec3& to, glm::vec3 light) {
@@ -317,7 +334,7 @@ struct PathSample {
 };
 
 // The camera ray stops at t_cut (a holdout); the paths it starts are not held out.
-PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::vector<glm::vec3>& group_ambient,
+PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const KernelInputs& in,
                      std::vector<glm::vec3>& layers, glm::vec3 origin, glm::vec3 dir, glm::vec3 forward, float t_cut, ReferenceRng& rng) {
     CpuKernelData& k = tr.k;
     PathSample ps;
@@ -333,8 +350,7 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::
     ps.scatter_weight = camera.weight;
     ps.depth = camera.scatter.t * glm::dot(dir, forward);
     if (rs.max_bounces == 0) return ps;
-    const glm::vec3 ambient = k.P.ambient;
-    const bool escapes_count = k.P.has_ambient != 0 || k.P.emission_sources > 0;
+    const bool escapes_count = k.P.has_ambient != 0 || k.P.emission_sources > 0 || !in.environments.empty();
     glm::vec3 beta(camera.weight), x = origin + dir * camera.scatter.t, w = dir;
     Tracker::Collision cell = camera.scatter.cell;
     // The camera ray chose its collision among the visible extinction: its albedo is theirs.
@@ -363,8 +379,18 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::
             }
             const float T = tr.transmittance(x, wi, dist, rng, ps.events, link);
             const glm::vec3 scattered = weight * e * (T * k.vx_phase_hg(glm::dot(wi, w), g_light));
-            (bounce == 0 ? ps.direct : ps.indirect) += scattered;
-            if (ps.layers) ps.layers[size_t(light.group)] += scattered;
+            ps.addScattered(bounce == 0, scattered, light.group);
+        }
+        // Each environment by its map's importance, weighted against the phase function's
+        // sampling of the same direction (addEscaped); an environment lights every volume.
+        for (const KernelInputs::Environment& env : in.environments) {
+            float light_pdf = 0.0f;
+            const glm::vec3 wi = env.map->sample(glm::vec2(rng.next(), rng.next()), light_pdf);
+            if (!(light_pdf > 0.0f)) continue;
+            const float phase = k.vx_phase_hg(glm::dot(wi, w), g);
+            const float mis = light_pdf * light_pdf / (light_pdf * light_pdf + phase * phase);
+            const float T = tr.transmittance(x, wi, 1e30f, rng, ps.events);
+            ps.addScattered(bounce == 0, beta * env.map->lookup(wi) * (T * phase * mis / light_pdf), env.group);
         }
         // After the last scattering only escaping light (ambient) or emission can still arrive.
         if (bounce + 1 == rs.max_bounces && !escapes_count) break;
@@ -379,23 +405,25 @@ PathSample tracePath(const Tracker& tr, const ReferenceSettings& rs, const std::
         const bool first = bounce == 0;
         const float u1 = first ? rng.stratified(ReferenceRng::kFirstDirectionU) : rng.next();
         const float u2 = first ? rng.stratified(ReferenceRng::kFirstDirectionV) : rng.next();
+        const glm::vec3 before = w;
         w = k.vx_sample_hg(w, g, u1, u2);
+        const float phase_pdf = k.vx_phase_hg(glm::dot(w, before), g);
         // The last flight brings only ambient light and emission: their expected values along w,
         // by residual ratio tracking where nothing emits.
         if (bounce + 1 == rs.max_bounces) {
             if (k.P.emission_sources > 0) {
                 const Tracker::RatioFlight last = tr.ratioFlight(x, w, false, rng, ps.events);
                 ps.addEmitted(ps.indirect, beta * last.emitted);
-                ps.addAmbient(group_ambient, beta, last.transmittance, ambient);
+                ps.addEscaped(in, beta, last.transmittance, w, phase_pdf, first);
             } else {
-                ps.addAmbient(group_ambient, beta, tr.transmittance(x, w, 1e30f, rng, ps.events), ambient);
+                ps.addEscaped(in, beta, tr.transmittance(x, w, 1e30f, rng, ps.events), w, phase_pdf, first);
             }
             break;
         }
         const Tracker::Flight f = tr.flight(x, w, rng, ps.events);
         ps.addEmitted(ps.indirect, beta * f.emitted);
         if (!f.collided) {
-            ps.addAmbient(group_ambient, beta, 1.0f, ambient);
+            ps.addEscaped(in, beta, 1.0f, w, phase_pdf, first);
             break;
         }
         x += w * f.t;
@@ -540,7 +568,7 @@ RenderImage renderReference(const KernelInputs& in, const ReferenceSettings& rs,
                         k.vx_through_lens(glm::vec2(rng.stratified(ReferenceRng::kLensU), rng.stratified(ReferenceRng::kLensV)), ray_origin,
                                           ray_dir, forward);
                     const float t_cut = k.vx_holdout_distance(x, y, ray_dir, forward);
-                    const PathSample p = tracePath(at_time, rs, in.group_ambient, path_layers, ray_origin, ray_dir, forward, t_cut, rng);
+                    const PathSample p = tracePath(at_time, rs, in, path_layers, ray_origin, ray_dir, forward, t_cut, rng);
                     for (size_t l = 0; l < layers; ++l) acc_layers[l] += path_layers[l];
                     acc.direct += p.direct;
                     acc.indirect += p.indirect;

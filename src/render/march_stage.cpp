@@ -7,6 +7,7 @@
 #include "lighting/march_lighting.h"
 #include "lighting/propagation/emitted_light.h"
 #include "lighting/propagation/propagation_stages.h"
+#include "render/environment_background.h"
 #include "render/holdout_stage.h"
 #include "render/light_group_passes.h"
 #include "scene/camera.h"
@@ -50,7 +51,10 @@ StageReads MarchStage::reads() const {
     return {withPlacementKeys({"/render/resolution", "/render/step", "/render/shadow_step", "/render/transmittance_cutoff", "/render/filter", "/render/backend",
              "/render/method", "/render/reference", "/render/motion_blur", "/render/region", "/volumes/*/material", "/lights/*/type", "/lights/*/enabled", "/lights/*/position", "/lights/*/direction",
              "/lights/*/color", "/lights/*/intensity", "/lights/*/cone_angle", "/lights/*/cone_softness", "/effects",
-             "/volumes/*/emission", "/output/deep", "/output/deep_samples", "/input/light_groups", "/input/light_links"})};
+             "/volumes/*/emission", "/output/deep", "/output/deep_samples", "/input/light_groups", "/input/light_links",
+             // an environment's map: the reference samples it, the camera may see it
+             "/lights/*/map", "/lights/*/map_colorspace", "/lights/*/up", "/lights/*/rotation", "/lights/*/visible_to_camera",
+             "/input/environment_maps"})};
 }
 
 StageActivity MarchStage::activity(const Scene& s) const {
@@ -108,8 +112,13 @@ void MarchStage::run(StageRun& run) {
     sources.holdout = &holdouts_.depth();
     const KernelInputs inputs = mediumInputs(scene, brick_, classify_, volumes_, run.scene.frame(), color_.xyzToWorking(), sources);
     const LightGroups groups = lightGroups(scene);
+    for (const Light& l : scene.lights)
+        if (l.environment && l.enabled && l.environment->repaired_pixels > 0)
+            run.warnings.push_back(l.environment->map + ": " + std::to_string(l.environment->repaired_pixels) +
+                                   " pixels NaN, infinite or negative, taken as black");
     if (scene.render.method != RenderMethod::Reference) {
         image_ = groups.names.empty() ? run.backend.march(inputs) : marchLightGroups(run.backend, inputs, groups.names, lightGroupMarches(scene));
+        addEnvironmentBackground(inputs, image_);
         return;
     }
     uint64_t opaque = 0;
@@ -129,6 +138,7 @@ void MarchStage::run(StageRun& run) {
         }
         if (kept > 0) run.reused.push_back("march: " + std::to_string(kept) + " reference samples a pixel");
     }
+    addEnvironmentBackground(inputs, image_);
     if (opaque)
         run.warnings.push_back("reference: " + std::to_string(opaque) +
                                " brick segments too dense to track (extinction beyond a float, or over 2^16 collisions) taken as opaque");

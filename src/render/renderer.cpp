@@ -12,6 +12,7 @@
 #include "lighting/light_grid_stage.h"
 #include "lighting/lighting_method.h"
 #include "lighting/march_lighting.h"
+#include "render/environment_lights.h"
 #include "render/grade_stage.h"
 #include "render/holdout_stage.h"
 #include "render/march_stage.h"
@@ -83,10 +84,10 @@ nlohmann::json fileIdentity(const std::string& file) {
 }  // namespace
 
 Renderer::Renderer(Scene scene)
-    : scene_(renderedScene(std::move(scene))), stages_(std::make_unique<Stages>(std::nullopt)), graph_(stages_->all()) {}
+    : scene_(withEnvironmentLights(renderedScene(std::move(scene)))), stages_(std::make_unique<Stages>(std::nullopt)), graph_(stages_->all()) {}
 
 Renderer::Renderer(Scene scene, LoadedVolume volume, KernelBackend& backend)
-    : scene_(renderedScene(std::move(scene))), backend_(&backend), stages_(std::make_unique<Stages>(std::move(volume))), graph_(stages_->all()) {}
+    : scene_(withEnvironmentLights(renderedScene(std::move(scene)))), backend_(&backend), stages_(std::make_unique<Stages>(std::move(volume))), graph_(stages_->all()) {}
 
 Renderer::~Renderer() = default;
 
@@ -97,7 +98,7 @@ void Renderer::setScene(Scene scene) {
         owned_backend_.reset();
         backend_ = nullptr;
     }
-    scene_ = renderedScene(std::move(scene));
+    scene_ = withEnvironmentLights(renderedScene(std::move(scene)));
 }
 
 KernelBackend& Renderer::backend() {
@@ -127,6 +128,8 @@ nlohmann::json Renderer::document(std::optional<int> frame, bool allow_empty) co
             if (h.transform && !h.transform->chan.empty()) files.back()["chan"] = fileIdentity(h.transform->chan);
         }
     }
+    for (const Light& l : scene_.lights)   // the maps' files: an edit of one re-reads it
+        if (l.environment) in["environment_maps"].push_back(fileIdentity(l.environment->map));
     if (nlohmann::json placements = holdoutPlacements(scene_, frame.value_or(0)); !placements.is_null()) in["holdout_placements"] = placements;
     if (scene_.volume().transform && !scene_.volume().transform->chan.empty())
         in["transform_chan"] = fileIdentity(scene_.volume().transform->chan);

@@ -130,7 +130,9 @@ Scene renderedScene(Scene scene) {
 
 int enabledLightCount(const Scene& scene, bool ambient) {
     return int(std::count_if(scene.lights.begin(), scene.lights.end(),
-                             [&](const Light& l) { return l.enabled && (l.type == LightType::Ambient) == ambient; }));
+                             [&](const Light& l) {
+                                 return l.enabled && l.type != LightType::Environment && (l.type == LightType::Ambient) == ambient;
+                             }));
 }
 
 const std::vector<std::string>& knownAovs() {

@@ -4,6 +4,7 @@
 // (src/lighting/<method>/<method>_settings.cpp).
 #pragma once
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -113,8 +114,31 @@ struct Material {
 };
 
 // Ambient is uniform light from every direction (radiance color * intensity), occluded only when
-// effects.ambient_occlusion is on.
-enum class LightType { Directional, Point, Spot, Ambient };
+// effects.ambient_occlusion is on. Environment is the radiance of a lat-long map from every
+// direction (docs/environment.md).
+enum class LightType { Directional, Point, Spot, Ambient, Environment };
+
+class EnvironmentMap;
+
+// What the fast methods keep of an environment map beside its median-cut lights: its darkest value
+// per channel as ambient light (floor), or nothing (none: the lights carry it all).
+enum class EnvironmentRemainder { Floor, None };
+inline const std::vector<std::string> kEnvironmentRemainderNames{"floor", "none"};
+
+// An environment light's map and how it is placed and approximated (src/render/environment_lights.h).
+struct EnvironmentSettings {
+    std::string map;                       // resolved path of a lat-long OpenEXR image (R, G, B)
+    std::string map_colorspace;            // its OCIO colour space; "" = the config's scene_linear role
+    std::optional<glm::vec3> up;           // where its top row faces; unset: the first volume's up
+    float rotation = 0.0f;                 // degrees about up, counter-clockwise seen from above
+    bool visible_to_camera = false;        // the beauty's background (alpha 1) where the camera sees it
+    int median_cut_lights = 16;            // the fast methods' directional lights (Debevec 2005)
+    EnvironmentRemainder remainder = EnvironmentRemainder::Floor;
+    // Set by withEnvironmentLights, never read from a scene file: the map in the working space,
+    // oriented and scaled by the light's colour and intensity.
+    std::shared_ptr<const EnvironmentMap> loaded;
+    size_t repaired_pixels = 0;            // of the map's, NaN, infinite or negative: taken as black
+};
 
 struct Light {
     std::string name;                      // optional; light edits may address the light by it
@@ -131,6 +155,10 @@ struct Light {
     // unset = every volume. Not for ambient lights.
     std::optional<std::vector<std::string>> volumes;
     std::optional<std::vector<std::string>> shadow_volumes;
+    std::optional<EnvironmentSettings> environment;   // type environment
+    // Made by withEnvironmentLights for the march, never read from a scene file: one of the median-cut
+    // lights or the remainder of the environment light lights[*from_environment].
+    std::optional<size_t> from_environment;
 };
 
 // A shot camera from another package (camera.file, src/scene/camera_file.h): its pose per frame
@@ -408,7 +436,8 @@ struct Scene {
     OutputSpec output;
 };
 
-// How many enabled lights the scene has that are ambient (`ambient`), or that are not.
+// How many enabled lights the scene has that are ambient (`ambient`), or directional, point or spot
+// (an environment light counts as neither: its median-cut lights and remainder do).
 int enabledLightCount(const Scene& scene, bool ambient);
 
 const std::vector<std::string>& knownAovs();

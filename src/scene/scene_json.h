@@ -34,7 +34,7 @@ double jsonDecimal(float f);
 nlohmann::json jsonVec3(glm::vec3 v);
 
 // One light of a scene's "lights" array, and back.
-Light readLight(const JsonObject& o);
+Light readLight(const JsonObject& o, const std::string& base_dir = "");
 nlohmann::json lightToJson(const Light& light);
 // A matrix as 16 numbers, column-major (camera.matrix), and back (of a render document's, unchecked).
 nlohmann::json matrixToJson(const glm::mat4& m);

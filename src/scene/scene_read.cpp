@@ -724,18 +724,49 @@ std::string volumeNamesText(const std::vector<VolumeSpec>& volumes) {
 
 }  // namespace
 
-Light readLight(const JsonObject& o) {
+namespace {
+
+EnvironmentSettings readEnvironment(const JsonObject& o, const std::string& base_dir) {
+    EnvironmentSettings e;
+    e.map = resolvePath(o.string("map"), base_dir);
+    e.map_colorspace = o.string("map_colorspace", "");
+    if (o.has("up")) {
+        const nlohmann::json& up = o.raw("up");
+        if (up.is_string()) {
+            const std::string axis = o.choice("up", {"x", "y", "z"}, "y");
+            e.up = glm::vec3(axis == "x", axis == "y", axis == "z");
+        } else {
+            e.up = readDirection(o, "up");
+        }
+    }
+    e.rotation = o.number("rotation", 0.0f);
+    if (!std::isfinite(e.rotation)) o.fail("rotation", "must be a finite number of degrees");
+    e.visible_to_camera = o.boolean("visible_to_camera", false);
+    e.median_cut_lights = o.integer("median_cut_lights", e.median_cut_lights);
+    if (e.median_cut_lights < 0 || e.median_cut_lights > 1024) o.fail("median_cut_lights", "must lie in [0, 1024]");
+    e.remainder = o.choice("remainder", kEnvironmentRemainderNames, "floor") == "none" ? EnvironmentRemainder::None
+                                                                                      : EnvironmentRemainder::Floor;
+    return e;
+}
+
+}  // namespace
+
+Light readLight(const JsonObject& o, const std::string& base_dir) {
     Light l;
-    std::string type = o.choice("type", {"directional", "point", "spot", "ambient"}, "directional");
-    l.type = type == "point"     ? LightType::Point
-             : type == "spot"    ? LightType::Spot
-             : type == "ambient" ? LightType::Ambient
-                                 : LightType::Directional;
-    if (l.type == LightType::Ambient)
+    std::string type = o.choice("type", {"directional", "point", "spot", "ambient", "environment"}, "directional");
+    l.type = type == "point"         ? LightType::Point
+             : type == "spot"        ? LightType::Spot
+             : type == "ambient"     ? LightType::Ambient
+             : type == "environment" ? LightType::Environment
+                                     : LightType::Directional;
+    if (l.type == LightType::Ambient || l.type == LightType::Environment)
         for (const char* key : {"volumes", "shadow_volumes"})
-            if (o.has(key)) o.fail(key, "an ambient light lights every volume: link a directional, point or spot light");
+            if (o.has(key)) o.fail(key, "an " + type + " light lights every volume: link a directional, point or spot light");
     if (l.type == LightType::Ambient)
         o.rejectUnknown({"name", "enabled", "type", "color", "intensity", "group"});
+    else if (l.type == LightType::Environment)
+        o.rejectUnknown({"name", "enabled", "type", "color", "intensity", "group", "map", "map_colorspace", "up", "rotation",
+                         "visible_to_camera", "median_cut_lights", "remainder"});
     else
         o.rejectUnknown({"name", "enabled", "type", "position", "direction", "color", "intensity", "cone_angle",
                          "cone_softness", "group", "volumes", "shadow_volumes"});
@@ -763,6 +794,7 @@ Light readLight(const JsonObject& o) {
     l.cone_softness = o.number("cone_softness", l.cone_softness);
     if (!(l.cone_softness >= 0 && l.cone_softness <= l.cone_angle))
         o.fail("cone_softness", "must lie in [0, cone_angle]");
+    if (l.type == LightType::Environment) l.environment = readEnvironment(o, base_dir);
     return l;
 }
 
@@ -901,7 +933,7 @@ Scene sceneFromJson(const nlohmann::json& json, const std::string& file, const s
     Scene s;
     s.volumes = readVolumes(root, base_dir);
     if (root.has("lights"))
-        for (const auto& l : root.objects("lights")) s.lights.push_back(readLight(l));
+        for (const auto& l : root.objects("lights")) s.lights.push_back(readLight(l, base_dir));
     for (size_t i = 0; i < s.lights.size(); ++i)
         for (const auto& [key, names] : {std::pair{"volumes", s.lights[i].volumes}, std::pair{"shadow_volumes", s.lights[i].shadow_volumes}})
             for (const std::string& name : names.value_or(std::vector<std::string>{}))

@@ -102,6 +102,7 @@ nlohmann::json lightToJson(const Light& l) {
     lj["type"] = l.type == LightType::Point     ? "point"
                  : l.type == LightType::Spot    ? "spot"
                  : l.type == LightType::Ambient ? "ambient"
+                 : l.type == LightType::Environment ? "environment"
                                                 : "directional";
     if (l.type == LightType::Point || l.type == LightType::Spot) lj["position"] = jsonVec3(l.position);
     if (l.type == LightType::Directional || l.type == LightType::Spot) lj["direction"] = jsonVec3(l.direction);
@@ -111,6 +112,16 @@ nlohmann::json lightToJson(const Light& l) {
         lj["cone_angle"] = jsonDecimal(l.cone_angle);
         lj["cone_softness"] = jsonDecimal(l.cone_softness);
     }
+    if (const auto& e = l.environment) {
+        lj["map"] = e->map;
+        if (!e->map_colorspace.empty()) lj["map_colorspace"] = e->map_colorspace;
+        if (e->up) lj["up"] = jsonVec3(*e->up);
+        lj["rotation"] = jsonDecimal(e->rotation);
+        lj["visible_to_camera"] = e->visible_to_camera;
+        lj["median_cut_lights"] = e->median_cut_lights;
+        lj["remainder"] = kEnvironmentRemainderNames[size_t(e->remainder)];
+    }
+    if (l.from_environment) lj["from_environment"] = *l.from_environment;
     if (!l.group.empty()) lj["group"] = l.group;
     if (l.volumes) lj["volumes"] = *l.volumes;
     if (l.shadow_volumes) lj["shadow_volumes"] = *l.shadow_volumes;

@@ -87,7 +87,7 @@ std::vector<ViewAction> benchActions(const Scene& scene) {
     add("wait", "converged");
     int key = -1;
     for (size_t i = 0; i < scene.lights.size() && key < 0; ++i)
-        if (scene.lights[i].type != LightType::Ambient && scene.lights[i].enabled) key = int(i);
+        if (scene.lights[i].type != LightType::Ambient && scene.lights[i].type != LightType::Environment && scene.lights[i].enabled) key = int(i);
     for (int k = 0; k < kBenchRepeats; ++k) {
         if (key >= 0) {
             add("drag_light", key, {{"by", {k % 2 ? -12 : 12, 0}}});

@@ -152,9 +152,12 @@ void lightEditor(ViewerState& state) {
         state.editor.changeLight(i, {{"group", group.empty() ? nlohmann::json(nullptr) : nlohmann::json(group)}});
     ImGui::SameLine();
     if (ImGui::SmallButton(state.editor.soloedGroup(l.group) ? "unsolo group" : "solo group")) state.editor.soloGroup(l.group);
-    if (l.type != LightType::Ambient) linkEditor(state, i, l);
+    if (l.type != LightType::Ambient && l.type != LightType::Environment) linkEditor(state, i, l);
     const std::string type = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : l.type == LightType::Ambient ? "ambient" : "directional";
-    if (auto t = combo("type", type, {"directional", "point", "spot", "ambient"})) state.editor.changeLight(i, {{"type", *t}});
+    if (l.type == LightType::Environment)   // a map is not a setting of the other types: no switching
+        ImGui::Text("environment: %s", l.environment->map.c_str());
+    else if (auto t = combo("type", type, {"directional", "point", "spot", "ambient"}))
+        state.editor.changeLight(i, {{"type", *t}});
     bool changed = ImGui::ColorEdit3("colour", &l.color.x, ImGuiColorEditFlags_Float);
     // Intensity as exposure: a stop doubles it, as a lighter expects. Dragged a hundredth of a stop
     // a pixel (Dear ImGui's Shift: ten times that, Alt: a hundredth of it), so a small move is a small change.
@@ -167,6 +170,13 @@ void lightEditor(ViewerState& state) {
     if (l.type == LightType::Point || l.type == LightType::Spot) changed |= ImGui::DragFloat3("position", &l.position.x, 0.01f);
     if (l.type == LightType::Directional || l.type == LightType::Spot) {
         if (ImGui::DragFloat3("direction", &l.direction.x, 0.01f) && glm::length(l.direction) > 1e-6f) changed = true;
+    }
+    if (auto& e = l.environment) {
+        // A turn of the map moves its median-cut lights only: the cut is kept (docs/environment.md).
+        changed |= ImGui::DragFloat("rotation", &e->rotation, 0.5f, -360.0f, 360.0f, "%.1f deg");
+        remember(state, "light/rotation");
+        changed |= ImGui::Checkbox("visible to camera", &e->visible_to_camera);
+        changed |= ImGui::SliderInt("median-cut lights", &e->median_cut_lights, 0, 64);
     }
     if (l.type == LightType::Spot) {
         changed |= ImGui::SliderFloat("cone angle", &l.cone_angle, 1.0f, 89.0f, "%.1f deg");

@@ -186,7 +186,7 @@ bool Viewport::dragLight(ViewerState& state, int index, glm::vec2 by, glm::vec2 
     if (light.type == LightType::Point || (light.type == LightType::Spot && !ImGui::GetIO().KeyShift)) {
         // Move in the plane facing the camera through the light.
         moved.position += (right * by.x - up * by.y) * pixelSizeAt(camera, light.position, image_size.y);
-    } else if (light.type != LightType::Ambient) {
+    } else if (light.type == LightType::Directional || light.type == LightType::Spot) {
         // Turn the direction: across the screen about the camera's up, up and down about its right.
         moved.direction = glm::normalize(rotate(rotate(light.direction, by.x * kDegreesPerPixel, up), by.y * kDegreesPerPixel, right));
     }
@@ -232,7 +232,7 @@ void Viewport::gizmos(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     const bool free = inside && !ImGui::GetIO().WantCaptureMouse && !ImGui::GetIO().KeyAlt;
     for (size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
-        if (l.type == LightType::Ambient) continue;
+        if (l.type == LightType::Ambient || l.type == LightType::Environment) continue;
         const bool selected = int(i) == state.selected_light;
         const ImU32 colour = !l.enabled ? IM_COL32(120, 120, 120, 200) : selected ? IM_COL32(255, 200, 60, 255) : IM_COL32(230, 230, 230, 220);
         // The handle: the light's position, or for a directional light the point it shines from.

@@ -13,6 +13,7 @@
 
 #include "backend/backend_choice.h"
 #include "core/error.h"
+#include "render/environment_lights.h"
 #include "render/renderer.h"
 #include "scene/scene_json.h"
 #include "test_support.h"
@@ -223,6 +224,13 @@ std::vector<std::pair<std::string, nlohmann::json>> sweepScenes() {
     nlohmann::json held = scenes[1].second;
     held["holdouts"] = {{{"mesh", meshes + "/shelf.obj"}, {"transform", {{"translate", {0.1, 0.2, 0.0}}}}, {"voxel_size", 0.05}, {"shadow_reach", 0.3}}};
     scenes.emplace_back("mesh holdout", held);
+    // An environment light beside the propagation's lights: its median-cut lights are lights too.
+    const std::string skies = tempDir("sweep-skies");
+    for (const char* name : {"/sky.exr", "/sky_copy.exr"})
+        std::filesystem::copy_file(sourceDir() + "/grids/sunset.exr", skies + name, std::filesystem::copy_options::overwrite_existing);
+    nlohmann::json sky = scenes[2].second;
+    sky["lights"].push_back({{"type", "environment"}, {"map", skies + "/sky.exr"}, {"intensity", 0.5}, {"median_cut_lights", 4}});
+    scenes.emplace_back("environment light", sky);
     for (auto& [name, j] : scenes) {
         j["render"]["resolution"] = {40, 30};
         j["render"]["backend"] = "cpu";
@@ -243,6 +251,7 @@ std::string otherString(const std::string& key, const std::string& value) {
         {"compression", {"zip", "piz"}},
         {"phase", {"phong", "henyey_greenstein"}},
         {"filter", {"trilinear", "tricubic"}},
+        {"remainder", {"floor", "none"}},
         {"output_space", {"ACEScct", "ACES2065-1"}},
         {"space", {"ACEScct", "ACES2065-1"}},
         {"look", {"Warm", "ACES 1.3 Reference Gamut Compression"}},
@@ -275,9 +284,10 @@ Mutation mutate(const nlohmann::json& scene, const std::string& pointer, const s
         m.skipped = "the grid: the bundled cloud has one";
     } else if (pointer == "/volumes/0/path") {
         m.scene[at] = copy_of_cloud;   // the same grids in another file
-    } else if (key == "mesh") {
+    } else if (key == "mesh" || key == "map") {
         std::string other = v.get<std::string>();
-        m.scene[at] = other.replace(other.rfind(".obj"), 4, "_copy.obj");   // the same quad in another file
+        const std::string extension = key == "mesh" ? ".obj" : ".exr";
+        m.scene[at] = other.replace(other.rfind(extension), 4, "_copy" + extension);   // the same content in another file
     } else if (key == "type" && pointer.rfind("/lights/", 0) == 0) {
         // A light of another type has other keys: the whole light changes.
         const std::string light = pointer.substr(0, pointer.rfind('/'));
@@ -363,8 +373,9 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
             for (const StageReport& r : edited.stages) {
                 if (r.status == StageStatus::Skipped) continue;
                 const Stage& stage = graph.stage(r.name);
-                // Of the scenes as the renderer renders them (a mesh holdout's cells are a volume).
-                const Scene rendered_base = renderedScene(base), rendered_changed = renderedScene(changed);
+                // Of the scenes as the renderer renders them (a mesh holdout's cells are a volume, an
+                // environment's median-cut lights and remainder are lights).
+                const Scene rendered_base = withEnvironmentLights(renderedScene(base)), rendered_changed = withEnvironmentLights(renderedScene(changed));
                 bool activity_changed = !stage.activity(rendered_base).runs;
                 for (const auto& up : upstreamOf(graph, r.name))
                     activity_changed |= graph.stage(up).activity(rendered_base).runs != graph.stage(up).activity(rendered_changed).runs;
@@ -379,7 +390,15 @@ TEST(RenderGraph, EveryKeyRerunsExactlyTheStagesThatReadIt) {
                 // And where the mesh holdouts' cells are made, from the volumes' and the meshes' placements.
                 const bool placements_changed =
                     graph.reads(r.name, "/input/holdout_placements") && holdoutPlacements(base, 0.0) != holdoutPlacements(changed, 0.0);
-                const bool expected = activity_changed || graph.reads(r.name, m.changed) || groups_changed || marches_changed || placements_changed;
+                // And the lights an environment light becomes, from its map, turn, scale and cut.
+                const nlohmann::json lights_before = nlohmann::json{{"lights", sceneToJson(rendered_base)["lights"]}}.flatten(),
+                                     lights_after = nlohmann::json{{"lights", sceneToJson(rendered_changed)["lights"]}}.flatten();
+                bool parts_changed = false;
+                for (const nlohmann::json* one : {&lights_before, &lights_after})
+                    for (const auto& [leaf, value] : one->items())
+                        parts_changed |= (!lights_before.contains(leaf) || !lights_after.contains(leaf) || lights_before[leaf] != lights_after[leaf]) &&
+                                         graph.reads(r.name, leaf);
+                const bool expected = activity_changed || graph.reads(r.name, m.changed) || groups_changed || marches_changed || placements_changed || parts_changed;
                 EXPECT_EQ(r.status == StageStatus::Ran, expected) << r.name;
             }
             const RenderImage fresh = Renderer(changed).render(std::nullopt, false).image;

@@ -67,17 +67,6 @@ float largestRelativeDifference(const RenderImage& a, const RenderImage& b) {
     return largest / peak;
 }
 
-// The image's mean luminance and its standard error (from the reference's per-pixel variances).
-std::pair<double, double> meanAndError(const RenderImage& img) {
-    double sum = 0.0, variance = 0.0;
-    for (const auto& p : img.pixels) {
-        sum += luminance(glm::vec3(p.rgba));
-        variance += p.variance;
-    }
-    const double n = double(img.pixels.size());
-    return {sum / n, std::sqrt(variance) / n};
-}
-
 // A volume of the fire-ball file tinted by its colour grid and a transfer function that thins its
 // edge and turns its core blue.
 VolumeSpec tinted(const std::string& file, const std::string& name, glm::vec3 translate = glm::vec3(0.0f)) {
@@ -127,8 +116,8 @@ TEST(SeveralVolumes, TwoCopiesAtHalfTheDensityTraceAsOneAtTheWholeInTheReference
         s->render.method = RenderMethod::Reference;
         s->render.reference.spp = 64;
     }
-    const auto [mean_one, error_one] = meanAndError(renderScene(one));
-    const auto [mean_two, error_two] = meanAndError(renderScene(two));
+    const auto [mean_one, error_one] = meanLuminanceAndError(renderScene(one));
+    const auto [mean_two, error_two] = meanLuminanceAndError(renderScene(two));
     std::printf("  reference, one at s: %.5f +- %.5f; two at s/2: %.5f +- %.5f\n", mean_one, error_one, mean_two, error_two);
     EXPECT_GT(mean_one, 0.02);
     EXPECT_LE(std::abs(mean_one - mean_two), 3.0 * std::hypot(error_one, error_two));
@@ -222,17 +211,17 @@ TEST(SeveralVolumes, TwoEmittingCopiesAtHalfTraceAsOneAtTheWholeInTheReference) 
         s.render.reference.spp = 64;
         return s;
     };
-    const auto [mean_one, error_one] = meanAndError(renderScene(reference({fire(file, "fire", 1.2f, 3.0f)}, RenderMethod::Reference)));
+    const auto [mean_one, error_one] = meanLuminanceAndError(renderScene(reference({fire(file, "fire", 1.2f, 3.0f)}, RenderMethod::Reference)));
     const auto [mean_two, error_two] =
-        meanAndError(renderScene(reference({fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)}, RenderMethod::Reference)));
+        meanLuminanceAndError(renderScene(reference({fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)}, RenderMethod::Reference)));
     std::printf("  reference, one glowing at s: %.5f +- %.5f; two at s/2: %.5f +- %.5f\n", mean_one, error_one, mean_two, error_two);
     EXPECT_GT(mean_one, 0.05);
     EXPECT_LE(std::abs(mean_one - mean_two), 3.0 * std::hypot(error_one, error_two));
 
     std::vector<VolumeSpec> dark{fire(file, "a", 0.6f, 1.5f), fire(file, "b", 0.6f, 1.5f)};
     for (VolumeSpec& v : dark) v.material.albedo = glm::vec3(0.0f);
-    const auto [mean_march, unused] = meanAndError(renderScene(reference(dark, RenderMethod::March)));
-    const auto [mean_traced, error] = meanAndError(renderScene(reference(dark, RenderMethod::Reference)));
+    const auto [mean_march, unused] = meanLuminanceAndError(renderScene(reference(dark, RenderMethod::March)));
+    const auto [mean_traced, error] = meanLuminanceAndError(renderScene(reference(dark, RenderMethod::Reference)));
     std::printf("  albedo 0: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_traced, error);
     EXPECT_GT(mean_traced, 0.05);
     EXPECT_LE(std::abs(mean_march - mean_traced), 3.0 * error + 0.01 * mean_traced);
@@ -356,8 +345,8 @@ TEST(SeveralVolumes, TheReferenceBlursAMovingVolumeAsTheMarchDoes) {
     Scene reference = march;
     reference.render.method = RenderMethod::Reference;
     reference.render.reference.spp = 64;
-    const auto [mean_march, unused] = meanAndError(renderScene(march));
-    const auto [mean_reference, error] = meanAndError(renderScene(reference));
+    const auto [mean_march, unused] = meanLuminanceAndError(renderScene(march));
+    const auto [mean_reference, error] = meanLuminanceAndError(renderScene(reference));
     std::printf("  blurred glow: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_reference, error);
     EXPECT_GT(mean_reference, 0.05);
     EXPECT_LE(std::abs(mean_march - mean_reference), 3.0 * error + 0.01 * mean_reference);
@@ -373,8 +362,8 @@ void expectSingleScatteringAsTheReference(Scene march) {
     reference.render.method = RenderMethod::Reference;
     reference.render.reference.spp = 256;
     reference.render.reference.max_bounces = 1;
-    const auto [mean_march, unused] = meanAndError(renderScene(march));
-    const auto [mean_reference, error] = meanAndError(renderScene(reference));
+    const auto [mean_march, unused] = meanLuminanceAndError(renderScene(march));
+    const auto [mean_reference, error] = meanLuminanceAndError(renderScene(reference));
     std::printf("  single scattering: march %.5f, reference %.5f +- %.5f\n", mean_march, mean_reference, error);
     EXPECT_GT(mean_reference, 0.005);
     EXPECT_LE(std::abs(mean_march - mean_reference), 3.0 * error + 0.01 * mean_reference);
@@ -707,8 +696,8 @@ TEST(SeveralVolumes, TheReferenceHoldsOutAMatteAsTheMarchDoes) {
         alpha_march += a.pixels[i].rgba.w;
         alpha_reference += b.pixels[i].rgba.w;
     }
-    const auto [mean_march, unused] = meanAndError(a);
-    const auto [mean_reference, error] = meanAndError(b);
+    const auto [mean_march, unused] = meanLuminanceAndError(a);
+    const auto [mean_reference, error] = meanLuminanceAndError(b);
     std::printf("  held out: march %.5f, reference %.5f +- %.5f; alpha sums %.3f, %.3f\n", mean_march, mean_reference, error, alpha_march,
                 alpha_reference);
     EXPECT_GT(mean_reference, 0.002);

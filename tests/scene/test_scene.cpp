@@ -21,7 +21,7 @@ TEST(Scene, MinimalSceneGetsDefaults) {
 
 TEST(Scene, ErrorsNameTheKeyAndItsPath) {
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{"type": "area"}]})"),
-              "shot.json: /lights/0/type: 'area' is not one of directional, point, spot, ambient");
+              "shot.json: /lights/0/type: 'area' is not one of directional, point, spot, ambient, environment");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "lights": [{}, {"intensity": "lots", "direction": [0,0,1]}]})"),
               "shot.json: /lights/0/direction: required key is missing");
     EXPECT_EQ(sceneErrorOf(R"({"volume": {"path": "a.vdb"}, "render": {"stepp": 0.5}})"),

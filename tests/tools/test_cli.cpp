@@ -534,7 +534,7 @@ TEST(Cli, BadOptionsAreRefusedWithTheOptionNamed) {
 TEST(Cli, LightFlagsGetTheScenesChecks) {
     const std::string cloud = sourceDir() + "/grids/cloud.vdb";
     expectRejected("render " + cloud + " --light area:pos=0,0,0",
-                   "--light 'area:pos=0,0,0': /type: 'area' is not one of directional, point, spot, ambient");
+                   "--light 'area:pos=0,0,0': /type: 'area' is not one of directional, point, spot, ambient, environment");
     expectRejected("render " + cloud + " --light ambient:dir=0,1,0",
                    "--light 'ambient:dir=0,1,0': /direction: unknown key (expected one of name, enabled, type, color, intensity, group)");
     expectRejected("render " + cloud + " --light point:intensity=5", "--light 'point:intensity=5': /position: required key is missing");
