@@ -14,7 +14,10 @@ namespace voxlux {
 namespace {
 
 bool hasAmbientLight(const Scene& scene) {
-    return std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.type == LightType::Ambient; });
+    // (an environment light's floor is one: docs/environment.md)
+    return std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+        return l.type == LightType::Ambient || (l.environment && l.environment->remainder == EnvironmentRemainder::Floor);
+    });
 }
 
 // The sets that pick a method from scratch, whatever the scene had: every key the study varies is
@@ -123,6 +126,20 @@ StudyPlan planStudy(const nlohmann::json& base, const std::vector<int>& spps, in
         sweeps.push_back(sweep("sat_cone+AO", "effects.ambient_occlusion.shells", m.march("sat_cone", false, true), {"3", "7", "11"}));
         sweeps.push_back(sweep("sat_cone+AO", "effects.color_bleeding", m.march("sat_cone", false, true), {"0", "1"}));
         sweeps.push_back(sweep("propagation+indirect+AO", "", m.march("propagation", true, true), {"-"}));
+    }
+    // An environment light's median cut (docs/environment.md): its K lights and its remainder,
+    // under each method that lights with them (the first environment light's).
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        if (!scene.lights[i].environment) continue;
+        const std::string light = "lights." + std::to_string(i);
+        const std::pair<std::string, std::vector<std::string>> methods[] = {{"raymarch", m.march("raymarch", false, false)},
+                                                                            {"sat_cone", m.march("sat_cone", false, false)},
+                                                                            {"propagation+indirect", m.march("propagation", true, false)}};
+        for (const auto& [method, sets] : methods) {
+            sweeps.push_back(sweep(method, light + ".median_cut_lights", sets, {"1", "4", "16", "64"}));
+            sweeps.push_back(sweep(method, light + ".remainder", sets, {"floor", "none"}));
+        }
+        break;
     }
     Sweep reference{"reference", "render.reference.spp", {}, {}};
     for (int spp : spps) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -225,6 +226,27 @@ TEST(StudyPlan, SeveralVolumesStudyEveryMethodTheyTake) {
     ASSERT_EQ(plan.skipped.size(), 1u);
     EXPECT_EQ(plan.skipped[0], "/effects/indirect: the diffusion model takes its profile from one material, and volume 'b' has another "
                                "albedo or anisotropy than 'a': give them one, or take the kniss model (transport_color)");
+}
+
+// An environment light's median cut is a knob of each method that takes its lights: K and the
+// remainder swept, each value a distinct render, and its floor counts as an ambient light for AO.
+TEST(StudyPlan, AnEnvironmentLightsCutIsAKnobOfEveryFastMethod) {
+    const std::string dir = test::tempDir("study_plan_environment");
+    const std::string vdb = test::writeBall(dir);
+    nlohmann::json j = ballScene(vdb, false);
+    j["lights"].push_back({{"type", "environment"}, {"map", "sky.exr"}});
+    const nlohmann::json base = sceneToJson(parseScene(j.dump(), "s.json", ""));
+    const StudyPlan plan = planStudy(base, {1}, 1);
+    std::map<std::string, std::vector<std::string>> knobs;   // "method knob" -> labels
+    for (const auto& s : plan.sweeps) knobs[s.method + " " + s.knob] = s.labels;
+    for (const char* method : {"raymarch", "sat_cone", "propagation+indirect"}) {
+        EXPECT_EQ(knobs[std::string(method) + " lights.1.median_cut_lights"], (std::vector<std::string>{"1", "4", "16", "64"})) << method;
+        EXPECT_EQ(knobs[std::string(method) + " lights.1.remainder"], (std::vector<std::string>{"floor", "none"})) << method;
+    }
+    EXPECT_TRUE(knobs.count("sat_cone+AO effects.ambient_occlusion.shells"));
+    for (const auto& s : plan.sweeps)
+        if (s.knob == "lights.1.median_cut_lights")
+            EXPECT_EQ(studyScene(base, plan.configs[s.configs[3]]).lights[1].environment->median_cut_lights, 64);
 }
 
 TEST(StudyPlan, KeepsTheScenesOwnIndirectSettings) {
