@@ -18,6 +18,9 @@
 #include "core/progress.h"
 #include "tools/sequence_render.h"
 #include "volume/make_cloud.h"
+#include "grade/color_pipeline.h"
+#include "optics/emission.h"
+#include "optics/sky_model.h"
 #include "scan/scan_import.h"
 #include "render/light_edits.h"
 #include "render/renderer.h"
@@ -412,6 +415,36 @@ int runMakeCloud(const std::string& output, int resolution, unsigned seed) {
     grid->setSaveFloatAsHalf(true);
     writeAtomically(output, [&](const std::string& tmp) { openvdb::io::File(tmp).write({grid}); });
     std::cout << "wrote " << output << " (" << grid->activeVoxelCount() << " active voxels)\n";
+    return 0;
+}
+
+int runMakeSky(const std::string& output, SkyParams params, const std::string& resolution) {
+    int width = 0, height = 0;
+    char tail = 0;
+    if (std::sscanf(resolution.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || height < 2 || height > 8192 || width != 2 * height)
+        throw InputError("--res: '" + resolution + "' is not WIDTHxHEIGHT with the width twice the height (2 to 8192 rows)");
+    params.width = width;
+    params.height = height;
+    const ColorPipeline working = resolveWorkingSpace(ColorSettings{});
+    const glm::mat3 xyz_to_working = working.xyz_to_working.value_or(kXyzD65ToAcescg);
+    const std::vector<glm::vec3> sky = makeSky(params);
+    RenderImage image;
+    image.width = width;
+    image.height = height;
+    image.pixels.resize(sky.size());
+    for (size_t i = 0; i < sky.size(); ++i) image.pixels[i].rgba = glm::vec4(glm::max(xyz_to_working * sky[i], glm::vec3(0.0f)), 1.0f);
+    OutputSpec spec;
+    spec.pixel_type = PixelType::Float;
+    ExrMetadata meta;
+    meta.color_space = working.working_space;
+    writeExr(output, image, spec, meta);
+    const glm::vec3 sun = sunDirection(params);
+    std::cout << "wrote " << output << " (" << width << "x" << height << ", " << working.working_space << ", "
+              << (params.kind == SkyKind::Overcast ? std::string("overcast")
+                                                   : "sun at " + std::to_string(int(std::lround(params.sun_elevation))) + " degrees, toward (" +
+                                                         std::to_string(sun.x).substr(0, 5) + ", " + std::to_string(sun.y).substr(0, 5) + ", " +
+                                                         std::to_string(sun.z).substr(0, 5) + ") with up z")
+              << ")\n";
     return 0;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "optics/sky_model.h"
 #include "tools/scene_overrides.h"
 #include "tools/calibrate.h"
 #include "tools/farm/farm_commands.h"
@@ -77,5 +78,8 @@ struct ImportCommand {
 };
 int runImport(const ImportCommand& cmd);
 int runMakeCloud(const std::string& output, int resolution, unsigned seed);
+// Writes `params`' sky at `resolution` ("WIDTHxHEIGHT", width twice the height) as a float EXR in
+// the working space of the default colour config (docs/environment.md).
+int runMakeSky(const std::string& output, SkyParams params, const std::string& resolution);
 
 }  // namespace voxlux

@@ -1,4 +1,4 @@
-// voxlux command line: render, scene, study, info, import, make-cloud. Errors are one line on stderr.
+// voxlux command line: render, scene, study, info, import, make-cloud, make-sky. Errors are one line on stderr.
 #include <unistd.h>
 
 #include <algorithm>
@@ -175,6 +175,19 @@ int main(int argc, char** argv) {
     cloudCmd->add_option("--res", cloudResolution, "voxels across")->check(CLI::Range(8, 1024));
     cloudCmd->add_option("--seed", cloudSeed, "noise seed");
 
+    std::string skyOutput, skyKind = "clear", skyResolution = "512x256";
+    voxlux::SkyParams sky;
+    std::optional<float> skyElevation, skyTurbidity;
+    auto* skyCmd = app.add_subcommand("make-sky", "write a lat-long sky .exr for an environment light (docs/environment.md)");
+    skyCmd->add_option("-o,--output", skyOutput, "output .exr")->required();
+    skyCmd->add_option("--kind", skyKind, "clear (Preetham's sky and the sun), sunset (the same, the sun 3 degrees up), overcast (CIE)")
+        ->check(CLI::IsMember({"clear", "sunset", "overcast"}));
+    skyCmd->add_option("--sun-elevation", skyElevation, "degrees above the horizon (clear 35, sunset 3)")->check(CLI::Range(-90.0, 90.0));
+    skyCmd->add_option("--sun-azimuth", sky.sun_azimuth, "degrees from the map's centre column towards its left quarter")->check(CLI::Range(-360.0, 360.0));
+    skyCmd->add_option("--turbidity", skyTurbidity, "haze, 2 (very clear) to 10 (clear 3, sunset 5)")->check(CLI::Range(2.0, 10.0));
+    skyCmd->add_option("--ground-albedo", sky.ground_albedo, "the ground's reflectance below the horizon")->check(CLI::Range(0.0, 1.0));
+    skyCmd->add_option("--res", skyResolution, "WIDTHxHEIGHT, width twice the height");
+
     std::optional<int> threads;   // --threads; ThreadLimit reads $VOXLUX_THREADS without it
     for (auto* cmd : {renderCmd, studyCmd, calibrateCmd, viewCmd, submitCmd})
         cmd->add_option("--threads", threads,
@@ -232,6 +245,13 @@ int main(int argc, char** argv) {
         if (*importCmd) return voxlux::runImport(import);
         if (*viewCmd) return voxlux::runView(view);
         if (*cloudCmd) return voxlux::runMakeCloud(cloudOutput, cloudResolution, cloudSeed);
+        if (*skyCmd) {
+            const bool sunset = skyKind == "sunset";
+            sky.kind = skyKind == "overcast" ? voxlux::SkyKind::Overcast : voxlux::SkyKind::Clear;
+            sky.sun_elevation = skyElevation.value_or(sunset ? 3.0f : 35.0f);
+            sky.turbidity = skyTurbidity.value_or(sunset ? 5.0f : 3.0f);
+            return voxlux::runMakeSky(skyOutput, sky, skyResolution);
+        }
     } catch (const voxlux::Interrupted&) {
         voxlux::clearProgressLine();
         std::cerr << "voxlux: interrupted: stopped before the next output; every file written is whole\n";

@@ -430,7 +430,26 @@ TEST(Cli, AWordThatIsNoCommandIsNamed) {
     const CliResult r = runCli("bogus cache.vdb");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "voxlux: error: command line: 'bogus' is not a command (render, scene, info, import, study, calibrate, view, farm, "
-                     "make-cloud)\n");
+                     "make-cloud, make-sky)\n");
+}
+
+// make-sky writes a float lat-long map an environment light takes as it is; a resolution that is
+// not twice as wide as high is refused by name, and nothing is written.
+TEST(Cli, MakeSkyWritesAMapAnEnvironmentLightTakes) {
+    const std::string dir = tempDir("make_sky");
+    CliResult r = runCli("make-sky -o " + dir + "/sky.exr --kind sunset --res 64x32");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "wrote " + dir + "/sky.exr (64x32, ACEScg, sun at 3 degrees, toward (0.998, 0.000, 0.052) with up z)\n");
+    const Exr sky = readExr(dir + "/sky.exr");
+    EXPECT_EQ(sky.width, 64);
+    EXPECT_EQ(sky.height, 32);
+    r = runCli("render " + sourceDir() + "/grids/cloud.vdb --res 24x16 -o " + dir + "/lit.exr --set 'lights=[{\"type\":\"environment\",\"map\":\"" + dir +
+               "/sky.exr\",\"up\":\"z\"}]'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    r = runCli("make-sky -o " + dir + "/wide.exr --res 64x64");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "voxlux: error: --res: '64x64' is not WIDTHxHEIGHT with the width twice the height (2 to 8192 rows)\n");
+    EXPECT_FALSE(fs::exists(dir + "/wide.exr"));
 }
 
 // Standard output holds results (the frames written, a scene, a graph); the quick form's notes
