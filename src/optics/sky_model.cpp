@@ -100,13 +100,13 @@ std::vector<glm::vec3> makeSky(const SkyParams& p) {
             if (w.z < 0.0) continue;
             sky[size_t(y) * p.width + x] = p.kind == SkyKind::Clear ? clear(w) : glm::dvec3(0.9505, 1.0, 1.089) * (0.4 * (1.0 + 2.0 * w.z) / 3.0);
         }
-    // The sun: its illuminance in the pixel it falls in.
+    // The sun: its illuminance in the pixel it falls in (the ground below is lit by it either way).
     glm::dvec3 sun_light(0.0);
     glm::ivec2 sun_pixel(-1);
     if (p.kind == SkyKind::Clear && p.sun_elevation > 0.0f) {
         sun_light = sunIlluminance(p.sun_elevation, p.turbidity);
         sun_pixel = frame.pixelOf(glm::vec3(sun));
-        sky[size_t(sun_pixel.y) * p.width + sun_pixel.x] += sun_light / frame.pixelSolidAngle(sun_pixel.y);
+        if (p.sun_disc) sky[size_t(sun_pixel.y) * p.width + sun_pixel.x] += sun_light / frame.pixelSolidAngle(sun_pixel.y);
     }
     // The ground: Lambertian, lit by the sky above and the sun.
     glm::dvec3 horizontal(0.0);

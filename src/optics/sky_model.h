@@ -20,6 +20,7 @@ struct SkyParams {
     float sun_azimuth = 0.0f;      // degrees from the map's centre column, towards its left quarter
     float turbidity = 3.0f;        // 2 (very clear) .. 10 (hazy)
     float ground_albedo = 0.3f;
+    bool sun_disc = true;          // false: the sky alone, for a scene whose sun is a directional light of its own
     int width = 512, height = 256;
 };
 

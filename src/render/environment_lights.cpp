@@ -1,6 +1,7 @@
 #include "render/environment_lights.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -111,6 +112,19 @@ const MedianCut& cutOf(ReadMap& m, int lights, bool floor) {
     return it->second;
 }
 
+// The config and working space the maps are converted into: loaded once per config, working
+// space and $OCIO, as a viewer sets its scene at every level of every edit.
+const ColorPipeline& workingSpace(const ColorSettings& color) {
+    static std::mutex mutex;
+    static std::map<std::string, ColorPipeline> known;
+    const char* ocio = std::getenv("OCIO");
+    const std::string key = color.config + "|" + color.working_space + "|" + (ocio ? ocio : "");
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = known.find(key);
+    if (it == known.end()) it = known.emplace(key, resolveWorkingSpace(color)).first;
+    return it->second;
+}
+
 }  // namespace
 
 glm::vec3 defaultEnvironmentUp(const Scene& scene) {
@@ -119,10 +133,18 @@ glm::vec3 defaultEnvironmentUp(const Scene& scene) {
     if (v.up != UpAxis::Auto) {
         axis = int(v.up) - int(UpAxis::X);
     } else if (!v.path.empty() && (!hasFramePattern(v.path) || v.frames)) {
+        // Read once per file: a viewer sets its scene at every level of every edit.
+        static std::mutex mutex;
+        static std::map<std::string, int> axes;
+        const std::string path = v.frames ? expandFramePattern(v.path, v.frames->first()) : v.path;
+        std::lock_guard<std::mutex> lock(mutex);
+        const auto known = axes.find(path);
+        if (known != axes.end()) return glm::vec3(known->second == 0, known->second == 1, known->second == 2);
         try {
             initOpenVdb();
-            const VdbFile file(v.frames ? expandFramePattern(v.path, v.frames->first()) : v.path);
+            const VdbFile file(path);
             axis = detectUpAxis(file.fileMetadata(), openvdb::MetaMap()).axis;
+            axes[path] = axis;
         } catch (const InputError&) {
             // The volume's load names the file's problem.
         }
@@ -133,7 +155,7 @@ glm::vec3 defaultEnvironmentUp(const Scene& scene) {
 Scene withEnvironmentLights(Scene scene) {
     const bool any = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.environment.has_value(); });
     if (!any) return scene;
-    const ColorPipeline working = resolveWorkingSpace(scene.color);
+    const ColorPipeline& working = workingSpace(scene.color);
     const bool reference = scene.render.method == RenderMethod::Reference;
     std::optional<glm::vec3> default_up;
     std::lock_guard<std::mutex> lock(mapCache().mutex);

@@ -68,10 +68,23 @@ StageActivity MarchStage::activity(const Scene& s) const {
         march = emissionLightsTheMedium(s) ? "no lights: emission, its light scattered from the illumination volume, and transmittance"
                                            : "no lights: emission and transmittance only";
     } else {
-        march = std::to_string(s.lights.size()) + (s.lights.size() == 1 ? " light, " : " lights, ");
+        // The environment's median-cut lights and floor are named with it, not counted as the scene's.
+        const size_t own = size_t(std::count_if(s.lights.begin(), s.lights.end(), [](const Light& l) { return !l.from_environment; }));
+        march = std::to_string(own) + (own == 1 ? " light, " : " lights, ");
         march += enabledLightCount(s, false) > 0 ? shadowMethodDescription(s.effects.shadows) : "ambient only";
         if (enabledLightCount(s, true) > 0)
             march += s.effects.ambient_occlusion ? ", occluded ambient" : ", unoccluded ambient";
+    }
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const Light& l = s.lights[i];
+        if (!l.environment || !l.enabled) continue;
+        const auto part = [&](LightType type) {
+            return std::count_if(s.lights.begin(), s.lights.end(), [&](const Light& p) { return p.from_environment == i && p.type == type; });
+        };
+        march += reference ? ", the environment map sampled by importance (MIS with the phase function)"
+                           : ", the environment map as " + std::to_string(part(LightType::Directional)) + " median-cut lights" +
+                                 (part(LightType::Ambient) > 0 ? " and its floor as ambient" : "");
+        if (l.environment->visible_to_camera) march += ", seen behind the volumes";
     }
     if (s.render.filter == Filter::Tricubic) march += ", tricubic B-spline filter";
     if (illuminationVolumeRuns(s) && s.effects.propagation.filter == Filter::Trilinear)

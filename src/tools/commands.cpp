@@ -441,7 +441,8 @@ int runMakeSky(const std::string& output, SkyParams params, const std::string& r
     const glm::vec3 sun = sunDirection(params);
     std::cout << "wrote " << output << " (" << width << "x" << height << ", " << working.working_space << ", "
               << (params.kind == SkyKind::Overcast ? std::string("overcast")
-                                                   : "sun at " + std::to_string(int(std::lround(params.sun_elevation))) + " degrees, toward (" +
+                                                   : std::string(params.sun_disc ? "sun" : "no sun disc, sun") + " at " +
+                                                         std::to_string(int(std::lround(params.sun_elevation))) + " degrees, toward (" +
                                                          std::to_string(sun.x).substr(0, 5) + ", " + std::to_string(sun.y).substr(0, 5) + ", " +
                                                          std::to_string(sun.z).substr(0, 5) + ") with up z")
               << ")\n";

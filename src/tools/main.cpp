@@ -187,6 +187,8 @@ int main(int argc, char** argv) {
     skyCmd->add_option("--turbidity", skyTurbidity, "haze, 2 (very clear) to 10 (clear 3, sunset 5)")->check(CLI::Range(2.0, 10.0));
     skyCmd->add_option("--ground-albedo", sky.ground_albedo, "the ground's reflectance below the horizon")->check(CLI::Range(0.0, 1.0));
     skyCmd->add_option("--res", skyResolution, "WIDTHxHEIGHT, width twice the height");
+    bool skyNoSun = false;
+    skyCmd->add_flag("--no-sun", skyNoSun, "leave the sun's disc out (the sky it lights stays): for a scene whose sun is a directional light");
 
     std::optional<int> threads;   // --threads; ThreadLimit reads $VOXLUX_THREADS without it
     for (auto* cmd : {renderCmd, studyCmd, calibrateCmd, viewCmd, submitCmd})
@@ -250,6 +252,7 @@ int main(int argc, char** argv) {
             sky.kind = skyKind == "overcast" ? voxlux::SkyKind::Overcast : voxlux::SkyKind::Clear;
             sky.sun_elevation = skyElevation.value_or(sunset ? 3.0f : 35.0f);
             sky.turbidity = skyTurbidity.value_or(sunset ? 5.0f : 3.0f);
+            sky.sun_disc = !skyNoSun;
             return voxlux::runMakeSky(skyOutput, sky, skyResolution);
         }
     } catch (const voxlux::Interrupted&) {

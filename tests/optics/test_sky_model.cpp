@@ -43,6 +43,13 @@ TEST(SkyModel, TheSunSitsInThePixelOfItsElevationAndAzimuth) {
     const double sun_y = sky.at(brightest).y * sky.pixelSolidAngle(brightest.y);
     EXPECT_GT(sun_y, 6.0);
     EXPECT_LT(sun_y, 10.0);
+    // Without its disc the sky is the same but for the sun's pixel, and the ground still sees the sun.
+    SkyParams no_disc = p;
+    no_disc.sun_disc = false;
+    const EnvironmentMap sky_alone = mapOf(no_disc);
+    EXPECT_LT(sky_alone.at(brightest).y, 0.01 * sky.at(brightest).y);
+    EXPECT_EQ(sky_alone.at({0, 0}), sky.at({0, 0}));
+    EXPECT_EQ(sky_alone.at({0, kH - 1}), sky.at({0, kH - 1}));
 }
 
 TEST(SkyModel, AClearZenithIsBluerThanItsHorizon) {
