@@ -27,8 +27,10 @@ public:
     // Splits `r` across its longer side where the power on either side is closest to equal.
     std::pair<Region, Region> split(const Region& r) const {
         const glm::ivec4 b = r.box;
+        // The sides as angles: a pixel spans 2 pi / W of azimuth at its latitude's sine, by pi / H.
         const double middle_latitude = std::sin(M_PI * (b.y + b.w) * 0.5 / map_.height());
-        const bool across = double(b.z - b.x) * 2.0 * middle_latitude >= double(b.w - b.y);   // 2: a pixel spans 2 pi / W by pi / H
+        const double wide = double(b.z - b.x) * 2.0 * M_PI / map_.width() * middle_latitude, tall = double(b.w - b.y) * M_PI / map_.height();
+        const bool across = b.w - b.y == 1 || (b.z - b.x > 1 && wide >= tall);   // a side of one pixel cannot split
         const int lo = across ? b.x : b.y, hi = across ? b.z : b.w;
         std::vector<double> strip(size_t(hi - lo), 0.0);
         for (int y = b.y; y < b.w; ++y)

@@ -1,6 +1,6 @@
 // Median-cut sampling of an environment map (Debevec 2005): the map split into K regions of about
 // equal power, each region's light given to one directional light at its power centroid. A region
-// splits across its longer side (the width measured at its middle latitude) where the power on
+// splits across its longer side (as angles: the width at its middle latitude) where the power on
 // either side is equal; the region of the most power splits next, so any K works and a sun takes
 // lights before a dim sky does. With a floor, the map's darkest value per channel becomes a uniform
 // ambient remainder and the K lights carry the rest, so a constant map is all ambient. Costs one

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -43,6 +44,7 @@ std::string mapKey(const EnvironmentSettings& e, const ColorPipeline& working) {
 
 ReadMap readMap(const EnvironmentSettings& e, const ColorPipeline& working) {
     const RenderImage image = readExrRgba(e.map);
+    if (image.pixels.empty()) throw InputError(e.map + ": an environment map needs pixels");
     ReadMap m;
     m.width = image.width;
     m.height = image.height;
@@ -59,9 +61,14 @@ ReadMap readMap(const EnvironmentSettings& e, const ColorPipeline& working) {
     }
     m.radiance.resize(rgba.size());
     for (size_t i = 0; i < rgba.size(); ++i) {
+        // NaN or infinite: black; a negative channel (a colour conversion's overshoot): 0, the
+        // others kept, so a sun whose blue dips below zero keeps its light.
         glm::vec3 c(rgba[i]);
-        if (!std::isfinite(c.x + c.y + c.z) || c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) {
+        if (!std::isfinite(c.x + c.y + c.z)) {
             c = glm::vec3(0.0f);
+            ++m.repaired;
+        } else if (c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) {
+            c = glm::max(c, glm::vec3(0.0f));
             ++m.repaired;
         }
         m.radiance[i] = c;
@@ -93,8 +100,13 @@ MapCache& mapCache() {
 }
 
 std::shared_ptr<const EnvironmentMap> orientedMap(ReadMap& m, glm::vec3 up, float rotation, glm::vec3 scale) {
-    const std::string key = std::to_string(up.x) + "," + std::to_string(up.y) + "," + std::to_string(up.z) + "|" + std::to_string(rotation) + "|" +
-                            std::to_string(scale.x) + "," + std::to_string(scale.y) + "," + std::to_string(scale.z);
+    // Exact: every float's bits.
+    std::string key;
+    for (float f : {up.x, up.y, up.z, rotation, scale.x, scale.y, scale.z}) {
+        uint32_t bits = 0;
+        std::memcpy(&bits, &f, sizeof bits);
+        key += std::to_string(bits) + ",";
+    }
     if (m.oriented && m.oriented_key == key) return m.oriented;
     std::vector<glm::vec3> radiance(m.radiance);
     for (glm::vec3& c : radiance) c *= scale;
@@ -135,16 +147,24 @@ glm::vec3 defaultEnvironmentUp(const Scene& scene) {
     } else if (!v.path.empty() && (!hasFramePattern(v.path) || v.frames)) {
         // Read once per file: a viewer sets its scene at every level of every edit.
         static std::mutex mutex;
-        static std::map<std::string, int> axes;
+        static std::map<std::string, int> axes;   // by the file's identity
         const std::string path = v.frames ? expandFramePattern(v.path, v.frames->first()) : v.path;
+        std::error_code ec;
+        const auto size = std::filesystem::file_size(path, ec);
+        const auto time = ec ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(path, ec);
+        const std::string key = path + "|" + std::to_string(size) + "|" + std::to_string(time.time_since_epoch().count());
         std::lock_guard<std::mutex> lock(mutex);
-        const auto known = axes.find(path);
+        const auto known = axes.find(key);
         if (known != axes.end()) return glm::vec3(known->second == 0, known->second == 1, known->second == 2);
         try {
             initOpenVdb();
-            const VdbFile file(path);
-            axis = detectUpAxis(file.fileMetadata(), openvdb::MetaMap()).axis;
-            axes[path] = axis;
+            VdbFile file(path);
+            // The density grid's metadata too, as the load reads it (a Mantaflow cache says z there).
+            openvdb::MetaMap grid;
+            for (size_t k = 0, seen = 0; k < file.grids().size(); ++k)
+                if (file.grids()[k].name == v.density.name && int(seen++) == v.density.index) grid = file.gridMetadata(k);
+            axis = detectUpAxis(file.fileMetadata(), grid).axis;
+            axes[key] = axis;
         } catch (const InputError&) {
             // The volume's load names the file's problem.
         }
@@ -153,6 +173,7 @@ glm::vec3 defaultEnvironmentUp(const Scene& scene) {
 }
 
 Scene withEnvironmentLights(Scene scene) {
+    std::erase_if(scene.lights, [](const Light& l) { return l.from_environment.has_value(); });   // made again below
     const bool any = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.environment.has_value(); });
     if (!any) return scene;
     const ColorPipeline& working = workingSpace(scene.color);

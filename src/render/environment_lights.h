@@ -14,7 +14,7 @@ namespace voxlux {
 // `scene` with its environment lights' maps loaded (EnvironmentSettings::loaded) and, unless it
 // renders the reference, their median-cut lights and remainders appended (Light::from_environment).
 // Throws InputError naming the map for a file that cannot be read or a colour space the config
-// lacks. Pixels that are NaN, infinite or negative are taken as black and counted
+// lacks. Pixels that are NaN or infinite are taken as black, channels below 0 as 0, and counted
 // (EnvironmentSettings::repaired_pixels).
 Scene withEnvironmentLights(Scene scene);
 

@@ -128,7 +128,7 @@ void MarchStage::run(StageRun& run) {
     for (const Light& l : scene.lights)
         if (l.environment && l.enabled && l.environment->repaired_pixels > 0)
             run.warnings.push_back(l.environment->map + ": " + std::to_string(l.environment->repaired_pixels) +
-                                   " pixels NaN, infinite or negative, taken as black");
+                                   " pixels NaN or infinite (taken as black) or with a negative channel (taken as 0)");
     if (scene.render.method != RenderMethod::Reference) {
         image_ = groups.names.empty() ? run.backend.march(inputs) : marchLightGroups(run.backend, inputs, groups.names, lightGroupMarches(scene));
         addEnvironmentBackground(inputs, image_);

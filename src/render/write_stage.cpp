@@ -99,7 +99,13 @@ void WriteStage::run(StageRun& run) {
 }
 
 std::string sceneHash(const Scene& scene) {
-    nlohmann::json j = sceneToJson(scenePathsRelativeTo(scene, "/"));
+    // The scene as its file says: what the renderer derives from it (its disabled volumes left
+    // out, a mesh holdout's cells, an environment's median-cut lights) is not hashed, so a frame
+    // carries the hash its scene file gives.
+    Scene own = withEnabledVolumes(scene);
+    std::erase_if(own.volumes, [](const VolumeSpec& v) { return v.holdout_mesh.has_value(); });
+    std::erase_if(own.lights, [](const Light& l) { return l.from_environment.has_value(); });
+    nlohmann::json j = sceneToJson(scenePathsRelativeTo(std::move(own), "/"));
     for (auto& v : j["volumes"]) v.erase("frames");
     j["output"].erase("path");
     j["output"].erase("preview");

@@ -39,9 +39,10 @@ private:
 // The files a frame writes: the EXR, then the preview and the deep EXR when the scene asks for them.
 std::vector<std::string> frameOutputPaths(const Scene& scene, std::optional<int> frame);
 
-// FNV-1a of what decides a frame's pixels, hex: the scene as rendered (canonical JSON, with its
-// input paths absolute), less volume.frames and the output paths, so that a frame rendered alone,
-// in a farm's chunk or in the whole sequence carries the same hash. Written into the EXR metadata;
+// FNV-1a of what decides a frame's pixels, hex: the scene as its file says (canonical JSON, with
+// its input paths absolute; its disabled volumes and what the renderer derives left out), less
+// volume.frames and the output paths, so that a frame rendered alone, in a farm's chunk or in the
+// whole sequence carries the same hash. Written into the EXR metadata;
 // `--resume` and `farm collect` compare it.
 std::string sceneHash(const Scene& scene);
 

@@ -137,7 +137,7 @@ struct EnvironmentSettings {
     // Set by withEnvironmentLights, never read from a scene file: the map in the working space,
     // oriented and scaled by the light's colour and intensity.
     std::shared_ptr<const EnvironmentMap> loaded;
-    size_t repaired_pixels = 0;            // of the map's, NaN, infinite or negative: taken as black
+    size_t repaired_pixels = 0;            // of the map's, NaN or infinite (black) or with a channel below 0 (0)
 };
 
 struct Light {

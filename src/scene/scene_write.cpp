@@ -344,6 +344,8 @@ Scene scenePathsRelativeTo(Scene scene, const std::string& folder) {
         if (h.transform) relative(h.transform->chan);
     }
     if (scene.camera && scene.camera->file) relative(scene.camera->file->path);
+    for (Light& l : scene.lights)
+        if (l.environment) relative(l.environment->map);
     for (GradeStep& g : scene.color.grade) relative(g.file);
     return scene;
 }

@@ -194,12 +194,25 @@ void VdbFile::walk() {
                       ", " + std::to_string(end_pos) + ")");
         in_.seekg(grid_pos);
         if (version >= openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION) w.skip(4, grid + " compression", end_pos);
+        grid_metadata_.push_back(w.at());
         w.metadata(grid + " metadata", end_pos);
         w.string(grid + " transform type", end_pos);
         in_.seekg(end_pos);
         grids_.push_back({openvdb::io::GridDescriptor::stripSuffix(unique_name),
                           openvdb::GridBase::createGrid(type)->valueType(), isVolumeType(type)});
     }
+}
+
+openvdb::MetaMap VdbFile::gridMetadata(size_t k) {
+    openvdb::MetaMap meta;
+    try {
+        in_.clear();
+        in_.seekg(grid_metadata_.at(k));
+        meta.readMeta(in_);   // its lengths checked by the walk
+    } catch (const std::exception& e) {
+        throw InputError(file_ + ": grid '" + printableName(grids_.at(k).name) + "': unreadable metadata (" + e.what() + ")");
+    }
+    return meta;
 }
 
 std::string VdbFile::gridList() const {

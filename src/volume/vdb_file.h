@@ -40,6 +40,8 @@ public:
     // "<file>: no grid named 'density' (grids: 'smoke' (float); --grid smoke to render it)": the
     // hint names `option` and the file's one scalar grid, when it has one and `option` is given.
     std::string noGridNamed(const std::string& name, const std::string& option = "") const;
+    // Grid `k`'s metadata alone (its creator, up axis, ...), without its voxels.
+    openvdb::MetaMap gridMetadata(size_t k);
     // Grid `k` with its metadata, transform and voxels. Throws InputError, also for a grid that is
     // not a volume.
     openvdb::GridBase::Ptr read(size_t k);
@@ -52,6 +54,7 @@ private:
     std::ifstream in_;
     std::vector<Grid> grids_;
     std::vector<std::streamoff> descriptors_;  // where each grid's descriptor starts
+    std::vector<std::streamoff> grid_metadata_;  // where each grid's metadata starts
     openvdb::io::StreamMetadata::Ptr metadata_;
     openvdb::MetaMap file_metadata_;
 };

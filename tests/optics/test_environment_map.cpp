@@ -2,7 +2,9 @@
 // the orientation convention (Blender's equirectangular mapping with z up), the solid angles, the
 // importance sampling's density, and the cut's lights against brute force: their power sums to
 // the map's, each sits at its region's power centroid, and a floor leaves a constant map to ambient.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <gtest/gtest.h>
 
@@ -84,6 +86,38 @@ TEST(EnvironmentMap, SamplesInProportionToLuminanceTimesSolidAngle) {
     }
     const double sun_share = double(environmentLuminance(map.at({5, 3}))) * map.pixelSolidAngle(3) / total;
     EXPECT_NEAR(double(sun) / kSamples, sun_share, 2.0 / 64.0);   // the sample grid has 64 rows
+
+    // Pearson's chi-square over the pixels, 200000 independent draws: below the 0.999 quantile
+    // of 127 degrees of freedom (181.9). Within a pixel the directions are uniform in solid angle:
+    // the mean cosine of the sun pixel's draws is its middle in cos theta.
+    std::vector<double> counts(16 * 8, 0.0);
+    uint64_t state = 12345;
+    const auto next = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return float(double(state >> 40) / double(1ull << 24));
+    };
+    constexpr int kDraws = 200000;
+    double sun_cosines = 0.0;
+    int sun_draws = 0;
+    for (int i = 0; i < kDraws; ++i) {
+        float pdf = 0.0f;
+        const glm::vec3 w = map.sample({next(), next()}, pdf);
+        const glm::ivec2 p = map.pixelOf(w);
+        counts[size_t(p.y) * 16 + size_t(p.x)] += 1.0;
+        if (p == glm::ivec2(5, 3)) {
+            sun_cosines += double(glm::dot(w, map.frame()[2]));
+            ++sun_draws;
+        }
+    }
+    double chi2 = 0.0;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const double expected = kDraws * double(environmentLuminance(map.at({x, y}))) * map.pixelSolidAngle(y) / total;
+            chi2 += (counts[size_t(y) * 16 + size_t(x)] - expected) * (counts[size_t(y) * 16 + size_t(x)] - expected) / expected;
+        }
+    EXPECT_LT(chi2, 181.9);
+    const double middle = 0.5 * (std::cos(M_PI * 3.0 / 8.0) + std::cos(M_PI * 4.0 / 8.0));
+    EXPECT_NEAR(sun_cosines / sun_draws, middle, 0.002);
 }
 
 TEST(MedianCut, LightsCarryTheMapsPowerFromTheirRegionsPowerCentroids) {
@@ -118,6 +152,26 @@ TEST(MedianCut, LightsCarryTheMapsPowerFromTheirRegionsPowerCentroids) {
     // of the rest, so each split gives it a smaller region.
     const MedianCut eight = medianCut(map, 16, true);
     EXPECT_TRUE(std::any_of(eight.lights.begin(), eight.lights.end(), [](const CutLight& l) { return l.region == glm::ivec4(5, 3, 6, 4); }));
+}
+
+// A map whose light is near the zenith and the horizon alike: every one of the K regions carries
+// light (none splits into an empty half and itself again), on a 2:1 map whose pixels span equal
+// angles at the equator.
+TEST(MedianCut, EveryRegionCarriesLightWhereverTheLightIs) {
+    constexpr int kW = 64, kH = 32;
+    std::vector<glm::vec3> pixels(size_t(kW) * kH, glm::vec3(0.01f));
+    pixels[size_t(1) * kW + 20] = glm::vec3(500.0f);        // a sun near the zenith
+    pixels[size_t(kH / 2) * kW + 50] = glm::vec3(200.0f);   // one on the horizon
+    const EnvironmentMap map(kW, kH, pixels, {0, 0, 1}, 0.0f);
+    for (int k : {2, 8, 32, 128}) {
+        const MedianCut cut = medianCut(map, k, false);
+        ASSERT_EQ(int(cut.lights.size()), k);
+        for (const CutLight& l : cut.lights) {
+            EXPECT_GT(l.region.z, l.region.x);
+            EXPECT_GT(l.region.w, l.region.y);
+            EXPECT_GT(l.irradiance.x, 0.0f) << "K " << k << ": region " << l.region.x << "," << l.region.y << "-" << l.region.z << "," << l.region.w;
+        }
+    }
 }
 
 TEST(MedianCut, AConstantMapIsAllAmbientUnderAFloor) {

@@ -7,11 +7,14 @@
 #include <cstdio>
 #include <fstream>
 
+#include <ImfStringAttribute.h>
+
 #include "io/exr_writer.h"
 #include "optics/environment_map.h"
 #include "reference/reference_renderer.h"
 #include "render/environment_lights.h"
 #include "render/renderer.h"
+#include "render/write_stage.h"
 #include "test_support.h"
 
 namespace voxlux::test {
@@ -193,6 +196,21 @@ TEST(EnvironmentLight, TheCameraSeesTheMapBehindTheVolume) {
             }
         }
     }
+}
+
+// The EXR's scene hash is its scene file's: the median-cut lights the renderer adds are not hashed,
+// so --resume and a farm's checks find the frames of an environment-lit scene.
+TEST(EnvironmentLight, AFramesSceneHashIsItsSceneFilesHash) {
+    const std::string dir = tempDir("environment_hash");
+    const std::string map = writeMap(dir + "/sky.exr", 32, 16, [](int x, int) { return glm::vec3(x == 3 ? 9.0f : 0.2f); });
+    Scene s = ballScene(dir, {environmentLight(map)}, ShadowMethod::SatCone);
+    s.output.path = dir + "/frame.exr";
+    Renderer(s).renderToFile(std::nullopt, false);
+    const Exr frame = readExr(dir + "/frame.exr");
+    const auto* hash = frame.header.findTypedAttribute<Imf::StringAttribute>("voxlux/sceneHash");
+    ASSERT_NE(hash, nullptr);
+    EXPECT_EQ(hash->value(), sceneHash(s));
+    EXPECT_EQ(sceneHash(withEnvironmentLights(s)), sceneHash(s));
 }
 
 TEST(EnvironmentLight, CpuAndGlAgreeOnGl) {
