@@ -225,11 +225,8 @@ std::vector<std::pair<std::string, nlohmann::json>> sweepScenes() {
     held["holdouts"] = {{{"mesh", meshes + "/shelf.obj"}, {"transform", {{"translate", {0.1, 0.2, 0.0}}}}, {"voxel_size", 0.05}, {"shadow_reach", 0.3}}};
     scenes.emplace_back("mesh holdout", held);
     // An environment light beside the propagation's lights: its median-cut lights are lights too.
-    const std::string skies = tempDir("sweep-skies");
-    for (const char* name : {"/sky.exr", "/sky_copy.exr"})
-        std::filesystem::copy_file(sourceDir() + "/grids/sunset.exr", skies + name, std::filesystem::copy_options::overwrite_existing);
     nlohmann::json sky = scenes[2].second;
-    sky["lights"].push_back({{"type", "environment"}, {"map", skies + "/sky.exr"}, {"intensity", 0.5}, {"median_cut_lights", 4}});
+    sky["lights"].push_back({{"type", "environment"}, {"map", sourceDir() + "/grids/sunset.exr"}, {"intensity", 0.5}, {"median_cut_lights", 4}});
     scenes.emplace_back("environment light", sky);
     for (auto& [name, j] : scenes) {
         j["render"]["resolution"] = {40, 30};
@@ -284,10 +281,14 @@ Mutation mutate(const nlohmann::json& scene, const std::string& pointer, const s
         m.skipped = "the grid: the bundled cloud has one";
     } else if (pointer == "/volumes/0/path") {
         m.scene[at] = copy_of_cloud;   // the same grids in another file
-    } else if (key == "mesh" || key == "map") {
+    } else if (key == "mesh") {
         std::string other = v.get<std::string>();
-        const std::string extension = key == "mesh" ? ".obj" : ".exr";
-        m.scene[at] = other.replace(other.rfind(extension), 4, "_copy" + extension);   // the same content in another file
+        m.scene[at] = other.replace(other.rfind(".obj"), 4, "_copy.obj");   // the same quad in another file
+    } else if (key == "map") {   // the same map in another file (the bundled scenes' maps too)
+        const std::filesystem::path map = v.get<std::string>();
+        const std::string copy = tempDir("sweep-map-copies") + "/" + map.stem().string() + "_copy.exr";
+        std::filesystem::copy_file(map, copy, std::filesystem::copy_options::overwrite_existing);
+        m.scene[at] = copy;
     } else if (key == "type" && pointer.rfind("/lights/", 0) == 0) {
         // A light of another type has other keys: the whole light changes.
         const std::string light = pointer.substr(0, pointer.rfind('/'));
