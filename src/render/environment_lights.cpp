@@ -32,14 +32,19 @@ struct ReadMap {
     std::shared_ptr<const EnvironmentMap> oriented;
 };
 
-// What identifies a read map: the file (path, size, time) and the colour conversion.
+// A file's identity: its path, size and modification time (equal identities, equal contents).
+std::string fileKey(const std::string& path, std::error_code& ec) {
+    const auto size = std::filesystem::file_size(path, ec);
+    const auto time = ec ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(path, ec);
+    return path + "|" + std::to_string(size) + "|" + std::to_string(time.time_since_epoch().count());
+}
+
+// What identifies a read map: the file and the colour conversion.
 std::string mapKey(const EnvironmentSettings& e, const ColorPipeline& working) {
     std::error_code ec;
-    const auto size = std::filesystem::file_size(e.map, ec);
-    const auto time = ec ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(e.map, ec);
+    const std::string file = fileKey(e.map, ec);
     if (ec) throw InputError(e.map + ": cannot read the environment map (" + ec.message() + ")");
-    return e.map + "|" + std::to_string(size) + "|" + std::to_string(time.time_since_epoch().count()) + "|" + e.map_colorspace +
-           "|" + working.config_source + "|" + working.working_space;
+    return file + "|" + e.map_colorspace + "|" + working.config_source + "|" + working.working_space;
 }
 
 ReadMap readMap(const EnvironmentSettings& e, const ColorPipeline& working) {
@@ -150,9 +155,7 @@ glm::vec3 defaultEnvironmentUp(const Scene& scene) {
         static std::map<std::string, int> axes;   // by the file's identity
         const std::string path = v.frames ? expandFramePattern(v.path, v.frames->first()) : v.path;
         std::error_code ec;
-        const auto size = std::filesystem::file_size(path, ec);
-        const auto time = ec ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(path, ec);
-        const std::string key = path + "|" + std::to_string(size) + "|" + std::to_string(time.time_since_epoch().count());
+        const std::string key = fileKey(path, ec);
         std::lock_guard<std::mutex> lock(mutex);
         const auto known = axes.find(key);
         if (known != axes.end()) return glm::vec3(known->second == 0, known->second == 1, known->second == 2);
