@@ -14,6 +14,7 @@
 #include "backend/backend_choice.h"
 #include "core/error.h"
 #include "graph/render_graph.h"
+#include "io/exr_writer.h"
 #include "scene/scene_json.h"
 #include "volume/velocity.h"
 
@@ -70,6 +71,19 @@ openvdb::FloatGrid::Ptr twoHalvesGrid(float left, float right) {
 }
 
 double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+std::string writeMap(const std::string& path, int width, int height, const std::function<glm::vec3(int, int)>& radiance) {
+    RenderImage image;
+    image.width = width;
+    image.height = height;
+    image.pixels.resize(size_t(width) * height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) image.pixels[size_t(y) * width + x].rgba = glm::vec4(radiance(x, y), 1.0f);
+    OutputSpec spec;
+    spec.pixel_type = PixelType::Float;
+    writeExr(path, image, spec, ExrMetadata{});
+    return path;
+}
 
 std::pair<double, double> meanLuminanceAndError(const RenderImage& img) {
     double sum = 0.0, variance = 0.0;

@@ -87,6 +87,10 @@ float largestDifference(const glm::mat4& a, const glm::mat4& b);
 // Rec. 709 luminance of scene-linear RGB.
 double luminance(glm::vec3 rgb);
 
+// A float EXR of `width` x `height` pixels whose pixel (x, y) holds radiance(x, y): an environment
+// map. Returns `path`.
+std::string writeMap(const std::string& path, int width, int height, const std::function<glm::vec3(int, int)>& radiance);
+
 // An image's mean luminance and its standard error (from the reference's per-pixel variances).
 std::pair<double, double> meanLuminanceAndError(const RenderImage& img);
 

@@ -1,9 +1,10 @@
 // `voxlux view --script actions.json`: UI actions replayed in order, for tests and for scripted
 // look-dev captures. The file is {"actions": [ ... ]}, each action an object with one kind key:
 //   {"set": "material.density_scale=20"}             any scene key, as --set takes it
-//   {"light": "sun", "set": {"intensity": 4}}        a light's keys, by name or index
+//   {"light": "sun", "set": {"intensity": 4}}        a light's keys, by name or index (and selects it)
 //   {"enable": "sun", "on": false}   {"solo": "sun"}   {"remove_light": 0}   {"add_light": {...}}
-//   {"drag_light": "key", "by": [dx, dy]}            a gizmo drag, in viewport pixels
+//   {"drag_light": "key", "by": [dx, dy]}            a gizmo drag, in viewport pixels (an environment
+//                                                    light: dx turns its map, as Shift + right drag does)
 //   {"drag_volume": "smoke", "by": [dx, dy], "mode": "move" | "rotate" | "scale"}
 //                                                    a volume's gizmo drag (mode: the gizmo's, unset)
 //   {"orbit": [yaw, pitch]}  {"pan": [x, y]}  {"dolly": 0.8}  {"frame": true}   (degrees, view heights)

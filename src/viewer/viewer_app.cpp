@@ -127,6 +127,7 @@ private:
     ViewerOptions options_;
     ViewerState state_;
     Viewport viewport_;
+    EnvironmentThumbnailWidget thumbnail_;
     std::vector<ViewAction> script_;
     KeyTrickle keys_;
     size_t next_ = 0;
@@ -214,7 +215,10 @@ bool ViewerApp::runAction(const ViewAction& a) {
     if (a.kind == "set") check(state_.editor.set(v.get<std::string>()));
     if (a.kind == "undo" && !state_.editor.undo()) std::cerr << "voxlux: warning: " << a.where << ": nothing to undo\n";
     if (a.kind == "redo" && !state_.editor.redo()) std::cerr << "voxlux: warning: " << a.where << ": nothing to redo\n";
-    if (a.kind == "light") check(state_.editor.changeLight(light(), a.value["set"]));
+    if (a.kind == "light") {   // and shows its panel, as a click on it in the list does
+        state_.selected_light = light();
+        check(state_.editor.changeLight(state_.selected_light, a.value["set"]));
+    }
     if (a.kind == "enable") check(state_.editor.enableLight(light(), a.value["on"].get<bool>()));
     if (a.kind == "solo") check(state_.editor.soloLight(light()));
     if (a.kind == "solo_group") check(state_.editor.soloGroup(v.get<std::string>()));
@@ -359,7 +363,7 @@ void ViewerApp::drawFrame(GLFWwindow* window) {
     ImGui::NewFrame();
     shortcuts();
     const float bottom = float(h) - kMessageHeight - (state_.frame ? kTimelineHeight : 0.0f);
-    const PanelRequests requests = drawScenePanel(state_, 0.0f, kScenePanelWidth, float(h));
+    const PanelRequests requests = drawScenePanel(state_, thumbnail_, 0.0f, kScenePanelWidth, float(h));
     viewport_.draw(state_, glm::vec2(kScenePanelWidth, 0.0f), glm::vec2(float(w) - kImagePanelWidth, bottom));
     drawImagePanel(state_, viewport_, float(w) - kImagePanelWidth, kImagePanelWidth, float(h));
     drawTimeline(state_, kScenePanelWidth, bottom, float(w) - kScenePanelWidth - kImagePanelWidth);

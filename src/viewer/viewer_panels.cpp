@@ -138,7 +138,33 @@ void linkEditor(ViewerState& state, int i, const Light& l) {
     }
 }
 
-void lightEditor(ViewerState& state) {
+// The .exr files beside `map`, for the map chooser: the folder an artist keeps a set's HDRIs in.
+std::vector<std::string> mapsBeside(const std::string& map) {
+    static std::map<std::string, std::vector<std::string>> listed;   // by folder, read once
+    const std::filesystem::path folder = std::filesystem::path(map).parent_path();
+    const auto [at, added] = listed.try_emplace(folder.string());
+    if (added) {
+        std::error_code error;
+        for (const auto& entry : std::filesystem::directory_iterator(folder.empty() ? "." : folder, error))
+            if (entry.path().extension() == ".exr") at->second.push_back((folder / entry.path().filename()).string());
+        std::sort(at->second.begin(), at->second.end());
+    }
+    return at->second;
+}
+
+// An environment light's map: picked beside the current one or typed (Enter), and its thumbnail.
+void environmentMapControls(ViewerState& state, EnvironmentThumbnailWidget& thumbnail, int i) {
+    const std::string& map = state.editor.scene().lights[size_t(i)].environment->map;
+    if (auto picked = combo("map", map, mapsBeside(map))) state.editor.changeLight(i, {{"map", *picked}});
+    static std::string typed;
+    if (ImGui::InputTextWithHint("##map path", "another map: path, Enter", &typed, ImGuiInputTextFlags_EnterReturnsTrue) &&
+        state.editor.changeLight(i, {{"map", typed}}))
+        typed.clear();
+    remember(state, "light/map");
+    thumbnail.draw(state.editor.scene(), size_t(i));
+}
+
+void lightEditor(ViewerState& state, EnvironmentThumbnailWidget& thumbnail) {
     const std::vector<Light>& lights = state.editor.scene().lights;
     if (state.selected_light < 0 || state.selected_light >= int(lights.size())) return;
     const int i = state.selected_light;
@@ -155,7 +181,7 @@ void lightEditor(ViewerState& state) {
     if (l.type != LightType::Ambient && l.type != LightType::Environment) linkEditor(state, i, l);
     const std::string type = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : l.type == LightType::Ambient ? "ambient" : "directional";
     if (l.type == LightType::Environment)   // a map is not a setting of the other types: no switching
-        ImGui::Text("environment: %s", l.environment->map.c_str());
+        environmentMapControls(state, thumbnail, i);
     else if (auto t = combo("type", type, {"directional", "point", "spot", "ambient"}))
         state.editor.changeLight(i, {{"type", *t}});
     bool changed = ImGui::ColorEdit3("colour", &l.color.x, ImGuiColorEditFlags_Float);
@@ -273,7 +299,7 @@ void volumeList(ViewerState& state) {
 
 }  // namespace
 
-PanelRequests drawScenePanel(ViewerState& state, float x, float width, float height) {
+PanelRequests drawScenePanel(ViewerState& state, EnvironmentThumbnailWidget& thumbnail, float x, float width, float height) {
     PanelRequests out;
     ImGui::SetNextWindowPos(ImVec2(x, 0));
     ImGui::SetNextWindowSize(ImVec2(width, height));
@@ -296,7 +322,7 @@ PanelRequests drawScenePanel(ViewerState& state, float x, float width, float hei
 
     if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) {
         lightList(state);
-        lightEditor(state);
+        lightEditor(state, thumbnail);
     }
     if (ImGui::CollapsingHeader("Method and quality", ImGuiTreeNodeFlags_DefaultOpen)) {
         static std::string preset;

@@ -5,6 +5,7 @@
 #pragma once
 #include <string>
 
+#include "viewer/environment_thumbnail.h"
 #include "viewer/viewer_state.h"
 #include "viewer/viewport.h"
 
@@ -15,7 +16,8 @@ struct PanelRequests {
     bool render = false;   // "Render" pressed (to the scene's output path)
 };
 
-PanelRequests drawScenePanel(ViewerState& state, float x, float width, float height);
+// `thumbnail` draws the selected environment light's map.
+PanelRequests drawScenePanel(ViewerState& state, EnvironmentThumbnailWidget& thumbnail, float x, float width, float height);
 void drawImagePanel(ViewerState& state, const Viewport& viewport, float x, float width, float height);
 void drawTimeline(ViewerState& state, float x, float y, float width);
 

@@ -60,6 +60,14 @@ std::optional<glm::vec3> ViewerState::volumePivot(size_t index) const {
     return glm::vec3(volumePlacement(v, frame) * glm::vec4(0.5f * (lo + hi), 1.0f));
 }
 
+int ViewerState::environmentLight() const {
+    const std::vector<Light>& lights = editor.scene().lights;
+    if (selected_light >= 0 && selected_light < int(lights.size()) && lights[size_t(selected_light)].environment) return selected_light;
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (lights[i].environment && lights[i].enabled) return int(i);
+    return -1;
+}
+
 void ViewerState::readVolumeBoxes() {
     const std::vector<VolumeSpec>& volumes = editor.scene().volumes;
     std::string key = frame ? std::to_string(*frame) : "-";

@@ -92,6 +92,9 @@ struct ViewerState {
     // placement: a matrix, keys, or instances (each placed on top of the transform, so none sits
     // where the handle would).
     std::optional<glm::vec3> volumePivot(size_t index) const;
+    // The environment light a Shift + right drag turns: the selected light if it is one, else the
+    // first enabled one; -1 without any.
+    int environmentLight() const;
     // Reads volume_boxes again when the frame or a volume's file or grid changed.
     void readVolumeBoxes();
     // The world box of every enabled volume as placed (instances too), from volume_boxes.

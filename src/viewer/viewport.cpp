@@ -178,8 +178,13 @@ void Viewport::guides(const ViewerState& state) {
 }
 
 bool Viewport::dragLight(ViewerState& state, int index, glm::vec2 by, glm::vec2 image_size) {
-    const Camera camera = state.camera();
     const Light& light = state.editor.scene().lights.at(size_t(index));
+    if (light.environment) {   // across the screen turns the map about its up: its cut is kept
+        Light turned = light;
+        turned.environment->rotation = std::remainder(light.environment->rotation + by.x * kDegreesPerPixel, 360.0f);
+        return state.editor.setLight(index, turned);
+    }
+    const Camera camera = state.camera();
     const glm::mat4 frame = cameraToWorld(camera);
     const glm::vec3 right(frame[0]), up(frame[1]);
     Light moved = light;
@@ -364,7 +369,11 @@ void Viewport::mouse(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
     if (dragging(ImGuiMouseButton_Left) && !io.KeyCtrl) moved = orbit(camera, -d.x * 0.3f, d.y * 0.3f);
     region(state);
     if (dragging(ImGuiMouseButton_Middle)) moved = pan(camera, glm::vec2(-d.x, d.y) / height);
-    if (dragging(ImGuiMouseButton_Right)) moved = dolly(camera, std::exp(-(d.x - d.y) * 0.005f));
+    if (dragging(ImGuiMouseButton_Right) && io.KeyShift) {
+        if (const int environment = state.environmentLight(); environment >= 0) dragLight(state, environment, d, image_hi_ - image_lo_);
+    } else if (dragging(ImGuiMouseButton_Right)) {
+        moved = dolly(camera, std::exp(-(d.x - d.y) * 0.005f));
+    }
     const glm::vec2 m = gl2(io.MousePos);
     if (io.MouseWheel != 0.0f && m.x >= lo.x && m.y >= lo.y && m.x < hi.x && m.y < hi.y) moved = dolly(camera, std::pow(0.9f, io.MouseWheel));
     if (moved) state.editor.setCamera(*moved);

@@ -2,7 +2,8 @@
 // the before/after wipe, the pixel probe, the volumes' bounding box and an axis triad, the light
 // gizmos, each volume's gizmo (W moves, E turns, R scales it, as in Maya), and the camera moves of the mouse as Houdini's and Blender's viewports have them (left
 // drag orbits, middle pans, right or the wheel dollies, with or without Alt; F frames the volume;
-// Ctrl + left drag draws a render region, rendered alone at full quality over the image).
+// Ctrl + left drag draws a render region, rendered alone at full quality over the image; Shift +
+// right drag turns the environment map about its up, as Substance Painter and Marmoset do).
 // Everything is drawn with Dear ImGui's background draw list, clipped to the viewport, so the
 // panels always cover it; one texture per image.
 #pragma once

@@ -22,20 +22,6 @@ namespace {
 
 constexpr int kEnvSize = 16;
 
-// A float EXR of `width` x `height` pixels whose pixel (x, y) holds radiance(x, y).
-std::string writeMap(const std::string& path, int width, int height, const std::function<glm::vec3(int, int)>& radiance) {
-    RenderImage image;
-    image.width = width;
-    image.height = height;
-    image.pixels.resize(size_t(width) * height);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) image.pixels[size_t(y) * width + x].rgba = glm::vec4(radiance(x, y), 1.0f);
-    OutputSpec spec;
-    spec.pixel_type = PixelType::Float;
-    writeExr(path, image, spec, ExrMetadata{});
-    return path;
-}
-
 Light environmentLight(const std::string& map) {
     Light l;
     l.type = LightType::Environment;

@@ -14,6 +14,8 @@
 #include "render/renderer.h"
 #include "scene/scene_json.h"
 #include "test_support.h"
+#include "optics/environment_map.h"
+#include "viewer/environment_thumbnail.h"
 #include "viewer/orbit_camera.h"
 #include "viewer/progressive_render.h"
 #include "viewer/scene_editor.h"
@@ -148,6 +150,43 @@ TEST(SceneEditor, ASavedSceneReadsBackTheSameFromAnotherFolder) {
     a["volumes"][0].erase("path");
     b["volumes"][0].erase("path");
     EXPECT_EQ(a, b);
+}
+
+// The thumbnail of a map black but for two grey pixels: the map's own size (it is under 256 x 128),
+// one dot on each pixel for K = 2, each dot's share its pixel's radiance times solid angle over
+// the two, the bright pixel white and the black ones black through the scene's view.
+TEST(EnvironmentThumbnail, TheCutsDotsSitOnTheMapsPixelsWithTheirShareOfThePower) {
+    constexpr int kW = 32, kH = 16;
+    const glm::ivec2 a(5, 3), b(20, 10);
+    const std::string map = writeMap(tempDir("thumbnail") + "/two.exr", kW, kH, [&](int x, int y) {
+        return glm::vec3(glm::ivec2(x, y) == a ? 100.0f : glm::ivec2(x, y) == b ? 50.0f : 0.0f);
+    });
+    Scene scene;
+    Light sky;
+    sky.type = LightType::Environment;
+    sky.enabled = false;   // a thumbnail all the same
+    sky.environment = EnvironmentSettings{};
+    sky.environment->map = map;
+    sky.environment->up = glm::vec3(0, 0, 1);
+    sky.environment->rotation = 70.0f;   // the file's layout all the same
+    sky.environment->median_cut_lights = 2;
+    sky.environment->remainder = EnvironmentRemainder::None;
+    scene.lights = {sky};
+    const EnvironmentThumbnail t = environmentThumbnail(scene, 0);
+    ASSERT_EQ(t.width, kW);
+    ASSERT_EQ(t.height, kH);
+    ASSERT_EQ(t.cut.size(), 2u);
+    const EnvironmentMap frame(kW, kH, std::vector<glm::vec3>(kW * kH), glm::vec3(0, 0, 1), 0.0f);
+    const double power_a = 100.0 * frame.pixelSolidAngle(a.y), power_b = 50.0 * frame.pixelSolidAngle(b.y);
+    for (const auto& p : t.cut) {
+        const glm::ivec2 pixel(p.uv * glm::vec2(kW, kH));
+        ASSERT_TRUE(pixel == a || pixel == b) << pixel.x << " " << pixel.y;
+        EXPECT_NEAR(p.share, (pixel == a ? power_a : power_b) / (power_a + power_b), 1e-5);
+    }
+    EXPECT_NE(t.cut[0].uv, t.cut[1].uv);
+    const auto red = [&](glm::ivec2 p) { return int(t.texels[(size_t(p.y) * kW + p.x) * 4]); };
+    EXPECT_EQ(red(a), 255);
+    EXPECT_EQ(red({0, 0}), 0);
 }
 
 TEST(OrbitCamera, OrbitKeepsTheDistanceAndStopsShortOfThePole) {

@@ -271,6 +271,34 @@ TEST(ViewerWindow, PlainDragsNavigateAndALightDragIsOneUndoStep) {
     EXPECT_EQ(s[4]["lights"], s[2]["lights"]);
 }
 
+// A Shift + right drag of 80 pixels across the image turns the default scene's sky 32 degrees about
+// its up (0.4 degrees a pixel, as a gizmo turns), with no camera move; the edit keeps the map and
+// its cut, so neither the load nor the bricks run again.
+TEST(ViewerWindow, AShiftRightDragTurnsTheEnvironmentMap) {
+    const std::string dir = tempDir("viewer-environment");
+    for (const char* f : {"layout.json", "go"}) std::filesystem::remove(dir + "/" + f);
+    const std::string script = writeScript(dir, "s.json", {{{"wait", "converged"}}, {{"save", dir + "/before.json"}},
+                                                           {{"layout", dir + "/layout.json"}},
+                                                           {{"wait_file", dir + "/go"}, {"timeout", 120}}, {{"wait", "converged"}},
+                                                           {{"save", dir + "/turned.json"}}, {{"stats", dir + "/stats.json"}},
+                                                           {{"quit", true}}});
+    const CliResult r = runEvents(dir, R"sh(VIEWER --script SCRIPT & pid=$!; for i in $(seq 1200); do [ -f DIR/layout.json ] && break; sleep 0.1; done
+        wid=$(xdotool search --sync --onlyvisible --name "voxlux view" | head -1)
+        set -- IMAGE; xdotool mousemove --window $wid $1 $2; sleep 0.3
+        xdotool keydown shift; xdotool mousedown 3; sleep 0.2; for i in $(seq 10); do xdotool mousemove_relative 8 0; sleep 0.05; done
+        xdotool mouseup 3; xdotool keyup shift; sleep 0.3
+        touch DIR/go; wait $pid)sh",
+                                  {{"VIEWER", voxluxBinary() + " view " + kCloud}, {"SCRIPT", script}, {"IMAGE", centreOf("image")}});
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const nlohmann::json before = readJson(dir + "/before.json"), turned = readJson(dir + "/turned.json");
+    EXPECT_NEAR(turned["lights"][1]["rotation"].get<double>(), 32.0, 3.0) << turned["lights"][1];
+    EXPECT_EQ(turned["camera"], before["camera"]);
+    EXPECT_EQ(turned["lights"][0], before["lights"][0]);
+    const nlohmann::json stats = readJson(dir + "/stats.json");
+    ASSERT_TRUE(stats.contains("edit_stages")) << stats;
+    for (const auto& stage : stats["edit_stages"]) EXPECT_TRUE(stage != "load" && stage != "brick") << stats;
+}
+
 // Quick key taps are never lost, however slowly the UI draws: a path typed into the Render panel's
 // output field with a BackSpace in it comes out as typed. A 60-pixel drag of a light's exposure
 // moves it 0.6 stops (it moved 5), and the layout of a script names the widgets.
