@@ -1,5 +1,6 @@
-# Renders a voxlux scene .json (one volume, directional and ambient lights, isotropic or HG
-# scattering, constant albedo) with Blender's Cycles, for bench/cycles/compare_cycles.sh:
+# Renders a voxlux scene .json (one volume, directional, ambient and environment lights, isotropic
+# or HG scattering, constant albedo) with Blender's Cycles, for bench/cycles/compare_cycles.sh and
+# compare_presets.sh:
 #   blender -b --factory-startup -P cycles_render.py -- SCENE.json OUT.exr SPP SEED BOUNCES
 # BOUNCES counts scattering events as voxlux's render.reference.max_bounces does (1 = single
 # scattering: Cycles' volume bounces 0). Prints "cycles_seconds S", the time of the render alone.
@@ -89,8 +90,43 @@ output = nodes.new("ShaderNodeOutputMaterial")
 links.new(add.outputs[0], output.inputs["Volume"])
 volume.materials.append(material)
 
+
+
+def environment_world(light):
+    """An environment light as the world: its map through a Mapping node that takes Cycles' world
+    direction into the map's own frame (voxlux's is Blender's equirectangular mapping about `up`,
+    turned by `rotation`: docs/environment.md), read by the nearest pixel as voxlux's lighting reads
+    it, times the light's colour and intensity."""
+    up = light.get("up", "y")
+    up = Vector({"x": (1, 0, 0), "y": (0, 1, 0), "z": (0, 0, 1)}[up] if isinstance(up, str) else up).normalized()
+    x = Vector((0, 1, 0)) if abs(up.x) > 0.999 else Vector((1, 0, 0))
+    x = (x - up * x.dot(up)).normalized()
+    x.rotate(Matrix.Rotation(math.radians(light.get("rotation", 0.0)), 3, up))
+    y = up.cross(x)
+    to_map = Matrix((x, y, up))  # rows: a world direction's coordinates in the map's frame
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    coordinates = nodes.new("ShaderNodeTexCoord")
+    mapping = nodes.new("ShaderNodeMapping")
+    mapping.vector_type = "VECTOR"
+    mapping.inputs["Rotation"].default_value = to_map.to_euler("XYZ")
+    links.new(coordinates.outputs["Generated"], mapping.inputs["Vector"])
+    texture = nodes.new("ShaderNodeTexEnvironment")
+    texture.image = bpy.data.images.load(os.path.normpath(os.path.join(here, light["map"])))
+    texture.interpolation = "Closest"
+    links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    tint = nodes.new("ShaderNodeMixRGB")
+    tint.blend_type = "MULTIPLY"
+    tint.inputs["Fac"].default_value = 1.0
+    tint.inputs["Color2"].default_value = (*light.get("color", [1.0, 1.0, 1.0]), 1.0)
+    links.new(texture.outputs["Color"], tint.inputs["Color1"])
+    links.new(tint.outputs["Color"], background.inputs["Color"])
+    background.inputs["Strength"].default_value = light.get("intensity", 1.0)
+    world.cycles.sampling_method = "MANUAL"
+    world.cycles.sample_map_resolution = max(texture.image.size)
+
+
 # The lights: a directional light is a sun of angle 0 whose strength is its irradiance; ambient
-# light is the world's uniform background radiance.
+# light is the world's uniform background radiance, an environment light its map.
 world = bpy.data.worlds.new("world")
 world.use_nodes = True
 background = world.node_tree.nodes["Background"]
@@ -101,6 +137,10 @@ for light in vx["lights"]:
     if light["type"] == "ambient":
         background.inputs["Color"].default_value = (*color, 1.0)
         background.inputs["Strength"].default_value = 1.0
+    elif light["type"] == "environment":
+        if light.get("map_colorspace") != "Linear Rec.709 (sRGB)":
+            sys.exit("cycles_render.py: an environment map in \"Linear Rec.709 (sRGB)\" only (what Blender reads an EXR as)")
+        environment_world(light)
     elif light["type"] == "directional":
         peak = max(color)
         sun = bpy.data.lights.new("sun", "SUN")

@@ -13,7 +13,8 @@ namespace voxlux {
 const std::vector<std::string>& qualityPresetNames();
 
 // The preset's settings for the scene whose JSON is `scene`, as "KEY=VALUE" (--set) in order. An
-// effect the preset turns on keeps the scene's own settings of it (effectOnSet). Throws
+// effect the preset turns on keeps the scene's own settings of it (effectOnSet); draft and
+// preview set each environment light's median_cut_lights. Throws
 // InputError "--quality 'X': unknown preset (draft, preview, final)".
 std::vector<std::string> qualityPresetSets(const nlohmann::json& scene, const std::string& name);
 

@@ -49,6 +49,22 @@ TEST(QualityPresets, EachPresetPicksItsMethodAndKnobs) {
     for (const Scene* s : {&draft, &preview, &final_}) EXPECT_EQ(s->lights.size(), 2u);
 }
 
+// The fast presets cut every environment light into 4 lights, whatever K it had; final keeps its K
+// (the reference samples the map itself); other lights are untouched.
+TEST(QualityPresets, TheFastPresetsCutEnvironmentLightsIntoFour) {
+    nlohmann::json scene = litScene();
+    scene["lights"].push_back({{"type", "environment"}, {"map", "/shots/sky.exr"}, {"median_cut_lights", 32}});
+    scene["lights"].push_back({{"type", "environment"}, {"map", "/shots/dome.exr"}});
+    for (const char* fast : {"draft", "preview"}) {
+        const Scene s = withPreset(scene, fast);
+        ASSERT_EQ(s.lights.size(), 4u);
+        EXPECT_FALSE(s.lights[1].environment);
+        EXPECT_EQ(s.lights[2].environment->median_cut_lights, 4) << fast;
+        EXPECT_EQ(s.lights[3].environment->median_cut_lights, 4) << fast;
+    }
+    EXPECT_EQ(withPreset(scene, "final").lights[2].environment->median_cut_lights, 32);
+}
+
 TEST(QualityPresets, AnEffectTurnedOnKeepsTheScenesSettings) {
     nlohmann::json scene = litScene();
     scene["effects"] = {{"indirect", {{"transport_color", {1.0, 0.6, 0.3}}}},
