@@ -97,9 +97,11 @@ def environment_world(light):
     direction into the map's own frame (voxlux's is Blender's equirectangular mapping about `up`,
     turned by `rotation`: docs/environment.md), read by the nearest pixel as voxlux's lighting reads
     it, times the light's colour and intensity."""
-    up = light.get("up", "y")
+    if "up" not in light:
+        sys.exit("cycles_render.py: an environment light needs its `up` (voxlux's default reads the volume's file)")
+    up = light["up"]
     up = Vector({"x": (1, 0, 0), "y": (0, 1, 0), "z": (0, 0, 1)}[up] if isinstance(up, str) else up).normalized()
-    x = Vector((0, 1, 0)) if abs(up.x) > 0.999 else Vector((1, 0, 0))
+    x = Vector((0, 1, 0)) if abs(up.x) > 0.9 else Vector((1, 0, 0))  # as environmentFrame
     x = (x - up * x.dot(up)).normalized()
     x.rotate(Matrix.Rotation(math.radians(light.get("rotation", 0.0)), 3, up))
     y = up.cross(x)

@@ -11,7 +11,8 @@ namespace voxlux {
 namespace {
 
 // Each sets every key that picks the method, so a preset means the same whatever the scene had;
-// lights, material, camera and output stay the scene's. Chosen from the Pareto fronts of
+// lights (but for an environment light's median-cut count, below), material, camera and output
+// stay the scene's. Chosen from the Pareto fronts of
 // docs/accuracy.md: AO is off because against multiple scattering it adds error on every scene
 // measured.
 const std::map<std::string, std::vector<std::string>>& presets() {
@@ -30,7 +31,7 @@ const std::map<std::string, std::vector<std::string>>& presets() {
 
 // The median-cut lights each environment light gets under a fast preset: on the three scenes of
 // docs/accuracy.md ("Environment light: the median cut's K"), 4 lights give propagation with
-// indirect light the error of 16 or less, in a third to a quarter of the time.
+// indirect light the mean error of 16 (worse on one scene, better on two) in about half the time.
 const std::map<std::string, int>& environmentLights() {
     static const std::map<std::string, int> k = {{"draft", 4}, {"preview", 4}};
     return k;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <epoxy/gl.h>
 #include <imgui.h>
 
 #include "core/error.h"
@@ -69,22 +68,12 @@ EnvironmentThumbnail environmentThumbnail(const Scene& scene, size_t light) {
     return t;
 }
 
-struct EnvironmentThumbnailWidget::Texture {
-    GLuint id = 0;
-    ~Texture() {
-        if (id) glDeleteTextures(1, &id);
-    }
-};
-
-EnvironmentThumbnailWidget::EnvironmentThumbnailWidget() : texture_(std::make_unique<Texture>()) {}
-EnvironmentThumbnailWidget::~EnvironmentThumbnailWidget() = default;
-
 void EnvironmentThumbnailWidget::draw(const Scene& scene, size_t light) {
     const Light& l = scene.lights.at(light);
     const EnvironmentSettings& e = *l.environment;
-    // What the picture shows: not the rotation or intensity, which leave the file's layout and the
-    // exposed image as they are.
-    const std::string key = e.map + "|" + e.map_colorspace + "|" + std::to_string(e.median_cut_lights) + "|" +
+    // What the picture shows: not the rotation, which leaves the file's layout as it is, nor the
+    // intensity, which the exposure takes out (but for 0, which leaves a black map).
+    const std::string key = std::to_string(l.intensity > 0.0f) + "|" + e.map + "|" + e.map_colorspace + "|" + std::to_string(e.median_cut_lights) + "|" +
                             std::to_string(int(e.remainder)) + "|" + std::to_string(l.color.x) + "," + std::to_string(l.color.y) +
                             "," + std::to_string(l.color.z) + "|" + scene.color.config + "|" + scene.color.working_space + "|" +
                             scene.color.display + "|" + scene.color.view;
@@ -93,12 +82,7 @@ void EnvironmentThumbnailWidget::draw(const Scene& scene, size_t light) {
         try {
             shown_ = environmentThumbnail(scene, light);
             error_.clear();
-            if (!texture_->id) glGenTextures(1, &texture_->id);
-            glBindTexture(GL_TEXTURE_2D, texture_->id);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-            glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, shown_.width, shown_.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, shown_.texels.data());
+            texture_.upload(shown_.width, shown_.height, shown_.texels);
         } catch (const std::exception& failure) {   // the render names it too; the panel shows why there is no picture
             error_ = failure.what();
         }
@@ -110,7 +94,7 @@ void EnvironmentThumbnailWidget::draw(const Scene& scene, size_t light) {
     const float width = ImGui::GetContentRegionAvail().x;
     const ImVec2 size(width, width * float(shown_.height) / float(std::max(shown_.width, 1)));
     const ImVec2 lo = ImGui::GetCursorScreenPos();
-    ImGui::Image(ImTextureID(intptr_t(texture_->id)), size);
+    ImGui::Image(texture_.imguiId(), size);
     ImDrawList* draw = ImGui::GetWindowDrawList();
     for (const auto& p : shown_.cut) {
         const ImVec2 at(lo.x + p.uv.x * size.x, lo.y + p.uv.y * size.y);

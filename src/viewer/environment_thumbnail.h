@@ -6,13 +6,13 @@
 // pass over the map's pixels; the viewer makes one only when the map, its colour space or K change.
 #pragma once
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
+#include "viewer/display_texture.h"
 
 namespace voxlux {
 
@@ -35,16 +35,10 @@ EnvironmentThumbnail environmentThumbnail(const Scene& scene, size_t light);
 // error instead.
 class EnvironmentThumbnailWidget {
 public:
-    EnvironmentThumbnailWidget();
-    ~EnvironmentThumbnailWidget();
-    EnvironmentThumbnailWidget(const EnvironmentThumbnailWidget&) = delete;
-    EnvironmentThumbnailWidget& operator=(const EnvironmentThumbnailWidget&) = delete;
-
     void draw(const Scene& scene, size_t light);
 
 private:
-    struct Texture;
-    std::unique_ptr<Texture> texture_;
+    DisplayTexture texture_;
     std::string key_, error_;
     EnvironmentThumbnail shown_;
 };

@@ -11,6 +11,7 @@
 
 #include "scene/camera.h"
 #include "scene/transform_edit.h"
+#include "viewer/display_texture.h"
 #include "viewer/orbit_camera.h"
 
 namespace voxlux {
@@ -67,14 +68,10 @@ void drawBox(const Camera& camera, glm::vec2 image_lo, glm::vec2 size, glm::vec3
 }  // namespace
 
 struct Viewport::Texture {
-    GLuint id = 0;
-    glm::ivec2 size{0};
+    DisplayTexture texels;
     const ViewFrame* frame = nullptr;   // what it holds (compared by address: frames are never changed)
     std::string aov;
     std::shared_ptr<const ViewFrame> keep;
-    ~Texture() {
-        if (id) glDeleteTextures(1, &id);
-    }
 };
 
 Viewport::Viewport()
@@ -85,18 +82,7 @@ void Viewport::upload(const ViewerState& state, Texture& t, const ViewFrame& fra
     const std::string& aov = frame.image.pixels.empty() ? "beauty" : state.aov;   // a flipbook image holds the beauty alone
     if (t.frame == &frame && t.aov == aov) return;
     const std::vector<uint8_t>& texels = aov_display_.texels(frame, aov, state.editor.scene().color);
-    if (!t.id) glGenTextures(1, &t.id);
-    glBindTexture(GL_TEXTURE_2D, t.id);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (t.size == glm::ivec2(frame.image.width, frame.image.height))   // the same level again: no new storage
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, frame.image.width, frame.image.height, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
-    else
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame.image.width, frame.image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
-    t.size = {frame.image.width, frame.image.height};
+    t.texels.upload(frame.image.width, frame.image.height, texels);
     t.frame = &frame;
     t.aov = aov;
 }
@@ -123,19 +109,19 @@ void Viewport::draw(ViewerState& state, glm::vec2 lo, glm::vec2 hi) {
             // The region's pixels over the image shown when it was drawn.
             backdrop_->keep = state.backdrop;
             upload(state, *backdrop_, *state.backdrop);
-            back->AddImage(ImTextureID(intptr_t(backdrop_->id)), im(image_lo_), im(image_hi_));
+            back->AddImage(backdrop_->texels.imguiId(), im(image_lo_), im(image_hi_));
             const std::array<float, 4>& b = *state.region;
             const glm::vec2 size = image_hi_ - image_lo_;
             const glm::vec2 rlo = image_lo_ + glm::vec2(b[0], b[1]) * size, rhi = image_lo_ + glm::vec2(b[2], b[3]) * size;
-            back->AddImage(ImTextureID(intptr_t(current_->id)), im(rlo), im(rhi), ImVec2(b[0], b[1]), ImVec2(b[2], b[3]));
+            back->AddImage(current_->texels.imguiId(), im(rlo), im(rhi), ImVec2(b[0], b[1]), ImVec2(b[2], b[3]));
             back->AddRect(im(rlo), im(rhi), IM_COL32(255, 200, 60, 230), 0.0f, 0, 1.5f);
         } else {
-            back->AddImage(ImTextureID(intptr_t(current_->id)), ImVec2(split, image_lo_.y), im(image_hi_), ImVec2(u, 0), ImVec2(1, 1));
+            back->AddImage(current_->texels.imguiId(), ImVec2(split, image_lo_.y), im(image_hi_), ImVec2(u, 0), ImVec2(1, 1));
         }
         if (state.wipe && state.held && !state.region) {
             held_->keep = state.held;
             upload(state, *held_, *state.held);
-            back->AddImage(ImTextureID(intptr_t(held_->id)), im(image_lo_), ImVec2(split, image_hi_.y), ImVec2(0, 0), ImVec2(u, 1));
+            back->AddImage(held_->texels.imguiId(), im(image_lo_), ImVec2(split, image_hi_.y), ImVec2(0, 0), ImVec2(u, 1));
             back->AddLine(ImVec2(split, image_lo_.y), ImVec2(split, image_hi_.y), IM_COL32(255, 200, 60, 255), 2.0f);
         }
         // The probe reads the image under the mouse, at whatever level it is.

@@ -36,7 +36,7 @@ GL commands (`--backend gl`, `--backends ...gl`) are skipped with --skip-gl or V
 A command is split into words as the shell does, the tables are applied to its words, and it is
 joined again, quoted; a failure prints it as it ran.
 
-Cost: about 2 minutes on 2 busy cores with the shared data, half of it the four `voxlux study`
+Cost: about 2 minutes on 2 busy cores with the shared data, half of it the eight `voxlux study`
 runs of docs/accuracy.md and docs/scans.md; about 40 s without the shared data. Temporary folders are removed.
 
   tests/docs/run_doc_commands.py --binary build/voxlux --source .          # run, PASS/FAIL/SKIP each

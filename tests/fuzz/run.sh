@@ -43,13 +43,14 @@ fuzz() {
 }
 
 # A libFuzzer run is one thread: one target per core at a time, each still given SECONDS.
-jobs=$(nproc)
+cores=$(nproc)
+trap 'kill $(jobs -p) 2>/dev/null' INT TERM   # an interrupted run leaves no fuzzer behind
 running=()
 failed=0
 for target in scene light_edits cli_specs vdb exr chan camera mesh; do
   fuzz "$target" &
   running+=($!)
-  if (( ${#running[@]} >= jobs )); then
+  if (( ${#running[@]} >= cores )); then
     wait "${running[0]}" || failed=1
     running=("${running[@]:1}")
   fi

@@ -272,8 +272,8 @@ TEST(ViewerWindow, PlainDragsNavigateAndALightDragIsOneUndoStep) {
 }
 
 // A Shift + right drag of 80 pixels across the image turns the default scene's sky 32 degrees about
-// its up (0.4 degrees a pixel, as a gizmo turns), with no camera move; the edit keeps the map and
-// its cut, so neither the load nor the bricks run again.
+// its up (0.4 degrees a pixel, as a gizmo turns), with no camera move, and re-runs neither the
+// load nor the bricks.
 TEST(ViewerWindow, AShiftRightDragTurnsTheEnvironmentMap) {
     const std::string dir = tempDir("viewer-environment");
     for (const char* f : {"layout.json", "go"}) std::filesystem::remove(dir + "/" + f);
