@@ -91,7 +91,6 @@ links.new(add.outputs[0], output.inputs["Volume"])
 volume.materials.append(material)
 
 
-
 def environment_world(light):
     """An environment light as the world: its map through a Mapping node that takes Cycles' world
     direction into the map's own frame (voxlux's is Blender's equirectangular mapping about `up`,

@@ -6,7 +6,7 @@
 // takes as it takes any light, and which propagation carries as one coherent group per sweep
 // direction (Sunden 2015). Maps and cuts are kept between calls by the file's identity, so that a
 // rotation or a new intensity makes no new cut: it turns or scales the K lights, and orients a
-// copy of the map with its sampling tables (O(pixels), a few ms for a 1024 x 512 map).
+// copy of the map with its sampling tables (O(pixels)).
 #pragma once
 #include "scene/scene.h"
 

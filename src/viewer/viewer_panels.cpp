@@ -139,7 +139,7 @@ void linkEditor(ViewerState& state, int i, const Light& l) {
 }
 
 // The .exr files beside `map`, for the map chooser: the folder an artist keeps a set's HDRIs in.
-std::vector<std::string> mapsBeside(const std::string& map) {
+const std::vector<std::string>& mapsBeside(const std::string& map) {
     static std::map<std::string, std::vector<std::string>> listed;   // by folder, read once
     const std::filesystem::path folder = std::filesystem::path(map).parent_path();
     const auto [at, added] = listed.try_emplace(folder.string());
